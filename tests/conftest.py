@@ -14,18 +14,26 @@ SEED_RADIUS_M = 0.0205  # De Simone et al. (2024) Table 3
 SEED_FILL_HEIGHT_M = 0.039
 
 
-@pytest.fixture
-def seed_model() -> SloshModel:
+def seed_vial() -> SloshModel:
     """The paper's vial with water at 25 °C (Table 1 density 997 kg/m^3), 3 modes."""
     return equivalent_model(
         UprightCylinder(SEED_RADIUS_M), get_liquid("water-25C"), SEED_FILL_HEIGHT_M
     )
 
 
-@pytest.fixture
-def seed_model_table3() -> SloshModel:
+def seed_vial_table3() -> SloshModel:
     """The paper's vial as in its Table 3: rho = 1000 kg/m^3, damping ratio 0.03."""
     water = dataclasses.replace(get_liquid("water-25C"), density_kg_m3=1000.0)
     return equivalent_model(
         UprightCylinder(SEED_RADIUS_M), water, SEED_FILL_HEIGHT_M, damping_ratio=0.03
     )
+
+
+@pytest.fixture
+def seed_model() -> SloshModel:
+    return seed_vial()
+
+
+@pytest.fixture
+def seed_model_table3() -> SloshModel:
+    return seed_vial_table3()

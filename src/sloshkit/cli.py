@@ -6,20 +6,29 @@ Exit codes: 0 success; 1 no feasible result (e.g. a plan that cannot meet the li
 
 from __future__ import annotations
 
+import functools
+import inspect
 import json
+import math
 import sys
+import typing
 import warnings
-from typing import Annotated
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any
 
 import typer
 from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.dynamics import MODEL_KINDS, SloshResponse, simulate
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.geometry import UprightCylinder
 from sloshkit.liquids import LIQUIDS, Liquid, get_liquid
 from sloshkit.modal import DAMPING_LAWS, SloshModel, equivalent_model
+from sloshkit.motion.laws import LAW_NAMES, Motion, make_law, trapezoidal
 from sloshkit.units import parse_quantity
 
 app = typer.Typer(
@@ -81,6 +90,14 @@ SurfaceTension = Annotated[
     typer.Option(
         "--surface-tension-correction/--no-surface-tension-correction",
         help="Raise frequencies by the Bond-number capillary correction.",
+    ),
+]
+ModelFile = Annotated[
+    Path | None,
+    typer.Option(
+        "--model-file",
+        help="Model file (TOML/JSON, e.g. from 'sloshkit calibrate'); replaces the other "
+        "model options.",
     ),
 ]
 Json = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI units).")]
@@ -189,22 +206,63 @@ def model_table(model: SloshModel) -> Table:
     return table
 
 
+MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
+    "radius": (Radius, "20.5mm"),
+    "fill_height": (FillHeight, None),
+    "fill_volume": (FillVolume, None),
+    "wall_height": (WallHeight, None),
+    "liquid": (LiquidName, "water-25C"),
+    "density": (Density, None),
+    "viscosity": (Viscosity, None),
+    "sigma": (Sigma, None),
+    "modes": (Modes, 3),
+    "damping_law": (DampingLawOpt, "seed"),
+    "damping_ratio": (DampingRatio, None),
+    "surface_tension_correction": (SurfaceTension, False),
+    "model_file": (ModelFile, None),
+}
+
+
+def with_model_options(command: Callable[..., None]) -> Callable[..., None]:
+    """Give ``command`` the shared model options; it receives the built ``slosh_model``.
+
+    The options are added to the command's signature (which typer reads), so every command
+    spells and documents them identically.
+    """
+    signature = inspect.signature(command, eval_str=True)
+    own = [p for p in signature.parameters.values() if p.name != "slosh_model"]
+    added = [
+        inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default, annotation=hint)
+        for name, (hint, default) in MODEL_OPTIONS.items()
+    ]
+    own_hints = typing.get_type_hints(command, include_extras=True)
+
+    @functools.wraps(command)
+    def wrapper(**kwargs: Any) -> None:
+        options = {name: kwargs.pop(name) for name in MODEL_OPTIONS}
+        model_file = options.pop("model_file")
+        if model_file is not None:
+            from sloshkit.io import read_model_file
+
+            kwargs["slosh_model"] = read_model_file(model_file)
+        else:
+            kwargs["slosh_model"] = build_model(**options)
+        command(**kwargs)
+
+    ordered = sorted(own + added, key=lambda p: p.default is not inspect.Parameter.empty)
+    wrapper.__signature__ = signature.replace(  # type: ignore[attr-defined]
+        parameters=[p.replace(kind=inspect.Parameter.KEYWORD_ONLY) for p in ordered]
+    )
+    wrapper.__annotations__ = {
+        **{name: own_hints[name] for name in own_hints if name not in ("slosh_model", "return")},
+        **{name: hint for name, (hint, _) in MODEL_OPTIONS.items()},
+    }
+    return wrapper
+
+
 @app.command()
-def model(
-    radius: Radius = "20.5mm",
-    fill_height: FillHeight = None,
-    fill_volume: FillVolume = None,
-    wall_height: WallHeight = None,
-    liquid: LiquidName = "water-25C",
-    density: Density = None,
-    viscosity: Viscosity = None,
-    sigma: Sigma = None,
-    modes: Modes = 3,
-    damping_law: DampingLawOpt = "seed",
-    damping_ratio: DampingRatio = None,
-    surface_tension_correction: SurfaceTension = False,
-    json_output: Json = False,
-) -> None:
+@with_model_options
+def model(slosh_model: SloshModel, json_output: Json = False) -> None:
     """Equivalent pendulum model of a filled upright cylinder.
 
     Defaults are the seed paper's vial (R 20.5 mm, h 39 mm, water at 25 °C).
@@ -215,24 +273,281 @@ def model(
 
       sloshkit model --radius 8mm --fill-volume 2mL --liquid glycerol-50wt-20C --json
     """
-    slosh_model = build_model(
-        radius,
-        fill_height,
-        fill_volume,
-        wall_height,
-        liquid,
-        density,
-        viscosity,
-        sigma,
-        modes,
-        damping_law,
-        damping_ratio,
-        surface_tension_correction,
-    )
     if json_output:
         print_json(slosh_model.to_dict())
     else:
         stdout.print(model_table(slosh_model))
+
+
+# Motion and machine-limit options: the same names in every command that moves a container.
+Distance = Annotated[str, typer.Option("--distance", help="Travel distance, e.g. 0.5m.")]
+Duration = Annotated[str | None, typer.Option("--duration", help="Move duration, e.g. 1.5s.")]
+PeakVelocity = Annotated[
+    str | None,
+    typer.Option(
+        "--peak-velocity",
+        help="Trapezoid peak velocity; sets the duration (T = 1.5 D / V by default).",
+    ),
+]
+Vmax = Annotated[str | None, typer.Option("--vmax", help="Machine velocity limit, e.g. 1m/s.")]
+Amax = Annotated[
+    str | None, typer.Option("--amax", help="Machine acceleration limit, e.g. 5m/s^2.")
+]
+Jmax = Annotated[str | None, typer.Option("--jmax", help="Machine jerk limit, e.g. 50m/s^3.")]
+AccelFraction = Annotated[
+    float | None,
+    typer.Option("--accel-fraction", help="Trapezoid: acceleration time / duration (1/3)."),
+]
+ModelKindOpt = Annotated[
+    str, typer.Option("--model", help="Slosh model: linear or nonlinear (large angles).")
+]
+SamplePeriod = Annotated[str, typer.Option("--sample-period", help="Simulation step, e.g. 1ms.")]
+SettleTime = Annotated[
+    str | None, typer.Option("--settle-time", help="Time simulated after the move.")
+]
+SettleTolerance = Annotated[
+    str, typer.Option("--settle-tol", help="Settling tolerance on the first-mode angle.")
+]
+
+
+@dataclass(frozen=True)
+class MoveRequest:
+    """Motion options parsed to SI."""
+
+    distance_m: float
+    duration_s: float | None
+    peak_velocity_m_s: float | None
+    vmax: float | None
+    amax: float | None
+    jmax: float | None
+    accel_fraction: float | None
+
+    @classmethod
+    def parse(
+        cls,
+        distance: str,
+        duration: str | None,
+        peak_velocity: str | None,
+        vmax: str | None,
+        amax: str | None,
+        jmax: str | None,
+        accel_fraction: float | None,
+    ) -> MoveRequest:
+        def optional(text: str | None, kind: str, name: str) -> float | None:
+            return None if text is None else parse_quantity(text, kind, name)
+
+        return cls(
+            distance_m=parse_quantity(distance, "length", "distance"),
+            duration_s=optional(duration, "time", "duration"),
+            peak_velocity_m_s=optional(peak_velocity, "velocity", "peak_velocity"),
+            vmax=optional(vmax, "velocity", "vmax"),
+            amax=optional(amax, "acceleration", "amax"),
+            jmax=optional(jmax, "jerk", "jmax"),
+            accel_fraction=accel_fraction,
+        )
+
+    def law(self, name: str) -> Motion:
+        """The motion law called ``name`` (or ``file:PATH``) for this move."""
+        if name.startswith("file:"):
+            from sloshkit.io import read_motion_file
+
+            return typing.cast(Motion, read_motion_file(name.removeprefix("file:"), name))
+        vmax, amax, jmax = self.vmax, self.amax, self.jmax
+        if name == "s-curve" and self.peak_velocity_m_s is not None:
+            # Same peak velocity and acceleration as the trapezoid; jerk time 0.1 s by default.
+            reference = trapezoidal(
+                self.distance_m, self.peak_velocity_m_s, None, self.accel_fraction
+            )
+            vmax = vmax if vmax is not None else self.peak_velocity_m_s
+            amax = amax if amax is not None else reference.peak_acceleration_m_s2
+            jmax = jmax if jmax is not None else 10.0 * amax
+        return make_law(
+            name,
+            self.distance_m,
+            duration_s=self.duration_s,
+            peak_velocity_m_s=self.peak_velocity_m_s,
+            max_velocity_m_s=vmax,
+            max_acceleration_m_s2=amax,
+            max_jerk_m_s3=jmax,
+            acceleration_fraction=self.accel_fraction,
+        )
+
+
+def _simulate(
+    motion: Motion,
+    slosh_model: SloshModel,
+    kind: str,
+    sample_period: str,
+    settle_time: str | None,
+    settle_tol: str,
+) -> SloshResponse:
+    if kind not in MODEL_KINDS:
+        raise InputError("model", kind, "must be one of " + ", ".join(MODEL_KINDS))
+    return simulate(
+        motion,
+        slosh_model,
+        kind=kind,  # type: ignore[arg-type]
+        sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+        settle_time_s=None
+        if settle_time is None
+        else parse_quantity(settle_time, "time", "settle_time"),
+        settle_tolerance_rad=parse_quantity(settle_tol, "angle", "settle_tol"),
+    )
+
+
+def json_number(value: float) -> float | None:
+    """JSON has no infinity: an unbounded value (a jerk impulse) is written as null."""
+    return value if math.isfinite(value) else None
+
+
+def metrics_json(response: SloshResponse) -> dict[str, float | None]:
+    """The simulate JSON keys, with infinities as null."""
+    return {key: json_number(value) for key, value in response.metrics().items()}
+
+
+def _format_metric(key: str, value: float) -> str:
+    if not math.isfinite(value):
+        return "∞ (impulse)" if "jerk" in key else "∞"
+    if key.endswith("_m"):
+        return f"{1e3 * value:.3f} mm"
+    unit = {"_deg": "°", "_s": " s", "_m_s2": " m/s²", "_m_s3": " m/s³"}
+    suffix = next((u for k, u in unit.items() if key.endswith(k)), "")
+    return f"{value:.4g}{suffix}"
+
+
+@app.command("simulate")
+@with_model_options
+def simulate_command(
+    slosh_model: SloshModel,
+    law: Annotated[
+        str, typer.Option("--law", help="Law: " + ", ".join(LAW_NAMES) + ", file:PATH.")
+    ] = "quintic",
+    distance: Distance = "0.5m",
+    duration: Duration = None,
+    peak_velocity: PeakVelocity = None,
+    vmax: Vmax = None,
+    amax: Amax = None,
+    jmax: Jmax = None,
+    accel_fraction: AccelFraction = None,
+    model_kind: ModelKindOpt = "linear",
+    sample_period: SamplePeriod = "1ms",
+    settle_time: SettleTime = None,
+    settle_tol: SettleTolerance = "0.1deg",
+    csv: Annotated[Path | None, typer.Option("--csv", help="Write the time series as CSV.")] = None,
+    plot: Annotated[
+        Path | None, typer.Option("--plot", help="Write a figure (PNG/SVG/PDF).")
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """Slosh response of the container to one motion law.
+
+    Examples:
+
+      sloshkit simulate --law quintic --distance 0.5m --duration 1.5s --json
+
+      sloshkit simulate --law s-curve --distance 0.5m --vmax 1m/s --amax 5m/s^2 --jmax 50m/s^3
+
+      sloshkit simulate --law file:move.csv --model nonlinear --plot slosh.png
+    """
+    request = MoveRequest.parse(distance, duration, peak_velocity, vmax, amax, jmax, accel_fraction)
+    motion = request.law(law)
+    response = _simulate(motion, slosh_model, model_kind, sample_period, settle_time, settle_tol)
+    if csv is not None:
+        response.to_csv(csv)
+    if plot is not None:
+        response.plot(plot)
+    if json_output:
+        print_json({"law": motion.name, "model": model_kind, **metrics_json(response)})
+        return
+    table = Table(
+        title=f"{motion.name} move of {1e3 * motion.distance_m:.1f} mm, {model_kind} model"
+    )
+    table.add_column("metric")
+    table.add_column("value", justify="right")
+    for key, value in response.metrics().items():
+        table.add_row(key, _format_metric(key, value))
+    stdout.print(table)
+
+
+COMPARE_LAWS = "trapezoidal,cubic,quintic,septic,s-curve"
+
+
+@app.command("compare")
+@with_model_options
+def compare_command(
+    slosh_model: SloshModel,
+    distance: Distance = "0.5m",
+    peak_velocity: PeakVelocity = "0.5m/s",
+    duration: Duration = None,
+    laws: Annotated[str, typer.Option("--laws", help="Comma-separated law names.")] = COMPARE_LAWS,
+    vmax: Vmax = None,
+    amax: Amax = None,
+    jmax: Jmax = None,
+    accel_fraction: AccelFraction = None,
+    model_kind: ModelKindOpt = "linear",
+    sample_period: SamplePeriod = "1ms",
+    settle_time: SettleTime = None,
+    settle_tol: SettleTolerance = "0.1deg",
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Folder for compare.csv, compare.json, figures.")
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """All laws on the same move, side by side (the seed paper's Figs. 7-9).
+
+    Polynomial laws take the trapezoid's duration (same peak velocity for the trapezoid); the
+    s-curve takes the trapezoid's peak velocity and acceleration and a 0.1 s jerk time unless
+    --vmax/--amax/--jmax are given.
+
+    Example:
+
+      sloshkit compare --distance 0.5m --peak-velocity 0.5m/s --out compare/
+    """
+    request = MoveRequest.parse(distance, duration, peak_velocity, vmax, amax, jmax, accel_fraction)
+    names = [name.strip() for name in laws.split(",") if name.strip()]
+    if not names:
+        raise InputError("laws", laws, "give at least one law name")
+    motions = [request.law(name) for name in names]
+    responses = [
+        _simulate(motion, slosh_model, model_kind, sample_period, settle_time, settle_tol)
+        for motion in motions
+    ]
+    rows = [
+        {"law": motion.name, **metrics_json(response)}
+        for motion, response in zip(motions, responses, strict=True)
+    ]
+    if out is not None:
+        from sloshkit.io import write_json, write_rows_csv
+        from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison
+
+        write_rows_csv(out / "compare.csv", rows)
+        write_json(out / "compare.json", rows)
+        plot_law_comparison(motions, out / "fig7_laws.png")
+        plot_slosh_comparison(responses, out / "fig8_slosh.png")
+    if json_output:
+        print_json(rows)
+        return
+    table = Table(
+        title=f"Motion laws compared: {1e3 * request.distance_m:.0f} mm move, {model_kind} model"
+    )
+    headers = [
+        ("law", None),
+        ("duration", "duration_s"),
+        ("peak acc.", "peak_acceleration_m_s2"),
+        ("peak jerk", "peak_jerk_m_s3"),
+        ("peak θ₁", "peak_angle_deg"),
+        ("residual θ₁", "residual_angle_deg"),
+        ("peak wall η", "peak_wall_elevation_m"),
+        ("settling", "settling_time_s"),
+    ]
+    for header, _ in headers:
+        table.add_column(Text(header), justify="right")
+    for motion, response in zip(motions, responses, strict=True):
+        metrics = response.metrics()
+        table.add_row(motion.name, *(_format_metric(k, metrics[k]) for _, k in headers[1:] if k))
+    stdout.print(table)
+    if out is not None:
+        stdout.print(f"wrote {out}/compare.csv, compare.json, fig7_laws.png, fig8_slosh.png")
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def]

@@ -1,0 +1,27 @@
+"""Motion laws (rest-to-rest, 1-D) and input shaping."""
+
+from sloshkit.motion.laws import (
+    LAW_NAMES,
+    Motion,
+    cubic,
+    from_samples,
+    make_law,
+    minimum_jerk,
+    quintic,
+    s_curve,
+    septic,
+    trapezoidal,
+)
+
+__all__ = [
+    "LAW_NAMES",
+    "Motion",
+    "cubic",
+    "from_samples",
+    "make_law",
+    "minimum_jerk",
+    "quintic",
+    "s_curve",
+    "septic",
+    "trapezoidal",
+]

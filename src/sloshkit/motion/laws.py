@@ -1,0 +1,433 @@
+"""Rest-to-rest 1-D motion laws as exact piecewise polynomials.
+
+Every law is a `Motion`: position s(t) on [0, T] held as a `scipy.interpolate.PPoly`, so
+position, velocity, acceleration and jerk are exact derivatives of one object, vectorised over
+time, and peak values are found from the polynomial pieces (not from samples). Outside [0, T]
+the container rests at its start or end.
+
+Laws and sources
+----------------
+- ``trapezoidal``: trapezoidal velocity, MATLAB ``trapveltraj`` semantics (acceleration time a
+  third of the move by default); Biagiotti & Melchiorri, *Trajectory Planning for Automatic
+  Machines and Robots*, Springer (2008) §3.2.
+- ``cubic``: s = D (3 tau^2 - 2 tau^3), MATLAB ``cubicpolytraj`` with zero end velocities.
+- ``quintic``: s = D (10 tau^3 - 15 tau^4 + 6 tau^5), ``quinticpolytraj`` with zero end velocity
+  and acceleration.
+- ``septic``: s = D (35 tau^4 - 84 tau^5 + 70 tau^6 - 20 tau^7), zero end velocity,
+  acceleration and jerk: the "jerk-optimised", jerk-continuous polynomial of the seed paper
+  (Biagiotti & Melchiorri 2008 §2.1.6).
+- ``minimum-jerk``: the trajectory minimising the integral of squared jerk between rest states
+  (Flash & Hogan, J. Neurosci. 5 (1985) 1688). For rest-to-rest with zero end accelerations it
+  is the same polynomial as ``quintic``; it is kept as a name because users look for it.
+- ``s-curve``: time-optimal jerk-limited (7-segment) profile from velocity, acceleration and
+  jerk limits, computed by ruckig (Berscheid & Kröger, RSS 2021).
+- `from_samples`: a user's sampled position (quintic interpolating spline, differentiated
+  analytically) or acceleration (cubic spline, integrated analytically).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import CubicSpline, PPoly, make_interp_spline
+
+from sloshkit.errors import InputError, require_in_range, require_positive
+
+FloatArray = NDArray[np.float64]
+
+LAW_NAMES: tuple[str, ...] = (
+    "trapezoidal",
+    "cubic",
+    "quintic",
+    "septic",
+    "minimum-jerk",
+    "s-curve",
+)
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """A rest-to-rest motion: position s(t) [m] as a piecewise polynomial on [0, T].
+
+    Build it with a law function (`trapezoidal`, `quintic`, `s_curve`, ...), not directly.
+    """
+
+    name: str
+    position_pp: PPoly
+
+    @property
+    def duration_s(self) -> float:
+        """Move duration T [s]."""
+        return float(self.position_pp.x[-1] - self.position_pp.x[0])
+
+    @property
+    def distance_m(self) -> float:
+        """Travel s(T) - s(0) [m]."""
+        return float(self.position_pp(self.position_pp.x[-1]) - self.position_pp(0.0))
+
+    @property
+    def breakpoints_s(self) -> FloatArray:
+        """Times where the polynomial pieces join [s]."""
+        return np.asarray(self.position_pp.x, dtype=float)
+
+    def derivative_pp(self, order: int) -> PPoly:
+        """The ``order``-th time derivative as a `PPoly` (0: position ... 3: jerk)."""
+        return self.position_pp if order == 0 else self.position_pp.derivative(order)
+
+    def evaluate(self, time_s: ArrayLike, order: int = 0) -> FloatArray:
+        """Position (0), velocity (1), acceleration (2) or jerk (3) at ``time_s`` [SI].
+
+        Outside [0, T] the container is at rest: position is held, derivatives are zero.
+        """
+        t = np.asarray(time_s, dtype=float)
+        end = self.duration_s
+        clipped = np.clip(t, 0.0, end)
+        values = np.asarray(self.derivative_pp(order)(clipped), dtype=float)
+        if order > 0:
+            values = np.where((t < 0.0) | (t > end), 0.0, values)
+        return values
+
+    def position(self, time_s: ArrayLike) -> FloatArray:
+        """Position s(t) [m]."""
+        return self.evaluate(time_s, 0)
+
+    def velocity(self, time_s: ArrayLike) -> FloatArray:
+        """Velocity s'(t) [m/s]."""
+        return self.evaluate(time_s, 1)
+
+    def acceleration(self, time_s: ArrayLike) -> FloatArray:
+        """Acceleration s''(t) [m/s^2]."""
+        return self.evaluate(time_s, 2)
+
+    def jerk(self, time_s: ArrayLike) -> FloatArray:
+        """Jerk s'''(t) [m/s^3] (piecewise; at a jump, the value of the piece on the right)."""
+        return self.evaluate(time_s, 3)
+
+    def peak(self, order: int) -> float:
+        """Peak |derivative| over the move, exact from the pieces (order 1..3) [SI]."""
+        return _peak_abs(self.derivative_pp(order))
+
+    @property
+    def peak_velocity_m_s(self) -> float:
+        """Peak |velocity| [m/s]."""
+        return self.peak(1)
+
+    @property
+    def peak_acceleration_m_s2(self) -> float:
+        """Peak |acceleration| [m/s^2]."""
+        return self.peak(2)
+
+    @property
+    def acceleration_jump_m_s2(self) -> float:
+        """Largest jump of the acceleration, including from and to rest at 0 and T [m/s^2]."""
+        acceleration = self.derivative_pp(2)
+        widths = np.diff(acceleration.x)
+        starts = acceleration.c[-1, :]  # value at the left end of each piece
+        ends = np.array([np.polyval(acceleration.c[:, i], widths[i]) for i in range(widths.size)])
+        left = np.concatenate(([0.0], ends))
+        right = np.concatenate((starts, [0.0]))
+        return float(np.max(np.abs(right - left)))
+
+    @property
+    def peak_jerk_m_s3(self) -> float:
+        """Peak |jerk| [m/s^3]; ``inf`` when the acceleration jumps (trapezoidal, cubic): the
+        jerk is then a Dirac impulse, which is what excites the slosh."""
+        scale = max(self.peak_acceleration_m_s2, 1e-300)
+        if self.acceleration_jump_m_s2 > 1e-9 * scale:
+            return math.inf
+        return self.peak(3)
+
+    @property
+    def peak_finite_jerk_m_s3(self) -> float:
+        """Peak |jerk| between acceleration jumps (ignoring the impulses) [m/s^3]."""
+        return self.peak(3)
+
+    def sample(self, sample_period_s: float) -> dict[str, FloatArray]:
+        """Samples at t = 0, dt, 2 dt, ..., with the last sample exactly at T.
+
+        Returns arrays ``t_s``, ``position_m``, ``velocity_m_s``, ``acceleration_m_s2``,
+        ``jerk_m_s3``.
+        """
+        dt = require_positive("sample_period", sample_period_s, "s")
+        t = sample_times(self.duration_s, dt)
+        return {
+            "t_s": t,
+            "position_m": self.position(t),
+            "velocity_m_s": self.velocity(t),
+            "acceleration_m_s2": self.acceleration(t),
+            "jerk_m_s3": self.jerk(t),
+        }
+
+
+def sample_times(duration_s: float, sample_period_s: float) -> FloatArray:
+    """0, dt, 2 dt, ... up to and including ``duration_s`` (the last step may be shorter)."""
+    count = math.ceil(duration_s / sample_period_s - 1e-9)
+    t = np.arange(count + 1, dtype=float) * sample_period_s
+    t[-1] = duration_s
+    return t
+
+
+def _peak_abs(pp: PPoly) -> float:
+    """max |p(t)| over the breakpoints' span, from each piece's ends and interior extrema."""
+    coefficients = np.asarray(pp.c, dtype=float)  # shape (order + 1, pieces)
+    widths = np.diff(pp.x)
+    best = 0.0
+    for piece in range(coefficients.shape[1]):
+        poly = np.poly1d(coefficients[:, piece])
+        candidates = [0.0, float(widths[piece])]
+        if poly.order >= 2:
+            for root in np.roots(np.polyder(poly.coeffs)):
+                if abs(root.imag) < 1e-12 and 0.0 < root.real < widths[piece]:
+                    candidates.append(float(root.real))
+        best = max(best, float(np.max(np.abs(poly(np.asarray(candidates))))))
+    return best
+
+
+def _normalised_polynomial(
+    name: str, distance_m: float, duration_s: float, coefficients: list[float]
+) -> Motion:
+    """s(t) = D * sum_k c_k (t/T)^k as a one-piece `PPoly` (c_k in ascending powers)."""
+    distance = require_positive("distance", distance_m, "m")
+    duration = require_positive("duration", duration_s, "s")
+    # PPoly wants descending powers of (t - 0): c_k D / T^k.
+    scaled = [distance * c / duration**k for k, c in enumerate(coefficients)]
+    return Motion(name, PPoly(np.asarray(scaled[::-1], dtype=float)[:, None], [0.0, duration]))
+
+
+def cubic(distance_m: float, duration_s: float) -> Motion:
+    """Cubic polynomial, zero end velocities (``cubicpolytraj``): s = D (3 tau^2 - 2 tau^3)."""
+    return _normalised_polynomial("cubic", distance_m, duration_s, [0, 0, 3, -2])
+
+
+def quintic(distance_m: float, duration_s: float) -> Motion:
+    """Quintic, zero end velocity and acceleration: s = D (10 tau^3 - 15 tau^4 + 6 tau^5)."""
+    return _normalised_polynomial("quintic", distance_m, duration_s, [0, 0, 0, 10, -15, 6])
+
+
+def septic(distance_m: float, duration_s: float) -> Motion:
+    """Jerk-continuous 7th-degree polynomial, zero end velocity, acceleration and jerk:
+    s = D (35 tau^4 - 84 tau^5 + 70 tau^6 - 20 tau^7) (Biagiotti & Melchiorri 2008 §2.1.6)."""
+    return _normalised_polynomial("septic", distance_m, duration_s, [0, 0, 0, 0, 35, -84, 70, -20])
+
+
+def minimum_jerk(distance_m: float, duration_s: float) -> Motion:
+    """Minimum integral of squared jerk between rest states (Flash & Hogan 1985); equal to the
+    quintic rest-to-rest polynomial."""
+    return _normalised_polynomial("minimum-jerk", distance_m, duration_s, [0, 0, 0, 10, -15, 6])
+
+
+def trapezoidal(
+    distance_m: float,
+    peak_velocity_m_s: float | None = None,
+    duration_s: float | None = None,
+    acceleration_fraction: float | None = None,
+) -> Motion:
+    """Trapezoidal velocity profile with MATLAB ``trapveltraj`` semantics.
+
+    Give the peak velocity V, the duration T, or both. With one of them the acceleration (and
+    deceleration) phase lasts ``acceleration_fraction`` of T (default 1/3, as ``trapveltraj``),
+    so D = V T (1 - f): e.g. D = 0.5 m, V = 0.5 m/s gives T = 1.5 s and a = 1 m/s^2. With both,
+    the acceleration time is T - D/V and must lie in (0, T/2].
+    """
+    distance = require_positive("distance", distance_m, "m")
+    if peak_velocity_m_s is None and duration_s is None:
+        raise InputError("peak_velocity", None, "give a peak velocity, a duration, or both")
+    if peak_velocity_m_s is not None and duration_s is not None:
+        if acceleration_fraction is not None:
+            raise InputError(
+                "acceleration_fraction",
+                acceleration_fraction,
+                "cannot be set together with both peak velocity and duration",
+            )
+        velocity = require_positive("peak_velocity", peak_velocity_m_s, "m/s")
+        duration = require_positive("duration", duration_s, "s")
+        accel_time = duration - distance / velocity
+        if not 0.0 < accel_time <= duration / 2.0 * (1 + 1e-12):
+            raise InputError(
+                "peak_velocity",
+                f"{velocity:.6g} m/s",
+                f"must lie in ({distance / duration:.6g}, {2 * distance / duration:.6g}] m/s "
+                f"for a {distance:.6g} m move in {duration:.6g} s",
+            )
+        accel_time = min(accel_time, duration / 2.0)
+    else:
+        fraction = (
+            1.0 / 3.0
+            if acceleration_fraction is None
+            else require_in_range("acceleration_fraction", acceleration_fraction, 1e-6, 0.5)
+        )
+        if duration_s is not None:
+            duration = require_positive("duration", duration_s, "s")
+            velocity = distance / (duration * (1.0 - fraction))
+        else:
+            velocity = require_positive("peak_velocity", peak_velocity_m_s, "m/s")  # type: ignore[arg-type]
+            duration = distance / (velocity * (1.0 - fraction))
+        accel_time = fraction * duration
+    acceleration = velocity / accel_time
+    cruise = duration - 2.0 * accel_time
+    return _piecewise_constant_jerk(
+        "trapezoidal",
+        durations=[accel_time, cruise, accel_time],
+        jerks=[0.0, 0.0, 0.0],
+        start_accelerations=[acceleration, 0.0, -acceleration],
+    )
+
+
+def _piecewise_constant_jerk(
+    name: str,
+    durations: list[float],
+    jerks: list[float],
+    start_accelerations: list[float] | None = None,
+) -> Motion:
+    """Integrate segments of constant jerk (acceleration may jump between segments when
+    ``start_accelerations`` is given) from rest at 0 into an exact cubic `PPoly`."""
+    position = velocity = 0.0
+    acceleration = 0.0
+    breaks = [0.0]
+    columns = []
+    for index, (width, jerk) in enumerate(zip(durations, jerks, strict=True)):
+        if start_accelerations is not None:
+            acceleration = start_accelerations[index]
+        if width <= 0.0:
+            continue
+        columns.append([jerk / 6.0, acceleration / 2.0, velocity, position])
+        position += velocity * width + acceleration * width**2 / 2.0 + jerk * width**3 / 6.0
+        velocity += acceleration * width + jerk * width**2 / 2.0
+        acceleration += jerk * width
+        breaks.append(breaks[-1] + width)
+    return Motion(name, PPoly(np.asarray(columns, dtype=float).T, np.asarray(breaks)))
+
+
+def s_curve(
+    distance_m: float, max_velocity_m_s: float, max_acceleration_m_s2: float, max_jerk_m_s3: float
+) -> Motion:
+    """Time-optimal jerk-limited rest-to-rest profile (up to 7 constant-jerk segments), by ruckig.
+
+    The segment durations and jerks ruckig returns are integrated exactly, so the law is a cubic
+    `PPoly` that matches ruckig's trajectory to rounding.
+    """
+    from ruckig import InputParameter, Result, Ruckig, Trajectory
+
+    distance = require_positive("distance", distance_m, "m")
+    limits = (
+        require_positive("vmax", max_velocity_m_s, "m/s"),
+        require_positive("amax", max_acceleration_m_s2, "m/s^2"),
+        require_positive("jmax", max_jerk_m_s3, "m/s^3"),
+    )
+    parameters = InputParameter(1)
+    parameters.current_position = [0.0]
+    parameters.target_position = [distance]
+    parameters.max_velocity = [limits[0]]
+    parameters.max_acceleration = [limits[1]]
+    parameters.max_jerk = [limits[2]]
+    trajectory = Trajectory(1)
+    result = Ruckig(1).calculate(parameters, trajectory)
+    if result != Result.Working:
+        raise InputError("s-curve limits", limits, f"ruckig could not plan the move ({result})")
+    profile = trajectory.profiles[0][0]
+    motion = _piecewise_constant_jerk("s-curve", list(profile.t), list(profile.j))
+    return Motion("s-curve", motion.position_pp)
+
+
+def from_samples(
+    time_s: ArrayLike,
+    position_m: ArrayLike | None = None,
+    acceleration_m_s2: ArrayLike | None = None,
+    name: str = "user",
+) -> Motion:
+    """A user motion from samples of position or of acceleration (times strictly increasing).
+
+    - position: interpolating quintic spline with zero velocity and acceleration at both ends
+      (the move is rest to rest), differentiated analytically; give smooth, well-sampled data,
+      since differentiation amplifies noise.
+    - acceleration: interpolating cubic spline (not-a-knot), integrated analytically from rest;
+      the distance is what the integral gives.
+
+    Time is shifted to start at 0.
+    """
+    t = np.asarray(time_s, dtype=float)
+    if (position_m is None) == (acceleration_m_s2 is None):
+        raise InputError("motion samples", "both/none", "give either position or acceleration")
+    values = np.asarray(position_m if position_m is not None else acceleration_m_s2, dtype=float)
+    if t.ndim != 1 or values.shape != t.shape:
+        raise InputError("motion samples", f"{t.shape} vs {values.shape}", "need equal 1-D lengths")
+    minimum = 6 if position_m is not None else 4
+    if t.size < minimum:
+        raise InputError("motion samples", t.size, f"need at least {minimum} samples")
+    bad = ~np.isfinite(t) | ~np.isfinite(values)
+    if bad.any():
+        row = int(np.argmax(bad))
+        raise InputError("motion samples", f"row {row}", "time and values must be finite (NaN?)")
+    steps = np.diff(t)
+    if np.any(steps <= 0.0):
+        row = int(np.argmax(steps <= 0.0)) + 1
+        raise InputError(
+            "time",
+            f"{t[row]:.6g} s at row {row}",
+            "must increase strictly (duplicate or decreasing)",
+        )
+    t = t - t[0]
+    if position_m is not None:
+        spline = make_interp_spline(
+            t, values - values[0], k=5, bc_type=([(1, 0.0), (2, 0.0)], [(1, 0.0), (2, 0.0)])
+        )
+        pp = PPoly.from_spline(spline)
+    else:
+        pp = CubicSpline(t, values).antiderivative(2)
+    # Trim the spline's padding pieces to [0, T].
+    return Motion(name, PPoly(pp.c, pp.x, extrapolate=True))
+
+
+def make_law(
+    name: str,
+    distance_m: float,
+    *,
+    duration_s: float | None = None,
+    peak_velocity_m_s: float | None = None,
+    max_velocity_m_s: float | None = None,
+    max_acceleration_m_s2: float | None = None,
+    max_jerk_m_s3: float | None = None,
+    acceleration_fraction: float | None = None,
+) -> Motion:
+    """Build a law by its command-line name (`LAW_NAMES`).
+
+    Polynomial laws need a duration, or a peak velocity from which the duration is that of the
+    trapezoidal law with the same peak velocity (the seed paper's comparison at equal time).
+    ``s-curve`` needs the three machine limits; its duration follows from them.
+    """
+    if name == "s-curve":
+        missing = [
+            option
+            for option, value in (
+                ("vmax", max_velocity_m_s),
+                ("amax", max_acceleration_m_s2),
+                ("jmax", max_jerk_m_s3),
+            )
+            if value is None
+        ]
+        if missing:
+            raise InputError("law", name, "needs the machine limits " + ", ".join(missing))
+        return s_curve(distance_m, max_velocity_m_s, max_acceleration_m_s2, max_jerk_m_s3)  # type: ignore[arg-type]
+    if name == "trapezoidal":
+        return trapezoidal(distance_m, peak_velocity_m_s, duration_s, acceleration_fraction)
+    builders: dict[str, Callable[[float, float], Motion]] = {
+        "cubic": cubic,
+        "quintic": quintic,
+        "septic": septic,
+        "minimum-jerk": minimum_jerk,
+    }
+    if name not in builders:
+        raise InputError("law", name, "must be one of " + ", ".join(LAW_NAMES) + " or file:PATH")
+    if duration_s is None:
+        if peak_velocity_m_s is None:
+            raise InputError(
+                "duration", None, f"the {name} law needs a duration or a peak velocity"
+            )
+        duration_s = trapezoidal(
+            distance_m, peak_velocity_m_s, None, acceleration_fraction
+        ).duration_s
+    return builders[name](distance_m, duration_s)
