@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
 
+import numpy as np
 import typer
 from rich.console import Console
 from rich.table import Table
@@ -27,7 +28,7 @@ from sloshkit.dynamics import MODEL_KINDS, SloshResponse, simulate
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.geometry import UprightCylinder
 from sloshkit.liquids import LIQUIDS, Liquid, get_liquid
-from sloshkit.modal import DAMPING_LAWS, SloshModel, equivalent_model
+from sloshkit.modal import DAMPING_LAWS, DampingLaw, SloshModel, equivalent_model
 from sloshkit.motion.laws import LAW_NAMES, Motion, make_law, trapezoidal
 from sloshkit.units import parse_quantity
 
@@ -103,6 +104,43 @@ ModelFile = Annotated[
 Json = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI units).")]
 
 
+def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
+    """The container from the model options."""
+    return UprightCylinder(
+        parse_quantity(radius, "length", "radius"),
+        None if wall_height is None else parse_quantity(wall_height, "length", "wall_height"),
+    )
+
+
+def build_liquid(
+    liquid: str, density: str | None, viscosity: str | None, sigma: str | None
+) -> Liquid:
+    """A preset liquid, with any of its properties overridden."""
+    base = get_liquid(liquid)
+    if (density, viscosity, sigma) == (None, None, None):
+        return base
+    return Liquid(
+        name=base.name + "*",
+        density_kg_m3=base.density_kg_m3
+        if density is None
+        else parse_quantity(density, "density", "density"),
+        viscosity_pa_s=base.viscosity_pa_s
+        if viscosity is None
+        else parse_quantity(viscosity, "viscosity", "viscosity"),
+        surface_tension_n_m=base.surface_tension_n_m
+        if sigma is None
+        else parse_quantity(sigma, "surface_tension", "sigma"),
+        source=base.source + " (overridden)",
+    )
+
+
+def check_damping_law(damping_law: str) -> DampingLaw:
+    """The damping-law name, or `InputError`."""
+    if damping_law not in DAMPING_LAWS:
+        raise InputError("damping_law", damping_law, "must be one of " + ", ".join(DAMPING_LAWS))
+    return typing.cast(DampingLaw, damping_law)
+
+
 def build_model(
     radius: str,
     fill_height: str | None,
@@ -118,10 +156,7 @@ def build_model(
     surface_tension_correction: bool,
 ) -> SloshModel:
     """Turn the model options (text with units) into a `SloshModel`."""
-    container = UprightCylinder(
-        parse_quantity(radius, "length", "radius"),
-        None if wall_height is None else parse_quantity(wall_height, "length", "wall_height"),
-    )
+    container = build_container(radius, wall_height)
     if fill_height is not None and fill_volume is not None:
         raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
     if fill_volume is not None:
@@ -130,28 +165,12 @@ def build_model(
         )
     else:
         height = parse_quantity(fill_height or "39mm", "length", "fill_height")
-    base = get_liquid(liquid)
-    overridden = Liquid(
-        name=base.name if (density, viscosity, sigma) == (None, None, None) else base.name + "*",
-        density_kg_m3=base.density_kg_m3
-        if density is None
-        else parse_quantity(density, "density", "density"),
-        viscosity_pa_s=base.viscosity_pa_s
-        if viscosity is None
-        else parse_quantity(viscosity, "viscosity", "viscosity"),
-        surface_tension_n_m=base.surface_tension_n_m
-        if sigma is None
-        else parse_quantity(sigma, "surface_tension", "sigma"),
-        source=base.source,
-    )
-    if damping_law not in DAMPING_LAWS:
-        raise InputError("damping_law", damping_law, "must be one of " + ", ".join(DAMPING_LAWS))
     return equivalent_model(
         container,
-        overridden,
+        build_liquid(liquid, density, viscosity, sigma),
         height,
         n_modes=modes,
-        damping_law=damping_law,  # type: ignore[arg-type]
+        damping_law=check_damping_law(damping_law),
         damping_ratio=damping_ratio,
         surface_tension=surface_tension_correction,
     )
@@ -548,6 +567,166 @@ def compare_command(
     stdout.print(table)
     if out is not None:
         stdout.print(f"wrote {out}/compare.csv, compare.json, fig7_laws.png, fig8_slosh.png")
+
+
+MaxAngle = Annotated[
+    str | None, typer.Option("--max-angle", help="Limit on the peak slosh angle, e.g. 5deg.")
+]
+MaxResidual = Annotated[
+    str | None,
+    typer.Option("--max-residual", help="Limit on the residual slosh amplitude, e.g. 0.25deg."),
+]
+
+
+@app.command("sweep")
+def sweep_command(
+    distance: Distance = "0.5m",
+    fill_height: Annotated[
+        str | None, typer.Option("--fill-height", help="Range START:STOP:COUNT, e.g. 10mm:60mm:50.")
+    ] = None,
+    fill_volume: Annotated[
+        str | None,
+        typer.Option("--fill-volume", help="Range of volumes instead, e.g. 5mL:50mL:10."),
+    ] = None,
+    duration: Annotated[
+        str | None, typer.Option("--duration", help="Range START:STOP:COUNT, e.g. 0.5s:3s:200.")
+    ] = None,
+    peak_acceleration: Annotated[
+        str | None,
+        typer.Option(
+            "--peak-acceleration", help="Range of peak accelerations instead of durations."
+        ),
+    ] = None,
+    laws: Annotated[str, typer.Option("--laws", help="Comma-separated law names.")] = (
+        "trapezoidal,cubic,quintic,septic"
+    ),
+    max_angle: MaxAngle = None,
+    max_residual: MaxResidual = None,
+    vmax: Vmax = None,
+    amax: Amax = None,
+    jmax: Jmax = None,
+    accel_fraction: AccelFraction = None,
+    sample_period: SamplePeriod = "1ms",
+    radius: Radius = "20.5mm",
+    wall_height: WallHeight = None,
+    liquid: LiquidName = "water-25C",
+    density: Density = None,
+    viscosity: Viscosity = None,
+    sigma: Sigma = None,
+    modes: Modes = 3,
+    damping_law: DampingLawOpt = "seed",
+    damping_ratio: DampingRatio = None,
+    surface_tension_correction: SurfaceTension = False,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Folder for sweep.csv and maps.")
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """Slosh maps over fill height x move duration x law (linear fast path).
+
+    A range is START:STOP:COUNT with both ends included. Writes sweep.csv (one row a case),
+    peak_angle_map.png and residual_angle_map.png into --out, marking the region that meets
+    --max-angle and --max-residual.
+
+    Example:
+
+      sloshkit sweep --distance 0.5m --fill-height 10mm:60mm:50 --duration 0.5s:3s:200
+      --laws trapezoidal,cubic,quintic,septic --max-angle 10deg --max-residual 1deg --out maps/
+    """
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+    from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
+    from sloshkit.units import parse_range
+
+    container = build_container(radius, wall_height)
+    if fill_height is not None and fill_volume is not None:
+        raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
+    if fill_volume is not None:
+        volumes = linspace_inclusive(*parse_range(fill_volume, "volume", "fill_volume"))
+        heights = np.array([container.fill_height_for_volume(v) for v in volumes])
+    else:
+        heights = linspace_inclusive(*parse_range(fill_height or "39mm", "length", "fill_height"))
+    if duration is not None and peak_acceleration is not None:
+        raise InputError("peak_acceleration", peak_acceleration, "give either --duration or it")
+    durations = accelerations = None
+    if peak_acceleration is not None:
+        accelerations = linspace_inclusive(
+            *parse_range(peak_acceleration, "acceleration", "peak_acceleration")
+        )
+    else:
+        durations = linspace_inclusive(*parse_range(duration or "0.5s:3s:200", "time", "duration"))
+    request = MoveRequest.parse(distance, None, None, vmax, amax, jmax, accel_fraction)
+    limits = None
+    if request.vmax is not None and request.amax is not None and request.jmax is not None:
+        limits = (request.vmax, request.amax, request.jmax)
+    names = [name.strip() for name in laws.split(",") if name.strip()]
+    with Progress(
+        TextColumn("sweep"),
+        BarColumn(),
+        TextColumn("{task.completed:,}/{task.total:,} cases"),
+        TimeRemainingColumn(),
+        console=stderr,
+        transient=True,
+    ) as bar:
+        task = bar.add_task("sweep", total=1)
+
+        def advance(done: int, total: int) -> None:
+            bar.update(task, completed=done, total=total)
+
+        result = run_sweep(
+            container,
+            build_liquid(liquid, density, viscosity, sigma),
+            heights,
+            names,
+            request.distance_m,
+            durations,
+            accelerations,
+            n_modes=modes,
+            damping_law=check_damping_law(damping_law),
+            damping_ratio=damping_ratio,
+            surface_tension=surface_tension_correction,
+            s_curve_limits=limits,
+            acceleration_fraction=accel_fraction,
+            sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+            max_angle_deg=None
+            if max_angle is None
+            else math.degrees(parse_quantity(max_angle, "angle", "max_angle")),
+            max_residual_deg=None
+            if max_residual is None
+            else math.degrees(parse_quantity(max_residual, "angle", "max_residual")),
+            progress=advance,
+        )
+    summary = result.summary()
+    if out is not None:
+        csv_path = result.to_csv(out / "sweep.csv")
+        maps = result.plot_maps(out)
+        summary["csv"] = str(csv_path)
+        summary["maps"] = [str(path) for path in maps]
+    if json_output:
+        print_json(summary)
+        return
+    stderr.print(describe_rate(result))
+    table = Table(
+        title=f"Shortest safe move per fill height ({summary['safe_cases']:,} of "
+        f"{summary['cases']:,} cases safe)"
+    )
+    table.add_column("fill height", justify="right")
+    table.add_column("ω₁ [rad/s]", justify="right")
+    table.add_column("shortest safe duration", justify="right")
+    table.add_column("law")
+    for row, omega in zip(result.shortest_safe(), result.omega_1_rad_s, strict=True):
+        shortest = row["duration_s"]
+        table.add_row(
+            f"{1e3 * float(typing.cast(float, row['fill_height_m'])):.1f} mm",
+            f"{omega:.2f}",
+            "none" if shortest is None else f"{float(typing.cast(float, shortest)):.3f} s",
+            str(row["law"] or "-"),
+        )
+    stdout.print(table)
+    if out is not None:
+        stdout.print(
+            f"wrote {summary['csv']} and {', '.join(typing.cast(list[str], summary['maps']))}"
+        )
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def]

@@ -64,13 +64,13 @@ DEFAULT_SETTLE_TOLERANCE_RAD = math.radians(0.1)
 
 
 @lru_cache(maxsize=4096)
-def velocity_driven_filters(
+def velocity_driven_discretisation(
     omega_rad_s: float, damping_ratio: float, length_m: float, sample_period_s: float
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """IIR coefficients (b_theta, a, b_y, a) of the first-order-hold discretisation.
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """(phi, gamma, g1) of the first-order-hold discretisation in the shifted state z.
 
-    ``lfilter(b_theta, a, v)`` gives theta_k and ``lfilter(b_y, a, v)`` gives
-    y_k = theta'_k + v_k / L for velocity samples v_k starting from rest (v_0 = 0).
+    With s_k = (theta_k, y_k), y = theta' + v/L, and velocity samples u_k: z_k = s_k - g1 u_k,
+    z_{k+1} = phi z_k + gamma u_k, s_k = z_k + g1 u_k, z_0 = 0 for a start from rest.
     """
     w, z, length, h = omega_rad_s, damping_ratio, length_m, sample_period_s
     a_matrix = np.array([[0.0, 1.0], [-(w**2), -2.0 * z * w]])
@@ -85,8 +85,21 @@ def velocity_driven_filters(
     gamma_ramp = exponential[:2, 3] / h  # integral of e^{As} B (h - s) / h
     g0 = gamma_hold - gamma_ramp
     g1 = gamma_ramp
-    # z_k = s_k - g1 u_k obeys z_{k+1} = phi z_k + (phi g1 + g0) u_k; s_k = z_k + g1 u_k.
-    gamma = phi @ g1 + g0
+    return phi, phi @ g1 + g0, g1
+
+
+@lru_cache(maxsize=4096)
+def velocity_driven_filters(
+    omega_rad_s: float, damping_ratio: float, length_m: float, sample_period_s: float
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """IIR coefficients (b_theta, a, b_y, a) of the first-order-hold discretisation.
+
+    ``lfilter(b_theta, a, v)`` gives theta_k and ``lfilter(b_y, a, v)`` gives
+    y_k = theta'_k + v_k / L for velocity samples v_k starting from rest (v_0 = 0).
+    """
+    phi, gamma, g1 = velocity_driven_discretisation(
+        omega_rad_s, damping_ratio, length_m, sample_period_s
+    )
     b_theta, a_theta = ss2tf(phi, gamma[:, None], np.array([[1.0, 0.0]]), np.array([[g1[0]]]))
     b_y, a_y = ss2tf(phi, gamma[:, None], np.array([[0.0, 1.0]]), np.array([[g1[1]]]))
     return (
@@ -172,10 +185,12 @@ class SloshResponse:
 
     @property
     def wall_elevation_m(self) -> FloatArray:
-        """Free-surface elevation at the wall on the +x side, sum_n 2R/(xi_n^2-1) sin(theta_n)
-        [m] (linear mode-shape mapping, see `sloshkit.modal.wall_elevation_factor`)."""
+        """Free-surface elevation at the wall on the +x side [m]: sum_n 2R/(xi_n^2-1) theta_n for
+        the linear model, with sin(theta_n) for the nonlinear one (linear mode-shape mapping,
+        see `sloshkit.modal.wall_elevation_factor`)."""
         factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
-        return np.asarray(factors @ np.sin(self.angle_rad), dtype=float)
+        angles = self.angle_rad if self.kind == "linear" else np.sin(self.angle_rad)
+        return np.asarray(factors @ angles, dtype=float)
 
     @property
     def angular_acceleration_rad_s2(self) -> FloatArray:

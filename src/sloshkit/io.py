@@ -33,6 +33,9 @@ def atomic_open(
     target.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent)
     os.close(handle)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(temporary, 0o666 & ~umask)  # mkstemp creates 0600; give the usual permissions
     try:
         with open(temporary, mode, encoding=None if "b" in mode else encoding) as stream:
             yield stream

@@ -1,0 +1,276 @@
+"""Fast path: slosh metrics of very many linear cases at once.
+
+Cases that share one `SloshModel` (one container, liquid and fill height) and one sample period
+are run together. Each case is a sampled container velocity (time-major array, one column per
+case) and a move duration. The first-order-hold discretisation of `sloshkit.dynamics` is
+stepped for every mode and case in one compiled loop (numba) that keeps only the metrics: no
+time history is stored, and the loop over cases is innermost so that it vectorises. Without
+numba the same recursion runs through `scipy.signal.lfilter` (slower, same numbers to
+rounding).
+
+The metrics equal those of `sloshkit.dynamics.simulate(..., kind="linear")` for the same motion
+and sample period: peak |theta_1| and peak |wall elevation| over the samples t <= T, residual
+amplitudes from the state at the first sample t >= T, scaled back to T.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.dynamics import (
+    free_amplitude,
+    linear_mode_response,
+    velocity_driven_discretisation,
+)
+from sloshkit.errors import InputError
+from sloshkit.modal import SloshModel
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+@dataclass(frozen=True)
+class BatchMetrics:
+    """Per-case slosh metrics (SI): arrays of shape (cases,)."""
+
+    peak_angle_rad: FloatArray
+    residual_angle_rad: FloatArray
+    peak_wall_elevation_m: FloatArray
+    residual_wall_elevation_m: FloatArray
+
+
+def _compile_kernel() -> Any:
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover - numba is a dependency, but optional at run time
+        return None
+
+    @njit(cache=True, fastmath=True)  # type: ignore[untyped-decorator]
+    def kernel(velocity, last_move, first_after, phi, gamma, g1, factor):  # type: ignore[no-untyped-def]
+        steps, cases = velocity.shape
+        modes = phi.shape[0]
+        z0 = np.zeros((modes, cases))
+        z1 = np.zeros((modes, cases))
+        eta = np.zeros(cases)
+        peak_angle = np.zeros(cases)
+        peak_wall = np.zeros(cases)
+        end_state = np.zeros((modes, 2, cases))
+        for k in range(steps):
+            for c in range(cases):
+                eta[c] = 0.0
+            for m in range(modes):
+                p00, p01, p10, p11 = phi[m, 0, 0], phi[m, 0, 1], phi[m, 1, 0], phi[m, 1, 1]
+                q0, q1, h0, h1, f = gamma[m, 0], gamma[m, 1], g1[m, 0], g1[m, 1], factor[m]
+                for c in range(cases):
+                    u = velocity[k, c]
+                    a = z0[m, c]
+                    b = z1[m, c]
+                    theta = a + h0 * u
+                    eta[c] += f * theta
+                    if m == 0 and k <= last_move[c]:
+                        peak_angle[c] = max(peak_angle[c], abs(theta))
+                    if k == first_after[c]:
+                        end_state[m, 0, c] = theta
+                        end_state[m, 1, c] = b + h1 * u
+                    z0[m, c] = p00 * a + p01 * b + q0 * u
+                    z1[m, c] = p10 * a + p11 * b + q1 * u
+            for c in range(cases):
+                if k <= last_move[c]:
+                    peak_wall[c] = max(peak_wall[c], abs(eta[c]))
+        return peak_angle, peak_wall, end_state
+
+    return kernel
+
+
+_KERNEL: Any = None
+
+
+def _kernel() -> Any:
+    global _KERNEL
+    if _KERNEL is None:
+        _KERNEL = _compile_kernel() or False
+    return _KERNEL
+
+
+def move_indices(
+    move_durations_s: FloatArray, sample_period_s: float, steps: int
+) -> tuple[IntArray, IntArray]:
+    """(last sample with t <= T, first sample with t >= T) per case on the grid k dt, with
+    the tolerances of `sloshkit.dynamics.simulate`."""
+    time = np.arange(steps, dtype=float) * sample_period_s
+    last_move = np.searchsorted(time, move_durations_s + 1e-12, side="right") - 1
+    first_after = np.minimum(np.searchsorted(time, move_durations_s - 1e-12), steps - 1)
+    return last_move.astype(np.int64), first_after.astype(np.int64)
+
+
+def batch_metrics(
+    model: SloshModel,
+    velocity_m_s: FloatArray,
+    move_durations_s: FloatArray,
+    sample_period_s: float,
+    use_numba: bool = True,
+) -> BatchMetrics:
+    """Linear slosh metrics for many cases sharing ``model``.
+
+    Parameters
+    ----------
+    velocity_m_s : container velocity, shape (samples, cases), time-major, sampled at
+        t_k = k dt from rest; zero after each case's move. Must cover the first sample t >= T
+        of the longest move.
+    move_durations_s : move duration T of each case [s], shape (cases,)
+    sample_period_s : dt [s]
+    use_numba : use the compiled kernel when numba is installed
+    """
+    velocity = np.ascontiguousarray(velocity_m_s, dtype=float)
+    durations = np.asarray(move_durations_s, dtype=float)
+    if velocity.ndim != 2 or durations.shape != (velocity.shape[1],):
+        raise InputError(
+            "velocity", velocity.shape, "must be (samples, cases) with one duration per case"
+        )
+    steps = velocity.shape[0]
+    if durations.size and durations.max() > (steps - 1) * sample_period_s + 1e-12:
+        raise InputError("velocity", steps, "too few samples to reach the end of every move")
+    last_move, first_after = move_indices(durations, sample_period_s, steps)
+    modes = model.modes
+    factor = np.array([mode.wall_elevation_factor_m for mode in modes])
+    kernel = _kernel() if use_numba else None
+    if kernel:
+        discretisations = [
+            velocity_driven_discretisation(
+                mode.omega_rad_s, mode.damping_ratio, mode.length_m, sample_period_s
+            )
+            for mode in modes
+        ]
+        phi = np.array([d[0] for d in discretisations])
+        gamma = np.array([d[1] for d in discretisations])
+        g1 = np.array([d[2] for d in discretisations])
+        peak_angle, peak_wall, end_state = kernel(
+            velocity, last_move, first_after, phi, gamma, g1, factor
+        )
+        end_angle, end_rate = end_state[:, 0, :], end_state[:, 1, :]
+        end_velocity = velocity[first_after, np.arange(durations.size)]
+        end_rate = end_rate - end_velocity[None, :] / np.array([m.length_m for m in modes])[:, None]
+    else:
+        peak_angle, peak_wall, end_angle, end_rate = _lfilter_metrics(
+            model, velocity, last_move, first_after, factor, sample_period_s
+        )
+    lag = first_after * sample_period_s - durations
+    residual = np.empty((len(modes), durations.size))
+    for row, mode in enumerate(modes):
+        amplitude = free_amplitude(
+            end_angle[row], end_rate[row], mode.omega_rad_s, mode.damping_ratio
+        )
+        residual[row] = amplitude * np.exp(mode.damping_ratio * mode.omega_rad_s * lag)
+    return BatchMetrics(
+        peak_angle_rad=np.asarray(peak_angle, dtype=float),
+        residual_angle_rad=residual[0],
+        peak_wall_elevation_m=np.asarray(peak_wall, dtype=float),
+        residual_wall_elevation_m=factor @ residual,
+    )
+
+
+def _lfilter_metrics(
+    model: SloshModel,
+    velocity: FloatArray,
+    last_move: IntArray,
+    first_after: IntArray,
+    factor: FloatArray,
+    sample_period_s: float,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    cases_first = velocity.T
+    steps = velocity.shape[0]
+    during = np.arange(steps)[None, :] <= last_move[:, None]
+    columns = np.arange(cases_first.shape[0])
+    wall = np.zeros_like(cases_first)
+    end_angle = np.empty((len(model.modes), columns.size))
+    end_rate = np.empty_like(end_angle)
+    peak_angle = np.zeros(columns.size)
+    for row, mode in enumerate(model.modes):
+        theta, rate = linear_mode_response(
+            cases_first, sample_period_s, mode.omega_rad_s, mode.damping_ratio, mode.length_m
+        )
+        if row == 0:
+            peak_angle = np.max(np.where(during, np.abs(theta), 0.0), axis=1)
+        wall += factor[row] * theta
+        end_angle[row] = theta[columns, first_after]
+        end_rate[row] = rate[columns, first_after]
+    peak_wall = np.max(np.where(during, np.abs(wall), 0.0), axis=1)
+    return peak_angle, peak_wall, end_angle, end_rate
+
+
+def _compile_sampler() -> Any:
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover
+        return None
+
+    @njit(cache=True, fastmath=True)  # type: ignore[untyped-decorator]
+    def sampler(breaks, coefficients, durations, sample_period, steps):  # type: ignore[no-untyped-def]
+        cases = durations.size
+        pieces = breaks.size - 1
+        order = coefficients.shape[0]
+        out = np.zeros((steps, cases))
+        piece = np.zeros(cases, dtype=np.int64)
+        inverse = 1.0 / durations
+        for k in range(steps):
+            for c in range(cases):
+                tau = k * sample_period * inverse[c]
+                if tau > breaks[pieces]:
+                    continue
+                p = piece[c]
+                while p < pieces - 1 and tau >= breaks[p + 1]:
+                    p += 1
+                piece[c] = p
+                x = tau - breaks[p]
+                value = 0.0
+                for j in range(order):
+                    value = value * x + coefficients[j, p]
+                out[k, c] = value * inverse[c]
+        return out
+
+    return sampler
+
+
+_SAMPLER: Any = None
+
+
+def scaled_velocity_samples(
+    unit_law_velocity: Any, durations_s: FloatArray, sample_period_s: float, steps: int
+) -> FloatArray:
+    """Velocity samples (steps, cases) of a law time-scaled to each duration.
+
+    A rest-to-rest law of shape s_1(tau) on [0, 1] moved in time T has v_T(t) = v_1(t/T) / T;
+    ``unit_law_velocity`` is v_1 as a `scipy.interpolate.PPoly` on [0, 1], zero outside it.
+    Compiled with numba when available (same values as evaluating the `PPoly`).
+    """
+    global _SAMPLER
+    durations = np.asarray(durations_s, dtype=float)
+    if _SAMPLER is None:
+        _SAMPLER = _compile_sampler() or False
+    if _SAMPLER:
+        return np.asarray(
+            _SAMPLER(
+                np.asarray(unit_law_velocity.x, dtype=float),
+                np.ascontiguousarray(unit_law_velocity.c, dtype=float),
+                durations,
+                float(sample_period_s),
+                int(steps),
+            ),
+            dtype=float,
+        )
+    time = np.arange(steps, dtype=float)[:, None] * sample_period_s
+    tau = time / durations[None, :]
+    inside = tau <= 1.0
+    values = np.zeros((steps, durations.size))
+    values[inside] = unit_law_velocity(tau[inside])
+    return np.asarray(values / durations[None, :], dtype=float)
+
+
+def steps_for(max_duration_s: float, sample_period_s: float) -> int:
+    """Samples on the grid k dt needed to reach the first sample t >= T of the longest move."""
+    return math.ceil(max_duration_s / sample_period_s - 1e-9) + 2
