@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
+    from sloshkit.calibration import CalibrationResult
     from sloshkit.dynamics import SloshResponse
     from sloshkit.motion.laws import Motion
     from sloshkit.sweep import SweepResult
@@ -191,4 +192,46 @@ def plot_sweep_map(result: SweepResult, quantity: str, path: str | Path | None =
         f"{label}, {1e3 * result.distance_m:.0f} mm move"
         + (f"; hatched: violates {', '.join(limits)}" if limits else "")
     )
+    return save_figure(figure, path)
+
+
+def plot_calibration(result: CalibrationResult, path: str | Path | None = None) -> Any:
+    """Signal in the window, detected peaks and the fitted decay envelope (seed Fig. 5b)."""
+    plt = _pyplot()
+    figure, axis = plt.subplots(figsize=(8, 4.2), layout="constrained")
+    signal = result.signal
+    axis.plot(signal.time_s, signal.values, color="tab:blue", linewidth=1, label="signal (window)")
+    axis.plot(
+        result.peak_times_s,
+        result.peak_values,
+        "o",
+        color="tab:red",
+        markersize=4,
+        label=f"peaks ({result.peak_times_s.size})",
+    )
+    fit = result.estimates.get("fit")
+    if fit is not None and fit.amplitude is not None and fit.omega_n_rad_s and fit.damping_ratio:
+        t0 = signal.time_s[0]
+        envelope = fit.amplitude * np.exp(
+            -fit.damping_ratio * fit.omega_n_rad_s * (signal.time_s - t0)
+        )
+        # The plotted signal is detrended; the envelope is centred on zero like it.
+        offset = 0.0
+        axis.plot(
+            signal.time_s,
+            offset + envelope,
+            "--",
+            color="black",
+            linewidth=1,
+            label=f"fit envelope, ζ = {fit.damping_ratio:.4f}",
+        )
+        axis.plot(signal.time_s, offset - envelope, "--", color="black", linewidth=1)
+    chosen = result.chosen
+    frequency = (chosen.omega_n_rad_s or math.nan) / (2 * math.pi)
+    zeta = "n/a" if chosen.damping_ratio is None else f"{chosen.damping_ratio:.4f}"
+    axis.set_title(f"{result.method}: f_n = {frequency:.4g} Hz, ζ = {zeta}")
+    axis.set_xlabel("time [s]")
+    axis.set_ylabel("signal (detrended)")
+    axis.grid(alpha=0.3)
+    axis.legend(loc="upper right")
     return save_figure(figure, path)
