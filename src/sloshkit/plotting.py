@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from sloshkit.calibration import CalibrationResult
     from sloshkit.dynamics import SloshResponse
     from sloshkit.motion.laws import Motion
+    from sloshkit.planning import PlanResult
     from sloshkit.sweep import SweepResult
 
 
@@ -234,4 +235,51 @@ def plot_calibration(result: CalibrationResult, path: str | Path | None = None) 
     axis.set_ylabel("signal (detrended)")
     axis.grid(alpha=0.3)
     axis.legend(loc="upper right")
+    return save_figure(figure, path)
+
+
+def plot_plan(result: PlanResult, path: str | Path | None = None) -> Any:
+    """Velocity, acceleration and re-simulated first-mode slosh angle of each verified
+    candidate (exported samples), with the limits."""
+    from sloshkit.dynamics import linear_mode_response
+    from sloshkit.planning import export_samples
+
+    plt = _pyplot()
+    figure, axes = plt.subplots(3, 1, figsize=(8.5, 8.5), sharex=True, layout="constrained")
+    problem = result.problem
+    mode = problem.model.modes[0]
+    chosen = result.chosen
+    for candidate in result.candidates:
+        if candidate.motion is None or not candidate.feasible:
+            continue
+        samples = export_samples(candidate.motion, problem.sample_period_s)
+        t = samples["t_s"]
+        theta, _ = linear_mode_response(
+            samples["velocity_m_s"],
+            problem.sample_period_s,
+            mode.omega_rad_s,
+            mode.damping_ratio,
+            mode.length_m,
+        )
+        is_chosen = candidate is chosen
+        style = {"linewidth": 2.2 if is_chosen else 1.0, "alpha": 1.0 if is_chosen else 0.7}
+        label = f"{candidate.method} ({candidate.duration_s:.3f} s)" + (" ◀" if is_chosen else "")
+        axes[0].plot(t, samples["velocity_m_s"], label=label, **style)
+        axes[1].plot(t, samples["acceleration_m_s2"], **style)
+        axes[2].plot(t, np.degrees(theta), **style)
+    limit = math.degrees(problem.slosh.max_angle_rad)
+    for sign in (1, -1):
+        axes[2].axhline(sign * limit, color="red", linestyle="--", linewidth=1)
+    axes[0].set_ylabel("velocity [m/s]")
+    axes[1].set_ylabel("acceleration [m/s²]")
+    axes[2].set_ylabel("slosh angle θ₁ [deg]")
+    axes[2].set_xlabel("time [s]")
+    for axis in axes:
+        axis.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    axes[0].set_title(
+        f"Fastest moves of {1e3 * problem.distance_m:.0f} mm with |θ₁| ≤ {limit:g}°, residual ≤ "
+        f"{math.degrees(problem.slosh.max_residual_rad):g}° (verified at "
+        f"{1e3 * problem.sample_period_s:g} ms)"
+    )
     return save_figure(figure, path)

@@ -1,0 +1,264 @@
+"""Input shapers against published formulas, and plans that meet their limits when simulated
+again independently."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from conftest import seed_vial_table3
+from typer.testing import CliRunner
+
+from sloshkit.cli import app
+from sloshkit.dynamics import simulate
+from sloshkit.errors import InputError
+from sloshkit.io import read_motion_file
+from sloshkit.motion import s_curve
+from sloshkit.motion.shaping import ei, residual_vibration, shape_motion, zv, zvd
+from sloshkit.planning import (
+    MachineLimits,
+    PlanProblem,
+    SloshLimits,
+    plan,
+    plan_optimal,
+    plan_paper_law,
+    plan_shaped,
+    scale_frequencies,
+    verify,
+)
+
+OMEGA, ZETA = 29.66, 0.03
+pytestmark = pytest.mark.filterwarnings("ignore::sloshkit.errors.ValidityWarning")
+
+
+def test_singer_seering_1990_zv_and_zvd():
+    k = math.exp(-ZETA * math.pi / math.sqrt(1 - ZETA**2))
+    half = math.pi / (OMEGA * math.sqrt(1 - ZETA**2))
+    shaper = zv(OMEGA, ZETA)
+    np.testing.assert_allclose(shaper.amplitudes, [1 / (1 + k), k / (1 + k)])
+    np.testing.assert_allclose(shaper.times_s, [0, half])
+    shaper = zvd(OMEGA, ZETA)
+    np.testing.assert_allclose(shaper.amplitudes, np.array([1, 2 * k, k * k]) / (1 + k) ** 2)
+    np.testing.assert_allclose(shaper.times_s, [0, half, 2 * half])
+    # Zero residual vibration at the design frequency; ZVD also zero slope there.
+    for shaper in (zv(OMEGA, ZETA), zvd(OMEGA, ZETA)):
+        assert residual_vibration(shaper, OMEGA, ZETA) == pytest.approx(0.0, abs=1e-12)
+    eps = 1e-4 * OMEGA
+    slope = residual_vibration(zvd(OMEGA, ZETA), [OMEGA - eps, OMEGA + eps], ZETA)
+    assert np.all(slope < 1e-6)
+
+
+def test_singhose_1994_ei_undamped_closed_form_and_damped_conditions():
+    vtol = 0.05
+    shaper = ei(OMEGA, 0.0, vtol)
+    np.testing.assert_allclose(shaper.amplitudes, [(1 + vtol) / 4, (1 - vtol) / 2, (1 + vtol) / 4])
+    damped = ei(OMEGA, ZETA, vtol)
+    assert damped.amplitudes.sum() == pytest.approx(1.0, abs=1e-10)
+    assert residual_vibration(damped, OMEGA, ZETA) == pytest.approx(vtol, abs=1e-8)
+    # Vibration dips below V on both sides of the design frequency (two zeros nearby).
+    curve = residual_vibration(damped, OMEGA * np.linspace(0.7, 1.3, 601), ZETA)
+    assert curve.min() < 1e-3
+    assert np.count_nonzero(curve <= vtol) > np.count_nonzero(
+        residual_vibration(zvd(OMEGA, ZETA), OMEGA * np.linspace(0.7, 1.3, 601), ZETA) <= vtol
+    )
+
+
+@pytest.mark.parametrize("make", [zv, zvd, ei])
+@pytest.mark.parametrize("factor", [0.8, 0.95, 1.0, 1.05, 1.2])
+def test_shaped_move_residual_follows_the_insensitivity_curve(make, factor):
+    """For the linear model the residual of the shaped move is V(omega) times the unshaped
+    residual (V includes the decay over the shaper's length; Singer & Seering 1990)."""
+    model = seed_vial_table3()
+    true_model = scale_frequencies(model, factor)
+    shaper = make(model.modes[0].omega_rad_s, ZETA)
+    base = s_curve(0.3, 1.0, 2.0, 40.0)
+    unshaped = simulate(base, true_model, settle_time_s=0.0).residual_angle_rad
+    shaped = simulate(shape_motion(base, shaper), true_model, settle_time_s=0.0).residual_angle_rad
+    mode = true_model.modes[0]
+    expected = residual_vibration(shaper, mode.omega_rad_s, ZETA) * unshaped
+    assert shaped == pytest.approx(expected, rel=1e-3, abs=1e-6 * unshaped)
+
+
+def _problem(**overrides):
+    settings = dict(
+        distance_m=0.5,
+        machine=MachineLimits(1.5, 20.0, 500.0),
+        slosh=SloshLimits(math.radians(5.0), math.radians(0.25)),
+        model=seed_vial_table3(),
+        sample_period_s=4e-3,
+    )
+    settings.update(overrides)
+    return PlanProblem(**settings)
+
+
+def _independent_check(motion, problem):
+    """Simulate the motion with `simulate` (1 ms) on every model of the band."""
+    for model in problem.models():
+        response = simulate(motion, model, sample_period_s=1e-3, settle_time_s=0.0)
+        assert response.peak_angle_rad <= problem.slosh.max_angle_rad * 1.01
+        assert response.residual_angle_rad <= problem.slosh.max_residual_rad * 1.02
+    assert motion.peak_velocity_m_s <= problem.machine.max_velocity_m_s * (1 + 1e-9)
+    assert motion.peak_acceleration_m_s2 <= problem.machine.max_acceleration_m_s2 * (1 + 1e-9)
+    assert motion.peak_jerk_m_s3 <= problem.machine.max_jerk_m_s3 * (1 + 1e-6)
+    assert motion.distance_m == pytest.approx(problem.distance_m, abs=1e-6)
+
+
+@pytest.mark.parametrize("law", ["quintic", "septic"])
+def test_paper_laws_at_their_shortest_feasible_duration(law):
+    problem = _problem()
+    candidate = plan_paper_law(law, problem)
+    assert candidate.feasible
+    _independent_check(candidate.motion, problem)
+    # Shortest: 1 % faster violates a slosh limit.
+    from sloshkit.motion import make_law
+
+    faster = verify(make_law(law, 0.5, duration_s=0.99 * candidate.duration_s), problem)
+    assert not faster.feasible
+
+
+def test_trapezoid_is_infeasible_under_a_jerk_limit():
+    candidate = plan_paper_law("trapezoidal", _problem())
+    assert not candidate.feasible
+    assert "jerk" in candidate.message
+
+
+@pytest.mark.parametrize("band", [0.0, 0.1])
+def test_shaped_plan_meets_limits_and_beats_the_paper_laws(band):
+    problem = _problem(slosh=SloshLimits(math.radians(5.0), math.radians(0.25), robustness=band))
+    shaped = plan_shaped(problem)
+    assert shaped.feasible
+    _independent_check(shaped.motion, problem)
+    septic = plan_paper_law("septic", problem)
+    assert shaped.duration_s < 0.85 * septic.duration_s
+
+
+def test_optimal_plan_is_verified_and_fastest():
+    problem = _problem()
+    shaped = plan_shaped(problem, ("zv",))
+    optimal = plan_optimal(problem, shaped.motion, intervals=100)
+    assert optimal.feasible, optimal.message
+    _independent_check(optimal.motion, problem)
+    assert optimal.duration_s <= shaped.duration_s
+    # The quasi-static bound: |a| <= g tan(5 deg) on average gives T >= 2 sqrt(D / (g tan 5)).
+    assert optimal.duration_s > 2 * math.sqrt(0.5 / (9.81 * math.tan(math.radians(5.0)))) * 0.9
+
+
+def test_plan_cli_csv_json_and_independent_resimulation(tmp_path):
+    out = tmp_path / "traj.csv"
+    result = CliRunner().invoke(
+        app,
+        [
+            "plan",
+            "--distance",
+            "0.5m",
+            "--max-angle",
+            "5deg",
+            "--max-residual",
+            "0.25deg",
+            "--vmax",
+            "1.5m/s",
+            "--amax",
+            "20m/s^2",
+            "--jmax",
+            "500m/s^3",
+            "--damping-ratio",
+            "0.03",
+            "--method",
+            "shaped",
+            "--sample-period",
+            "4ms",
+            "--out",
+            str(out),
+            "--plot",
+            str(tmp_path / "plan.png"),
+            "--json",
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    payload = json.loads(result.stdout)
+    for key in (
+        "method",
+        "duration_s",
+        "peak_angle_deg",
+        "residual_angle_deg",
+        "peak_velocity_m_s",
+        "peak_acceleration_m_s2",
+        "peak_jerk_m_s3",
+        "feasible",
+        "candidates",
+    ):
+        assert key in payload
+    assert payload["feasible"] is True
+    lines = out.read_text().splitlines()
+    assert lines[0] == "t_s,position_m,velocity_m_s,acceleration_m_s2,jerk_m_s3"
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    np.testing.assert_allclose(np.diff(data[:, 0]), 0.004, atol=1e-9)
+    assert data[0, 0] == 0.0 and data[0, 1] == 0.0
+    assert data[-1, 1] == pytest.approx(0.5, abs=1e-9)
+    assert data[-1, 2] == 0.0 and data[-1, 3] == 0.0
+    # An independent re-simulation of the exported samples (quintic-spline reconstruction).
+    motion = read_motion_file(out)
+    response = simulate(motion, seed_vial_table3(), sample_period_s=1e-3, settle_time_s=0.0)
+    assert math.degrees(response.peak_angle_rad) <= 5.0 * 1.02
+    assert math.degrees(response.residual_angle_rad) <= 0.25 * 1.05
+    assert (tmp_path / "plan.png").stat().st_size > 10_000
+
+
+def test_infeasible_request_fails_clearly():
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "from sloshkit.cli import main; main()",
+            "plan",
+            "--distance",
+            "0.5m",
+            "--max-angle",
+            "0.01deg",
+            "--max-residual",
+            "0.001deg",
+            "--vmax",
+            "1m/s",
+            "--amax",
+            "1m/s^2",
+            "--jmax",
+            "10m/s^3",
+            "--method",
+            "fast",
+            "--max-duration",
+            "2s",
+        ],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode == 1
+    assert "no method meets the limits" in proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+def test_missing_limits_are_input_errors():
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "from sloshkit.cli import main; main()",
+            "plan",
+            "--max-angle",
+            "5deg",
+        ],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode == 2
+    assert "--vmax" in proc.stderr
+
+
+def test_unknown_method():
+    with pytest.raises(InputError, match="method"):
+        plan(_problem(), method="telepathy")
