@@ -18,13 +18,24 @@ $(VENV)/.installed-test: pyproject.toml | $(BIN)/python
 	$(BIN)/python -m pip install -q -e '.[test]'
 	touch $@ $(VENV)/.installed-base
 
-## demo: the seed paper's vial, end to end on the analytic model (no CFD).
+## demo: the seed paper rebuilt end to end on the analytic model (no CFD), as a report.
 demo: $(VENV)/.installed-base
 	$(BIN)/sloshkit model --radius 20.5mm --fill-height 39mm --liquid water-25C
+	$(BIN)/sloshkit reproduce --out $(DEMO_OUT)
 
-## system-deps: Debian packages the tests need (none so far; installed only when missing).
+## system-deps: Debian packages the tests need (headless Chromium for the report test,
+## OpenFOAM for the CFD tests); installed with apt-get only when missing.
 system-deps:
-	@true
+	@missing=""; \
+	command -v chromium >/dev/null 2>&1 || missing="$$missing chromium"; \
+	command -v chromedriver >/dev/null 2>&1 || missing="$$missing chromium-driver"; \
+	command -v interFoam >/dev/null 2>&1 || missing="$$missing openfoam"; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then sudo=""; else sudo=sudo; fi; \
+	  echo "installing Debian packages:$$missing"; \
+	  $$sudo apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq $$missing >/dev/null; \
+	fi
 
 lint: $(VENV)/.installed-test
 	$(BIN)/ruff check src tests $(wildcard benchmarks examples)

@@ -177,8 +177,10 @@ def build_model(
 
 
 def print_json(payload: object) -> None:
-    """Print ``payload`` as one JSON object on stdout."""
-    sys.stdout.write(json.dumps(payload, indent=2) + "\n")
+    """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null)."""
+    from sloshkit.io import json_safe
+
+    sys.stdout.write(json.dumps(json_safe(payload), indent=2, allow_nan=False) + "\n")
 
 
 def model_table(model: SloshModel) -> Table:
@@ -999,6 +1001,104 @@ def plan_command(
         messages = "; ".join(f"{c.method}: {c.message}" for c in result.candidates)
         stderr.print(f"[red]error:[/red] no method meets the limits ({messages})", highlight=False)
         raise typer.Exit(1)
+
+
+def _run_report(
+    scenario: Any, out: Path, cfd_calibration: Any = None, json_output: bool = False
+) -> None:
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    from sloshkit.report import build_report
+
+    with Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        TimeElapsedColumn(),
+        console=stderr,
+        transient=True,
+    ) as bar:
+        task = bar.add_task("starting", total=None)
+        path = build_report(
+            scenario,
+            out,
+            progress=lambda text: bar.update(task, description=text),
+            cfd_calibration=cfd_calibration,
+            command="sloshkit " + " ".join(sys.argv[1:]),
+        )
+    if json_output:
+        print_json(
+            {
+                "report": str(path),
+                "figures": sorted(str(p) for p in (out / "figures").glob("*")),
+                "tables": sorted(str(p) for p in (out / "tables").glob("*")),
+            }
+        )
+    else:
+        stdout.print(f"report: {path.resolve()}")
+
+
+@app.command("reproduce")
+def reproduce_command(
+    out: Annotated[
+        Path, typer.Option("--out", help="Folder for report.html, figures/, tables/.")
+    ] = Path("sloshkit-report"),
+    cfd: Annotated[
+        bool, typer.Option("--cfd", help="Also run the OpenFOAM free-decay calibration.")
+    ] = False,
+    cfd_case: Annotated[
+        Path | None,
+        typer.Option("--cfd-case", help="Reuse a finished OpenFOAM case for the calibration."),
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """Rebuild the seed paper end to end on the analytic model and write a report.
+
+    Model (Table 3), calibration (Table 4, Fig. 5b), motion laws (Figs. 7-9), slosh maps and the
+    planner's fastest safe move, with every difference from the paper explained.
+
+    Example:
+
+      sloshkit reproduce --out report/
+    """
+    from sloshkit.report import paper_scenario
+
+    scenario = paper_scenario()
+    calibration = None
+    if cfd or cfd_case is not None:
+        from sloshkit.cfd.pipeline import cfd_free_decay_calibration
+
+        calibration = cfd_free_decay_calibration(scenario.model, cfd_case, progress=stderr)
+    _run_report(scenario, out, calibration, json_output)
+
+
+@app.command("run")
+def run_command(
+    scenario_file: Annotated[Path, typer.Argument(help="Scenario TOML (see examples/).")],
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Report folder (default: beside the file).")
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """Run a scenario file's analyses (model, calibrate, compare, sweep, plan) into a report.
+
+    Example:
+
+      sloshkit run examples/vial-2ml.toml --out vial-2ml-report/
+    """
+    from sloshkit.scenario import read_scenario
+
+    scenario = read_scenario(scenario_file)
+    calibration = None
+    if "cfd" in scenario.analyses:
+        from sloshkit.cfd.pipeline import cfd_free_decay_calibration
+
+        case = scenario.cfd.get("case")
+        calibration = cfd_free_decay_calibration(
+            scenario.model,
+            None if case is None else scenario_file.parent / str(case),
+            progress=stderr,
+        )
+    _run_report(scenario, out or scenario_file.with_suffix(""), calibration, json_output)
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def]

@@ -71,10 +71,27 @@ def write_rows_csv(path: str | Path, rows: Sequence[Mapping[str, object]]) -> Pa
     return Path(path)
 
 
+def json_safe(payload: Any) -> Any:
+    """``payload`` with non-finite floats (an unbounded jerk, say) as None: JSON has no inf."""
+    if isinstance(payload, float):
+        return payload if np.isfinite(payload) else None
+    if isinstance(payload, np.floating):
+        return json_safe(float(payload))
+    if isinstance(payload, np.integer):
+        return int(payload)
+    if isinstance(payload, dict):
+        return {key: json_safe(value) for key, value in payload.items()}
+    if isinstance(payload, list | tuple):
+        return [json_safe(value) for value in payload]
+    if isinstance(payload, Path):
+        return str(payload)
+    return payload
+
+
 def write_json(path: str | Path, payload: object) -> Path:
-    """Write ``payload`` as indented JSON, atomically."""
+    """Write ``payload`` as indented, strict JSON (non-finite numbers as null), atomically."""
     with atomic_open(path, "w") as stream:
-        json.dump(payload, stream, indent=2)
+        json.dump(json_safe(payload), stream, indent=2, allow_nan=False)
         stream.write("\n")
     return Path(path)
 

@@ -120,12 +120,17 @@ def ei(omega_rad_s: float, damping_ratio: float, tolerance: float = 0.05) -> Sha
         ) / (2 * step)
         zero_low = vector(amplitudes, times, low * omega_rad_s)
         zero_high = vector(amplitudes, times, high * omega_rad_s)
-        return np.array([
-            a1 + a2 + a3 - 1.0,
-            float(residual_vibration(shaper, omega_rad_s, damping_ratio)) - vtol,
-            float(slope) * omega_rad_s,
-            zero_low.real, zero_low.imag, zero_high.real, zero_high.imag,
-        ])
+        return np.array(
+            [
+                a1 + a2 + a3 - 1.0,
+                float(residual_vibration(shaper, omega_rad_s, damping_ratio)) - vtol,
+                float(slope) * omega_rad_s,
+                zero_low.real,
+                zero_low.imag,
+                zero_high.real,
+                zero_high.imag,
+            ]
+        )
 
     start = np.array([*amplitudes0, period / 2, period, zero_ratio, 2.0 - zero_ratio])
     solution = least_squares(equations, start, xtol=1e-15, ftol=1e-15, gtol=1e-15)

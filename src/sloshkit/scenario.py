@@ -1,0 +1,274 @@
+"""Scenario files (TOML): a container, liquid, move, limits and the analyses to run.
+
+Values carry units as text (``radius = "20.5mm"``); bare numbers are SI. Unknown tables or keys
+are rejected with the list of allowed ones, so a typo never silently falls back to a default.
+See ``examples/*.toml``.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from sloshkit.errors import InputError
+from sloshkit.geometry import UprightCylinder
+from sloshkit.liquids import Liquid, get_liquid
+from sloshkit.modal import DAMPING_LAWS, DampingLaw, SloshModel, equivalent_model
+from sloshkit.units import parse_quantity, parse_range
+
+ANALYSES: tuple[str, ...] = ("model", "calibrate", "compare", "sweep", "plan", "cfd")
+_SCHEMA: dict[str, set[str]] = {
+    "": {"name", "description", "analyses", "paper_comparison"},
+    "container": {"radius", "wall_height"},
+    "liquid": {"preset", "density", "viscosity", "surface_tension"},
+    "fill": {"height", "volume"},
+    "model": {"modes", "damping_law", "damping_ratio", "surface_tension_correction"},
+    "move": {"distance", "peak_velocity", "duration", "laws", "vmax", "amax", "jmax"},
+    "limits": {
+        "max_angle",
+        "max_residual",
+        "max_wall_elevation",
+        "vmax",
+        "amax",
+        "jmax",
+        "sample_period",
+        "robust",
+        "method",
+    },
+    "sweep": {"fill_height", "duration", "laws"},
+    "calibrate": {"data", "time_column", "signal_column", "start", "end", "method", "time_unit"},
+    "cfd": {"cells_per_radius", "end_time", "np", "case", "tilt"},
+}
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A parsed scenario: SI values, the analyses to run, and the raw tables for the report."""
+
+    name: str
+    model: SloshModel
+    distance_m: float
+    peak_velocity_m_s: float | None
+    duration_s: float | None
+    laws: tuple[str, ...]
+    move_limits: tuple[float | None, float | None, float | None]
+    plan_limits: dict[str, Any]
+    analyses: tuple[str, ...]
+    sweep: dict[str, Any] = field(default_factory=dict)
+    calibrate: dict[str, Any] = field(default_factory=dict)
+    cfd: dict[str, Any] = field(default_factory=dict)
+    description: str = ""
+    paper_comparison: bool = False
+    source: str = ""
+    raw: dict[str, Any] = field(default_factory=dict)
+
+
+def _check_keys(table: dict[str, Any], section: str) -> None:
+    allowed = _SCHEMA[section]
+    for key, value in table.items():
+        if section == "" and isinstance(value, dict):
+            if key not in _SCHEMA or key == "":
+                raise InputError(
+                    "scenario",
+                    f"[{key}]",
+                    "unknown table; allowed: " + ", ".join(f"[{k}]" for k in _SCHEMA if k),
+                )
+            _check_keys(value, key)
+        elif key not in allowed:
+            where = f"[{section}] " if section else ""
+            raise InputError(
+                "scenario", f"{where}{key}", "unknown key; allowed: " + ", ".join(sorted(allowed))
+            )
+
+
+def parse_scenario(
+    document: dict[str, Any], source: str = "", base: Path | None = None
+) -> Scenario:
+    """Build a `Scenario` from a TOML document (already parsed)."""
+    _check_keys(document, "")
+    container_table = document.get("container", {})
+    if "radius" not in container_table:
+        raise InputError("scenario", "[container] radius", "is required")
+    container = UprightCylinder(
+        parse_quantity(container_table["radius"], "length", "radius"),
+        None
+        if "wall_height" not in container_table
+        else parse_quantity(container_table["wall_height"], "length", "wall_height"),
+    )
+    liquid_table = document.get("liquid", {})
+    base_liquid = get_liquid(str(liquid_table.get("preset", "water-25C")))
+    overrides = {
+        k: liquid_table[k] for k in ("density", "viscosity", "surface_tension") if k in liquid_table
+    }
+    liquid = base_liquid
+    if overrides:
+        liquid = Liquid(
+            name=base_liquid.name + "*",
+            density_kg_m3=parse_quantity(
+                overrides.get("density", base_liquid.density_kg_m3), "density", "density"
+            ),
+            viscosity_pa_s=parse_quantity(
+                overrides.get("viscosity", base_liquid.viscosity_pa_s), "viscosity", "viscosity"
+            ),
+            surface_tension_n_m=parse_quantity(
+                overrides.get("surface_tension", base_liquid.surface_tension_n_m),
+                "surface_tension",
+                "surface_tension",
+            ),
+            source=base_liquid.source + " (overridden in the scenario)",
+        )
+    fill = document.get("fill", {})
+    if ("height" in fill) == ("volume" in fill):
+        raise InputError("scenario", "[fill]", "give exactly one of height or volume")
+    height = (
+        parse_quantity(fill["height"], "length", "fill height")
+        if "height" in fill
+        else container.fill_height_for_volume(
+            parse_quantity(fill["volume"], "volume", "fill volume")
+        )
+    )
+    model_table = document.get("model", {})
+    law = str(model_table.get("damping_law", "seed"))
+    if law not in DAMPING_LAWS:
+        raise InputError("damping_law", law, "must be one of " + ", ".join(DAMPING_LAWS))
+    damping_law: DampingLaw = law  # type: ignore[assignment]
+    model = equivalent_model(
+        container,
+        liquid,
+        height,
+        n_modes=int(model_table.get("modes", 3)),
+        damping_law=damping_law,
+        damping_ratio=model_table.get("damping_ratio"),
+        surface_tension=bool(model_table.get("surface_tension_correction", False)),
+    )
+    move = document.get("move", {})
+
+    def optional(table: dict[str, Any], key: str, kind: str) -> float | None:
+        return None if key not in table else parse_quantity(table[key], kind, key)
+
+    analyses = tuple(document.get("analyses", ["model", "compare", "plan"]))
+    for analysis in analyses:
+        if analysis not in ANALYSES:
+            raise InputError("analyses", analysis, "must be among " + ", ".join(ANALYSES))
+    limits = document.get("limits", {})
+    plan_limits: dict[str, Any] = {}
+    if "plan" in analyses or "sweep" in analyses:
+        for key, kind in (("max_angle", "angle"), ("max_residual", "angle")):
+            if key not in limits:
+                raise InputError("scenario", f"[limits] {key}", "is required for plan and sweep")
+            plan_limits[key] = parse_quantity(limits[key], kind, key)
+    if "plan" in analyses:
+        for key, kind in (("vmax", "velocity"), ("amax", "acceleration"), ("jmax", "jerk")):
+            if key not in limits:
+                raise InputError("scenario", f"[limits] {key}", "is required for plan")
+            plan_limits[key] = parse_quantity(limits[key], kind, key)
+        plan_limits["sample_period"] = parse_quantity(
+            limits.get("sample_period", "4ms"), "time", "sample_period"
+        )
+        robust = str(limits.get("robust", "0%")).strip()
+        plan_limits["robust"] = float(robust.rstrip("%")) / (100.0 if robust.endswith("%") else 1.0)
+        plan_limits["method"] = str(limits.get("method", "auto"))
+        plan_limits["max_wall_elevation"] = optional(limits, "max_wall_elevation", "length")
+    sweep: dict[str, Any] = {}
+    if "sweep" in analyses:
+        table = document.get("sweep", {})
+        sweep = {
+            "fill_height": parse_range(
+                str(
+                    table.get(
+                        "fill_height",
+                        f"{0.5 * height}:{min(1.5 * height, container.wall_height_m or 1e9)}:21",
+                    )
+                ),
+                "length",
+                "sweep fill_height",
+            ),
+            "duration": parse_range(
+                str(table.get("duration", "0.5s:3s:60")), "time", "sweep duration"
+            ),
+            "laws": tuple(table.get("laws", ["trapezoidal", "cubic", "quintic", "septic"])),
+        }
+    calibrate: dict[str, Any] = {}
+    if "calibrate" in analyses and "calibrate" in document:
+        table = document["calibrate"]
+        if "data" not in table:
+            raise InputError("scenario", "[calibrate] data", "is required to calibrate from a file")
+        data = Path(str(table["data"]))
+        if base is not None and not data.is_absolute():
+            data = base / data
+        calibrate = {
+            "data": data,
+            "time_column": str(table.get("time_column", "0")),
+            "signal_column": str(table.get("signal_column", "1")),
+            "start": optional(table, "start", "time"),
+            "end": optional(table, "end", "time"),
+            "method": str(table.get("method", "fit")),
+            "time_unit": str(table.get("time_unit", "s")),
+        }
+    return Scenario(
+        name=str(document.get("name", "scenario")),
+        model=model,
+        distance_m=parse_quantity(move.get("distance", "0.5m"), "length", "distance"),
+        peak_velocity_m_s=optional(move, "peak_velocity", "velocity"),
+        duration_s=optional(move, "duration", "time"),
+        laws=tuple(move.get("laws", ["trapezoidal", "cubic", "quintic", "septic", "s-curve"])),
+        move_limits=(
+            optional(move, "vmax", "velocity"),
+            optional(move, "amax", "acceleration"),
+            optional(move, "jmax", "jerk"),
+        ),
+        plan_limits=plan_limits,
+        analyses=analyses,
+        sweep=sweep,
+        calibrate=calibrate,
+        cfd=dict(document.get("cfd", {})),
+        description=str(document.get("description", "")),
+        paper_comparison=bool(document.get("paper_comparison", False)),
+        source=source,
+        raw=document,
+    )
+
+
+def read_scenario(path: str | Path) -> Scenario:
+    """Read and check a scenario TOML file."""
+    source = Path(path)
+    if not source.is_file():
+        raise InputError("scenario", str(source), "does not exist or is not a file")
+    try:
+        document = tomllib.loads(source.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as error:
+        raise InputError("scenario", str(source), f"is not valid TOML: {error}") from None
+    return parse_scenario(document, str(source), source.parent)
+
+
+#: The seed paper's case, as `sloshkit reproduce` runs it.
+PAPER_SCENARIO: dict[str, Any] = {
+    "name": "De Simone et al. (2024): glass vial on a linear slide",
+    "description": (
+        "R = 20.5 mm, h = 39 mm, water; 0.5 m move at 0.5 m/s peak (trapezoid 1.5 s); damping "
+        "ratio 0.03 as in the paper's Table 3; planner limits 5 deg peak, 0.25 deg residual, "
+        "1.5 m/s, 20 m/s^2, 500 m/s^3, 4 ms controller period."
+    ),
+    "paper_comparison": True,
+    "analyses": ["model", "calibrate", "compare", "sweep", "plan"],
+    "container": {"radius": "20.5mm", "wall_height": "60mm"},
+    "liquid": {"preset": "water-25C", "density": "1000 kg/m^3"},
+    "fill": {"height": "39mm"},
+    "model": {"modes": 3, "damping_ratio": 0.03},
+    "move": {"distance": "0.5m", "peak_velocity": "0.5m/s"},
+    "limits": {
+        "max_angle": "5deg",
+        "max_residual": "0.25deg",
+        "vmax": "1.5m/s",
+        "amax": "20m/s^2",
+        "jmax": "500m/s^3",
+        "sample_period": "4ms",
+    },
+    "sweep": {
+        "fill_height": "15mm:55mm:21",
+        "duration": "0.8s:3s:45",
+        "laws": ["trapezoidal", "cubic", "quintic", "septic"],
+    },
+}
