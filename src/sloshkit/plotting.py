@@ -283,3 +283,28 @@ def plot_plan(result: PlanResult, path: str | Path | None = None) -> Any:
         f"{1e3 * problem.sample_period_s:g} ms)"
     )
     return save_figure(figure, path)
+
+
+def plot_cfd_validation(result: dict[str, Any], path: str | Path | None = None) -> Any:
+    """CFD wall elevation against the pendulum model for the same motion (seed Fig. 9)."""
+    plt = _pyplot()
+    figure, axis = plt.subplots(figsize=(8, 4.2), layout="constrained")
+    t = result["time_s"]
+    axis.plot(
+        t, 1e3 * np.asarray(result["cfd_elevation_m"]), label="CFD (interFoam)", linewidth=1.4
+    )
+    axis.plot(
+        t,
+        1e3 * np.asarray(result["model_elevation_m"]),
+        "--",
+        label="pendulum model",
+        linewidth=1.2,
+    )
+    if result.get("excitation_end_s"):
+        axis.axvline(result["excitation_end_s"], color="grey", linestyle=":", linewidth=1)
+    axis.set_xlabel("time [s]")
+    axis.set_ylabel("wall elevation at 0.98 R [mm]")
+    axis.set_title(f"CFD vs equivalent model (correlation {result['correlation']:.3f})")
+    axis.grid(alpha=0.3)
+    axis.legend()
+    return save_figure(figure, path)
