@@ -67,7 +67,7 @@ def main() -> None:
                 "damping_ratio": payload["damping_ratio"],
                 "status": "completed",
             }
-        except Exception as error:  # noqa: BLE001 - a failed run is a study result too
+        except Exception as error:
             row = {
                 "tag": tag,
                 "cells_per_radius": cells,

@@ -160,5 +160,5 @@ def test_solver_failure_is_reported_with_the_log(tmp_path):
 
     case = write_case(tiny(), tmp_path / "case")
     (case / "system" / "fvSchemes").write_text("broken")
-    with pytest.raises(CfdError, match="interFoam|setFields|log"):
+    with pytest.raises(CfdError, match=r"interFoam|setFields|log"):
         run_case(case)

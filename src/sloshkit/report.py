@@ -380,10 +380,47 @@ def _calibration_section(
         result.plot(None),
         "Free decay, detected peaks and fitted envelope (the paper's Fig. 5b)",
     )
+    if cfd_result is not None:
+        body += writer.figure(
+            "fig9_cfd_vs_model",
+            _free_response_figure(result, model),
+            "CFD free decay against the equivalent pendulum (linear-theory frequency, the CFD's "
+            "damping, started from the CFD's amplitude and phase): the paper's Fig. 9",
+        )
     writer.section("Calibration", body)
     if cfd_result is not None or scenario.calibrate:
         return typing.cast(SloshModel, result.calibrated_model(model))
     return model
+
+
+def _free_response_figure(result: Any, model: SloshModel) -> Any:
+    """The CFD signal and the pendulum's free response with matched amplitude and phase."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t = result.signal.time_s - result.signal.time_s[0]
+    y = result.signal.values
+    mode = model.modes[0]
+    zeta = result.damping_ratio if result.damping_ratio is not None else mode.damping_ratio
+    damped = mode.omega_rad_s * math.sqrt(1 - zeta**2)
+    envelope = np.exp(-zeta * mode.omega_rad_s * t)
+    design = np.column_stack((envelope * np.cos(damped * t), envelope * np.sin(damped * t)))
+    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
+    figure, axis = plt.subplots(figsize=(8, 4), layout="constrained")
+    axis.plot(result.signal.time_s, 1e3 * y, label="CFD (interFoam), wall elevation")
+    axis.plot(
+        result.signal.time_s,
+        1e3 * design @ coefficients,
+        "--",
+        label=f"pendulum: f = {mode.frequency_hz:.3f} Hz (theory), ζ = {zeta:.4f}",
+    )
+    axis.set_xlabel("time [s]")
+    axis.set_ylabel("wall elevation [mm]")
+    axis.grid(alpha=0.3)
+    axis.legend()
+    return figure
 
 
 def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
