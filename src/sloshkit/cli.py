@@ -29,7 +29,7 @@ from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.geometry import UprightCylinder
 from sloshkit.liquids import LIQUIDS, Liquid, get_liquid
 from sloshkit.modal import DAMPING_LAWS, DampingLaw, SloshModel, equivalent_model
-from sloshkit.motion.laws import LAW_NAMES, Motion, make_law, trapezoidal
+from sloshkit.motion.laws import LAW_NAMES, Motion, comparison_s_curve_limits, make_law
 from sloshkit.units import parse_quantity
 
 app = typer.Typer(
@@ -375,13 +375,9 @@ class MoveRequest:
             return typing.cast(Motion, read_motion_file(name.removeprefix("file:"), name))
         vmax, amax, jmax = self.vmax, self.amax, self.jmax
         if name == "s-curve" and self.peak_velocity_m_s is not None:
-            # Same peak velocity and acceleration as the trapezoid; jerk time 0.1 s by default.
-            reference = trapezoidal(
-                self.distance_m, self.peak_velocity_m_s, None, self.accel_fraction
+            vmax, amax, jmax = comparison_s_curve_limits(
+                self.distance_m, self.peak_velocity_m_s, vmax, amax, jmax, self.accel_fraction
             )
-            vmax = vmax if vmax is not None else self.peak_velocity_m_s
-            amax = amax if amax is not None else reference.peak_acceleration_m_s2
-            jmax = jmax if jmax is not None else 10.0 * amax
         return make_law(
             name,
             self.distance_m,

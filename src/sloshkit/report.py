@@ -425,16 +425,16 @@ def _free_response_figure(result: Any, model: SloshModel) -> Any:
 
 def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
     from sloshkit.dynamics import simulate
-    from sloshkit.motion import make_law, trapezoidal
+    from sloshkit.motion.laws import comparison_s_curve_limits, make_law
     from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison
 
     motions = []
     for name in scenario.laws:
         vmax, amax, jmax = scenario.move_limits
-        if name == "s-curve" and scenario.peak_velocity_m_s is not None and amax is None:
-            reference = trapezoidal(scenario.distance_m, scenario.peak_velocity_m_s)
-            vmax, amax = scenario.peak_velocity_m_s, reference.peak_acceleration_m_s2
-            jmax = 10.0 * amax
+        if name == "s-curve" and scenario.peak_velocity_m_s is not None:
+            vmax, amax, jmax = comparison_s_curve_limits(
+                scenario.distance_m, scenario.peak_velocity_m_s, vmax, amax, jmax
+            )
         motions.append(
             make_law(
                 name,

@@ -25,18 +25,12 @@ from sloshkit.errors import InputError, require_positive
 from sloshkit.geometry import UprightCylinder
 from sloshkit.liquids import Liquid
 from sloshkit.modal import DampingLaw, equivalent_model
-from sloshkit.motion.laws import Motion, make_law
+from sloshkit.motion.laws import LAW_NAMES, Motion, make_law
 
 FloatArray = NDArray[np.float64]
 
-SWEEP_LAWS: tuple[str, ...] = (
-    "trapezoidal",
-    "cubic",
-    "quintic",
-    "septic",
-    "minimum-jerk",
-    "s-curve",
-)
+#: Every law can be time-scaled (the s-curve keeps the shape its limits give).
+SWEEP_LAWS: tuple[str, ...] = LAW_NAMES
 
 
 def unit_duration_shape(motion: Motion) -> Motion:

@@ -382,6 +382,27 @@ def from_samples(
     return Motion(name, PPoly(pp.c, pp.x, extrapolate=True))
 
 
+def comparison_s_curve_limits(
+    distance_m: float,
+    peak_velocity_m_s: float,
+    max_velocity_m_s: float | None = None,
+    max_acceleration_m_s2: float | None = None,
+    max_jerk_m_s3: float | None = None,
+    acceleration_fraction: float | None = None,
+) -> tuple[float, float, float]:
+    """S-curve limits for comparing laws at one peak velocity: the given limits, else the
+    trapezoid's peak velocity and acceleration and a jerk time of 0.1 s (j = 10 a per second)."""
+    reference = trapezoidal(distance_m, peak_velocity_m_s, None, acceleration_fraction)
+    velocity = max_velocity_m_s if max_velocity_m_s is not None else peak_velocity_m_s
+    acceleration = (
+        max_acceleration_m_s2
+        if max_acceleration_m_s2 is not None
+        else reference.peak_acceleration_m_s2
+    )
+    jerk = max_jerk_m_s3 if max_jerk_m_s3 is not None else 10.0 * acceleration
+    return velocity, acceleration, jerk
+
+
 def make_law(
     name: str,
     distance_m: float,
