@@ -3,8 +3,16 @@
 from __future__ import annotations
 
 import dataclasses
+import os
 
 import pytest
+from hypothesis import settings
+
+# CI replays the same examples every run (a red build is then reproducible); locally hypothesis
+# explores new ones.
+settings.register_profile("ci", derandomize=True, print_blob=True)
+if os.environ.get("CI"):
+    settings.load_profile("ci")
 
 from sloshkit.geometry import UprightCylinder
 from sloshkit.liquids import get_liquid
