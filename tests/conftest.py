@@ -8,15 +8,15 @@ import os
 import pytest
 from hypothesis import settings
 
+from sloshkit.geometry import UprightCylinder
+from sloshkit.liquids import get_liquid
+from sloshkit.modal import SloshModel, equivalent_model
+
 # CI replays the same examples every run (a red build is then reproducible); locally hypothesis
 # explores new ones.
 settings.register_profile("ci", derandomize=True, print_blob=True)
 if os.environ.get("CI"):
     settings.load_profile("ci")
-
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import get_liquid
-from sloshkit.modal import SloshModel, equivalent_model
 
 SEED_RADIUS_M = 0.0205  # De Simone et al. (2024) Table 3
 SEED_FILL_HEIGHT_M = 0.039

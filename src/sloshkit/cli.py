@@ -244,41 +244,56 @@ MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
 }
 
 
-def with_model_options(command: Callable[..., None]) -> Callable[..., None]:
-    """Give ``command`` the shared model options; it receives the built ``slosh_model``.
+def with_options(
+    options: dict[str, tuple[Any, Any]], target: str, build: Callable[[dict[str, Any]], Any]
+) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """Add a shared group of ``options`` to a command; it receives ``build(values)`` as its
+    parameter ``target``.
 
     The options are added to the command's signature (which typer reads), so every command
     spells and documents them identically.
     """
-    signature = inspect.signature(command, eval_str=True)
-    own = [p for p in signature.parameters.values() if p.name != "slosh_model"]
-    added = [
-        inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default, annotation=hint)
-        for name, (hint, default) in MODEL_OPTIONS.items()
-    ]
-    own_hints = typing.get_type_hints(command, include_extras=True)
 
-    @functools.wraps(command)
-    def wrapper(**kwargs: Any) -> None:
-        options = {name: kwargs.pop(name) for name in MODEL_OPTIONS}
-        model_file = options.pop("model_file")
-        if model_file is not None:
-            from sloshkit.io import read_model_file
+    def decorate(command: Callable[..., None]) -> Callable[..., None]:
+        signature = inspect.signature(command, eval_str=True)
+        own = [p for p in signature.parameters.values() if p.name != target]
+        added = [
+            inspect.Parameter(
+                name, inspect.Parameter.KEYWORD_ONLY, default=default, annotation=hint
+            )
+            for name, (hint, default) in options.items()
+        ]
+        own_hints = typing.get_type_hints(command, include_extras=True)
 
-            kwargs["slosh_model"] = read_model_file(model_file)
-        else:
-            kwargs["slosh_model"] = build_model(**options)
-        command(**kwargs)
+        @functools.wraps(command)
+        def wrapper(**kwargs: Any) -> None:
+            kwargs[target] = build({name: kwargs.pop(name) for name in options})
+            command(**kwargs)
 
-    ordered = sorted(own + added, key=lambda p: p.default is not inspect.Parameter.empty)
-    wrapper.__signature__ = signature.replace(  # type: ignore[attr-defined]
-        parameters=[p.replace(kind=inspect.Parameter.KEYWORD_ONLY) for p in ordered]
-    )
-    wrapper.__annotations__ = {
-        **{name: own_hints[name] for name in own_hints if name not in ("slosh_model", "return")},
-        **{name: hint for name, (hint, _) in MODEL_OPTIONS.items()},
-    }
-    return wrapper
+        ordered = sorted(own + added, key=lambda p: p.default is not inspect.Parameter.empty)
+        wrapper.__signature__ = signature.replace(  # type: ignore[attr-defined]
+            parameters=[p.replace(kind=inspect.Parameter.KEYWORD_ONLY) for p in ordered]
+        )
+        wrapper.__annotations__ = {
+            **{name: own_hints[name] for name in own_hints if name not in (target, "return")},
+            **{name: hint for name, (hint, _) in options.items()},
+        }
+        return wrapper
+
+    return decorate
+
+
+def _model_from_options(values: dict[str, Any]) -> SloshModel:
+    model_file = values.pop("model_file")
+    if model_file is not None:
+        from sloshkit.io import read_model_file
+
+        return typing.cast(SloshModel, read_model_file(model_file))
+    return build_model(**values)
+
+
+#: Give a command the shared model options; it receives the built ``slosh_model``.
+with_model_options = with_options(MODEL_OPTIONS, "slosh_model", _model_from_options)
 
 
 @app.command()
@@ -1106,46 +1121,85 @@ app.add_typer(cfd_app, name="cfd")
 CaseDir = Annotated[Path, typer.Option("--case", help="Case folder.")]
 
 
-def _cfd_spec(
-    slosh_model: SloshModel,
-    excitation: str,
-    tilt: str,
-    amplitude: str,
-    frequency: str,
-    excite_time: str,
-    law: str | None,
-    distance: str,
-    duration: str | None,
-    cells_per_radius: int,
-    end_time: str,
-    delta_t: str,
-    ddt: str,
-    np_: int,
-    surface_tension: bool,
-) -> Any:
+def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
+    """The case options shared by the cfd commands (with their command's defaults)."""
+    return {
+        "excitation": (
+            Annotated[
+                str,
+                typer.Option("--excitation", help="free-decay (tilted surface), harmonic or law."),
+            ],
+            excitation,
+        ),
+        "tilt": (
+            Annotated[str, typer.Option("--tilt", help="Initial tilt for free-decay.")],
+            "3deg",
+        ),
+        "amplitude": (
+            Annotated[str, typer.Option("--amplitude", help="Harmonic amplitude.")],
+            "10mm",
+        ),
+        "frequency": (
+            Annotated[str, typer.Option("--frequency", help="Harmonic frequency.")],
+            "1Hz",
+        ),
+        "excite_time": (
+            Annotated[str, typer.Option("--excite-time", help="Harmonic duration.")],
+            "2s",
+        ),
+        "law": (
+            Annotated[str | None, typer.Option("--law", help="Motion law for --excitation law.")],
+            None,
+        ),
+        "distance": (Distance, "0.1m"),
+        "duration": (Duration, None),
+        "cells_per_radius": (
+            Annotated[int, typer.Option("--cells-per-radius", help="Mesh resolution.")],
+            10,
+        ),
+        "end_time": (Annotated[str, typer.Option("--end-time", help="Simulated time.")], end_time),
+        "delta_t": (Annotated[str, typer.Option("--delta-t", help="Fixed time step.")], "0.5ms"),
+        "ddt": (
+            Annotated[str, typer.Option("--ddt", help="Euler, 'CrankNicolson 0.9' or backward.")],
+            "Euler",
+        ),
+        "np_": (Annotated[int, typer.Option("--np", help="MPI processes (1: serial).")], 1),
+        "cfd_surface_tension": (
+            Annotated[
+                bool,
+                typer.Option("--cfd-surface-tension", help="Include surface tension in the CFD."),
+            ],
+            False,
+        ),
+    }
+
+
+def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
     from sloshkit.cfd.pipeline import case_spec, excitation_from_options
 
     motion = None
-    if excitation == "law":
-        request = MoveRequest.parse(distance, duration, None, None, None, None, None)
-        motion = request.law(law or "quintic")
+    if options["excitation"] == "law":
+        request = MoveRequest.parse(
+            options["distance"], options["duration"], None, None, None, None, None
+        )
+        motion = request.law(options["law"] or "quintic")
     chosen = excitation_from_options(
-        excitation,
-        parse_quantity(tilt, "angle", "tilt"),
-        parse_quantity(amplitude, "length", "amplitude"),
-        parse_quantity(frequency, "frequency", "frequency"),
-        parse_quantity(excite_time, "time", "excite_time"),
+        options["excitation"],
+        parse_quantity(options["tilt"], "angle", "tilt"),
+        parse_quantity(options["amplitude"], "length", "amplitude"),
+        parse_quantity(options["frequency"], "frequency", "frequency"),
+        parse_quantity(options["excite_time"], "time", "excite_time"),
         motion,
     )
     return case_spec(
         slosh_model,
         chosen,
-        cells_per_radius=cells_per_radius,
-        end_time_s=parse_quantity(end_time, "time", "end_time"),
-        delta_t_s=parse_quantity(delta_t, "time", "delta_t"),
-        ddt_scheme=ddt,
-        processes=np_,
-        surface_tension=surface_tension,
+        cells_per_radius=options["cells_per_radius"],
+        end_time_s=parse_quantity(options["end_time"], "time", "end_time"),
+        delta_t_s=parse_quantity(options["delta_t"], "time", "delta_t"),
+        ddt_scheme=options["ddt"],
+        processes=options["np_"],
+        surface_tension=options["cfd_surface_tension"],
     )
 
 
@@ -1240,33 +1294,11 @@ def _print_analysis(
 
 @cfd_app.command("run")
 @with_model_options
+@with_options(cfd_options("free-decay", "3s"), "case_options", dict)
 def cfd_run_command(
     slosh_model: SloshModel,
+    case_options: dict[str, Any],
     case: CaseDir,
-    excitation: Annotated[
-        str, typer.Option("--excitation", help="free-decay (tilted surface), harmonic or law.")
-    ] = "free-decay",
-    tilt: Annotated[str, typer.Option("--tilt", help="Initial tilt for free-decay.")] = "3deg",
-    amplitude: Annotated[str, typer.Option("--amplitude", help="Harmonic amplitude.")] = "10mm",
-    frequency: Annotated[str, typer.Option("--frequency", help="Harmonic frequency.")] = "1Hz",
-    excite_time: Annotated[str, typer.Option("--excite-time", help="Harmonic duration.")] = "2s",
-    law: Annotated[
-        str | None, typer.Option("--law", help="Motion law for --excitation law.")
-    ] = None,
-    distance: Distance = "0.1m",
-    duration: Duration = None,
-    cells_per_radius: Annotated[
-        int, typer.Option("--cells-per-radius", help="Mesh resolution.")
-    ] = 10,
-    end_time: Annotated[str, typer.Option("--end-time", help="Simulated time.")] = "3s",
-    delta_t: Annotated[str, typer.Option("--delta-t", help="Fixed time step.")] = "0.5ms",
-    ddt: Annotated[
-        str, typer.Option("--ddt", help="Euler, 'CrankNicolson 0.9' or backward.")
-    ] = "Euler",
-    np_: Annotated[int, typer.Option("--np", help="MPI processes (1: serial).")] = 1,
-    cfd_surface_tension: Annotated[
-        bool, typer.Option("--cfd-surface-tension", help="Include surface tension in the CFD.")
-    ] = False,
     resume: Annotated[
         bool, typer.Option("--resume", help="Continue from the last written time.")
     ] = False,
@@ -1287,23 +1319,7 @@ def cfd_run_command(
     """
     from sloshkit.cfd.pipeline import analyse
 
-    spec = _cfd_spec(
-        slosh_model,
-        excitation,
-        tilt,
-        amplitude,
-        frequency,
-        excite_time,
-        law,
-        distance,
-        duration,
-        cells_per_radius,
-        end_time,
-        delta_t,
-        ddt,
-        np_,
-        cfd_surface_tension,
-    )
+    spec = _cfd_spec(slosh_model, case_options)
     _run_with_progress(spec, case, resume, overwrite)
     _print_analysis(analyse(case), json_output, model_file_out, plot, slosh_model)
 
@@ -1340,24 +1356,11 @@ def cfd_analyse_command(
 
 @cfd_app.command("validate")
 @with_model_options
+@with_options(cfd_options("harmonic", "4s"), "case_options", dict)
 def cfd_validate_command(
     slosh_model: SloshModel,
+    case_options: dict[str, Any],
     case: CaseDir,
-    excitation: Annotated[str, typer.Option("--excitation", help="harmonic or law.")] = "harmonic",
-    amplitude: Annotated[str, typer.Option("--amplitude", help="Harmonic amplitude.")] = "10mm",
-    frequency: Annotated[str, typer.Option("--frequency", help="Harmonic frequency.")] = "1Hz",
-    excite_time: Annotated[str, typer.Option("--excite-time", help="Harmonic duration.")] = "2s",
-    law: Annotated[
-        str | None, typer.Option("--law", help="Motion law for --excitation law.")
-    ] = None,
-    distance: Distance = "0.1m",
-    duration: Duration = None,
-    cells_per_radius: Annotated[
-        int, typer.Option("--cells-per-radius", help="Mesh resolution.")
-    ] = 10,
-    end_time: Annotated[str, typer.Option("--end-time", help="Simulated time.")] = "4s",
-    delta_t: Annotated[str, typer.Option("--delta-t", help="Fixed time step.")] = "0.5ms",
-    np_: Annotated[int, typer.Option("--np", help="MPI processes (1: serial).")] = 1,
     reuse: Annotated[
         bool, typer.Option("--reuse", help="Use the case's existing results.")
     ] = False,
@@ -1374,23 +1377,7 @@ def cfd_validate_command(
     from sloshkit.cfd.pipeline import validate
 
     if not reuse:
-        spec = _cfd_spec(
-            slosh_model,
-            excitation,
-            "0deg",
-            amplitude,
-            frequency,
-            excite_time,
-            law,
-            distance,
-            duration,
-            cells_per_radius,
-            end_time,
-            delta_t,
-            "Euler",
-            np_,
-            False,
-        )
+        spec = _cfd_spec(slosh_model, case_options)
         _run_with_progress(spec, case, False, True)
     result = validate(case, slosh_model)
     if plot is not None:
