@@ -1054,7 +1054,12 @@ def reproduce_command(
         Path, typer.Option("--out", help="Folder for report.html, figures/, tables/.")
     ] = Path("sloshkit-report"),
     cfd: Annotated[
-        bool, typer.Option("--cfd", help="Also run the OpenFOAM free-decay calibration.")
+        bool,
+        typer.Option(
+            "--cfd",
+            help="Also run the OpenFOAM free-decay calibration "
+            "(case in OUT/../sloshkit-cfd-free-decay).",
+        ),
     ] = False,
     cfd_case: Annotated[
         Path | None,
@@ -1076,10 +1081,22 @@ def reproduce_command(
     scenario = paper_scenario()
     calibration = None
     if cfd or cfd_case is not None:
-        from sloshkit.cfd.pipeline import cfd_free_decay_calibration
-
-        calibration = cfd_free_decay_calibration(scenario.model, cfd_case, progress=stderr)
+        calibration = _cfd_free_decay(
+            scenario.model, cfd_case or out.parent / "sloshkit-cfd-free-decay"
+        )
     _run_report(scenario, out, calibration, json_output)
+
+
+def _cfd_free_decay(slosh_model: SloshModel, case: Path) -> Any:
+    """Calibration from a free-decay CFD case: reused when it has results, else run with the
+    recommended settings on 2 MPI ranks (a few minutes), with a progress bar."""
+    from sloshkit.cfd.case import FreeDecay
+    from sloshkit.cfd.pipeline import analyse, case_spec
+
+    if not (case / "postProcessing").is_dir():
+        stderr.print(f"running the OpenFOAM free decay in {case} (a few minutes)")
+        _run_with_progress(case_spec(slosh_model, FreeDecay(), processes=2), case, False, True)
+    return analyse(case).calibration
 
 
 @app.command("run")
@@ -1101,13 +1118,10 @@ def run_command(
     scenario = read_scenario(scenario_file)
     calibration = None
     if "cfd" in scenario.analyses:
-        from sloshkit.cfd.pipeline import cfd_free_decay_calibration
-
         case = scenario.cfd.get("case")
-        calibration = cfd_free_decay_calibration(
+        calibration = _cfd_free_decay(
             scenario.model,
-            None if case is None else scenario_file.parent / str(case),
-            progress=stderr,
+            scenario_file.parent / str(case or scenario_file.stem + "-cfd-free-decay"),
         )
     _run_report(scenario, out or scenario_file.with_suffix(""), calibration, json_output)
 

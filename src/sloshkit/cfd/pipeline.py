@@ -123,18 +123,6 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
     return CfdAnalysis(case, signals, result, record)
 
 
-def cfd_free_decay_calibration(
-    model: SloshModel, case: Path | None, progress: Any = None
-) -> CalibrationResult:
-    """Calibration from a free-decay CFD run: reuse ``case`` if it has results, else run one
-    with the recommended settings (in ``case`` or ./sloshkit-cfd-free-decay)."""
-    folder = case or Path("sloshkit-cfd-free-decay")
-    if not (folder / "postProcessing").is_dir():
-        spec = case_spec(model, FreeDecay(), processes=2)
-        run(spec, folder, overwrite=True)
-    return analyse(folder).calibration
-
-
 def model_wall_elevation(
     model: SloshModel, time_s: np.ndarray, acceleration: np.ndarray, x_over_r: float = 0.98
 ) -> np.ndarray:
