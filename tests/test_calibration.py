@@ -266,3 +266,46 @@ def test_calibrate_cli_bad_files(tmp_path, content, args, needle):
     assert proc.returncode == 2, proc.stderr
     assert needle in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_time_unit_from_the_header(tmp_path):
+    """A time column named 't [ms]' is read in milliseconds without --time-unit."""
+    t = np.arange(0, 4, 0.002)
+    y = decay(t, 29.0, 0.02, 0.003)
+    path = tmp_path / "ms.csv"
+    path.write_text(
+        "t [ms],eta\n" + "\n".join(f"{1e3 * a:.4f},{b:.9f}" for a, b in zip(t, y, strict=True))
+    )
+    result = CliRunner().invoke(
+        app,
+        [
+            "calibrate",
+            str(path),
+            "--time-column",
+            "t [ms]",
+            "--signal-column",
+            "eta",
+            "--start",
+            "0s",
+            "--json",
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["omega_n_rad_s"] == pytest.approx(29.0, rel=1e-3)
+    explicit = CliRunner().invoke(
+        app,
+        [
+            "calibrate",
+            str(path),
+            "--time-column",
+            "0",
+            "--time-unit",
+            "ms",
+            "--signal-column",
+            "eta",
+            "--start",
+            "0s",
+            "--json",
+        ],
+    )
+    assert json.loads(explicit.stdout)["omega_n_rad_s"] == pytest.approx(29.0, rel=1e-3)

@@ -751,7 +751,12 @@ def calibrate_command(
     signal_column: Annotated[
         str, typer.Option("--signal-column", help="Name or 0-based index.")
     ] = "1",
-    time_unit: Annotated[str, typer.Option("--time-unit", help="Unit of the time column.")] = "s",
+    time_unit: Annotated[
+        str | None,
+        typer.Option(
+            "--time-unit", help="Unit of the time column (default: from its header, else s)."
+        ),
+    ] = None,
     start: Annotated[
         str | None, typer.Option("--start", help="Window start (default: largest peak).")
     ] = None,
@@ -786,13 +791,15 @@ def calibrate_command(
       sloshkit calibrate probes.dat --signal-column 2 --method logdec --model-file-out vial.toml
     """
     from sloshkit.calibration import METHODS, calibrate
-    from sloshkit.io import read_table, select_column, write_model_file
+    from sloshkit.io import column_name, read_table, select_column, unit_from_name, write_model_file
 
     if method not in METHODS:
         raise InputError("method", method, "must be one of " + ", ".join(METHODS))
     if detrend not in ("mean", "linear", "none"):
         raise InputError("detrend", detrend, "must be mean, linear or none")
     header, table = read_table(data)
+    if time_unit is None:
+        time_unit = unit_from_name(column_name(header, time_column)) or "s"
     time_scale = parse_quantity(f"1 {time_unit}", "time", "time_unit")
     time = select_column(header, table, time_column, "time_column") * time_scale
     values = select_column(header, table, signal_column, "signal_column")

@@ -159,6 +159,26 @@ def select_column(header: list[str], data: FloatArray, column: str, parameter: s
     raise InputError(parameter, column, "is not a column; columns are " + ", ".join(header))
 
 
+def column_name(header: list[str], column: str) -> str:
+    """The header name of a column given by name or 0-based index."""
+    if column in header:
+        return column
+    if column.lstrip("-").isdigit() and -len(header) <= int(column) < len(header):
+        return header[int(column)]
+    return column
+
+
+def unit_from_name(name: str) -> str | None:
+    """A unit written in a column name: ``t [ms]``, ``t(ms)`` or ``t_ms``; None if absent."""
+    import re
+
+    match = re.search(r"[\[(]\s*([^\])]+?)\s*[\])]\s*$", name)
+    if match:
+        return match.group(1)
+    match = re.search(r"_(ms|s|us|min)$", name)
+    return match.group(1) if match else None
+
+
 def read_motion_file(path: str | Path, name: str | None = None) -> Any:
     """A user motion from a table with a time column and a position or acceleration column.
 
