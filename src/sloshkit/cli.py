@@ -408,23 +408,57 @@ class MoveRequest:
 def _simulate(
     motion: Motion,
     slosh_model: SloshModel,
-    kind: str,
+    model_kind: str,
     sample_period: str,
     settle_time: str | None,
     settle_tol: str,
 ) -> SloshResponse:
-    if kind not in MODEL_KINDS:
-        raise InputError("model", kind, "must be one of " + ", ".join(MODEL_KINDS))
+    if model_kind not in MODEL_KINDS:
+        raise InputError("model", model_kind, "must be one of " + ", ".join(MODEL_KINDS))
     return simulate(
         motion,
         slosh_model,
-        kind=kind,  # type: ignore[arg-type]
+        kind=model_kind,  # type: ignore[arg-type]
         sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
         settle_time_s=None
         if settle_time is None
         else parse_quantity(settle_time, "time", "settle_time"),
         settle_tolerance_rad=parse_quantity(settle_tol, "angle", "settle_tol"),
     )
+
+
+def move_options(peak_velocity: str | None = None) -> dict[str, tuple[Any, Any]]:
+    """The move and machine-limit options (one spelling everywhere)."""
+    return {
+        "distance": (Distance, "0.5m"),
+        "duration": (Duration, None),
+        "peak_velocity": (PeakVelocity, peak_velocity),
+        "vmax": (Vmax, None),
+        "amax": (Amax, None),
+        "jmax": (Jmax, None),
+        "accel_fraction": (AccelFraction, None),
+    }
+
+
+SIMULATION_OPTIONS: dict[str, tuple[Any, Any]] = {
+    "model_kind": (ModelKindOpt, "linear"),
+    "sample_period": (SamplePeriod, "1ms"),
+    "settle_time": (SettleTime, None),
+    "settle_tol": (SettleTolerance, "0.1deg"),
+}
+
+
+def with_move_options(
+    peak_velocity: str | None = None,
+) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """The move options, parsed into ``request`` (a `MoveRequest`)."""
+    return with_options(
+        move_options(peak_velocity), "request", lambda values: MoveRequest.parse(**values)
+    )
+
+
+#: The simulation options, passed on as ``simulation`` (keyword arguments of `_simulate`).
+with_simulation_options = with_options(SIMULATION_OPTIONS, "simulation", dict)
 
 
 def json_number(value: float) -> float | None:
@@ -449,22 +483,15 @@ def _format_metric(key: str, value: float) -> str:
 
 @app.command("simulate")
 @with_model_options
+@with_move_options()
+@with_simulation_options
 def simulate_command(
     slosh_model: SloshModel,
+    request: MoveRequest,
+    simulation: dict[str, Any],
     law: Annotated[
         str, typer.Option("--law", help="Law: " + ", ".join(LAW_NAMES) + ", file:PATH.")
     ] = "quintic",
-    distance: Distance = "0.5m",
-    duration: Duration = None,
-    peak_velocity: PeakVelocity = None,
-    vmax: Vmax = None,
-    amax: Amax = None,
-    jmax: Jmax = None,
-    accel_fraction: AccelFraction = None,
-    model_kind: ModelKindOpt = "linear",
-    sample_period: SamplePeriod = "1ms",
-    settle_time: SettleTime = None,
-    settle_tol: SettleTolerance = "0.1deg",
     csv: Annotated[Path | None, typer.Option("--csv", help="Write the time series as CSV.")] = None,
     plot: Annotated[
         Path | None, typer.Option("--plot", help="Write a figure (PNG/SVG/PDF).")
@@ -481,9 +508,9 @@ def simulate_command(
 
       sloshkit simulate --law file:move.csv --model nonlinear --plot slosh.png
     """
-    request = MoveRequest.parse(distance, duration, peak_velocity, vmax, amax, jmax, accel_fraction)
     motion = request.law(law)
-    response = _simulate(motion, slosh_model, model_kind, sample_period, settle_time, settle_tol)
+    response = _simulate(motion, slosh_model, **simulation)
+    model_kind = simulation["model_kind"]
     if csv is not None:
         response.to_csv(csv)
     if plot is not None:
@@ -506,20 +533,13 @@ COMPARE_LAWS = "trapezoidal,cubic,quintic,septic,s-curve"
 
 @app.command("compare")
 @with_model_options
+@with_move_options("0.5m/s")
+@with_simulation_options
 def compare_command(
     slosh_model: SloshModel,
-    distance: Distance = "0.5m",
-    peak_velocity: PeakVelocity = "0.5m/s",
-    duration: Duration = None,
+    request: MoveRequest,
+    simulation: dict[str, Any],
     laws: Annotated[str, typer.Option("--laws", help="Comma-separated law names.")] = COMPARE_LAWS,
-    vmax: Vmax = None,
-    amax: Amax = None,
-    jmax: Jmax = None,
-    accel_fraction: AccelFraction = None,
-    model_kind: ModelKindOpt = "linear",
-    sample_period: SamplePeriod = "1ms",
-    settle_time: SettleTime = None,
-    settle_tol: SettleTolerance = "0.1deg",
     out: Annotated[
         Path | None, typer.Option("--out", help="Folder for compare.csv, compare.json, figures.")
     ] = None,
@@ -535,15 +555,12 @@ def compare_command(
 
       sloshkit compare --distance 0.5m --peak-velocity 0.5m/s --out compare/
     """
-    request = MoveRequest.parse(distance, duration, peak_velocity, vmax, amax, jmax, accel_fraction)
     names = [name.strip() for name in laws.split(",") if name.strip()]
     if not names:
         raise InputError("laws", laws, "give at least one law name")
     motions = [request.law(name) for name in names]
-    responses = [
-        _simulate(motion, slosh_model, model_kind, sample_period, settle_time, settle_tol)
-        for motion in motions
-    ]
+    responses = [_simulate(motion, slosh_model, **simulation) for motion in motions]
+    model_kind = simulation["model_kind"]
     rows = [
         {"law": motion.name, **metrics_json(response)}
         for motion, response in zip(motions, responses, strict=True)
