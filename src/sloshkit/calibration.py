@@ -32,7 +32,7 @@ from scipy import signal as sps
 from scipy import stats
 from scipy.optimize import curve_fit
 
-from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.errors import InputError, ValidityWarning, require_increasing
 from sloshkit.modal import SloshModel
 
 FloatArray = NDArray[np.float64]
@@ -97,14 +97,8 @@ def prepare_signal(
             f"{rows.size} NaN/inf value(s) at data row(s) {listed}",
             "remove or fill them first",
         )
+    require_increasing("time", t)
     steps = np.diff(t)
-    if np.any(steps <= 0.0):
-        row = int(np.argmax(steps <= 0.0)) + 1
-        raise InputError(
-            "time",
-            f"{t[row]:.6g} s at data row {row + 1}",
-            "must increase strictly (duplicate or decreasing time stamp)",
-        )
     notes: list[str] = []
     if t.size < 8:
         raise InputError("signal", f"{t.size} samples", "needs at least 8 samples")

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Sequence
 
 
 class InputError(ValueError):
@@ -66,3 +67,18 @@ def require_in_range(
 def warn_validity(message: str) -> None:
     """Emit a `ValidityWarning` attributed to the caller of the public function."""
     warnings.warn(message, ValidityWarning, stacklevel=3)
+
+
+def require_increasing(parameter: str, times: Sequence[float] | object) -> None:
+    """Raise `InputError` at the first time stamp that does not increase strictly."""
+    import numpy as np
+
+    values = np.asarray(times, dtype=float)
+    steps = np.diff(values)
+    if np.any(steps <= 0.0):
+        row = int(np.argmax(steps <= 0.0)) + 1
+        raise InputError(
+            parameter,
+            f"{values[row]:.6g} s at data row {row + 1}",
+            "must increase strictly (duplicate or decreasing time stamp)",
+        )

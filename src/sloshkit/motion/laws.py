@@ -35,7 +35,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline, PPoly, make_interp_spline
 
-from sloshkit.errors import InputError, require_in_range, require_positive
+from sloshkit.errors import InputError, require_in_range, require_increasing, require_positive
 
 FloatArray = NDArray[np.float64]
 
@@ -362,14 +362,7 @@ def from_samples(
     if bad.any():
         row = int(np.argmax(bad))
         raise InputError("motion samples", f"row {row}", "time and values must be finite (NaN?)")
-    steps = np.diff(t)
-    if np.any(steps <= 0.0):
-        row = int(np.argmax(steps <= 0.0)) + 1
-        raise InputError(
-            "time",
-            f"{t[row]:.6g} s at row {row}",
-            "must increase strictly (duplicate or decreasing)",
-        )
+    require_increasing("time", t)
     t = t - t[0]
     if position_m is not None:
         spline = make_interp_spline(
