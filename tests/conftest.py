@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import subprocess
+import sys
 
 import pytest
 from hypothesis import settings
@@ -45,3 +47,13 @@ def seed_model() -> SloshModel:
 @pytest.fixture
 def seed_model_table3() -> SloshModel:
     return seed_vial_table3()
+
+
+def run_entry_point(*args: str) -> subprocess.CompletedProcess[str]:
+    """Run the real `sloshkit` entry point (as the installed command does) and capture it."""
+    return subprocess.run(
+        [sys.executable, "-c", "from sloshkit.cli import main; main()", *args],
+        capture_output=True,
+        text=True,
+        check=False,
+    )

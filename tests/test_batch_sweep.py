@@ -7,7 +7,7 @@ import json
 
 import numpy as np
 import pytest
-from conftest import seed_vial_table3
+from conftest import run_entry_point, seed_vial_table3
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
@@ -196,15 +196,8 @@ def test_sweep_cli_writes_csv_and_maps(tmp_path):
     ],
 )
 def test_sweep_bad_input(args, needle):
-    import subprocess
-    import sys
 
-    proc = subprocess.run(
-        [sys.executable, "-c", "from sloshkit.cli import main; main()", "sweep", *args],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    proc = run_entry_point("sweep", *args)
     assert proc.returncode == 2, proc.stderr
     assert needle in proc.stderr
     assert "Traceback" not in proc.stderr

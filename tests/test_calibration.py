@@ -5,12 +5,10 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
-from conftest import seed_vial_table3
+from conftest import run_entry_point, seed_vial_table3
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
@@ -250,19 +248,7 @@ def test_openfoam_style_file(tmp_path):
 def test_calibrate_cli_bad_files(tmp_path, content, args, needle):
     path = tmp_path / "bad.csv"
     path.write_text(content)
-    proc = subprocess.run(
-        [
-            sys.executable,
-            "-c",
-            "from sloshkit.cli import main; main()",
-            "calibrate",
-            str(path),
-            *args,
-        ],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    proc = run_entry_point("calibrate", str(path), *args)
     assert proc.returncode == 2, proc.stderr
     assert needle in proc.stderr
     assert "Traceback" not in proc.stderr

@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import pytest
+from conftest import run_entry_point
 from typer.testing import CliRunner
 
 from sloshkit.cli import app
@@ -93,12 +92,7 @@ def test_table_output_has_units():
 )
 def test_bad_input_is_one_line_and_exit_code_2(args, needle):
     """Run the real entry point: one line on stderr, exit code 2, no traceback."""
-    proc = subprocess.run(
-        [sys.executable, "-c", "from sloshkit.cli import main; main()", "model", *args],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    proc = run_entry_point("model", *args)
     assert proc.returncode == 2
     assert needle in proc.stderr
     assert "Traceback" not in proc.stderr
@@ -106,20 +100,6 @@ def test_bad_input_is_one_line_and_exit_code_2(args, needle):
 
 
 def test_validity_warning_is_printed_not_raised():
-    proc = subprocess.run(
-        [
-            sys.executable,
-            "-c",
-            "from sloshkit.cli import main; main()",
-            "model",
-            "--radius",
-            "20mm",
-            "--fill-height",
-            "2mm",
-        ],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    proc = run_entry_point("model", "--radius", "20mm", "--fill-height", "2mm")
     assert proc.returncode == 0
     assert "warning:" in proc.stderr and "shallow" in proc.stderr

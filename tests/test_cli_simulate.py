@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from conftest import run_entry_point
 from typer.testing import CliRunner
 
 from sloshkit.cli import app
@@ -24,15 +23,6 @@ SIMULATE_KEYS = {
     "peak_acceleration_m_s2",
     "peak_jerk_m_s3",
 }
-
-
-def cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-c", "from sloshkit.cli import main; main()", *args],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
 
 
 def test_simulate_json_keys_and_files(tmp_path):
@@ -155,7 +145,7 @@ def test_compare_writes_table_and_figures(tmp_path):
     ],
 )
 def test_bad_input_exits_2_with_one_line(args, needle):
-    proc = cli(*args)
+    proc = run_entry_point(*args)
     assert proc.returncode == 2, proc.stderr
     assert needle in proc.stderr
     assert "Traceback" not in proc.stderr
@@ -164,6 +154,6 @@ def test_bad_input_exits_2_with_one_line(args, needle):
 def test_non_monotonic_motion_file(tmp_path):
     path = tmp_path / "bad.csv"
     path.write_text("t,x\n0,0\n0.1,0.1\n0.1,0.2\n0.3,0.3\n0.4,0.4\n0.5,0.5\n0.6,0.6\n")
-    proc = cli("simulate", "--law", f"file:{path}")
+    proc = run_entry_point("simulate", "--law", f"file:{path}")
     assert proc.returncode == 2
     assert "time" in proc.stderr and "increase" in proc.stderr

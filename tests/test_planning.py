@@ -5,12 +5,10 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
-from conftest import seed_vial_table3
+from conftest import run_entry_point, seed_vial_table3
 from typer.testing import CliRunner
 
 from sloshkit.cli import app
@@ -209,32 +207,24 @@ def test_plan_cli_csv_json_and_independent_resimulation(tmp_path):
 
 
 def test_infeasible_request_fails_clearly():
-    proc = subprocess.run(
-        [
-            sys.executable,
-            "-c",
-            "from sloshkit.cli import main; main()",
-            "plan",
-            "--distance",
-            "0.5m",
-            "--max-angle",
-            "0.01deg",
-            "--max-residual",
-            "0.001deg",
-            "--vmax",
-            "1m/s",
-            "--amax",
-            "1m/s^2",
-            "--jmax",
-            "10m/s^3",
-            "--method",
-            "fast",
-            "--max-duration",
-            "2s",
-        ],
-        capture_output=True,
-        text=True,
-        check=False,
+    proc = run_entry_point(
+        "plan",
+        "--distance",
+        "0.5m",
+        "--max-angle",
+        "0.01deg",
+        "--max-residual",
+        "0.001deg",
+        "--vmax",
+        "1m/s",
+        "--amax",
+        "1m/s^2",
+        "--jmax",
+        "10m/s^3",
+        "--method",
+        "fast",
+        "--max-duration",
+        "2s",
     )
     assert proc.returncode == 1
     assert "no method meets the limits" in proc.stderr
@@ -242,19 +232,7 @@ def test_infeasible_request_fails_clearly():
 
 
 def test_missing_limits_are_input_errors():
-    proc = subprocess.run(
-        [
-            sys.executable,
-            "-c",
-            "from sloshkit.cli import main; main()",
-            "plan",
-            "--max-angle",
-            "5deg",
-        ],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    proc = run_entry_point("plan", "--max-angle", "5deg")
     assert proc.returncode == 2
     assert "--vmax" in proc.stderr
 

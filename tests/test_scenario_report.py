@@ -4,11 +4,10 @@ outputs are atomic."""
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from conftest import run_entry_point
 from typer.testing import CliRunner
 
 from sloshkit.cli import app
@@ -65,12 +64,7 @@ def test_scenario_errors_name_the_problem(mutate, needle):
 def test_run_cli_bad_file_exits_2(tmp_path):
     path = tmp_path / "bad.toml"
     path.write_text("[container]\nradius = 'abc'\n")
-    proc = subprocess.run(
-        [sys.executable, "-c", "from sloshkit.cli import main; main()", "run", str(path)],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    proc = run_entry_point("run", str(path))
     assert proc.returncode == 2
     assert "radius" in proc.stderr and "Traceback" not in proc.stderr
 
