@@ -1,4 +1,4 @@
-"""Benchmark: the linear fast path (`sloshkit.batch`, `sloshkit.sweep`) against a plain
+"""Benchmark: the linear fast path (`sloshkit.sim.batch`, `sloshkit.sweep`) against a plain
 scipy `solve_ivp` loop over the same cases.
 
 Cases: the seed paper's vial (3 modes, zeta = 0.03), 0.5 m moves of about 2 s (1.9-2.1 s),
@@ -22,9 +22,11 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from sloshkit import UprightCylinder, equivalent_model, get_liquid
-from sloshkit.batch import batch_metrics, scaled_velocity_samples, steps_for
 from sloshkit.motion import make_law
-from sloshkit.sweep import run_sweep, unit_duration_shape
+from sloshkit.motion.sampling import steps_for
+from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
+from sloshkit.sim.batch import batch_metrics
+from sloshkit.sweep import run_sweep
 
 LAWS = ("trapezoidal", "cubic", "quintic", "septic")
 DT = 1e-3

@@ -18,16 +18,10 @@ import warnings
 
 from sloshkit import UprightCylinder, equivalent_model, get_liquid
 from sloshkit.errors import ValidityWarning
-from sloshkit.planning import (
-    PAPER_LAWS,
-    MachineLimits,
-    PlanProblem,
-    SloshLimits,
-    plan,
-    plan_optimal,
-    plan_paper_law,
-    plan_shaped,
-)
+from sloshkit.plan.optimal import plan_optimal
+from sloshkit.plan.planner import plan
+from sloshkit.plan.problem import PAPER_LAWS, MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.searches import plan_paper_law, plan_shaped
 
 
 def main() -> None:

@@ -6,9 +6,10 @@ Run: .venv/bin/python examples/api_example.py
 import math
 
 from sloshkit import UprightCylinder, equivalent_model, get_liquid
-from sloshkit.dynamics import simulate
 from sloshkit.motion import quintic, septic
-from sloshkit.planning import MachineLimits, PlanProblem, SloshLimits, plan
+from sloshkit.plan.planner import plan
+from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.sim.simulate import simulate
 
 vial = UprightCylinder(radius_m=0.0205, wall_height_m=0.060)
 model = equivalent_model(vial, get_liquid("water-25C"), fill_height_m=0.039, damping_ratio=0.03)

@@ -10,9 +10,9 @@ import sys
 import pytest
 from hypothesis import settings
 
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import get_liquid
-from sloshkit.modal import SloshModel, equivalent_model
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import SloshModel, equivalent_model
 
 # CI replays the same examples every run (a red build is then reproducible); locally hypothesis
 # explores new ones.

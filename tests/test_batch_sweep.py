@@ -12,14 +12,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
 
-from sloshkit.batch import batch_metrics, scaled_velocity_samples, steps_for
 from sloshkit.cli import app
-from sloshkit.dynamics import simulate
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import get_liquid
-from sloshkit.modal import equivalent_model
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import equivalent_model
 from sloshkit.motion import make_law
-from sloshkit.sweep import run_sweep, unit_duration_shape
+from sloshkit.motion.sampling import steps_for
+from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
+from sloshkit.sim.batch import batch_metrics
+from sloshkit.sim.simulate import simulate
+from sloshkit.sweep import run_sweep
 
 LAWS = ["trapezoidal", "cubic", "quintic", "septic", "minimum-jerk"]
 

@@ -15,10 +15,10 @@ from typer.testing import CliRunner
 
 from sloshkit.calibration import calibrate, log_decrement_from_zeta, zeta_from_log_decrement
 from sloshkit.cli import app
-from sloshkit.dynamics import simulate
 from sloshkit.errors import InputError
-from sloshkit.io import read_model_file
+from sloshkit.io.models import read_model_file
 from sloshkit.motion import trapezoidal
+from sloshkit.sim.simulate import simulate
 
 
 def decay(t, omega, zeta, amplitude=1.0, phase=0.3):

@@ -22,7 +22,7 @@ from sloshkit.cfd.foam import Raw, foam_file, format_value, read_scalar_internal
 from sloshkit.cfd.results import parse_table, read_function_object, read_signals
 from sloshkit.cfd.run import write_case
 from sloshkit.errors import InputError
-from sloshkit.liquids import get_liquid
+from sloshkit.model.liquids import get_liquid
 
 WATER = get_liquid("water-25C")
 

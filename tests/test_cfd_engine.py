@@ -18,7 +18,7 @@ from sloshkit.cfd.foam import read_scalar_internal_field
 from sloshkit.cfd.results import read_signals
 from sloshkit.cfd.run import expected_cells, openfoam_environment, run_case, write_case
 from sloshkit.cli import app
-from sloshkit.liquids import get_liquid
+from sloshkit.model.liquids import get_liquid
 
 pytestmark = pytest.mark.skipif(
     shutil.which("interFoam") is None, reason="OpenFOAM is not installed (make test installs it)"

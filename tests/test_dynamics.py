@@ -14,9 +14,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from sloshkit.dynamics import free_amplitude, simulate, simulate_cart_pendulum
 from sloshkit.errors import ValidityWarning
 from sloshkit.motion import make_law, quintic, septic, trapezoidal
+from sloshkit.sim.metrics import free_amplitude
+from sloshkit.sim.simulate import simulate, simulate_cart_pendulum
 
 
 def _solve_ivp_reference(motion, mode, time):
@@ -184,7 +185,7 @@ def test_cart_pendulum_reduces_to_acceleration_driven_model(seed_model_table3):
 
     cart = simulate_cart_pendulum(force, model, cart_mass, duration_s=2.0, sample_period_s=1e-3)
     velocity = cart.velocity_m_s
-    from sloshkit.dynamics import linear_mode_response
+    from sloshkit.sim.discretisation import linear_mode_response
 
     for row, mode in enumerate(model.modes):
         theta, _ = linear_mode_response(
@@ -230,7 +231,7 @@ def test_metrics_and_exports(seed_model_table3, tmp_path):
 
 
 def test_spill_warning_when_wall_is_low(seed_model_table3):
-    from sloshkit.geometry import UprightCylinder
+    from sloshkit.model.geometry import UprightCylinder
 
     model = dataclasses.replace(seed_model_table3, container=UprightCylinder(0.0205, 0.040))
     with pytest.warns(ValidityWarning, match="spill"):

@@ -11,9 +11,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sloshkit.errors import InputError, ValidityWarning
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import LIQUIDS, get_liquid
-from sloshkit.modal import (
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import LIQUIDS, get_liquid
+from sloshkit.model.modal import (
     bessel_roots,
     damping_ratio_correlation,
     equivalent_model,

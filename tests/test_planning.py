@@ -12,22 +12,16 @@ from conftest import run_entry_point, seed_vial_table3
 from typer.testing import CliRunner
 
 from sloshkit.cli import app
-from sloshkit.dynamics import simulate
 from sloshkit.errors import InputError
-from sloshkit.io import read_motion_file
+from sloshkit.io.tables import read_motion_file
 from sloshkit.motion import s_curve
 from sloshkit.motion.shaping import ei, residual_vibration, shape_motion, zv, zvd
-from sloshkit.planning import (
-    MachineLimits,
-    PlanProblem,
-    SloshLimits,
-    plan,
-    plan_optimal,
-    plan_paper_law,
-    plan_shaped,
-    scale_frequencies,
-    verify,
-)
+from sloshkit.plan.optimal import plan_optimal
+from sloshkit.plan.planner import plan
+from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits, scale_frequencies
+from sloshkit.plan.searches import plan_paper_law, plan_shaped
+from sloshkit.plan.verification import verify
+from sloshkit.sim.simulate import simulate
 
 OMEGA, ZETA = 29.66, 0.03
 pytestmark = pytest.mark.filterwarnings("ignore::sloshkit.errors.ValidityWarning")

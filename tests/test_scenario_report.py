@@ -12,8 +12,8 @@ from typer.testing import CliRunner
 
 from sloshkit.cli import app
 from sloshkit.errors import InputError
-from sloshkit.report import build_report
-from sloshkit.scenario import PAPER_SCENARIO, parse_scenario, read_scenario
+from sloshkit.io.scenario import PAPER_SCENARIO, parse_scenario, read_scenario
+from sloshkit.report.build import build_report
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -70,7 +70,7 @@ def test_run_cli_bad_file_exits_2(tmp_path):
 
 
 def test_failed_report_leaves_nothing_half_written(tmp_path, monkeypatch):
-    import sloshkit.report as report
+    import sloshkit.report.build as report
 
     def explode(*args, **kwargs):
         raise RuntimeError("simulated failure in the middle of the report")

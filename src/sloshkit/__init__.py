@@ -5,9 +5,9 @@ cylinder moved by a robot or a slide. SI units throughout the Python API.
 """
 
 from sloshkit.errors import InputError, ValidityWarning
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import LIQUIDS, Liquid, get_liquid
-from sloshkit.modal import SloshMode, SloshModel, equivalent_model
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
+from sloshkit.model.modal import SloshMode, SloshModel, equivalent_model
 
 __version__ = "0.1.0"
 

@@ -33,7 +33,7 @@ from scipy import stats
 from scipy.optimize import curve_fit
 
 from sloshkit.errors import InputError, ValidityWarning, require_increasing
-from sloshkit.modal import SloshModel
+from sloshkit.model.modal import SloshModel
 
 FloatArray = NDArray[np.float64]
 Method = Literal["fit", "logdec", "fft"]
@@ -492,7 +492,7 @@ class CalibrationResult:
 
     def plot(self, path: str | Path | None = None) -> Any:
         """Signal, detected peaks and fitted envelope (the seed paper's Fig. 5b)."""
-        from sloshkit.plotting import plot_calibration
+        from sloshkit.plotting.figures import plot_calibration
 
         return plot_calibration(self, path)
 

@@ -18,28 +18,20 @@ from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import PPoly
 
-from sloshkit.batch import batch_metrics, scaled_velocity_samples, steps_for
 from sloshkit.errors import InputError, require_positive
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import Liquid
-from sloshkit.modal import DampingLaw, equivalent_model
-from sloshkit.motion.laws import LAW_NAMES, Motion, make_law
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import Liquid
+from sloshkit.model.modal import DampingLaw, equivalent_model
+from sloshkit.motion.laws import LAW_NAMES, make_law
+from sloshkit.motion.sampling import steps_for
+from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
+from sloshkit.sim.batch import batch_metrics
 
 FloatArray = NDArray[np.float64]
 
 #: Every law can be time-scaled (the s-curve keeps the shape its limits give).
 SWEEP_LAWS: tuple[str, ...] = LAW_NAMES
-
-
-def unit_duration_shape(motion: Motion) -> Motion:
-    """The same law stretched in time to T = 1 s (same distance): s_1(tau) = s(tau T)."""
-    pp = motion.position_pp
-    scale = motion.duration_s
-    order = pp.c.shape[0] - 1
-    powers = scale ** np.arange(order, -1, -1, dtype=float)  # c_i multiplies (t - x)^(order-i)
-    return Motion(motion.name, PPoly(pp.c * powers[:, None], pp.x / scale))
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,7 +98,7 @@ class SweepResult:
 
     def to_csv(self, path: str | Path) -> Path:
         """Write `rows` as CSV, atomically."""
-        from sloshkit.io import write_rows_csv
+        from sloshkit.files import write_rows_csv
 
         return write_rows_csv(path, self.rows())
 
@@ -151,7 +143,7 @@ class SweepResult:
 
     def plot_maps(self, folder: str | Path) -> list[Path]:
         """Heat maps of peak and residual slosh angle, one panel per law (PNG)."""
-        from sloshkit.plotting import plot_sweep_map
+        from sloshkit.plotting.figures import plot_sweep_map
 
         target = Path(folder)
         paths = [target / "peak_angle_map.png", target / "residual_angle_map.png"]

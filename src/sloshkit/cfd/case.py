@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 
 from sloshkit.cfd.foam import Raw, foam_file, format_number
 from sloshkit.errors import InputError, require_in_range, require_positive
-from sloshkit.liquids import Liquid
+from sloshkit.model.liquids import Liquid
 
 SCALE = 1000.0  # metres -> millimetres
 #: Air at 25 degC, 1 atm: the seed paper's Table 1.

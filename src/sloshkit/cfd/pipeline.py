@@ -18,7 +18,7 @@ from sloshkit.cfd.case import CaseSpec, Excitation, FreeDecay, Harmonic, MotionE
 from sloshkit.cfd.results import CfdSignals, read_signals
 from sloshkit.cfd.run import RunResult, run_case, write_case
 from sloshkit.errors import InputError, ValidityWarning
-from sloshkit.modal import SloshModel
+from sloshkit.model.modal import SloshModel
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).
 RECOMMENDED = {"cells_per_radius": 10, "delta_t_s": 5e-4, "ddt_scheme": "Euler", "end_time_s": 3.0}
@@ -128,8 +128,8 @@ def model_wall_elevation(
 ) -> np.ndarray:
     """The pendulum model's wall elevation at x = x_over_r R for a sampled container
     acceleration: each mode scaled by J1(xi_n x/R)/J1(xi_n) (the linear mode shape)."""
-    from sloshkit.dynamics import simulate
     from sloshkit.motion.laws import from_samples
+    from sloshkit.sim.simulate import simulate
 
     motion = from_samples(time_s, acceleration_m_s2=acceleration, name="cfd excitation")
     dt = float(np.median(np.diff(time_s)))

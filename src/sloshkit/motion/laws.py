@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline, PPoly, make_interp_spline
 
 from sloshkit.errors import InputError, require_in_range, require_increasing, require_positive
+from sloshkit.motion.sampling import sample_motion
 
 FloatArray = NDArray[np.float64]
 
@@ -150,25 +151,9 @@ class Motion:
         """Samples at t = 0, dt, 2 dt, ..., with the last sample exactly at T.
 
         Returns arrays ``t_s``, ``position_m``, ``velocity_m_s``, ``acceleration_m_s2``,
-        ``jerk_m_s3``.
+        ``jerk_m_s3`` (see `sloshkit.motion.sampling.sample_motion`).
         """
-        dt = require_positive("sample_period", sample_period_s, "s")
-        t = sample_times(self.duration_s, dt)
-        return {
-            "t_s": t,
-            "position_m": self.position(t),
-            "velocity_m_s": self.velocity(t),
-            "acceleration_m_s2": self.acceleration(t),
-            "jerk_m_s3": self.jerk(t),
-        }
-
-
-def sample_times(duration_s: float, sample_period_s: float) -> FloatArray:
-    """0, dt, 2 dt, ... up to and including ``duration_s`` (the last step may be shorter)."""
-    count = math.ceil(duration_s / sample_period_s - 1e-9)
-    t = np.arange(count + 1, dtype=float) * sample_period_s
-    t[-1] = duration_s
-    return t
+        return sample_motion(self, sample_period_s)
 
 
 def _peak_abs(pp: PPoly) -> float:

@@ -32,8 +32,8 @@ import numpy as np
 from scipy.special import jnp_zeros
 
 from sloshkit.errors import InputError, require_in_range, require_positive, warn_validity
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import Liquid
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import Liquid
 
 #: Gravitational acceleration used by the seed paper and our defaults [m/s^2].
 GRAVITY_M_S2 = 9.81

@@ -13,10 +13,10 @@ from pathlib import Path
 from typing import Any
 
 from sloshkit.errors import InputError
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import Liquid, get_liquid
-from sloshkit.modal import DAMPING_LAWS, DampingLaw, SloshModel, equivalent_model
-from sloshkit.units import parse_quantity, parse_range
+from sloshkit.io.units import parse_quantity, parse_range
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import Liquid, get_liquid
+from sloshkit.model.modal import DAMPING_LAWS, DampingLaw, SloshModel, equivalent_model
 
 ANALYSES: tuple[str, ...] = ("model", "calibrate", "compare", "sweep", "plan", "cfd")
 _SCHEMA: dict[str, set[str]] = {

@@ -29,8 +29,8 @@ from typing import Any
 import numpy as np
 
 from sloshkit.errors import ValidityWarning
-from sloshkit.modal import SloshModel
-from sloshkit.scenario import Scenario
+from sloshkit.io.scenario import Scenario
+from sloshkit.model.modal import SloshModel
 
 Progress = Callable[[str], None]
 
@@ -91,7 +91,7 @@ class ReportWriter:
         formats: dict[str, str] | None = None,
     ) -> str:
         """Write tables/NAME.csv and .json; return the HTML table."""
-        from sloshkit.io import write_json, write_rows_csv
+        from sloshkit.files import write_json, write_rows_csv
 
         write_rows_csv(self.staging / "tables" / f"{name}.csv", list(rows))
         write_json(self.staging / "tables" / f"{name}.json", list(rows))
@@ -271,8 +271,8 @@ def _calibration_section(
     """Calibrate from the scenario's data file, from CFD, or (paper) demonstrate on a
     synthetic free decay; returns the model the later sections use."""
     from sloshkit.calibration import calibrate, zeta_from_log_decrement
-    from sloshkit.dynamics import simulate
     from sloshkit.motion import trapezoidal
+    from sloshkit.sim.simulate import simulate
 
     model = scenario.model
     body = ""
@@ -281,8 +281,8 @@ def _calibration_section(
         result = cfd_result
         body += "<p>Calibrated from the OpenFOAM free-decay run (wall elevation).</p>"
     elif scenario.calibrate:
-        from sloshkit.io import read_table, select_column
-        from sloshkit.units import parse_quantity
+        from sloshkit.io.tables import read_table, select_column
+        from sloshkit.io.units import parse_quantity
 
         options = scenario.calibrate
         header, table = read_table(options["data"])
@@ -424,9 +424,9 @@ def _free_response_figure(result: Any, model: SloshModel) -> Any:
 
 
 def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
-    from sloshkit.dynamics import simulate
     from sloshkit.motion.laws import comparison_s_curve_limits, make_law
-    from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison
+    from sloshkit.plotting.figures import plot_law_comparison, plot_slosh_comparison
+    from sloshkit.sim.simulate import simulate
 
     motions = []
     for name in scenario.laws:
@@ -495,7 +495,7 @@ def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel
 
 
 def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
-    from sloshkit.plotting import plot_sweep_map
+    from sloshkit.plotting.figures import plot_sweep_map
     from sloshkit.sweep import linspace_inclusive, run_sweep
 
     options = scenario.sweep
@@ -544,7 +544,8 @@ def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) 
 
 
 def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
-    from sloshkit.planning import MachineLimits, PlanProblem, SloshLimits, plan
+    from sloshkit.plan.planner import plan
+    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 
     limits = scenario.plan_limits
     problem = PlanProblem(
@@ -590,7 +591,7 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
             + (f" — {speed_up:.2f}× faster than the best of the paper's laws." if speed_up else ".")
             + "</p>"
         )
-        from sloshkit.io import write_columns_csv
+        from sloshkit.files import write_columns_csv
 
         write_columns_csv(
             writer.staging / "tables" / "fastest_move_trajectory.csv", result.samples()
@@ -663,6 +664,6 @@ def build_report(
 
 def paper_scenario() -> Scenario:
     """The seed paper's case as a `Scenario`."""
-    from sloshkit.scenario import PAPER_SCENARIO, parse_scenario
+    from sloshkit.io.scenario import PAPER_SCENARIO, parse_scenario
 
     return parse_scenario(PAPER_SCENARIO, "built in: De Simone et al. (2024)")

@@ -2,33 +2,29 @@
 
 Cases that share one `SloshModel` (one container, liquid and fill height) and one sample period
 are run together. Each case is a sampled container velocity (time-major array, one column per
-case) and a move duration. The first-order-hold discretisation of `sloshkit.dynamics` is
+case) and a move duration. The first-order-hold discretisation of `sloshkit.sim.discretisation` is
 stepped for every mode and case in one compiled loop (numba) that keeps only the metrics: no
 time history is stored, and the loop over cases is innermost so that it vectorises. Without
 numba the same recursion runs through `scipy.signal.lfilter` (slower, same numbers to
 rounding).
 
-The metrics equal those of `sloshkit.dynamics.simulate(..., kind="linear")` for the same motion
+The metrics equal those of `sloshkit.sim.simulate.simulate(..., kind="linear")` for the same motion
 and sample period: peak |theta_1| and peak |wall elevation| over the samples t <= T, residual
 amplitudes from the state at the first sample t >= T, scaled back to T.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.dynamics import (
-    free_amplitude,
-    linear_mode_response,
-    velocity_driven_discretisation,
-)
 from sloshkit.errors import InputError
-from sloshkit.modal import SloshModel
+from sloshkit.model.modal import SloshModel
+from sloshkit.sim.discretisation import linear_mode_response, velocity_driven_discretisation
+from sloshkit.sim.metrics import free_amplitude
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -101,7 +97,7 @@ def move_indices(
     move_durations_s: FloatArray, sample_period_s: float, steps: int
 ) -> tuple[IntArray, IntArray]:
     """(last sample with t <= T, first sample with t >= T) per case on the grid k dt, with
-    the tolerances of `sloshkit.dynamics.simulate`."""
+    the tolerances of `sloshkit.sim.simulate.simulate`."""
     time = np.arange(steps, dtype=float) * sample_period_s
     last_move = np.searchsorted(time, move_durations_s + 1e-12, side="right") - 1
     first_after = np.minimum(np.searchsorted(time, move_durations_s - 1e-12), steps - 1)
@@ -201,76 +197,3 @@ def _lfilter_metrics(
         end_rate[row] = rate[columns, first_after]
     peak_wall = np.max(np.where(during, np.abs(wall), 0.0), axis=1)
     return peak_angle, peak_wall, end_angle, end_rate
-
-
-def _compile_sampler() -> Any:
-    try:
-        from numba import njit
-    except ImportError:  # pragma: no cover
-        return None
-
-    @njit(cache=True, fastmath=True)  # type: ignore[untyped-decorator]
-    def sampler(breaks, coefficients, durations, sample_period, steps):  # type: ignore[no-untyped-def]
-        cases = durations.size
-        pieces = breaks.size - 1
-        order = coefficients.shape[0]
-        out = np.zeros((steps, cases))
-        piece = np.zeros(cases, dtype=np.int64)
-        inverse = 1.0 / durations
-        for k in range(steps):
-            for c in range(cases):
-                tau = k * sample_period * inverse[c]
-                if tau > breaks[pieces]:
-                    continue
-                p = piece[c]
-                while p < pieces - 1 and tau >= breaks[p + 1]:
-                    p += 1
-                piece[c] = p
-                x = tau - breaks[p]
-                value = 0.0
-                for j in range(order):
-                    value = value * x + coefficients[j, p]
-                out[k, c] = value * inverse[c]
-        return out
-
-    return sampler
-
-
-_SAMPLER: Any = None
-
-
-def scaled_velocity_samples(
-    unit_law_velocity: Any, durations_s: FloatArray, sample_period_s: float, steps: int
-) -> FloatArray:
-    """Velocity samples (steps, cases) of a law time-scaled to each duration.
-
-    A rest-to-rest law of shape s_1(tau) on [0, 1] moved in time T has v_T(t) = v_1(t/T) / T;
-    ``unit_law_velocity`` is v_1 as a `scipy.interpolate.PPoly` on [0, 1], zero outside it.
-    Compiled with numba when available (same values as evaluating the `PPoly`).
-    """
-    global _SAMPLER
-    durations = np.asarray(durations_s, dtype=float)
-    if _SAMPLER is None:
-        _SAMPLER = _compile_sampler() or False
-    if _SAMPLER:
-        return np.asarray(
-            _SAMPLER(
-                np.asarray(unit_law_velocity.x, dtype=float),
-                np.ascontiguousarray(unit_law_velocity.c, dtype=float),
-                durations,
-                float(sample_period_s),
-                int(steps),
-            ),
-            dtype=float,
-        )
-    time = np.arange(steps, dtype=float)[:, None] * sample_period_s
-    tau = time / durations[None, :]
-    inside = tau <= 1.0
-    values = np.zeros((steps, durations.size))
-    values[inside] = unit_law_velocity(tau[inside])
-    return np.asarray(values / durations[None, :], dtype=float)
-
-
-def steps_for(max_duration_s: float, sample_period_s: float) -> int:
-    """Samples on the grid k dt needed to reach the first sample t >= T of the longest move."""
-    return math.ceil(max_duration_s / sample_period_s - 1e-9) + 2

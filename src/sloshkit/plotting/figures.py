@@ -11,9 +11,9 @@ import numpy as np
 
 if TYPE_CHECKING:
     from sloshkit.calibration import CalibrationResult
-    from sloshkit.dynamics import SloshResponse
     from sloshkit.motion.laws import Motion
-    from sloshkit.planning import PlanResult
+    from sloshkit.plan.planner import PlanResult
+    from sloshkit.sim.response import SloshResponse
     from sloshkit.sweep import SweepResult
 
 
@@ -29,7 +29,7 @@ def _pyplot() -> Any:
 def save_figure(figure: Any, path: str | Path | None) -> Any:
     """Save ``figure`` atomically (format from the suffix) when ``path`` is given."""
     if path is not None:
-        from sloshkit.io import atomic_open
+        from sloshkit.files import atomic_open
 
         target = Path(path)
         with atomic_open(target, "wb") as stream:
@@ -241,8 +241,8 @@ def plot_calibration(result: CalibrationResult, path: str | Path | None = None) 
 def plot_plan(result: PlanResult, path: str | Path | None = None) -> Any:
     """Velocity, acceleration and re-simulated first-mode slosh angle of each verified
     candidate (exported samples), with the limits."""
-    from sloshkit.dynamics import linear_mode_response
-    from sloshkit.planning import export_samples
+    from sloshkit.motion.sampling import export_samples
+    from sloshkit.sim.discretisation import linear_mode_response
 
     plt = _pyplot()
     figure, axes = plt.subplots(3, 1, figsize=(8.5, 8.5), sharex=True, layout="constrained")

@@ -1,0 +1,6 @@
+"""``python -m sloshkit``: the command line."""
+
+from sloshkit.cli import main
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,52 @@
+"""The ``sloshkit`` command line (typer + rich): parses units, calls the core, prints results.
+
+Exit codes: 0 success; 1 no feasible result (e.g. a plan that cannot meet the limits);
+2 invalid input (one line on stderr naming the parameter, value and valid range).
+"""
+
+from __future__ import annotations
+
+import sys
+import warnings
+
+import typer
+from rich.console import Console
+
+from sloshkit.errors import InputError, ValidityWarning
+
+app = typer.Typer(
+    name="sloshkit",
+    help=(
+        "Sloshing of liquids in moving containers: equivalent model, simulation, motion "
+        "planning.\n\nExample: sloshkit model --radius 20.5mm --fill-height 39mm --liquid water-25C"
+    ),
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+stdout = Console(width=None if sys.stdout.isatty() else 160)
+
+
+@app.callback()
+def _root() -> None:
+    """sloshkit: the sloshing toolkit (see the README for a tour)."""
+
+
+stderr = Console(stderr=True, soft_wrap=True)
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def]
+    prefix = "warning" if category is ValidityWarning else category.__name__
+    stderr.print(f"[yellow]{prefix}:[/yellow] {message}", highlight=False)
+
+
+def main() -> None:
+    """Entry point: run the app; user mistakes become one line on stderr and exit code 2."""
+    warnings.showwarning = _show_warning
+    try:
+        app()
+    except InputError as error:
+        stderr.print(f"[red]error:[/red] {error}", highlight=False)
+        raise SystemExit(2) from None

@@ -1,0 +1,312 @@
+"""``sloshkit cfd``: the volume-of-fluid step with OpenFOAM (generate, run, analyse, validate)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.table import Table
+from rich.text import Text
+
+from sloshkit.cli.app import app, stderr, stdout
+from sloshkit.cli.moves import Distance, Duration, MoveRequest
+from sloshkit.cli.options import Json, print_json, with_model_options, with_options
+from sloshkit.errors import InputError
+from sloshkit.io.units import parse_quantity
+from sloshkit.model.modal import SloshModel
+
+cfd_app = typer.Typer(
+    help="The volume-of-fluid step with OpenFOAM (interFoam): generate, run, analyse, validate.",
+    no_args_is_help=True,
+)
+app.add_typer(cfd_app, name="cfd")
+
+
+CaseDir = Annotated[Path, typer.Option("--case", help="Case folder.")]
+
+
+def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
+    """The case options shared by the cfd commands (with their command's defaults)."""
+    return {
+        "excitation": (
+            Annotated[
+                str,
+                typer.Option("--excitation", help="free-decay (tilted surface), harmonic or law."),
+            ],
+            excitation,
+        ),
+        "tilt": (
+            Annotated[str, typer.Option("--tilt", help="Initial tilt for free-decay.")],
+            "3deg",
+        ),
+        "amplitude": (
+            Annotated[str, typer.Option("--amplitude", help="Harmonic amplitude.")],
+            "10mm",
+        ),
+        "frequency": (
+            Annotated[str, typer.Option("--frequency", help="Harmonic frequency.")],
+            "1Hz",
+        ),
+        "excite_time": (
+            Annotated[str, typer.Option("--excite-time", help="Harmonic duration.")],
+            "2s",
+        ),
+        "law": (
+            Annotated[str | None, typer.Option("--law", help="Motion law for --excitation law.")],
+            None,
+        ),
+        "distance": (Distance, "0.1m"),
+        "duration": (Duration, None),
+        "cells_per_radius": (
+            Annotated[int, typer.Option("--cells-per-radius", help="Mesh resolution.")],
+            10,
+        ),
+        "end_time": (Annotated[str, typer.Option("--end-time", help="Simulated time.")], end_time),
+        "delta_t": (Annotated[str, typer.Option("--delta-t", help="Fixed time step.")], "0.5ms"),
+        "ddt": (
+            Annotated[str, typer.Option("--ddt", help="Euler, 'CrankNicolson 0.9' or backward.")],
+            "Euler",
+        ),
+        "np_": (Annotated[int, typer.Option("--np", help="MPI processes (1: serial).")], 1),
+        "cfd_surface_tension": (
+            Annotated[
+                bool,
+                typer.Option("--cfd-surface-tension", help="Include surface tension in the CFD."),
+            ],
+            False,
+        ),
+    }
+
+
+def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
+    from sloshkit.cfd.pipeline import case_spec, excitation_from_options
+
+    motion = None
+    if options["excitation"] == "law":
+        request = MoveRequest.parse(
+            options["distance"], options["duration"], None, None, None, None, None
+        )
+        motion = request.law(options["law"] or "quintic")
+    chosen = excitation_from_options(
+        options["excitation"],
+        parse_quantity(options["tilt"], "angle", "tilt"),
+        parse_quantity(options["amplitude"], "length", "amplitude"),
+        parse_quantity(options["frequency"], "frequency", "frequency"),
+        parse_quantity(options["excite_time"], "time", "excite_time"),
+        motion,
+    )
+    return case_spec(
+        slosh_model,
+        chosen,
+        cells_per_radius=options["cells_per_radius"],
+        end_time_s=parse_quantity(options["end_time"], "time", "end_time"),
+        delta_t_s=parse_quantity(options["delta_t"], "time", "delta_t"),
+        ddt_scheme=options["ddt"],
+        processes=options["np_"],
+        surface_tension=options["cfd_surface_tension"],
+    )
+
+
+def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> Any:
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    from sloshkit.cfd.pipeline import run as run_cfd
+    from sloshkit.cfd.run import CfdError
+
+    with Progress(
+        TextColumn("interFoam"),
+        BarColumn(),
+        TextColumn("t = {task.completed:.3f}/{task.total:g} s"),
+        TextColumn("Co {task.fields[courant]}"),
+        TimeElapsedColumn(),
+        TextColumn("ETA"),
+        TimeRemainingColumn(),
+        console=stderr,
+        transient=True,
+    ) as bar:
+        task = bar.add_task("run", total=spec.end_time_s, courant="-")
+
+        def advance(simulated: float, end: float, courant: float | None) -> None:
+            bar.update(
+                task,
+                completed=simulated,
+                total=end,
+                courant="-" if courant is None else f"{courant:.2f}",
+            )
+
+        try:
+            return run_cfd(spec, case, resume=resume, overwrite=overwrite, progress=advance)
+        except CfdError as error:
+            stderr.print(f"[red]error:[/red] {error}", highlight=False)
+            raise typer.Exit(1) from None
+
+
+def _print_analysis(
+    analysis: Any,
+    json_output: bool,
+    model_file_out: Path | None,
+    plot: Path | None,
+    slosh_model: SloshModel | None,
+) -> None:
+    from sloshkit.cfd.pipeline import describe
+
+    payload = analysis.to_dict()
+    if slosh_model is not None:
+        payload["theory"] = {
+            "omega_n_rad_s": slosh_model.modes[0].omega_rad_s,
+            "frequency_hz": slosh_model.modes[0].frequency_hz,
+        }
+        if model_file_out is not None:
+            from sloshkit.io.models import write_model_file
+
+            write_model_file(model_file_out, analysis.calibration.calibrated_model(slosh_model))
+            payload["model_file"] = str(model_file_out)
+    if plot is not None:
+        analysis.calibration.plot(plot)
+    if json_output:
+        print_json(payload)
+        return
+    table = Table(title=f"CFD calibration: {analysis.case} ({payload['cells']} cells)")
+    for header_text in ("estimator", "ω_n [rad/s]", "f_n [Hz]", "ζ [-]"):
+        table.add_column(Text(header_text), justify="right")
+    for name, estimate in payload["estimates"].items():
+        table.add_row(
+            name,
+            *(
+                ("-" if estimate[k] is None else f"{estimate[k]:.4g}")
+                for k in ("omega_n_rad_s", "frequency_hz", "damping_ratio")
+            ),
+        )
+    if "theory" in payload:
+        table.add_row(
+            "linear theory",
+            f"{payload['theory']['omega_n_rad_s']:.4g}",
+            f"{payload['theory']['frequency_hz']:.4g}",
+            "",
+        )
+    stdout.print(table)
+    line = describe(analysis.run_record)
+    if line:
+        stdout.print(line)
+
+
+@cfd_app.command("run")
+@with_model_options
+@with_options(cfd_options("free-decay", "3s"), "case_options", dict)
+def cfd_run_command(
+    slosh_model: SloshModel,
+    case_options: dict[str, Any],
+    case: CaseDir,
+    resume: Annotated[
+        bool, typer.Option("--resume", help="Continue from the last written time.")
+    ] = False,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace an existing case.")
+    ] = False,
+    model_file_out: Annotated[
+        Path | None, typer.Option("--model-file-out", help="Write the calibrated model.")
+    ] = None,
+    plot: Annotated[Path | None, typer.Option("--plot", help="Calibration figure.")] = None,
+    json_output: Json = False,
+) -> None:
+    """Generate and run an interFoam case of the container, then calibrate from it.
+
+    Example:
+
+      sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
+    """
+    from sloshkit.cfd.pipeline import analyse
+
+    spec = _cfd_spec(slosh_model, case_options)
+    _run_with_progress(spec, case, resume, overwrite)
+    _print_analysis(analyse(case), json_output, model_file_out, plot, slosh_model)
+
+
+@cfd_app.command("analyse")
+def cfd_analyse_command(
+    case: Annotated[Path, typer.Argument(help="A case run by sloshkit cfd run.")],
+    method: Annotated[str, typer.Option("--method", help="fit, logdec or fft.")] = "fit",
+    start: Annotated[str | None, typer.Option("--start", help="Window start.")] = None,
+    plot: Annotated[Path | None, typer.Option("--plot", help="Calibration figure.")] = None,
+    csv: Annotated[Path | None, typer.Option("--csv", help="Write the CFD signals as CSV.")] = None,
+    json_output: Json = False,
+) -> None:
+    """Frequency and damping from a finished case's wall elevation (calibrate's JSON keys plus
+    cells, simulated_s, wall_clock_s).
+
+    Example:
+
+      sloshkit cfd analyse vial-decay --json
+    """
+    from sloshkit.cfd.pipeline import analyse
+
+    if not (case / "sloshkit-case.json").is_file():
+        raise InputError("case", str(case), "is not a sloshkit CFD case")
+    analysis = analyse(
+        case, method, None if start is None else parse_quantity(start, "time", "start")
+    )
+    if csv is not None:
+        from sloshkit.files import write_columns_csv
+
+        write_columns_csv(csv, analysis.signals.columns())
+    _print_analysis(analysis, json_output, None, plot, None)
+
+
+@cfd_app.command("validate")
+@with_model_options
+@with_options(cfd_options("harmonic", "4s"), "case_options", dict)
+def cfd_validate_command(
+    slosh_model: SloshModel,
+    case_options: dict[str, Any],
+    case: CaseDir,
+    reuse: Annotated[
+        bool, typer.Option("--reuse", help="Use the case's existing results.")
+    ] = False,
+    plot: Annotated[Path | None, typer.Option("--plot", help="CFD vs pendulum (Fig. 9).")] = None,
+    json_output: Json = False,
+) -> None:
+    """Run the CFD and the pendulum model on the same motion and report how far apart they
+    are (frequency, damping, peak and residual wall elevation).
+
+    Example:
+
+      sloshkit cfd validate --case vial-harmonic --excitation harmonic --np 2 --plot fig9.png
+    """
+    from sloshkit.cfd.pipeline import validate
+
+    if not reuse:
+        spec = _cfd_spec(slosh_model, case_options)
+        _run_with_progress(spec, case, False, True)
+    result = validate(case, slosh_model)
+    if plot is not None:
+        from sloshkit.plotting.figures import plot_cfd_validation
+
+        plot_cfd_validation(result, plot)
+    summary = {
+        k: v
+        for k, v in result.items()
+        if k not in ("time_s", "cfd_elevation_m", "model_elevation_m")
+    }
+    if json_output:
+        print_json(summary)
+        return
+    table = Table(title=f"CFD against the pendulum model: {case}")
+    for header_text in ("quantity", "CFD", "model", "difference"):
+        table.add_column(Text(header_text), justify="right")
+    for key, row in summary["comparison"].items():
+        table.add_row(
+            key,
+            *("-" if row[k] is None else f"{row[k]:.4g}" for k in ("cfd", "model")),
+            "-"
+            if row["relative_difference"] is None
+            else f"{100 * row['relative_difference']:+.1f} %",
+        )
+    stdout.print(table)
+    stdout.print(f"correlation of the wall-elevation signals: {summary['correlation']:.4f}")

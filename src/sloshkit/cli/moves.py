@@ -1,0 +1,199 @@
+"""Shared CLI option groups for commands that move a container: distance, duration, law,
+machine limits and the simulation settings."""
+
+from __future__ import annotations
+
+import math
+import typing
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Annotated, Any
+
+import typer
+
+from sloshkit.cli.options import json_number, with_options
+from sloshkit.errors import InputError
+from sloshkit.io.units import parse_quantity
+from sloshkit.model.modal import SloshModel
+from sloshkit.motion.laws import Motion, comparison_s_curve_limits, make_law
+from sloshkit.sim.response import SloshResponse
+from sloshkit.sim.simulate import MODEL_KINDS, simulate
+
+Distance = Annotated[str, typer.Option("--distance", help="Travel distance, e.g. 0.5m.")]
+
+
+Duration = Annotated[str | None, typer.Option("--duration", help="Move duration, e.g. 1.5s.")]
+
+
+PeakVelocity = Annotated[
+    str | None,
+    typer.Option(
+        "--peak-velocity",
+        help="Trapezoid peak velocity; sets the duration (T = 1.5 D / V by default).",
+    ),
+]
+
+
+Vmax = Annotated[str | None, typer.Option("--vmax", help="Machine velocity limit, e.g. 1m/s.")]
+
+
+Amax = Annotated[
+    str | None, typer.Option("--amax", help="Machine acceleration limit, e.g. 5m/s^2.")
+]
+
+
+Jmax = Annotated[str | None, typer.Option("--jmax", help="Machine jerk limit, e.g. 50m/s^3.")]
+
+
+AccelFraction = Annotated[
+    float | None,
+    typer.Option("--accel-fraction", help="Trapezoid: acceleration time / duration (1/3)."),
+]
+
+
+ModelKindOpt = Annotated[
+    str, typer.Option("--model", help="Slosh model: linear or nonlinear (large angles).")
+]
+
+
+SamplePeriod = Annotated[str, typer.Option("--sample-period", help="Simulation step, e.g. 1ms.")]
+
+
+SettleTime = Annotated[
+    str | None, typer.Option("--settle-time", help="Time simulated after the move.")
+]
+
+
+SettleTolerance = Annotated[
+    str, typer.Option("--settle-tol", help="Settling tolerance on the first-mode angle.")
+]
+
+
+@dataclass(frozen=True)
+class MoveRequest:
+    """Motion options parsed to SI."""
+
+    distance_m: float
+    duration_s: float | None
+    peak_velocity_m_s: float | None
+    vmax: float | None
+    amax: float | None
+    jmax: float | None
+    accel_fraction: float | None
+
+    @classmethod
+    def parse(
+        cls,
+        distance: str,
+        duration: str | None,
+        peak_velocity: str | None,
+        vmax: str | None,
+        amax: str | None,
+        jmax: str | None,
+        accel_fraction: float | None,
+    ) -> MoveRequest:
+        def optional(text: str | None, kind: str, name: str) -> float | None:
+            return None if text is None else parse_quantity(text, kind, name)
+
+        return cls(
+            distance_m=parse_quantity(distance, "length", "distance"),
+            duration_s=optional(duration, "time", "duration"),
+            peak_velocity_m_s=optional(peak_velocity, "velocity", "peak_velocity"),
+            vmax=optional(vmax, "velocity", "vmax"),
+            amax=optional(amax, "acceleration", "amax"),
+            jmax=optional(jmax, "jerk", "jmax"),
+            accel_fraction=accel_fraction,
+        )
+
+    def law(self, name: str) -> Motion:
+        """The motion law called ``name`` (or ``file:PATH``) for this move."""
+        if name.startswith("file:"):
+            from sloshkit.io.tables import read_motion_file
+
+            return typing.cast(Motion, read_motion_file(name.removeprefix("file:"), name))
+        vmax, amax, jmax = self.vmax, self.amax, self.jmax
+        if name == "s-curve" and self.peak_velocity_m_s is not None:
+            vmax, amax, jmax = comparison_s_curve_limits(
+                self.distance_m, self.peak_velocity_m_s, vmax, amax, jmax, self.accel_fraction
+            )
+        return make_law(
+            name,
+            self.distance_m,
+            duration_s=self.duration_s,
+            peak_velocity_m_s=self.peak_velocity_m_s,
+            max_velocity_m_s=vmax,
+            max_acceleration_m_s2=amax,
+            max_jerk_m_s3=jmax,
+            acceleration_fraction=self.accel_fraction,
+        )
+
+
+def _simulate(
+    motion: Motion,
+    slosh_model: SloshModel,
+    model_kind: str,
+    sample_period: str,
+    settle_time: str | None,
+    settle_tol: str,
+) -> SloshResponse:
+    if model_kind not in MODEL_KINDS:
+        raise InputError("model", model_kind, "must be one of " + ", ".join(MODEL_KINDS))
+    return simulate(
+        motion,
+        slosh_model,
+        kind=model_kind,  # type: ignore[arg-type]
+        sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+        settle_time_s=None
+        if settle_time is None
+        else parse_quantity(settle_time, "time", "settle_time"),
+        settle_tolerance_rad=parse_quantity(settle_tol, "angle", "settle_tol"),
+    )
+
+
+def move_options(peak_velocity: str | None = None) -> dict[str, tuple[Any, Any]]:
+    """The move and machine-limit options (one spelling everywhere)."""
+    return {
+        "distance": (Distance, "0.5m"),
+        "duration": (Duration, None),
+        "peak_velocity": (PeakVelocity, peak_velocity),
+        "vmax": (Vmax, None),
+        "amax": (Amax, None),
+        "jmax": (Jmax, None),
+        "accel_fraction": (AccelFraction, None),
+    }
+
+
+SIMULATION_OPTIONS: dict[str, tuple[Any, Any]] = {
+    "model_kind": (ModelKindOpt, "linear"),
+    "sample_period": (SamplePeriod, "1ms"),
+    "settle_time": (SettleTime, None),
+    "settle_tol": (SettleTolerance, "0.1deg"),
+}
+
+
+def with_move_options(
+    peak_velocity: str | None = None,
+) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """The move options, parsed into ``request`` (a `MoveRequest`)."""
+    return with_options(
+        move_options(peak_velocity), "request", lambda values: MoveRequest.parse(**values)
+    )
+
+
+#: The simulation options, passed on as ``simulation`` (keyword arguments of `_simulate`).
+with_simulation_options = with_options(SIMULATION_OPTIONS, "simulation", dict)
+
+
+def metrics_json(response: SloshResponse) -> dict[str, float | None]:
+    """The simulate JSON keys, with infinities as null."""
+    return {key: json_number(value) for key, value in response.metrics().items()}
+
+
+def _format_metric(key: str, value: float) -> str:
+    if not math.isfinite(value):
+        return "∞ (impulse)" if "jerk" in key else "∞"
+    if key.endswith("_m"):
+        return f"{1e3 * value:.3f} mm"
+    unit = {"_deg": "°", "_s": " s", "_m_s2": " m/s²", "_m_s3": " m/s³"}
+    suffix = next((u for k, u in unit.items() if key.endswith(k)), "")
+    return f"{value:.4g}{suffix}"

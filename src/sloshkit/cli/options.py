@@ -1,0 +1,250 @@
+"""Shared CLI option groups: the model options, output options and the decorator that adds an
+option group to a command (same names and meaning in every command)."""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import json
+import math
+import sys
+import typing
+from collections.abc import Callable
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from sloshkit.errors import InputError
+from sloshkit.io.units import parse_quantity
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
+from sloshkit.model.modal import DAMPING_LAWS, DampingLaw, SloshModel, equivalent_model
+
+Radius = Annotated[str, typer.Option("--radius", help="Inner radius, e.g. 20.5mm.")]
+
+
+FillHeight = Annotated[
+    str | None, typer.Option("--fill-height", help="Static fill height, e.g. 39mm.")
+]
+
+
+FillVolume = Annotated[
+    str | None,
+    typer.Option("--fill-volume", help="Liquid volume instead of --fill-height, e.g. 2mL."),
+]
+
+
+WallHeight = Annotated[
+    str | None, typer.Option("--wall-height", help="Inner wall height (checks the fill fits).")
+]
+
+
+LiquidName = Annotated[
+    str, typer.Option("--liquid", help="Liquid preset: " + ", ".join(sorted(LIQUIDS)) + ".")
+]
+
+
+Density = Annotated[
+    str | None, typer.Option("--density", help="Override density, e.g. 1000kg/m^3.")
+]
+
+
+Viscosity = Annotated[
+    str | None, typer.Option("--viscosity", help="Override dynamic viscosity, e.g. 1mPa*s.")
+]
+
+
+Sigma = Annotated[
+    str | None, typer.Option("--sigma", help="Override surface tension, e.g. 72mN/m.")
+]
+
+
+Modes = Annotated[int, typer.Option("--modes", help="Number of sloshing modes.")]
+
+
+DampingLawOpt = Annotated[
+    str,
+    typer.Option("--damping-law", help="First-mode damping correlation: seed, sp106, stephens."),
+]
+
+
+DampingRatio = Annotated[
+    float | None,
+    typer.Option("--damping-ratio", help="Damping ratio for all modes (overrides the law)."),
+]
+
+
+SurfaceTension = Annotated[
+    bool,
+    typer.Option(
+        "--surface-tension-correction/--no-surface-tension-correction",
+        help="Raise frequencies by the Bond-number capillary correction.",
+    ),
+]
+
+
+ModelFile = Annotated[
+    Path | None,
+    typer.Option(
+        "--model-file",
+        help="Model file (TOML/JSON, e.g. from 'sloshkit calibrate'); replaces the other "
+        "model options.",
+    ),
+]
+
+
+Json = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI units).")]
+
+
+def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
+    """The container from the model options."""
+    return UprightCylinder(
+        parse_quantity(radius, "length", "radius"),
+        None if wall_height is None else parse_quantity(wall_height, "length", "wall_height"),
+    )
+
+
+def build_liquid(
+    liquid: str, density: str | None, viscosity: str | None, sigma: str | None
+) -> Liquid:
+    """A preset liquid, with any of its properties overridden."""
+    base = get_liquid(liquid)
+    if (density, viscosity, sigma) == (None, None, None):
+        return base
+    return Liquid(
+        name=base.name + "*",
+        density_kg_m3=base.density_kg_m3
+        if density is None
+        else parse_quantity(density, "density", "density"),
+        viscosity_pa_s=base.viscosity_pa_s
+        if viscosity is None
+        else parse_quantity(viscosity, "viscosity", "viscosity"),
+        surface_tension_n_m=base.surface_tension_n_m
+        if sigma is None
+        else parse_quantity(sigma, "surface_tension", "sigma"),
+        source=base.source + " (overridden)",
+    )
+
+
+def check_damping_law(damping_law: str) -> DampingLaw:
+    """The damping-law name, or `InputError`."""
+    if damping_law not in DAMPING_LAWS:
+        raise InputError("damping_law", damping_law, "must be one of " + ", ".join(DAMPING_LAWS))
+    return typing.cast(DampingLaw, damping_law)
+
+
+def build_model(
+    radius: str,
+    fill_height: str | None,
+    fill_volume: str | None,
+    wall_height: str | None,
+    liquid: str,
+    density: str | None,
+    viscosity: str | None,
+    sigma: str | None,
+    modes: int,
+    damping_law: str,
+    damping_ratio: float | None,
+    surface_tension_correction: bool,
+) -> SloshModel:
+    """Turn the model options (text with units) into a `SloshModel`."""
+    container = build_container(radius, wall_height)
+    if fill_height is not None and fill_volume is not None:
+        raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
+    if fill_volume is not None:
+        height = container.fill_height_for_volume(
+            parse_quantity(fill_volume, "volume", "fill_volume")
+        )
+    else:
+        height = parse_quantity(fill_height or "39mm", "length", "fill_height")
+    return equivalent_model(
+        container,
+        build_liquid(liquid, density, viscosity, sigma),
+        height,
+        n_modes=modes,
+        damping_law=check_damping_law(damping_law),
+        damping_ratio=damping_ratio,
+        surface_tension=surface_tension_correction,
+    )
+
+
+def print_json(payload: object) -> None:
+    """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null)."""
+    from sloshkit.files import json_safe
+
+    sys.stdout.write(json.dumps(json_safe(payload), indent=2, allow_nan=False) + "\n")
+
+
+MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
+    "radius": (Radius, "20.5mm"),
+    "fill_height": (FillHeight, None),
+    "fill_volume": (FillVolume, None),
+    "wall_height": (WallHeight, None),
+    "liquid": (LiquidName, "water-25C"),
+    "density": (Density, None),
+    "viscosity": (Viscosity, None),
+    "sigma": (Sigma, None),
+    "modes": (Modes, 3),
+    "damping_law": (DampingLawOpt, "seed"),
+    "damping_ratio": (DampingRatio, None),
+    "surface_tension_correction": (SurfaceTension, False),
+    "model_file": (ModelFile, None),
+}
+
+
+def with_options(
+    options: dict[str, tuple[Any, Any]], target: str, build: Callable[[dict[str, Any]], Any]
+) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """Add a shared group of ``options`` to a command; it receives ``build(values)`` as its
+    parameter ``target``.
+
+    The options are added to the command's signature (which typer reads), so every command
+    spells and documents them identically.
+    """
+
+    def decorate(command: Callable[..., None]) -> Callable[..., None]:
+        signature = inspect.signature(command, eval_str=True)
+        own = [p for p in signature.parameters.values() if p.name != target]
+        added = [
+            inspect.Parameter(
+                name, inspect.Parameter.KEYWORD_ONLY, default=default, annotation=hint
+            )
+            for name, (hint, default) in options.items()
+        ]
+        own_hints = typing.get_type_hints(command, include_extras=True)
+
+        @functools.wraps(command)
+        def wrapper(**kwargs: Any) -> None:
+            kwargs[target] = build({name: kwargs.pop(name) for name in options})
+            command(**kwargs)
+
+        ordered = sorted(own + added, key=lambda p: p.default is not inspect.Parameter.empty)
+        wrapper.__signature__ = signature.replace(  # type: ignore[attr-defined]
+            parameters=[p.replace(kind=inspect.Parameter.KEYWORD_ONLY) for p in ordered]
+        )
+        wrapper.__annotations__ = {
+            **{name: own_hints[name] for name in own_hints if name not in (target, "return")},
+            **{name: hint for name, (hint, _) in options.items()},
+        }
+        return wrapper
+
+    return decorate
+
+
+def _model_from_options(values: dict[str, Any]) -> SloshModel:
+    model_file = values.pop("model_file")
+    if model_file is not None:
+        from sloshkit.io.models import read_model_file
+
+        return typing.cast(SloshModel, read_model_file(model_file))
+    return build_model(**values)
+
+
+#: Give a command the shared model options; it receives the built ``slosh_model``.
+with_model_options = with_options(MODEL_OPTIONS, "slosh_model", _model_from_options)
+
+
+def json_number(value: float) -> float | None:
+    """JSON has no infinity: an unbounded value (a jerk impulse) is written as null."""
+    return value if math.isfinite(value) else None

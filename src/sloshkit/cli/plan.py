@@ -1,0 +1,171 @@
+"""``sloshkit plan``: the fastest move within slosh and machine limits."""
+
+from __future__ import annotations
+
+import typing
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.table import Table
+from rich.text import Text
+
+from sloshkit.cli.app import app, stderr, stdout
+from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
+from sloshkit.cli.options import Json, print_json, with_model_options
+from sloshkit.cli.sweep import MaxAngle, MaxResidual
+from sloshkit.errors import InputError
+from sloshkit.io.units import parse_quantity
+from sloshkit.model.modal import SloshModel
+
+
+@app.command("plan")
+@with_model_options
+def plan_command(
+    slosh_model: SloshModel,
+    distance: Distance = "0.5m",
+    max_angle: MaxAngle = None,
+    max_residual: MaxResidual = None,
+    max_wall_elevation: Annotated[
+        str | None, typer.Option("--max-wall-elevation", help="Limit on the wall elevation.")
+    ] = None,
+    vmax: Vmax = None,
+    amax: Amax = None,
+    jmax: Jmax = None,
+    method: Annotated[
+        str,
+        typer.Option(
+            "--method",
+            help="auto, paper, trapezoidal, cubic, quintic, septic, fast, shaped, optimal.",
+        ),
+    ] = "auto",
+    robust: Annotated[
+        str,
+        typer.Option("--robust", help="Frequency band the limits must hold over, e.g. 10%."),
+    ] = "0%",
+    sample_period: Annotated[
+        str, typer.Option("--sample-period", help="Controller sample period, e.g. 4ms.")
+    ] = "4ms",
+    nonlinear_optimal: Annotated[
+        bool,
+        typer.Option("--nonlinear-optimal", help="Optimal control with nonlinear pendulums."),
+    ] = False,
+    max_duration: Annotated[
+        str | None, typer.Option("--max-duration", help="Longest acceptable move, e.g. 2s.")
+    ] = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Trajectory CSV at the sample period.")
+    ] = None,
+    plot: Annotated[Path | None, typer.Option("--plot", help="Figure of the candidates.")] = None,
+    json_output: Json = False,
+) -> None:
+    """The fastest move that keeps the slosh within limits, verified by simulation.
+
+    Every candidate is re-simulated from its sampled export. Exit code 1 when no method meets
+    the limits.
+
+    Example:
+
+      sloshkit plan --distance 0.5m --max-angle 5deg --max-residual 0.25deg --vmax 1.5m/s
+      --amax 20m/s^2 --jmax 500m/s^3 --damping-ratio 0.03 --out traj.csv --plot plan.png
+    """
+    from sloshkit.plan.planner import plan
+    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+
+    missing = [
+        name
+        for name, value in (
+            ("--vmax", vmax),
+            ("--amax", amax),
+            ("--jmax", jmax),
+            ("--max-angle", max_angle),
+            ("--max-residual", max_residual),
+        )
+        if value is None
+    ]
+    if missing:
+        raise InputError("plan", "incomplete", "needs " + ", ".join(missing))
+    band_text = robust.strip()
+    try:
+        band = float(band_text.rstrip("%")) / (100.0 if band_text.endswith("%") else 1.0)
+    except ValueError:
+        raise InputError("robust", robust, "must be a fraction or a percentage, e.g. 10%") from None
+    problem = PlanProblem(
+        distance_m=parse_quantity(distance, "length", "distance"),
+        machine=MachineLimits(
+            parse_quantity(typing.cast(str, vmax), "velocity", "vmax"),
+            parse_quantity(typing.cast(str, amax), "acceleration", "amax"),
+            parse_quantity(typing.cast(str, jmax), "jerk", "jmax"),
+        ),
+        slosh=SloshLimits(
+            parse_quantity(typing.cast(str, max_angle), "angle", "max_angle"),
+            parse_quantity(typing.cast(str, max_residual), "angle", "max_residual"),
+            None
+            if max_wall_elevation is None
+            else parse_quantity(max_wall_elevation, "length", "max_wall_elevation"),
+            band,
+        ),
+        model=slosh_model,
+        sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+        max_duration_s=None
+        if max_duration is None
+        else parse_quantity(max_duration, "time", "max_duration"),
+    )
+    with stderr.status("planning") as status:
+        result = plan(problem, method, nonlinear_optimal, progress=lambda text: status.update(text))
+    if result.feasible:
+        if out is not None:
+            result.to_csv(out)
+        if plot is not None:
+            result.plot(plot)
+    payload = result.to_dict()
+    if json_output:
+        print_json(payload)
+    else:
+        table = Table(title=f"Plans for a {1e3 * problem.distance_m:.0f} mm move")
+        for header_text in (
+            "method",
+            "duration",
+            "peak θ₁",
+            "residual θ₁",
+            "peak v",
+            "peak a",
+            "peak j",
+            "feasible",
+            "compute",
+        ):
+            table.add_column(Text(header_text), justify="right")
+        for candidate in payload["candidates"]:
+
+            def show(value: float | None, fmt: str) -> str:
+                return "-" if value is None else format(value, fmt)
+
+            table.add_row(
+                candidate["method"],
+                show(candidate["duration_s"], ".4f") + " s",
+                show(candidate["peak_angle_deg"], ".3f") + "°",
+                show(candidate["residual_angle_deg"], ".3f") + "°",
+                show(candidate["peak_velocity_m_s"], ".3f"),
+                show(candidate["peak_acceleration_m_s2"], ".3f"),
+                "∞"
+                if candidate["peak_jerk_m_s3"] is None and candidate["duration_s"]
+                else show(candidate["peak_jerk_m_s3"], ".1f"),
+                "yes" if candidate["feasible"] else "no",
+                f"{candidate['compute_time_s']:.3f} s",
+            )
+        stdout.print(table)
+        if result.feasible:
+            stdout.print(
+                f"chosen: {payload['method']}, {payload['duration_s']:.4f} s"
+                + (
+                    f", {payload['speed_up_over_best_paper_law']:.2f}x faster than the best "
+                    "paper law"
+                    if payload["speed_up_over_best_paper_law"]
+                    else ""
+                )
+                + (f"; wrote {out}" if out is not None else "")
+            )
+    if not result.feasible:
+        messages = "; ".join(f"{c.method}: {c.message}" for c in result.candidates)
+        stderr.print(f"[red]error:[/red] no method meets the limits ({messages})", highlight=False)
+        raise typer.Exit(1)

@@ -1,0 +1,142 @@
+"""``sloshkit simulate`` and ``sloshkit compare``: one move, or several laws side by side."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.table import Table
+from rich.text import Text
+
+from sloshkit.cli.app import app, stdout
+from sloshkit.cli.moves import (
+    MoveRequest,
+    _format_metric,
+    _simulate,
+    metrics_json,
+    with_move_options,
+    with_simulation_options,
+)
+from sloshkit.cli.options import Json, print_json, with_model_options
+from sloshkit.errors import InputError
+from sloshkit.model.modal import SloshModel
+from sloshkit.motion.laws import LAW_NAMES
+
+
+@app.command("simulate")
+@with_model_options
+@with_move_options()
+@with_simulation_options
+def simulate_command(
+    slosh_model: SloshModel,
+    request: MoveRequest,
+    simulation: dict[str, Any],
+    law: Annotated[
+        str, typer.Option("--law", help="Law: " + ", ".join(LAW_NAMES) + ", file:PATH.")
+    ] = "quintic",
+    csv: Annotated[Path | None, typer.Option("--csv", help="Write the time series as CSV.")] = None,
+    plot: Annotated[
+        Path | None, typer.Option("--plot", help="Write a figure (PNG/SVG/PDF).")
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """Slosh response of the container to one motion law.
+
+    Examples:
+
+      sloshkit simulate --law quintic --distance 0.5m --duration 1.5s --json
+
+      sloshkit simulate --law s-curve --distance 0.5m --vmax 1m/s --amax 5m/s^2 --jmax 50m/s^3
+
+      sloshkit simulate --law file:move.csv --model nonlinear --plot slosh.png
+    """
+    motion = request.law(law)
+    response = _simulate(motion, slosh_model, **simulation)
+    model_kind = simulation["model_kind"]
+    if csv is not None:
+        response.to_csv(csv)
+    if plot is not None:
+        response.plot(plot)
+    if json_output:
+        print_json({"law": motion.name, "model": model_kind, **metrics_json(response)})
+        return
+    table = Table(
+        title=f"{motion.name} move of {1e3 * motion.distance_m:.1f} mm, {model_kind} model"
+    )
+    table.add_column("metric")
+    table.add_column("value", justify="right")
+    for key, value in response.metrics().items():
+        table.add_row(key, _format_metric(key, value))
+    stdout.print(table)
+
+
+COMPARE_LAWS = "trapezoidal,cubic,quintic,septic,s-curve"
+
+
+@app.command("compare")
+@with_model_options
+@with_move_options("0.5m/s")
+@with_simulation_options
+def compare_command(
+    slosh_model: SloshModel,
+    request: MoveRequest,
+    simulation: dict[str, Any],
+    laws: Annotated[str, typer.Option("--laws", help="Comma-separated law names.")] = COMPARE_LAWS,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Folder for compare.csv, compare.json, figures.")
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """All laws on the same move, side by side (the seed paper's Figs. 7-9).
+
+    Polynomial laws take the trapezoid's duration (same peak velocity for the trapezoid); the
+    s-curve takes the trapezoid's peak velocity and acceleration and a 0.1 s jerk time unless
+    --vmax/--amax/--jmax are given.
+
+    Example:
+
+      sloshkit compare --distance 0.5m --peak-velocity 0.5m/s --out compare/
+    """
+    names = [name.strip() for name in laws.split(",") if name.strip()]
+    if not names:
+        raise InputError("laws", laws, "give at least one law name")
+    motions = [request.law(name) for name in names]
+    responses = [_simulate(motion, slosh_model, **simulation) for motion in motions]
+    model_kind = simulation["model_kind"]
+    rows = [
+        {"law": motion.name, **metrics_json(response)}
+        for motion, response in zip(motions, responses, strict=True)
+    ]
+    if out is not None:
+        from sloshkit.files import write_json, write_rows_csv
+        from sloshkit.plotting.figures import plot_law_comparison, plot_slosh_comparison
+
+        write_rows_csv(out / "compare.csv", rows)
+        write_json(out / "compare.json", rows)
+        plot_law_comparison(motions, out / "fig7_laws.png")
+        plot_slosh_comparison(responses, out / "fig8_slosh.png")
+    if json_output:
+        print_json(rows)
+        return
+    table = Table(
+        title=f"Motion laws compared: {1e3 * request.distance_m:.0f} mm move, {model_kind} model"
+    )
+    headers = [
+        ("law", None),
+        ("duration", "duration_s"),
+        ("peak acc.", "peak_acceleration_m_s2"),
+        ("peak jerk", "peak_jerk_m_s3"),
+        ("peak θ₁", "peak_angle_deg"),
+        ("residual θ₁", "residual_angle_deg"),
+        ("peak wall η", "peak_wall_elevation_m"),
+        ("settling", "settling_time_s"),
+    ]
+    for header, _ in headers:
+        table.add_column(Text(header), justify="right")
+    for motion, response in zip(motions, responses, strict=True):
+        metrics = response.metrics()
+        table.add_row(motion.name, *(_format_metric(k, metrics[k]) for _, k in headers[1:] if k))
+    stdout.print(table)
+    if out is not None:
+        stdout.print(f"wrote {out}/compare.csv, compare.json, fig7_laws.png, fig8_slosh.png")

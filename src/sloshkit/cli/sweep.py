@@ -1,0 +1,195 @@
+"""``sloshkit sweep``: slosh maps over fill height x duration x law."""
+
+from __future__ import annotations
+
+import math
+import typing
+from pathlib import Path
+from typing import Annotated
+
+import numpy as np
+import typer
+from rich.table import Table
+
+from sloshkit.cli.app import app, stderr, stdout
+from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
+from sloshkit.cli.options import (
+    DampingLawOpt,
+    DampingRatio,
+    Density,
+    Json,
+    LiquidName,
+    Modes,
+    Radius,
+    Sigma,
+    SurfaceTension,
+    Viscosity,
+    WallHeight,
+    build_container,
+    build_liquid,
+    check_damping_law,
+    print_json,
+)
+from sloshkit.errors import InputError
+from sloshkit.io.units import parse_quantity
+
+MaxAngle = Annotated[
+    str | None, typer.Option("--max-angle", help="Limit on the peak slosh angle, e.g. 5deg.")
+]
+
+
+MaxResidual = Annotated[
+    str | None,
+    typer.Option("--max-residual", help="Limit on the residual slosh amplitude, e.g. 0.25deg."),
+]
+
+
+@app.command("sweep")
+def sweep_command(
+    distance: Distance = "0.5m",
+    fill_height: Annotated[
+        str | None, typer.Option("--fill-height", help="Range START:STOP:COUNT, e.g. 10mm:60mm:50.")
+    ] = None,
+    fill_volume: Annotated[
+        str | None,
+        typer.Option("--fill-volume", help="Range of volumes instead, e.g. 5mL:50mL:10."),
+    ] = None,
+    duration: Annotated[
+        str | None, typer.Option("--duration", help="Range START:STOP:COUNT, e.g. 0.5s:3s:200.")
+    ] = None,
+    peak_acceleration: Annotated[
+        str | None,
+        typer.Option(
+            "--peak-acceleration", help="Range of peak accelerations instead of durations."
+        ),
+    ] = None,
+    laws: Annotated[str, typer.Option("--laws", help="Comma-separated law names.")] = (
+        "trapezoidal,cubic,quintic,septic"
+    ),
+    max_angle: MaxAngle = None,
+    max_residual: MaxResidual = None,
+    vmax: Vmax = None,
+    amax: Amax = None,
+    jmax: Jmax = None,
+    accel_fraction: AccelFraction = None,
+    sample_period: SamplePeriod = "1ms",
+    radius: Radius = "20.5mm",
+    wall_height: WallHeight = None,
+    liquid: LiquidName = "water-25C",
+    density: Density = None,
+    viscosity: Viscosity = None,
+    sigma: Sigma = None,
+    modes: Modes = 3,
+    damping_law: DampingLawOpt = "seed",
+    damping_ratio: DampingRatio = None,
+    surface_tension_correction: SurfaceTension = False,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Folder for sweep.csv and maps.")
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """Slosh maps over fill height x move duration x law (linear fast path).
+
+    A range is START:STOP:COUNT with both ends included. Writes sweep.csv (one row a case),
+    peak_angle_map.png and residual_angle_map.png into --out, marking the region that meets
+    --max-angle and --max-residual.
+
+    Example:
+
+      sloshkit sweep --distance 0.5m --fill-height 10mm:60mm:50 --duration 0.5s:3s:200
+      --laws trapezoidal,cubic,quintic,septic --max-angle 10deg --max-residual 1deg --out maps/
+    """
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+    from sloshkit.io.units import parse_range
+    from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
+
+    container = build_container(radius, wall_height)
+    if fill_height is not None and fill_volume is not None:
+        raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
+    if fill_volume is not None:
+        volumes = linspace_inclusive(*parse_range(fill_volume, "volume", "fill_volume"))
+        heights = np.array([container.fill_height_for_volume(v) for v in volumes])
+    else:
+        heights = linspace_inclusive(*parse_range(fill_height or "39mm", "length", "fill_height"))
+    if duration is not None and peak_acceleration is not None:
+        raise InputError("peak_acceleration", peak_acceleration, "give either --duration or it")
+    durations = accelerations = None
+    if peak_acceleration is not None:
+        accelerations = linspace_inclusive(
+            *parse_range(peak_acceleration, "acceleration", "peak_acceleration")
+        )
+    else:
+        durations = linspace_inclusive(*parse_range(duration or "0.5s:3s:200", "time", "duration"))
+    request = MoveRequest.parse(distance, None, None, vmax, amax, jmax, accel_fraction)
+    limits = None
+    if request.vmax is not None and request.amax is not None and request.jmax is not None:
+        limits = (request.vmax, request.amax, request.jmax)
+    names = [name.strip() for name in laws.split(",") if name.strip()]
+    with Progress(
+        TextColumn("sweep"),
+        BarColumn(),
+        TextColumn("{task.completed:,}/{task.total:,} cases"),
+        TimeRemainingColumn(),
+        console=stderr,
+        transient=True,
+    ) as bar:
+        task = bar.add_task("sweep", total=1)
+
+        def advance(done: int, total: int) -> None:
+            bar.update(task, completed=done, total=total)
+
+        result = run_sweep(
+            container,
+            build_liquid(liquid, density, viscosity, sigma),
+            heights,
+            names,
+            request.distance_m,
+            durations,
+            accelerations,
+            n_modes=modes,
+            damping_law=check_damping_law(damping_law),
+            damping_ratio=damping_ratio,
+            surface_tension=surface_tension_correction,
+            s_curve_limits=limits,
+            acceleration_fraction=accel_fraction,
+            sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+            max_angle_deg=None
+            if max_angle is None
+            else math.degrees(parse_quantity(max_angle, "angle", "max_angle")),
+            max_residual_deg=None
+            if max_residual is None
+            else math.degrees(parse_quantity(max_residual, "angle", "max_residual")),
+            progress=advance,
+        )
+    summary = result.summary()
+    if out is not None:
+        csv_path = result.to_csv(out / "sweep.csv")
+        maps = result.plot_maps(out)
+        summary["csv"] = str(csv_path)
+        summary["maps"] = [str(path) for path in maps]
+    if json_output:
+        print_json(summary)
+        return
+    stderr.print(describe_rate(result))
+    table = Table(
+        title=f"Shortest safe move per fill height ({summary['safe_cases']:,} of "
+        f"{summary['cases']:,} cases safe)"
+    )
+    table.add_column("fill height", justify="right")
+    table.add_column("ω₁ [rad/s]", justify="right")
+    table.add_column("shortest safe duration", justify="right")
+    table.add_column("law")
+    for row, omega in zip(result.shortest_safe(), result.omega_1_rad_s, strict=True):
+        shortest = row["duration_s"]
+        table.add_row(
+            f"{1e3 * float(typing.cast(float, row['fill_height_m'])):.1f} mm",
+            f"{omega:.2f}",
+            "none" if shortest is None else f"{float(typing.cast(float, shortest)):.3f} s",
+            str(row["law"] or "-"),
+        )
+    stdout.print(table)
+    if out is not None:
+        stdout.print(
+            f"wrote {summary['csv']} and {', '.join(typing.cast(list[str], summary['maps']))}"
+        )

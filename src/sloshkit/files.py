@@ -1,0 +1,96 @@
+"""Atomic file writing shared by every layer: CSV of named columns or rows, strict JSON.
+
+Every writer writes a temporary file in the target folder and renames it, so a failure never
+leaves a half-written file. Readers and parsers of user files live in `sloshkit.io`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import json
+import os
+import tempfile
+from collections.abc import Iterator, Mapping, Sequence
+from pathlib import Path
+from typing import IO, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.errors import InputError
+
+FloatArray = NDArray[np.float64]
+
+
+@contextlib.contextmanager
+def atomic_open(
+    path: str | Path, mode: str = "w", encoding: str | None = "utf-8"
+) -> Iterator[IO[Any]]:
+    """Open a temporary file beside ``path``; rename it onto ``path`` only if the block succeeds."""
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent)
+    os.close(handle)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(temporary, 0o666 & ~umask)  # mkstemp creates 0600; give the usual permissions
+    try:
+        with open(temporary, mode, encoding=None if "b" in mode else encoding) as stream:
+            yield stream
+        os.replace(temporary, target)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(temporary)
+        raise
+
+
+def write_columns_csv(
+    path: str | Path, columns: Mapping[str, Sequence[float] | FloatArray]
+) -> Path:
+    """Write equal-length named columns as CSV with a header row (full float precision)."""
+    names = list(columns)
+    arrays = [np.asarray(columns[name], dtype=float) for name in names]
+    with atomic_open(path, "w") as stream:
+        stream.write(",".join(names) + "\n")
+        np.savetxt(stream, np.column_stack(arrays), delimiter=",", fmt="%.10g")
+    return Path(path)
+
+
+def write_rows_csv(path: str | Path, rows: Sequence[Mapping[str, object]]) -> Path:
+    """Write a list of dicts as CSV (columns in the first row's key order)."""
+    if not rows:
+        raise InputError("rows", 0, "nothing to write")
+    buffer = io.StringIO()
+    writer = csv.DictWriter(buffer, fieldnames=list(rows[0]), lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    with atomic_open(path, "w") as stream:
+        stream.write(buffer.getvalue())
+    return Path(path)
+
+
+def json_safe(payload: Any) -> Any:
+    """``payload`` with non-finite floats (an unbounded jerk, say) as None: JSON has no inf."""
+    if isinstance(payload, float):
+        return payload if np.isfinite(payload) else None
+    if isinstance(payload, np.floating):
+        return json_safe(float(payload))
+    if isinstance(payload, np.integer):
+        return int(payload)
+    if isinstance(payload, dict):
+        return {key: json_safe(value) for key, value in payload.items()}
+    if isinstance(payload, list | tuple):
+        return [json_safe(value) for value in payload]
+    if isinstance(payload, Path):
+        return str(payload)
+    return payload
+
+
+def write_json(path: str | Path, payload: object) -> Path:
+    """Write ``payload`` as indented, strict JSON (non-finite numbers as null), atomically."""
+    with atomic_open(path, "w") as stream:
+        json.dump(json_safe(payload), stream, indent=2, allow_nan=False)
+        stream.write("\n")
+    return Path(path)

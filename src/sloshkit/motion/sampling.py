@@ -1,0 +1,90 @@
+"""Sampling of motions on a controller grid t_k = k Ts (the one place of the grid rule).
+
+Every sampled grid in sloshkit starts at t = 0 with a uniform step and uses the same count of
+steps to reach a duration T: ``ceil(T / Ts - 1e-9)`` (the 1e-9 keeps T = k Ts from adding a
+sample to floating-point rounding).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.errors import require_positive
+
+if TYPE_CHECKING:
+    from sloshkit.motion.laws import Motion
+
+FloatArray = NDArray[np.float64]
+
+
+def steps_to_reach(duration_s: float, sample_period_s: float) -> int:
+    """Number of steps k such that k Ts is the first grid time at or after ``duration_s``.
+
+    Parameters
+    ----------
+    duration_s : float
+        Duration T to reach [s].
+    sample_period_s : float
+        Grid step Ts [s].
+
+    Returns
+    -------
+    int
+        ``ceil(T / Ts - 1e-9)``.
+
+    Examples
+    --------
+    >>> steps_to_reach(1.0, 0.1), steps_to_reach(1.05, 0.1)
+    (10, 11)
+    """
+    return math.ceil(duration_s / sample_period_s - 1e-9)
+
+
+def sample_times(duration_s: float, sample_period_s: float) -> FloatArray:
+    """0, dt, 2 dt, ... up to and including ``duration_s`` (the last step may be shorter)."""
+    count = steps_to_reach(duration_s, sample_period_s)
+    t = np.arange(count + 1, dtype=float) * sample_period_s
+    t[-1] = duration_s
+    return t
+
+
+def sample_motion(motion: Motion, sample_period_s: float) -> dict[str, FloatArray]:
+    """Samples at t = 0, dt, 2 dt, ..., with the last sample exactly at T.
+
+    Returns arrays ``t_s``, ``position_m``, ``velocity_m_s``, ``acceleration_m_s2``,
+    ``jerk_m_s3``.
+    """
+    dt = require_positive("sample_period", sample_period_s, "s")
+    t = sample_times(motion.duration_s, dt)
+    return {
+        "t_s": t,
+        "position_m": motion.position(t),
+        "velocity_m_s": motion.velocity(t),
+        "acceleration_m_s2": motion.acceleration(t),
+        "jerk_m_s3": motion.jerk(t),
+    }
+
+
+def export_samples(motion: Motion, sample_period_s: float) -> dict[str, FloatArray]:
+    """Samples at t = k Ts from 0 until the first sample at or after T, at rest on the target
+    from T on (columns ``t_s, position_m, velocity_m_s, acceleration_m_s2, jerk_m_s3``)."""
+    count = steps_to_reach(motion.duration_s, sample_period_s)
+    t = np.arange(count + 1, dtype=float) * sample_period_s
+    jerk = motion.jerk(t)
+    jerk[t >= motion.duration_s - 1e-12] = 0.0
+    return {
+        "t_s": t,
+        "position_m": motion.position(t),
+        "velocity_m_s": motion.velocity(t),
+        "acceleration_m_s2": motion.acceleration(t),
+        "jerk_m_s3": jerk,
+    }
+
+
+def steps_for(max_duration_s: float, sample_period_s: float) -> int:
+    """Samples on the grid k dt needed to reach the first sample t >= T of the longest move."""
+    return steps_to_reach(max_duration_s, sample_period_s) + 2

@@ -1,0 +1,140 @@
+"""Plan the fastest rest-to-rest move that keeps the slosh within limits.
+
+Methods (all verified the same way, see `verify`):
+
+- the seed paper's laws (``trapezoidal``, ``cubic``, ``quintic``, ``septic``) at their shortest
+  duration that meets the limits, found by a scan on the fast path and a bisection;
+- ``shaped``: a time-optimal jerk-limited S-curve (ruckig) convolved with an input shaper (ZV,
+  ZVD, EI on the first mode, or ZV on modes 1 and 2), whose acceleration and jerk limits are
+  searched so that the shaped move meets every limit (a vectorised grid, then a bisection);
+- ``optimal``: minimum-time control by direct multiple shooting in casadi/IPOPT (jerk as the
+  control, piecewise constant; states position, velocity, acceleration and every mode's angle
+  and rate, for each frequency of the robustness band), with the slosh limits as path
+  constraints and the residual amplitude as a terminal constraint, warm-started from the best
+  fast method; linear or nonlinear pendulums (Betts, *Practical Methods for Optimal Control*,
+  2nd ed., SIAM (2010) ch. 4);
+- ``auto``: all of the above, the fastest that passes verification.
+
+Verification never trusts a planner's internal model: the motion is sampled at the controller's
+period, and the exported velocity samples (linear between samples) are simulated again with the
+exact discretisation of every mode, for every frequency of the robustness band.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.errors import InputError
+from sloshkit.motion.sampling import export_samples
+from sloshkit.plan.optimal import plan_optimal
+from sloshkit.plan.problem import PAPER_LAWS, Candidate, PlanProblem
+from sloshkit.plan.searches import plan_paper_law, plan_shaped
+
+FloatArray = NDArray[np.float64]
+
+
+METHODS: tuple[str, ...] = ("auto", "paper", *PAPER_LAWS, "fast", "shaped", "optimal")
+
+
+@dataclass(frozen=True, eq=False)
+class PlanResult:
+    """The chosen motion and every candidate tried."""
+
+    problem: PlanProblem
+    chosen: Candidate | None
+    candidates: tuple[Candidate, ...]
+
+    @property
+    def feasible(self) -> bool:
+        """True when some method met every limit."""
+        return self.chosen is not None and self.chosen.feasible
+
+    def samples(self) -> dict[str, FloatArray]:
+        """The chosen motion sampled at the controller period (see `export_samples`)."""
+        if self.chosen is None or self.chosen.motion is None:
+            raise InputError("plan", "infeasible", "no motion to export")
+        return export_samples(self.chosen.motion, self.problem.sample_period_s)
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write the controller samples, atomically."""
+        from sloshkit.files import write_columns_csv
+
+        return write_columns_csv(path, self.samples())
+
+    def to_dict(self) -> dict[str, Any]:
+        """The plan command's JSON."""
+        chosen = (
+            self.chosen.to_dict()
+            if self.chosen is not None
+            else {"method": None, "feasible": False}
+        )
+        paper = [c for c in self.candidates if c.method in PAPER_LAWS and c.feasible]
+        best_paper = min((c.duration_s for c in paper), default=None)
+        return {
+            **chosen,
+            "sample_period_s": self.problem.sample_period_s,
+            "speed_up_over_best_paper_law": None
+            if best_paper is None or self.chosen is None or not self.chosen.feasible
+            else best_paper / self.chosen.duration_s,
+            "candidates": [c.to_dict() for c in self.candidates],
+        }
+
+    def plot(self, path: str | Path | None = None) -> Any:
+        """Velocity, acceleration and slosh angle of the chosen move and the candidates."""
+        from sloshkit.plotting.figures import plot_plan
+
+        return plot_plan(self, path)
+
+
+def plan(
+    problem: PlanProblem,
+    method: str = "auto",
+    nonlinear_optimal: bool = False,
+    progress: Callable[[str], None] | None = None,
+) -> PlanResult:
+    """Run the requested method(s) and return the fastest verified candidate.
+
+    ``method``: ``auto`` (everything), ``paper`` (the four laws), one law name, ``fast`` (a
+    ZV-shaped S-curve only), ``shaped`` (all shapers) or ``optimal`` (warm-started from the
+    shaped result).
+    """
+    if method not in METHODS:
+        raise InputError("method", method, "must be one of " + ", ".join(METHODS))
+    say = progress or (lambda _: None)
+    if nonlinear_optimal and not problem.nonlinear:
+        problem = replace(problem, nonlinear=True)  # verify everything with the same model
+    candidates: list[Candidate] = []
+    laws = PAPER_LAWS if method in ("auto", "paper") else (method,) if method in PAPER_LAWS else ()
+    for law in laws:
+        say(f"searching the shortest {law} move")
+        candidates.append(plan_paper_law(law, problem))
+    shaped: Candidate | None = None
+    if method == "fast":
+        say("searching a ZV-shaped S-curve")
+        candidates.append(replace(plan_shaped(problem, ("zv",)), method="fast"))
+    if method in ("auto", "shaped", "optimal"):
+        say("searching shaped S-curves (ZV, ZVD, EI, two-mode ZV)")
+        shaped = plan_shaped(problem)
+        if method != "optimal":
+            candidates.append(shaped)
+    if method in ("auto", "optimal"):
+        say("solving the time-optimal control problem (IPOPT)")
+        warm = _fastest(candidates + ([shaped] if shaped else []))
+        candidates.append(
+            plan_optimal(problem, warm.motion if warm else None, nonlinear=nonlinear_optimal)
+        )
+    chosen = _fastest(candidates)
+    if chosen is None:
+        chosen = min(candidates, key=lambda c: c.duration_s) if candidates else None
+    return PlanResult(problem, chosen, tuple(candidates))
+
+
+def _fastest(candidates: Sequence[Candidate]) -> Candidate | None:
+    feasible = [c for c in candidates if c.feasible and c.motion is not None]
+    return min(feasible, key=lambda c: c.duration_s) if feasible else None

@@ -1,0 +1,161 @@
+"""What to plan: machine and slosh limits, the problem, and the outcome of one method."""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+from sloshkit.errors import require_in_range, require_positive
+from sloshkit.model.modal import SloshModel
+from sloshkit.motion.laws import Motion
+
+PAPER_LAWS: tuple[str, ...] = ("trapezoidal", "cubic", "quintic", "septic")
+
+
+SHAPERS: tuple[str, ...] = ("zv", "zvd", "ei", "zv2")
+
+
+#: Relative margin the searches keep from each slosh limit, so that the sampled export (which
+#: the verification simulates) still meets it.
+SEARCH_MARGIN = 0.01
+
+
+@dataclass(frozen=True)
+class MachineLimits:
+    """Machine limits (SI): velocity [m/s], acceleration [m/s^2], jerk [m/s^3]."""
+
+    max_velocity_m_s: float
+    max_acceleration_m_s2: float
+    max_jerk_m_s3: float
+
+    def __post_init__(self) -> None:
+        require_positive("vmax", self.max_velocity_m_s, "m/s")
+        require_positive("amax", self.max_acceleration_m_s2, "m/s^2")
+        require_positive("jmax", self.max_jerk_m_s3, "m/s^3")
+
+
+@dataclass(frozen=True)
+class SloshLimits:
+    """Slosh limits: first-mode angle during the move, its residual amplitude after it [rad],
+    optionally the wall elevation [m]; ``robustness`` is the relative frequency band (e.g. 0.1
+    for +-10 %) over which they must hold."""
+
+    max_angle_rad: float
+    max_residual_rad: float
+    max_wall_elevation_m: float | None = None
+    robustness: float = 0.0
+
+    def __post_init__(self) -> None:
+        require_positive("max_angle", self.max_angle_rad, "rad")
+        require_positive("max_residual", self.max_residual_rad, "rad")
+        if self.max_wall_elevation_m is not None:
+            require_positive("max_wall_elevation", self.max_wall_elevation_m, "m")
+        require_in_range("robustness", self.robustness, 0.0, 0.5)
+
+
+@dataclass(frozen=True)
+class PlanProblem:
+    """What to plan: distance [m], limits, the model, the controller sample period [s] and
+    optionally the longest acceptable duration [s]."""
+
+    distance_m: float
+    machine: MachineLimits
+    slosh: SloshLimits
+    model: SloshModel
+    sample_period_s: float = 4e-3
+    max_duration_s: float | None = None
+    nonlinear: bool = False
+
+    def __post_init__(self) -> None:
+        require_positive("distance", self.distance_m, "m")
+        require_in_range("sample_period", self.sample_period_s, 1e-5, 0.1, "s")
+        if self.max_duration_s is not None:
+            require_positive("max_duration", self.max_duration_s, "s")
+
+    def models(self) -> list[SloshModel]:
+        """The model at the band's low edge, nominal and high edge (all modes scaled)."""
+        band = self.slosh.robustness
+        if band == 0.0:
+            return [self.model]
+        return [scale_frequencies(self.model, factor) for factor in (1.0 - band, 1.0, 1.0 + band)]
+
+
+def scale_frequencies(model: SloshModel, factor: float) -> SloshModel:
+    """``model`` with every mode's frequency multiplied by ``factor``."""
+    modes = tuple(replace(mode, omega_rad_s=mode.omega_rad_s * factor) for mode in model.modes)
+    return replace(model, modes=modes)
+
+
+class PlanStatus(enum.Enum):
+    """Outcome of one method."""
+
+    FEASIBLE = "feasible"
+    INFEASIBLE = "infeasible"
+    FAILED = "failed"
+
+
+@dataclass(frozen=True)
+class Verification:
+    """Metrics of a sampled export re-simulated (worst over the robustness band)."""
+
+    duration_s: float
+    peak_angle_rad: float
+    residual_angle_rad: float
+    peak_wall_elevation_m: float
+    peak_velocity_m_s: float
+    peak_acceleration_m_s2: float
+    peak_jerk_m_s3: float
+    end_error_m: float
+    violations: tuple[str, ...]
+
+    @property
+    def feasible(self) -> bool:
+        """True when no limit is violated."""
+        return not self.violations
+
+
+@dataclass(frozen=True, eq=False)
+class Candidate:
+    """One method's best motion, its verification and its compute time."""
+
+    method: str
+    status: PlanStatus
+    motion: Motion | None = None
+    verification: Verification | None = None
+    compute_time_s: float = 0.0
+    message: str = ""
+    detail: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def feasible(self) -> bool:
+        """Verified to meet every limit."""
+        return self.status is PlanStatus.FEASIBLE
+
+    @property
+    def duration_s(self) -> float:
+        """Move duration [s] (inf without a motion)."""
+        return self.motion.duration_s if self.motion is not None else math.inf
+
+    def to_dict(self) -> dict[str, Any]:
+        """The plan command's keys for this candidate."""
+        check = self.verification
+        return {
+            "method": self.method,
+            "duration_s": None if self.motion is None else self.duration_s,
+            "peak_angle_deg": None if check is None else math.degrees(check.peak_angle_rad),
+            "residual_angle_deg": None if check is None else math.degrees(check.residual_angle_rad),
+            "peak_wall_elevation_m": None if check is None else check.peak_wall_elevation_m,
+            "peak_velocity_m_s": None if check is None else check.peak_velocity_m_s,
+            "peak_acceleration_m_s2": None if check is None else check.peak_acceleration_m_s2,
+            # JSON has no infinity: unbounded jerk (acceleration jumps) is null.
+            "peak_jerk_m_s3": None
+            if check is None or not math.isfinite(check.peak_jerk_m_s3)
+            else check.peak_jerk_m_s3,
+            "feasible": self.feasible,
+            "violations": [] if check is None else list(check.violations),
+            "compute_time_s": self.compute_time_s,
+            "message": self.message,
+            **self.detail,
+        }

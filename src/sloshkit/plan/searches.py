@@ -1,0 +1,223 @@
+"""Searches over motion families: the seed paper's laws at their shortest feasible duration
+(scan on the fast path, then bisection) and shaped S-curves (ruckig S-curve convolved with an
+input shaper, with its acceleration and jerk limits searched)."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.model.modal import SloshModel
+from sloshkit.motion.laws import Motion, make_law, s_curve
+from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv
+from sloshkit.plan.problem import (
+    SEARCH_MARGIN,
+    SHAPERS,
+    Candidate,
+    MachineLimits,
+    PlanProblem,
+    PlanStatus,
+)
+from sloshkit.plan.verification import _candidate, _only_slosh_violations
+from sloshkit.sim.batch import batch_metrics
+
+FloatArray = NDArray[np.float64]
+
+
+def _screen(
+    velocities: FloatArray, durations: FloatArray, problem: PlanProblem, dt: float
+) -> NDArray[np.bool_]:
+    """Slosh feasibility of many (samples x cases) velocity histories, with the search margin."""
+    keep = np.ones(durations.size, dtype=bool)
+    slosh = problem.slosh
+    for model in problem.models():
+        metrics = batch_metrics(model, velocities, durations, dt)
+        keep &= metrics.peak_angle_rad <= slosh.max_angle_rad * (1 - SEARCH_MARGIN)
+        keep &= metrics.residual_angle_rad <= slosh.max_residual_rad * (1 - SEARCH_MARGIN)
+        if slosh.max_wall_elevation_m is not None:
+            keep &= metrics.peak_wall_elevation_m <= slosh.max_wall_elevation_m * (
+                1 - SEARCH_MARGIN
+            )
+    return keep
+
+
+def _velocity_matrix(
+    motions: Sequence[Motion], dt: float, shaper: Shaper | None = None
+) -> tuple[FloatArray, FloatArray]:
+    """Velocity samples (samples x cases) of each motion, optionally shaped, and durations."""
+    extra = 0.0 if shaper is None else shaper.duration_s
+    durations = np.array([m.duration_s + extra for m in motions])
+    steps = math.ceil(float(durations.max()) / dt - 1e-9) + 2
+    t = np.arange(steps, dtype=float) * dt
+    matrix = np.zeros((steps, len(motions)))
+    delays = np.zeros(1) if shaper is None else shaper.times_s
+    amplitudes = np.ones(1) if shaper is None else shaper.amplitudes
+    for column, motion in enumerate(motions):
+        local = t[:, None] - delays[None, :]
+        inside = (local >= 0.0) & (local <= motion.duration_s)
+        values = np.zeros_like(local)
+        values[inside] = motion.derivative_pp(1)(local[inside])
+        matrix[:, column] = values @ amplitudes
+    return matrix, durations
+
+
+def _machine_floor(shape: Motion, limits: MachineLimits) -> float:
+    """Shortest duration at which a time-scaled law meets the velocity, acceleration and jerk
+    limits (its shape given for T = 1 s)."""
+    floors = [
+        shape.peak_velocity_m_s / limits.max_velocity_m_s,
+        math.sqrt(shape.peak_acceleration_m_s2 / limits.max_acceleration_m_s2),
+    ]
+    if math.isfinite(shape.peak_jerk_m_s3):
+        floors.append((shape.peak_jerk_m_s3 / limits.max_jerk_m_s3) ** (1.0 / 3.0))
+    return max(floors)
+
+
+def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate:
+    """The shortest duration at which a paper law meets the limits (scan, then bisection).
+
+    Laws with acceleration jumps have unbounded jerk: they are reported with the duration that
+    meets the other limits, and flagged infeasible under a jerk limit.
+    """
+    from sloshkit.motion.sampling import steps_for
+    from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
+
+    started = time.perf_counter()
+    shape = unit_duration_shape(make_law(law, problem.distance_m, duration_s=1.0))
+    floor = _machine_floor(shape, problem.machine)
+    dt = problem.sample_period_s  # screen on the grid the verification uses
+    velocity_pp = shape.derivative_pp(1)
+    upper = floor
+    for _ in range(6):  # widen the scan until something is feasible
+        upper *= 4.0
+        durations = np.linspace(floor, upper, grid)
+        velocity = scaled_velocity_samples(velocity_pp, durations, dt, steps_for(upper, dt))
+        feasible = _screen(velocity, durations, problem, dt)
+        if feasible.any():
+            break
+    else:
+        return Candidate(
+            law,
+            PlanStatus.INFEASIBLE,
+            None,
+            None,
+            time.perf_counter() - started,
+            f"no duration up to {upper:.3g} s meets the slosh limits",
+        )
+    first = int(np.argmax(feasible))
+    if first == 0:
+        best = float(durations[0])
+    else:
+        low, high = float(durations[first - 1]), float(durations[first])
+        for _ in range(30):
+            middle = 0.5 * (low + high)
+            single = scaled_velocity_samples(
+                velocity_pp, np.array([middle]), dt, steps_for(middle, dt)
+            )
+            if _screen(single, np.array([middle]), problem, dt)[0]:
+                high = middle
+            else:
+                low = middle
+        best = high
+    for attempt in range(first, durations.size):
+        duration = best if attempt == first else float(durations[attempt])
+        if attempt > first and not feasible[attempt]:
+            continue
+        candidate = _candidate(
+            law, make_law(law, problem.distance_m, duration_s=duration), problem, started
+        )
+        if candidate.feasible or not _only_slosh_violations(candidate):
+            return candidate
+    return candidate
+
+
+def shaper_for(name: str, model: SloshModel) -> Shaper:
+    """A shaper on the first mode (``zv``, ``zvd``, ``ei``) or ``zv2``: ZV on modes 1 and 2."""
+    first = model.modes[0]
+    if name == "zv2":
+        if len(model.modes) < 2:
+            return zv(first.omega_rad_s, first.damping_ratio)
+        second = model.modes[1]
+        shaper = zv(first.omega_rad_s, first.damping_ratio).convolve(
+            zv(second.omega_rad_s, second.damping_ratio)
+        )
+        return Shaper("zv2", shaper.amplitudes, shaper.times_s)
+    return make_shaper(name, first.omega_rad_s, first.damping_ratio)
+
+
+def plan_shaped(problem: PlanProblem, shapers: Sequence[str] = SHAPERS) -> Candidate:
+    """Shaped S-curves: for each shaper, a grid over the S-curve's acceleration and jerk limits
+    screened at once on the fast path, then a bisection on the acceleration; the fastest
+    verified result."""
+    started = time.perf_counter()
+    machine = problem.machine
+    dt = problem.sample_period_s  # screen on the grid the verification uses
+    best: Candidate | None = None
+    tried: list[str] = []
+    for name in shapers:
+        shaper = shaper_for(name, problem.model)
+        accelerations = machine.max_acceleration_m_s2 * np.geomspace(1e-3, 1.0, 40)
+        jerks = machine.max_jerk_m_s3 * np.array([1.0, 0.2, 0.04])
+        bases: list[Motion] = []
+        settings: list[tuple[float, float]] = []
+        for jerk in jerks:
+            for acceleration in accelerations:
+                bases.append(
+                    s_curve(problem.distance_m, machine.max_velocity_m_s, acceleration, jerk)
+                )
+                settings.append((acceleration, jerk))
+        velocity, durations = _velocity_matrix(bases, dt, shaper)
+        feasible = _screen(velocity, durations, problem, dt)
+        if not feasible.any():
+            tried.append(f"{name}: nothing feasible")
+            continue
+        index = int(np.argmin(np.where(feasible, durations, np.inf)))
+        acceleration, jerk = settings[index]
+        # Bisection on the acceleration between the best feasible and the next grid value.
+        ratio = float(accelerations[1] / accelerations[0])
+        low, high = acceleration, min(machine.max_acceleration_m_s2, acceleration * ratio)
+        for _ in range(14):
+            if high - low <= 1e-4 * low:
+                break
+            middle = 0.5 * (low + high)
+            base = s_curve(problem.distance_m, machine.max_velocity_m_s, middle, jerk)
+            single, duration = _velocity_matrix([base], dt, shaper)
+            if _screen(single, duration, problem, dt)[0] and duration[0] <= durations[index] + 1e-9:
+                low = middle
+            else:
+                high = middle
+        base = s_curve(problem.distance_m, machine.max_velocity_m_s, low, jerk)
+        candidate = _candidate(
+            f"shaped-{name}",
+            shape_motion(base, shaper),
+            problem,
+            started,
+            shaper=name,
+            base_acceleration_m_s2=low,
+            base_jerk_m_s3=jerk,
+        )
+        tried.append(f"{name}: {candidate.duration_s:.4f} s")
+        if best is None or (candidate.feasible, -candidate.duration_s) > (
+            best.feasible,
+            -best.duration_s,
+        ):
+            best = candidate
+    if best is None:
+        return Candidate(
+            "shaped",
+            PlanStatus.INFEASIBLE,
+            None,
+            None,
+            time.perf_counter() - started,
+            "no shaped S-curve meets the limits (" + "; ".join(tried) + ")",
+        )
+    return replace(
+        best,
+        compute_time_s=time.perf_counter() - started,
+        detail={**best.detail, "shapers_tried": tried},
+    )

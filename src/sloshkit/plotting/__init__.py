@@ -1,0 +1,1 @@
+"""Figures of result objects (matplotlib, imported only when a figure is drawn)."""

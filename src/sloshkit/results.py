@@ -1,0 +1,173 @@
+"""One protocol for every result object: ``to_dict``, ``to_pandas``, ``to_csv``, ``plot``.
+
+A result class inherits `ResultMixin` and implements one hook, `ResultMixin.columns` (named,
+equal-length 1-D arrays, SI units in the names); it may override `ResultMixin.to_dict` for a
+richer JSON document. ``plot`` delegates to a function of `sloshkit.plotting` registered for the
+result's class with `register_plot`, so the core never imports matplotlib: the first ``plot``
+call imports `sloshkit.plotting` (by name, through `importlib`), whose modules register their
+functions. See ``docs/conventions.md``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dataclasses import dataclass
+>>> @dataclass
+... class Decay(ResultMixin):
+...     t: np.ndarray
+...     def columns(self):
+...         return {"t_s": self.t, "angle_rad": np.exp(-self.t)}
+>>> Decay(np.array([0.0, 1.0])).to_dict()["angle_rad"]
+[1.0, 0.36787944117144233]
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from sloshkit.files import write_columns_csv
+
+#: The package whose import registers every plotting function.
+PLOTTING_PACKAGE = "sloshkit.plotting"
+
+PlotFunction = Callable[..., Any]
+_PLOTTERS: dict[type, PlotFunction] = {}
+
+
+@runtime_checkable
+class Result(Protocol):
+    """What every sloshkit result offers (structural type of `ResultMixin`)."""
+
+    def columns(self) -> Mapping[str, ArrayLike]:
+        """Named, equal-length 1-D arrays (SI units in the names)."""
+        ...  # pragma: no cover
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict (SI units in the keys)."""
+        ...  # pragma: no cover
+
+    def to_pandas(self) -> Any:
+        """`columns` as a pandas DataFrame."""
+        ...  # pragma: no cover
+
+    def to_csv(self, path: str | Path) -> Path:
+        """`columns` written as CSV."""
+        ...  # pragma: no cover
+
+    def plot(self, ax: Any = None, *, path: str | Path | None = None) -> Any:
+        """The result's figure."""
+        ...  # pragma: no cover
+
+
+def register_plot(result_type: type) -> Callable[[PlotFunction], PlotFunction]:
+    """Decorator: register ``function(result, ax=None, path=None) -> Figure`` for a result type.
+
+    Parameters
+    ----------
+    result_type : type
+        The result class whose ``plot`` method calls the decorated function.
+
+    Returns
+    -------
+    Callable
+        The decorator (returns the function unchanged).
+
+    Examples
+    --------
+    >>> class Dummy(ResultMixin):
+    ...     def columns(self):
+    ...         return {"t_s": [0.0]}
+    >>> @register_plot(Dummy)
+    ... def plot_dummy(result, ax=None, path=None):
+    ...     return "figure"
+    >>> Dummy().plot()
+    'figure'
+    """
+
+    def decorate(function: PlotFunction) -> PlotFunction:
+        _PLOTTERS[result_type] = function
+        return function
+
+    return decorate
+
+
+def plotter_for(result_type: type) -> PlotFunction:
+    """The plotting function registered for ``result_type`` (or one of its bases).
+
+    Parameters
+    ----------
+    result_type : type
+        A result class.
+
+    Returns
+    -------
+    Callable
+        The registered function; `sloshkit.plotting` is imported first if nothing is registered.
+
+    Raises
+    ------
+    TypeError
+        When no function is registered for the type.
+    """
+    for klass in result_type.__mro__:
+        if klass in _PLOTTERS:
+            return _PLOTTERS[klass]
+    importlib.import_module(PLOTTING_PACKAGE)
+    for klass in result_type.__mro__:
+        if klass in _PLOTTERS:
+            return _PLOTTERS[klass]
+    raise TypeError(f"no plotting function registered for {result_type.__name__}")
+
+
+def require_pandas() -> Any:
+    """Import pandas or raise an `ImportError` that says how to install it.
+
+    Returns
+    -------
+    module
+        The ``pandas`` module.
+    """
+    try:
+        import pandas
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise ImportError(
+            "to_pandas() needs pandas, which is optional: pip install pandas"
+        ) from exc
+    return pandas
+
+
+class ResultMixin:
+    """Default implementation of the result protocol from the `columns` hook."""
+
+    def columns(self) -> Mapping[str, ArrayLike]:
+        """Named, equal-length 1-D arrays (SI units in the names); implemented by each result."""
+        raise NotImplementedError(f"{type(self).__name__} does not define columns()")
+
+    def to_dict(self) -> dict[str, Any]:
+        """`columns` as lists of floats (override for a richer document)."""
+        return {
+            name: np.asarray(values, dtype=float).tolist()
+            for name, values in self.columns().items()
+        }
+
+    def to_pandas(self) -> Any:
+        """`columns` as a pandas DataFrame (pandas is imported here, and is optional)."""
+        return require_pandas().DataFrame(dict(self.columns()))
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write `columns` as CSV with a header row, atomically; returns the path."""
+        columns = {name: np.asarray(v, dtype=float) for name, v in self.columns().items()}
+        return write_columns_csv(path, columns)
+
+    def plot(self, ax: Any = None, *, path: str | Path | None = None) -> Any:
+        """The result's matplotlib Figure, drawn by the function registered for its type.
+
+        ``ax``: an Axes to draw into (its figure is returned) or None for a new Figure; the
+        figure is saved to ``path`` when given. No pyplot backend is selected.
+        """
+        return plotter_for(type(self))(self, ax=ax, path=path)

@@ -1,0 +1,198 @@
+"""Response objects of the simulations (time histories and the metrics derived from them)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.model.modal import SloshModel
+from sloshkit.sim.metrics import DEFAULT_SETTLE_TOLERANCE_RAD
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True, eq=False)
+class SloshResponse:
+    """Slosh response to a container motion (arrays over time; modes on the first axis).
+
+    Attributes
+    ----------
+    time_s : sample times [s], from 0, uniform step
+    position_m, velocity_m_s, acceleration_m_s2 : the container's motion
+    angle_rad, rate_rad_s : pendulum angle and angular rate, shape (modes, samples)
+    move_duration_s : the move's duration T [s]; after T the container rests
+    model : the `SloshModel` simulated; kind: ``"linear"`` or ``"nonlinear"``
+    residual_amplitude_rad : per mode, amplitude of the free oscillation left at T [rad]
+    """
+
+    time_s: FloatArray
+    position_m: FloatArray
+    velocity_m_s: FloatArray
+    acceleration_m_s2: FloatArray
+    angle_rad: FloatArray
+    rate_rad_s: FloatArray
+    move_duration_s: float
+    model: SloshModel
+    kind: str
+    residual_amplitude_rad: FloatArray
+    motion_name: str = ""
+    peak_jerk_m_s3: float = float("nan")
+    settle_tolerance_rad: float = DEFAULT_SETTLE_TOLERANCE_RAD
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def wall_elevation_m(self) -> FloatArray:
+        """Free-surface elevation at the wall on the +x side [m]: sum_n 2R/(xi_n^2-1) theta_n for
+        the linear model, with sin(theta_n) for the nonlinear one (linear mode-shape mapping,
+        see `sloshkit.model.modal.wall_elevation_factor`)."""
+        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
+        angles = self.angle_rad if self.kind == "linear" else np.sin(self.angle_rad)
+        return np.asarray(factors @ angles, dtype=float)
+
+    @property
+    def angular_acceleration_rad_s2(self) -> FloatArray:
+        """theta_n'' from the equation of motion [rad/s^2]."""
+        omega = np.array([mode.omega_rad_s for mode in self.model.modes])[:, None]
+        zeta = np.array([mode.damping_ratio for mode in self.model.modes])[:, None]
+        length = np.array([mode.length_m for mode in self.model.modes])[:, None]
+        theta = self.angle_rad
+        if self.kind == "linear":
+            return np.asarray(
+                -2 * zeta * omega * self.rate_rad_s
+                - omega**2 * theta
+                - self.acceleration_m_s2 / length,
+                dtype=float,
+            )
+        return np.asarray(
+            -2 * zeta * omega * self.rate_rad_s
+            - omega**2 * np.sin(theta)
+            - self.acceleration_m_s2 / length * np.cos(theta),
+            dtype=float,
+        )
+
+    @property
+    def slosh_force_n(self) -> FloatArray:
+        """Lateral force of the sloshing liquid on the container beyond rigid-body inertia [N]:
+        -sum_n m_n L_n (theta_n'' cos theta_n - theta_n'^2 sin theta_n) (the reaction of the
+        bobs' motion relative to the container). The whole liquid pushes with
+        -m_F x'' + slosh_force_n."""
+        mass = np.array([mode.slosh_mass_kg for mode in self.model.modes])[:, None]
+        length = np.array([mode.length_m for mode in self.model.modes])[:, None]
+        theta, rate = self.angle_rad, self.rate_rad_s
+        relative = self.angular_acceleration_rad_s2 * np.cos(theta) - rate**2 * np.sin(theta)
+        return np.asarray(-np.sum(mass * length * relative, axis=0), dtype=float)
+
+    def _during_move(self) -> NDArray[np.bool_]:
+        return np.asarray(self.time_s <= self.move_duration_s + 1e-12)
+
+    @property
+    def peak_angle_rad(self) -> float:
+        """Peak |theta_1| during the move [rad]."""
+        return float(np.max(np.abs(self.angle_rad[0, self._during_move()])))
+
+    @property
+    def peak_wall_elevation_m(self) -> float:
+        """Peak |wall elevation| during the move [m]."""
+        return float(np.max(np.abs(self.wall_elevation_m[self._during_move()])))
+
+    @property
+    def residual_angle_rad(self) -> float:
+        """Amplitude of the first mode's free oscillation left at the end of the move [rad]."""
+        return float(self.residual_amplitude_rad[0])
+
+    @property
+    def residual_wall_elevation_m(self) -> float:
+        """Bound on the wall elevation after the move: sum_n 2R/(xi_n^2-1) A_n [m]."""
+        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
+        return float(factors @ self.residual_amplitude_rad)
+
+    @property
+    def settling_time_s(self) -> float:
+        """Time from the start until |theta_1| stays below the tolerance [s].
+
+        After the move the first mode decays as A_T exp(-zeta omega (t - T)); if A_T is above
+        the tolerance the settling time is T + ln(A_T / tol) / (zeta omega) (inf without
+        damping), otherwise the last sample during the move above the tolerance.
+        """
+        tolerance = self.settle_tolerance_rad
+        mode = self.model.modes[0]
+        amplitude = self.residual_angle_rad
+        if amplitude > tolerance:
+            decay = mode.damping_ratio * mode.omega_rad_s
+            if decay <= 0.0:
+                return math.inf
+            return self.move_duration_s + math.log(amplitude / tolerance) / decay
+        during = self._during_move()
+        above = np.nonzero(np.abs(self.angle_rad[0, during]) > tolerance)[0]
+        if above.size == 0:
+            return 0.0
+        index = min(int(above[-1]) + 1, int(np.count_nonzero(during)) - 1)
+        return float(self.time_s[index])
+
+    def metrics(self) -> dict[str, float]:
+        """The simulate command's JSON keys (SI; angles in degrees as the keys say)."""
+        return {
+            "duration_s": self.move_duration_s,
+            "peak_angle_deg": math.degrees(self.peak_angle_rad),
+            "residual_angle_deg": math.degrees(self.residual_angle_rad),
+            "peak_wall_elevation_m": self.peak_wall_elevation_m,
+            "residual_wall_elevation_m": self.residual_wall_elevation_m,
+            "settling_time_s": self.settling_time_s,
+            "peak_acceleration_m_s2": float(np.max(np.abs(self.acceleration_m_s2))),
+            "peak_jerk_m_s3": self.peak_jerk_m_s3,
+        }
+
+    def columns(self) -> dict[str, FloatArray]:
+        """Time series as named columns (SI units in the names)."""
+        data: dict[str, FloatArray] = {
+            "t_s": self.time_s,
+            "position_m": self.position_m,
+            "velocity_m_s": self.velocity_m_s,
+            "acceleration_m_s2": self.acceleration_m_s2,
+        }
+        for index, mode in enumerate(self.model.modes):
+            data[f"angle_{mode.n}_rad"] = self.angle_rad[index]
+            data[f"rate_{mode.n}_rad_s"] = self.rate_rad_s[index]
+        data["wall_elevation_m"] = self.wall_elevation_m
+        data["slosh_force_n"] = self.slosh_force_n
+        return data
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write `columns` as CSV, atomically (temporary file, then rename)."""
+        from sloshkit.files import write_columns_csv
+
+        return write_columns_csv(path, self.columns())
+
+    def to_pandas(self) -> Any:
+        """`columns` as a pandas DataFrame (pandas is optional)."""
+        try:
+            import pandas as pd
+        except ImportError as exc:  # pragma: no cover - depends on the environment
+            raise ImportError("to_pandas() needs pandas: pip install pandas") from exc
+        return pd.DataFrame(self.columns())
+
+    def plot(self, path: str | Path | None = None) -> Any:
+        """Figure of the motion, the slosh angles and the wall elevation; saved if ``path``."""
+        from sloshkit.plotting.figures import plot_response
+
+        return plot_response(self, path)
+
+
+@dataclass(frozen=True, eq=False)
+class CartPendulumResponse:
+    """Response of the cart-pendulum system to a force on the cart.
+
+    ``position_m``, ``velocity_m_s``: the cart; ``angle_rad``, ``rate_rad_s``: (modes, samples).
+    """
+
+    time_s: FloatArray
+    position_m: FloatArray
+    velocity_m_s: FloatArray
+    angle_rad: FloatArray
+    rate_rad_s: FloatArray
+    acceleration_m_s2: FloatArray
