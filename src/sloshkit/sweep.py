@@ -24,9 +24,8 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
 from sloshkit.model.modal import DampingLaw, equivalent_model
 from sloshkit.motion.laws import LAW_NAMES, make_law
-from sloshkit.motion.sampling import steps_for
-from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
-from sloshkit.sim.batch import batch_metrics
+from sloshkit.motion.scaling import unit_duration_shape
+from sloshkit.sim.batch_kernel import law_metrics
 
 FloatArray = NDArray[np.float64]
 
@@ -176,7 +175,8 @@ def run_sweep(
     """Evaluate every (law, fill height, duration) case on the linear fast path.
 
     Give either ``durations_s`` or ``peak_accelerations_m_s2``. ``progress(done, total)`` is called
-    after each block of cases. Memory is bounded by ``chunk_cases`` velocity histories.
+    after each (law, fill height). The velocity is sampled inside the kernel
+    (`sloshkit.sim.batch_kernel.law_metrics`): memory is O(cases).
     """
     started = time.perf_counter()
     distance = require_positive("distance", distance_m, "m")
@@ -238,25 +238,19 @@ def run_sweep(
 
     shape = (len(laws), heights.size, grid.size)
     results = {key: np.zeros(shape) for key in ("peak", "residual", "wall", "wall_residual")}
-    per_chunk = max(1, min(grid.size, chunk_cases))
     total = len(laws) * heights.size * grid.size
     done = 0
     for i, law_shape in enumerate(shapes):
         velocity_pp = law_shape.derivative_pp(1)
-        for start in range(0, grid.size, per_chunk):
-            block = durations[i, start : start + per_chunk]
-            steps = steps_for(float(block.max()), dt)
-            velocity = scaled_velocity_samples(velocity_pp, block, dt, steps)
-            for j, model in enumerate(models):
-                metrics = batch_metrics(model, velocity, block, dt)
-                stop = start + block.size
-                results["peak"][i, j, start:stop] = metrics.peak_angle_rad
-                results["residual"][i, j, start:stop] = metrics.residual_angle_rad
-                results["wall"][i, j, start:stop] = metrics.peak_wall_elevation_m
-                results["wall_residual"][i, j, start:stop] = metrics.residual_wall_elevation_m
-                done += block.size
-                if progress is not None:
-                    progress(done, total)
+        for j, model in enumerate(models):
+            metrics = law_metrics(model, velocity_pp, durations[i], dt, chunk_cases)
+            results["peak"][i, j] = metrics.peak_angle_rad
+            results["residual"][i, j] = metrics.residual_angle_rad
+            results["wall"][i, j] = metrics.peak_wall_elevation_m
+            results["wall_residual"][i, j] = metrics.residual_wall_elevation_m
+            done += grid.size
+            if progress is not None:
+                progress(done, total)
     return SweepResult(
         laws=tuple(laws),
         fill_heights_m=heights,
