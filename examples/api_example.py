@@ -20,7 +20,7 @@ print(
 )
 
 for law in (quintic(0.5, 1.5), septic(0.5, 1.5)):
-    response = simulate(law, model)
+    response = simulate(model, law)
     print(
         f"{law.name:>8}: peak {math.degrees(response.peak_angle_rad):.2f} deg, "
         f"residual {math.degrees(response.residual_angle_rad):.3f} deg"

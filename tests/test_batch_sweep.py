@@ -49,8 +49,8 @@ def test_fast_path_equals_single_case_simulation(
     metrics = batch_metrics(model, velocity, block, dt, use_numba=use_numba)
     for index, duration in enumerate(block):
         single = simulate(
-            make_law(law, distance, duration_s=duration),
             model,
+            make_law(law, distance, duration_s=duration),
             sample_period_s=dt,
             settle_time_s=0.0,
         )
@@ -122,7 +122,7 @@ def test_sweep_summary_agrees_with_per_case_metrics():
     model = equivalent_model(
         UprightCylinder(0.0205), get_liquid("water-25C"), row["fill_height_m"], damping_ratio=0.03
     )
-    single = simulate(make_law(row["law"], 0.5, duration_s=row["duration_s"]), model)
+    single = simulate(model, make_law(row["law"], 0.5, duration_s=row["duration_s"]))
     assert row["residual_angle_deg"] == pytest.approx(
         np.degrees(single.residual_angle_rad), rel=1e-7
     )

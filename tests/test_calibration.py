@@ -78,7 +78,7 @@ def test_fit_recovers_frequency_and_damping(frequency, zeta, noise, offset, drif
 def test_simulator_round_trip(tmp_path):
     """A free decay produced by the slosh simulator returns the model's own omega and zeta."""
     model = seed_vial_table3()
-    response = simulate(trapezoidal(0.01, duration_s=0.25), model, settle_time_s=6.0)
+    response = simulate(model, trapezoidal(0.01, duration_s=0.25), settle_time_s=6.0)
     after = response.time_s >= 0.3
     result = calibrate(response.time_s[after], response.angle_rad[0, after], start_s=0.3)
     mode = model.modes[0]

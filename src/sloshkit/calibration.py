@@ -34,6 +34,7 @@ from scipy.optimize import curve_fit
 
 from sloshkit.errors import InputError, ValidityWarning, require_increasing
 from sloshkit.model.modal import SloshModel
+from sloshkit.results import plotter_for
 
 FloatArray = NDArray[np.float64]
 Method = Literal["fit", "logdec", "fft"]
@@ -492,9 +493,7 @@ class CalibrationResult:
 
     def plot(self, path: str | Path | None = None) -> Any:
         """Signal, detected peaks and fitted envelope (the seed paper's Fig. 5b)."""
-        from sloshkit.plotting.figures import plot_calibration
-
-        return plot_calibration(self, path)
+        return plotter_for(type(self))(self, path=path)
 
 
 def _disagreement(estimates: dict[str, Estimate]) -> dict[str, float | None]:

@@ -23,6 +23,7 @@ Examples
 from __future__ import annotations
 
 import importlib
+import os
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
@@ -59,7 +60,7 @@ class Result(Protocol):
         """`columns` written as CSV."""
         ...  # pragma: no cover
 
-    def plot(self, ax: Any = None, *, path: str | Path | None = None) -> Any:
+    def plot(self, ax: Any = None, *, path: str | Path | None = None, **options: Any) -> Any:
         """The result's figure."""
         ...  # pragma: no cover
 
@@ -164,10 +165,14 @@ class ResultMixin:
         columns = {name: np.asarray(v, dtype=float) for name, v in self.columns().items()}
         return write_columns_csv(path, columns)
 
-    def plot(self, ax: Any = None, *, path: str | Path | None = None) -> Any:
+    def plot(self, ax: Any = None, *, path: str | Path | None = None, **options: Any) -> Any:
         """The result's matplotlib Figure, drawn by the function registered for its type.
 
         ``ax``: an Axes to draw into (its figure is returned) or None for a new Figure; the
-        figure is saved to ``path`` when given. No pyplot backend is selected.
+        figure is saved to ``path`` when given; ``options`` go to the plotting function. No
+        pyplot backend is selected. A path given in place of ``ax`` (the v1 signature
+        ``plot(path)``) is taken as ``path``.
         """
-        return plotter_for(type(self))(self, ax=ax, path=path)
+        if isinstance(ax, str | os.PathLike):
+            ax, path = None, ax
+        return plotter_for(type(self))(self, ax=ax, path=path, **options)

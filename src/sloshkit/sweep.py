@@ -15,17 +15,20 @@ import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError, require_positive
+from sloshkit.files import write_rows_csv
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
 from sloshkit.model.modal import DampingLaw, equivalent_model
 from sloshkit.motion.laws import LAW_NAMES, make_law
 from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
+from sloshkit.results import ResultMixin, require_pandas
 from sloshkit.sim.batch import batch_metrics
 
 FloatArray = NDArray[np.float64]
@@ -35,7 +38,7 @@ SWEEP_LAWS: tuple[str, ...] = LAW_NAMES
 
 
 @dataclass(frozen=True, eq=False)
-class SweepResult:
+class SweepResult(ResultMixin):
     """Metrics over the grid; arrays indexed [law, fill height, duration].
 
     ``durations_s`` and ``peak_acceleration_m_s2`` are (laws, durations): identical rows when
@@ -98,9 +101,15 @@ class SweepResult:
 
     def to_csv(self, path: str | Path) -> Path:
         """Write `rows` as CSV, atomically."""
-        from sloshkit.files import write_rows_csv
-
         return write_rows_csv(path, self.rows())
+
+    def to_pandas(self) -> Any:
+        """`rows` as a pandas DataFrame (one row per case; pandas is optional)."""
+        return require_pandas().DataFrame(self.rows())
+
+    def to_dict(self) -> dict[str, Any]:
+        """The `summary` and every case (`rows`)."""
+        return {**self.summary(), "rows": self.rows()}
 
     def shortest_safe(self) -> list[dict[str, object]]:
         """Per fill height, the shortest safe duration over all laws (None if none is safe)."""
@@ -143,12 +152,11 @@ class SweepResult:
 
     def plot_maps(self, folder: str | Path) -> list[Path]:
         """Heat maps of peak and residual slosh angle, one panel per law (PNG)."""
-        from sloshkit.plotting.figures import plot_sweep_map
 
         target = Path(folder)
         paths = [target / "peak_angle_map.png", target / "residual_angle_map.png"]
-        plot_sweep_map(self, "peak_angle_deg", paths[0])
-        plot_sweep_map(self, "residual_angle_deg", paths[1])
+        self.plot(path=paths[0], quantity="peak_angle_deg")
+        self.plot(path=paths[1], quantity="residual_angle_deg")
         return paths
 
 

@@ -19,6 +19,8 @@ from sloshkit.cfd.results import CfdSignals, read_signals
 from sloshkit.cfd.run import RunResult, run_case, write_case
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.model.modal import SloshModel
+from sloshkit.motion.laws import from_samples
+from sloshkit.sim.simulate import simulate
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).
 RECOMMENDED = {"cells_per_radius": 10, "delta_t_s": 5e-4, "ddt_scheme": "Euler", "end_time_s": 3.0}
@@ -128,12 +130,10 @@ def model_wall_elevation(
 ) -> np.ndarray:
     """The pendulum model's wall elevation at x = x_over_r R for a sampled container
     acceleration: each mode scaled by J1(xi_n x/R)/J1(xi_n) (the linear mode shape)."""
-    from sloshkit.motion.laws import from_samples
-    from sloshkit.sim.simulate import simulate
 
     motion = from_samples(time_s, acceleration_m_s2=acceleration, name="cfd excitation")
     dt = float(np.median(np.diff(time_s)))
-    response = simulate(motion, model, sample_period_s=dt, settle_time_s=0.0)
+    response = simulate(model, motion, sample_period_s=dt, settle_time_s=0.0)
     shape = np.array([j1(m.bessel_root * x_over_r) / j1(m.bessel_root) for m in model.modes])
     factors = np.array([m.wall_elevation_factor_m for m in model.modes]) * shape
     elevation = factors @ response.angle_rad

@@ -11,9 +11,12 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.calibration import METHODS, calibrate
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError
+from sloshkit.io.models import write_model_file
+from sloshkit.io.tables import column_name, read_table, select_column, unit_from_name
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 
@@ -66,9 +69,6 @@ def calibrate_command(
 
       sloshkit calibrate probes.dat --signal-column 2 --method logdec --model-file-out vial.toml
     """
-    from sloshkit.calibration import METHODS, calibrate
-    from sloshkit.io.models import write_model_file
-    from sloshkit.io.tables import column_name, read_table, select_column, unit_from_name
 
     if method not in METHODS:
         raise InputError("method", method, "must be one of " + ", ".join(METHODS))

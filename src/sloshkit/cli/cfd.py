@@ -9,12 +9,18 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cfd.pipeline import analyse, case_spec, describe, excitation_from_options, validate
+from sloshkit.cfd.pipeline import run as run_cfd
+from sloshkit.cfd.run import CfdError
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.errors import InputError
+from sloshkit.files import write_columns_csv
+from sloshkit.io.models import write_model_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
+from sloshkit.plotting import plot_cfd_validation
 
 cfd_app = typer.Typer(
     help="The volume-of-fluid step with OpenFOAM (interFoam): generate, run, analyse, validate.",
@@ -80,7 +86,6 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
 
 
 def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
-    from sloshkit.cfd.pipeline import case_spec, excitation_from_options
 
     motion = None
     if options["excitation"] == "law":
@@ -117,9 +122,6 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
         TimeRemainingColumn,
     )
 
-    from sloshkit.cfd.pipeline import run as run_cfd
-    from sloshkit.cfd.run import CfdError
-
     with Progress(
         TextColumn("interFoam"),
         BarColumn(),
@@ -155,7 +157,6 @@ def _print_analysis(
     plot: Path | None,
     slosh_model: SloshModel | None,
 ) -> None:
-    from sloshkit.cfd.pipeline import describe
 
     payload = analysis.to_dict()
     if slosh_model is not None:
@@ -164,8 +165,6 @@ def _print_analysis(
             "frequency_hz": slosh_model.modes[0].frequency_hz,
         }
         if model_file_out is not None:
-            from sloshkit.io.models import write_model_file
-
             write_model_file(model_file_out, analysis.calibration.calibrated_model(slosh_model))
             payload["model_file"] = str(model_file_out)
     if plot is not None:
@@ -222,7 +221,6 @@ def cfd_run_command(
 
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
     """
-    from sloshkit.cfd.pipeline import analyse
 
     spec = _cfd_spec(slosh_model, case_options)
     _run_with_progress(spec, case, resume, overwrite)
@@ -245,7 +243,6 @@ def cfd_analyse_command(
 
       sloshkit cfd analyse vial-decay --json
     """
-    from sloshkit.cfd.pipeline import analyse
 
     if not (case / "sloshkit-case.json").is_file():
         raise InputError("case", str(case), "is not a sloshkit CFD case")
@@ -253,8 +250,6 @@ def cfd_analyse_command(
         case, method, None if start is None else parse_quantity(start, "time", "start")
     )
     if csv is not None:
-        from sloshkit.files import write_columns_csv
-
         write_columns_csv(csv, analysis.signals.columns())
     _print_analysis(analysis, json_output, None, plot, None)
 
@@ -279,15 +274,12 @@ def cfd_validate_command(
 
       sloshkit cfd validate --case vial-harmonic --excitation harmonic --np 2 --plot fig9.png
     """
-    from sloshkit.cfd.pipeline import validate
 
     if not reuse:
         spec = _cfd_spec(slosh_model, case_options)
         _run_with_progress(spec, case, False, True)
     result = validate(case, slosh_model)
     if plot is not None:
-        from sloshkit.plotting.figures import plot_cfd_validation
-
         plot_cfd_validation(result, plot)
     summary = {
         k: v

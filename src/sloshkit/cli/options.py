@@ -16,6 +16,8 @@ from typing import Annotated, Any
 import typer
 
 from sloshkit.errors import InputError
+from sloshkit.files import json_safe
+from sloshkit.io.models import read_model_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
@@ -171,7 +173,6 @@ def build_model(
 
 def print_json(payload: object) -> None:
     """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null)."""
-    from sloshkit.files import json_safe
 
     sys.stdout.write(json.dumps(json_safe(payload), indent=2, allow_nan=False) + "\n")
 
@@ -235,8 +236,6 @@ def with_options(
 def _model_from_options(values: dict[str, Any]) -> SloshModel:
     model_file = values.pop("model_file")
     if model_file is not None:
-        from sloshkit.io.models import read_model_file
-
         return typing.cast(SloshModel, read_model_file(model_file))
     return build_model(**values)
 

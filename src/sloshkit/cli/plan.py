@@ -17,6 +17,8 @@ from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
+from sloshkit.plan.planner import plan
+from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 
 
 @app.command("plan")
@@ -69,8 +71,6 @@ def plan_command(
       sloshkit plan --distance 0.5m --max-angle 5deg --max-residual 0.25deg --vmax 1.5m/s
       --amax 20m/s^2 --jmax 500m/s^3 --damping-ratio 0.03 --out traj.csv --plot plan.png
     """
-    from sloshkit.plan.planner import plan
-    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 
     missing = [
         name

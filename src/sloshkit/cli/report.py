@@ -8,18 +8,20 @@ from typing import Annotated, Any
 
 import typer
 
+from sloshkit.cfd.case import FreeDecay
+from sloshkit.cfd.pipeline import analyse, case_spec
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.cfd import _run_with_progress
 from sloshkit.cli.options import Json, print_json
+from sloshkit.io.scenario import read_scenario
 from sloshkit.model.modal import SloshModel
+from sloshkit.report.build import build_report, paper_scenario
 
 
 def _run_report(
     scenario: Any, out: Path, cfd_calibration: Any = None, json_output: bool = False
 ) -> None:
     from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
-
-    from sloshkit.report.build import build_report
 
     with Progress(
         SpinnerColumn(),
@@ -76,7 +78,6 @@ def reproduce_command(
 
       sloshkit reproduce --out report/
     """
-    from sloshkit.report.build import paper_scenario
 
     scenario = paper_scenario()
     calibration = None
@@ -90,8 +91,6 @@ def reproduce_command(
 def _cfd_free_decay(slosh_model: SloshModel, case: Path) -> Any:
     """Calibration from a free-decay CFD case: reused when it has results, else run with the
     recommended settings on 2 MPI ranks (a few minutes), with a progress bar."""
-    from sloshkit.cfd.case import FreeDecay
-    from sloshkit.cfd.pipeline import analyse, case_spec
 
     if not (case / "postProcessing").is_dir():
         stderr.print(f"running the OpenFOAM free decay in {case} (a few minutes)")
@@ -113,7 +112,6 @@ def run_command(
 
       sloshkit run examples/vial-2ml.toml --out vial-2ml-report/
     """
-    from sloshkit.io.scenario import read_scenario
 
     scenario = read_scenario(scenario_file)
     calibration = None

@@ -31,7 +31,8 @@ from sloshkit.cli.options import (
     print_json,
 )
 from sloshkit.errors import InputError
-from sloshkit.io.units import parse_quantity
+from sloshkit.io.units import parse_quantity, parse_range
+from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
 
 MaxAngle = Annotated[
     str | None, typer.Option("--max-angle", help="Limit on the peak slosh angle, e.g. 5deg.")
@@ -100,9 +101,6 @@ def sweep_command(
       --laws trapezoidal,cubic,quintic,septic --max-angle 10deg --max-residual 1deg --out maps/
     """
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
-
-    from sloshkit.io.units import parse_range
-    from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
 
     container = build_container(radius, wall_height)
     if fill_height is not None and fill_volume is not None:

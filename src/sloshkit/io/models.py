@@ -9,6 +9,9 @@ from typing import Any
 
 from sloshkit.errors import InputError
 from sloshkit.files import atomic_open, write_json
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import Liquid
+from sloshkit.model.modal import SloshMode, SloshModel
 
 MODEL_FILE_VERSION = 1
 
@@ -72,10 +75,6 @@ def read_model_file(path: str | Path) -> Any:
     file's ``provenance`` table says where they came from.
     """
     import tomllib
-
-    from sloshkit.model.geometry import UprightCylinder
-    from sloshkit.model.liquids import Liquid
-    from sloshkit.model.modal import SloshMode, SloshModel
 
     source = Path(path)
     if not source.is_file():

@@ -174,9 +174,42 @@ def damping_ratio_correlation(
 class SloshMode:
     """One sloshing mode of the equivalent pendulum model (SI units).
 
-    Heights are measured from the container bottom. ``length_m`` is the geometric pendulum
-    length; with a surface-tension or calibrated frequency, omega_n^2 differs from g / L_n and
-    the pendulum equation uses omega_n (an effective gravity) while the forcing keeps 1/L_n.
+    Heights are measured from the container bottom. ``length_m`` is the geometric pendulum length;
+    with a surface-tension or calibrated frequency, omega_n^2 differs from g / L_n and the pendulum
+    equation uses omega_n (an effective gravity) while the forcing keeps 1/L_n.
+
+    Parameters
+    ----------
+    n : int
+        Mode number (1 = fundamental lateral mode).
+    bessel_root : float
+        xi_n, the n-th root of J_1'(xi) = 0.
+    omega_rad_s : float
+        Natural circular frequency omega_n [rad/s].
+    slosh_mass_kg : float
+        Sloshing (pendulum) mass m_n [kg].
+    length_m : float
+        Pendulum length L_n [m].
+    bob_height_m : float
+        Height of the bob above the bottom [m].
+    damping_ratio : float
+        Damping ratio zeta_n [-].
+    wall_elevation_factor_m : float
+        Wall elevation per radian of pendulum angle, 2R/(xi_n^2 - 1) [m/rad].
+
+    References
+    ----------
+    R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press (2005),
+        doi:10.1017/CBO9780511536656.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> mode = model.modes[0]
+    >>> mode.n, round(mode.frequency_hz, 3)
+    (1, 4.72)
     """
 
     n: int
@@ -218,8 +251,40 @@ class SloshMode:
 class SloshModel:
     """Equivalent mechanical model of a filled upright cylinder: rigid mass plus pendulums.
 
-    Build it with `equivalent_model`; `with_mode` returns a calibrated copy.
-    ``provenance`` says where each value came from (theory, correlation, calibration).
+    Build it with `equivalent_model`; `with_mode` returns a calibrated copy. ``provenance`` says
+    where each value came from (theory, correlation, calibration).
+
+    Parameters
+    ----------
+    container : UprightCylinder
+        The container.
+    liquid : Liquid
+        The liquid.
+    fill_height_m : float
+        Static fill height h [m].
+    modes : tuple of SloshMode
+        The modelled modes, fundamental first.
+    gravity_m_s2 : float
+        Gravitational acceleration g [m/s^2].
+    damping_law : str
+        Name of the damping correlation used.
+    surface_tension_correction : bool
+        Whether the Bond-number frequency correction was applied.
+    provenance : mapping of str to str
+        Where each value came from.
+
+    References
+    ----------
+    R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press (2005),
+        doi:10.1017/CBO9780511536656.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> len(model.modes), round(model.liquid_mass_kg * 1e3, 1)  # g
+    (3, 51.3)
     """
 
     container: UprightCylinder
@@ -335,21 +400,50 @@ def equivalent_model(
 ) -> SloshModel:
     """Equivalent pendulum model of the first ``n_modes`` antisymmetric (lateral) modes.
 
+    The correlation's first-mode damping ratio is used for every mode: the correlations exist for
+    mode 1 only, and higher modes carry under 2 % of the slosh moment. Warns (`ValidityWarning`)
+    for very shallow fills, capillary-dominated containers and damping so high that the
+    boundary-layer correlations no longer hold.
+
     Parameters
     ----------
-    container : the upright cylinder (radius, optional wall height)
-    liquid : density, viscosity, surface tension
-    fill_height_m : static fill height h [m]
-    n_modes : number of modes (1..50)
-    damping_law : first-mode correlation, see `damping_ratio_correlation`
-    damping_ratio : if given, overrides the correlation (all modes) [-]
-    surface_tension : apply the Bond-number frequency correction `surface_tension_factor`
-    gravity_m_s2 : gravitational acceleration g [m/s^2]
+    container : UprightCylinder
+        The upright cylinder (radius, optional wall height).
+    liquid : Liquid
+        Density, viscosity, surface tension.
+    fill_height_m : float
+        Static fill height h [m].
+    n_modes : int
+        Number of modes (1..50).
+    damping_law : str
+        First-mode correlation, see `sloshkit.model.modal.damping_ratio_correlation`.
+    damping_ratio : float, optional
+        If given, overrides the correlation (all modes) [-].
+    surface_tension : bool
+        Apply the Bond-number frequency correction
+        (`sloshkit.model.modal.surface_tension_factor`).
+    gravity_m_s2 : float
+        Gravitational acceleration g [m/s^2].
 
-    The correlation's first-mode damping ratio is used for every mode: the correlations exist
-    for mode 1 only, and higher modes carry under 2 % of the slosh moment.
-    Warns (`ValidityWarning`) for very shallow fills, capillary-dominated containers and
-    damping so high that the boundary-layer correlations no longer hold.
+    Returns
+    -------
+    SloshModel
+        The model, with the provenance of every value.
+
+    References
+    ----------
+    H. N. Abramson (ed.), *The Dynamic Behavior of Liquids in Moving Containers*, NASA SP-106
+    (1966), ch. 2 and 6; R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press
+    (2005), doi:10.1017/CBO9780511536656; M. C. De Simone et al., Appl. Sci. 14 (2024) 4522,
+    eqs. 1, 2, 8, 9, doi:10.3390/app14114522.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> round(model.modes[0].frequency_hz, 3), round(model.modes[0].length_m * 1e3, 2)  # Hz, mm
+    (4.72, 11.15)
     """
     radius = container.radius_m
     height = container.check_fill_height(fill_height_m)

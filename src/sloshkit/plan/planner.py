@@ -24,7 +24,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -35,6 +34,8 @@ from sloshkit.motion.sampling import export_samples
 from sloshkit.plan.optimal import plan_optimal
 from sloshkit.plan.problem import PAPER_LAWS, Candidate, PlanProblem
 from sloshkit.plan.searches import plan_paper_law, plan_shaped
+from sloshkit.results import ResultMixin
+from sloshkit.sim.discretisation import linear_response
 
 FloatArray = NDArray[np.float64]
 
@@ -43,7 +44,7 @@ METHODS: tuple[str, ...] = ("auto", "paper", *PAPER_LAWS, "fast", "shaped", "opt
 
 
 @dataclass(frozen=True, eq=False)
-class PlanResult:
+class PlanResult(ResultMixin):
     """The chosen motion and every candidate tried."""
 
     problem: PlanProblem
@@ -61,11 +62,40 @@ class PlanResult:
             raise InputError("plan", "infeasible", "no motion to export")
         return export_samples(self.chosen.motion, self.problem.sample_period_s)
 
-    def to_csv(self, path: str | Path) -> Path:
-        """Write the controller samples, atomically."""
-        from sloshkit.files import write_columns_csv
+    def columns(self) -> dict[str, FloatArray]:
+        """The controller samples of the chosen motion (`samples`): the CSV columns."""
+        return self.samples()
 
-        return write_columns_csv(path, self.samples())
+    def histories(self) -> list[dict[str, Any]]:
+        """Per verified candidate: its exported samples and the first mode's angle re-simulated
+        from them (nominal model), for figures.
+
+        Returns
+        -------
+        list of dict
+            Keys ``method``, ``duration_s``, ``chosen``, ``t_s``, ``velocity_m_s``,
+            ``acceleration_m_s2`` and ``angle_1_rad``.
+        """
+        histories = []
+        for candidate in self.candidates:
+            if candidate.motion is None or not candidate.feasible:
+                continue
+            samples = export_samples(candidate.motion, self.problem.sample_period_s)
+            angle, _ = linear_response(
+                self.problem.model, samples["velocity_m_s"], self.problem.sample_period_s
+            )
+            histories.append(
+                {
+                    "method": candidate.method,
+                    "duration_s": candidate.duration_s,
+                    "chosen": candidate is self.chosen,
+                    "t_s": samples["t_s"],
+                    "velocity_m_s": samples["velocity_m_s"],
+                    "acceleration_m_s2": samples["acceleration_m_s2"],
+                    "angle_1_rad": angle[0],
+                }
+            )
+        return histories
 
     def to_dict(self) -> dict[str, Any]:
         """The plan command's JSON."""
@@ -84,12 +114,6 @@ class PlanResult:
             else best_paper / self.chosen.duration_s,
             "candidates": [c.to_dict() for c in self.candidates],
         }
-
-    def plot(self, path: str | Path | None = None) -> Any:
-        """Velocity, acceleration and slosh angle of the chosen move and the candidates."""
-        from sloshkit.plotting.figures import plot_plan
-
-        return plot_plan(self, path)
 
 
 def plan(

@@ -28,9 +28,20 @@ from typing import Any
 
 import numpy as np
 
+from sloshkit.calibration import calibrate, zeta_from_log_decrement
 from sloshkit.errors import ValidityWarning
-from sloshkit.io.scenario import Scenario
+from sloshkit.files import write_columns_csv, write_json, write_rows_csv
+from sloshkit.io.scenario import PAPER_SCENARIO, Scenario, parse_scenario
+from sloshkit.io.tables import read_table, select_column
+from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
+from sloshkit.motion import trapezoidal
+from sloshkit.motion.laws import comparison_s_curve_limits, make_law
+from sloshkit.plan.planner import plan
+from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison, plot_sweep_map
+from sloshkit.sim.simulate import simulate
+from sloshkit.sweep import linspace_inclusive, run_sweep
 
 Progress = Callable[[str], None]
 
@@ -91,7 +102,6 @@ class ReportWriter:
         formats: dict[str, str] | None = None,
     ) -> str:
         """Write tables/NAME.csv and .json; return the HTML table."""
-        from sloshkit.files import write_json, write_rows_csv
 
         write_rows_csv(self.staging / "tables" / f"{name}.csv", list(rows))
         write_json(self.staging / "tables" / f"{name}.json", list(rows))
@@ -270,9 +280,6 @@ def _calibration_section(
 ) -> SloshModel:
     """Calibrate from the scenario's data file, from CFD, or (paper) demonstrate on a
     synthetic free decay; returns the model the later sections use."""
-    from sloshkit.calibration import calibrate, zeta_from_log_decrement
-    from sloshkit.motion import trapezoidal
-    from sloshkit.sim.simulate import simulate
 
     model = scenario.model
     body = ""
@@ -281,9 +288,6 @@ def _calibration_section(
         result = cfd_result
         body += "<p>Calibrated from the OpenFOAM free-decay run (wall elevation).</p>"
     elif scenario.calibrate:
-        from sloshkit.io.tables import read_table, select_column
-        from sloshkit.io.units import parse_quantity
-
         options = scenario.calibrate
         header, table = read_table(options["data"])
         scale = parse_quantity(f"1 {options['time_unit']}", "time", "time_unit")
@@ -306,7 +310,7 @@ def _calibration_section(
             "the model itself (ζ = 0.03, 2 % noise); run <code>sloshkit reproduce --cfd</code> for a "
             "real OpenFOAM calibration.</p>"
         )
-        response = simulate(trapezoidal(0.01, duration_s=0.25), model, settle_time_s=8.0)
+        response = simulate(model, trapezoidal(0.01, duration_s=0.25), settle_time_s=8.0)
         after = response.time_s >= 0.3
         signal = response.wall_elevation_m[after]
         noise = np.random.default_rng(2024).normal(0.0, 0.02 * np.max(np.abs(signal)), signal.size)
@@ -424,9 +428,6 @@ def _free_response_figure(result: Any, model: SloshModel) -> Any:
 
 
 def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
-    from sloshkit.motion.laws import comparison_s_curve_limits, make_law
-    from sloshkit.plotting.figures import plot_law_comparison, plot_slosh_comparison
-    from sloshkit.sim.simulate import simulate
 
     motions = []
     for name in scenario.laws:
@@ -448,7 +449,7 @@ def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel
         )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
-        responses = [simulate(motion, model) for motion in motions]
+        responses = [simulate(model, motion) for motion in motions]
     rows = []
     for motion, response in zip(motions, responses, strict=True):
         metrics = response.metrics()
@@ -495,8 +496,6 @@ def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel
 
 
 def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
-    from sloshkit.plotting.figures import plot_sweep_map
-    from sloshkit.sweep import linspace_inclusive, run_sweep
 
     options = scenario.sweep
     heights = linspace_inclusive(*options["fill_height"])
@@ -544,8 +543,6 @@ def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) 
 
 
 def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
-    from sloshkit.plan.planner import plan
-    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 
     limits = scenario.plan_limits
     problem = PlanProblem(
@@ -591,7 +588,6 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
             + (f" — {speed_up:.2f}× faster than the best of the paper's laws." if speed_up else ".")
             + "</p>"
         )
-        from sloshkit.files import write_columns_csv
 
         write_columns_csv(
             writer.staging / "tables" / "fastest_move_trajectory.csv", result.samples()
@@ -664,6 +660,5 @@ def build_report(
 
 def paper_scenario() -> Scenario:
     """The seed paper's case as a `Scenario`."""
-    from sloshkit.io.scenario import PAPER_SCENARIO, parse_scenario
 
     return parse_scenario(PAPER_SCENARIO, "built in: De Simone et al. (2024)")

@@ -4,20 +4,25 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.model.modal import SloshModel
-from sloshkit.sim.metrics import DEFAULT_SETTLE_TOLERANCE_RAD
+from sloshkit.results import ResultMixin
+from sloshkit.sim.equations import pendulum_angular_acceleration
+from sloshkit.sim.metrics import (
+    DEFAULT_SETTLE_TOLERANCE_RAD,
+    wall_elevation,
+    wall_elevation_factors,
+)
 
 FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True, eq=False)
-class SloshResponse:
+class SloshResponse(ResultMixin):
     """Slosh response to a container motion (arrays over time; modes on the first axis).
 
     Attributes
@@ -50,9 +55,12 @@ class SloshResponse:
         """Free-surface elevation at the wall on the +x side [m]: sum_n 2R/(xi_n^2-1) theta_n for
         the linear model, with sin(theta_n) for the nonlinear one (linear mode-shape mapping,
         see `sloshkit.model.modal.wall_elevation_factor`)."""
-        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
-        angles = self.angle_rad if self.kind == "linear" else np.sin(self.angle_rad)
-        return np.asarray(factors @ angles, dtype=float)
+        return np.asarray(
+            wall_elevation(
+                wall_elevation_factors(self.model), self.angle_rad, nonlinear=self.kind != "linear"
+            ),
+            dtype=float,
+        )
 
     @property
     def angular_acceleration_rad_s2(self) -> FloatArray:
@@ -60,18 +68,16 @@ class SloshResponse:
         omega = np.array([mode.omega_rad_s for mode in self.model.modes])[:, None]
         zeta = np.array([mode.damping_ratio for mode in self.model.modes])[:, None]
         length = np.array([mode.length_m for mode in self.model.modes])[:, None]
-        theta = self.angle_rad
-        if self.kind == "linear":
-            return np.asarray(
-                -2 * zeta * omega * self.rate_rad_s
-                - omega**2 * theta
-                - self.acceleration_m_s2 / length,
-                dtype=float,
-            )
         return np.asarray(
-            -2 * zeta * omega * self.rate_rad_s
-            - omega**2 * np.sin(theta)
-            - self.acceleration_m_s2 / length * np.cos(theta),
+            pendulum_angular_acceleration(
+                self.angle_rad,
+                self.rate_rad_s,
+                self.acceleration_m_s2,
+                omega,
+                zeta,
+                length,
+                nonlinear=self.kind != "linear",
+            ),
             dtype=float,
         )
 
@@ -108,8 +114,7 @@ class SloshResponse:
     @property
     def residual_wall_elevation_m(self) -> float:
         """Bound on the wall elevation after the move: sum_n 2R/(xi_n^2-1) A_n [m]."""
-        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
-        return float(factors @ self.residual_amplitude_rad)
+        return float(wall_elevation_factors(self.model) @ self.residual_amplitude_rad)
 
     @property
     def settling_time_s(self) -> float:
@@ -162,25 +167,14 @@ class SloshResponse:
         data["slosh_force_n"] = self.slosh_force_n
         return data
 
-    def to_csv(self, path: str | Path) -> Path:
-        """Write `columns` as CSV, atomically (temporary file, then rename)."""
-        from sloshkit.files import write_columns_csv
-
-        return write_columns_csv(path, self.columns())
-
-    def to_pandas(self) -> Any:
-        """`columns` as a pandas DataFrame (pandas is optional)."""
-        try:
-            import pandas as pd
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError("to_pandas() needs pandas: pip install pandas") from exc
-        return pd.DataFrame(self.columns())
-
-    def plot(self, path: str | Path | None = None) -> Any:
-        """Figure of the motion, the slosh angles and the wall elevation; saved if ``path``."""
-        from sloshkit.plotting.figures import plot_response
-
-        return plot_response(self, path)
+    def to_dict(self) -> dict[str, Any]:
+        """The metrics (`metrics`), the model kind, the motion's name and the time series."""
+        return {
+            "kind": self.kind,
+            "motion": self.motion_name,
+            **self.metrics(),
+            "columns": {name: values.tolist() for name, values in self.columns().items()},
+        }
 
 
 @dataclass(frozen=True, eq=False)
