@@ -61,7 +61,7 @@ _API: dict[str, str] = {
     # sweeps, planning, calibration
     "run_sweep": "sloshkit.sweep",
     "SweepResult": "sloshkit.sweep",
-    "plan": "sloshkit.plan.planner",
+    "plan": "sloshkit",  # the callable package sloshkit.plan (see its docstring)
     "PlanResult": "sloshkit.plan.planner",
     "PlanProblem": "sloshkit.plan.problem",
     "MachineLimits": "sloshkit.plan.problem",
@@ -120,7 +120,10 @@ def __getattr__(name: str) -> Any:
     module = _API.get(name)
     if module is None:
         raise AttributeError(f"module 'sloshkit' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
+    if module == __name__:  # a callable subpackage
+        value = importlib.import_module(f"{__name__}.{name}")
+    else:
+        value = getattr(importlib.import_module(module), name)
     globals()[name] = value
     return value
 

@@ -414,7 +414,32 @@ def estimate_fit(prepared: PreparedSignal, omega_guess: float, zeta_guess: float
 
 @dataclass(frozen=True, eq=False)
 class CalibrationResult:
-    """Calibrated frequency and damping, with every estimator's answer for comparison."""
+    """Calibrated frequency and damping, with every estimator's answer for comparison.
+
+    Parameters
+    ----------
+    method : str
+        The estimator reported.
+    chosen : Estimate
+        Its estimate.
+    estimates : dict of str to Estimate
+        Every estimator's estimate.
+    signal : PreparedSignal
+        The windowed, detrended signal.
+    source : str
+        Where the signal comes from.
+    peak_times_s, peak_values : numpy.ndarray
+        Detected peaks [s] and their values.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sloshkit as sk
+    >>> t = np.linspace(0.0, 4.0, 2001)
+    >>> result = sk.calibrate(t, np.exp(-0.9 * t) * np.cos(30.0 * t))
+    >>> sorted(result.estimates)
+    ['fft', 'fit', 'logdec']
+    """
 
     method: str
     chosen: Estimate
@@ -521,8 +546,45 @@ def calibrate(
 ) -> CalibrationResult:
     """Frequency and damping of the free decay in (time, values), by every estimator.
 
-    ``method`` chooses which result is reported (and written to a model file); all are
-    computed. Raises `InputError` for signals that are not a free decay.
+    ``method`` chooses which result is reported (and written to a model file); all are computed.
+    Raises `InputError` for signals that are not a free decay.
+
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Sample times [s], strictly increasing.
+    values : numpy.ndarray
+        The decaying signal (any unit: wall elevation, angle, ...).
+    method : str
+        Reported estimator: ``fit``, ``logdec`` or ``fft``.
+    start_s, end_s : float, optional
+        Window of the free decay [s].
+    detrend : {"mean", "linear", "none"}
+        Trend removed before estimating.
+    lowpass_hz : float, optional
+        Low-pass cut-off [Hz].
+    source : str
+        Where the signal comes from (kept in the provenance).
+
+    Returns
+    -------
+    CalibrationResult
+        The chosen estimate and every estimator's answer.
+
+    References
+    ----------
+    M. C. De Simone et al., Appl. Sci. 14 (2024) 4522, §3 (logarithmic decrement),
+    doi:10.3390/app14114522.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sloshkit as sk
+    >>> t = np.linspace(0.0, 4.0, 2001)
+    >>> signal = np.exp(-0.03 * 30.0 * t) * np.cos(30.0 * np.sqrt(1 - 0.03**2) * t)
+    >>> result = sk.calibrate(t, signal)
+    >>> round(result.omega_n_rad_s, 1), round(result.damping_ratio, 3)
+    (30.0, 0.03)
     """
     if method not in METHODS:
         raise InputError("method", method, "must be one of " + ", ".join(METHODS))

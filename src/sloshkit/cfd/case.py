@@ -3,7 +3,7 @@
 Choices, and why
 ----------------
 - **Millimetres.** interFoam on O-grid cylinders in metres diverged within a few steps on this
-  version, the same mesh scaled by 1000 ran stably (../shared/cfd-notes.md). Lengths are in mm,
+  version, the same mesh scaled by 1000 ran stably (docs/cfd.md, "units"). Lengths are in mm,
   so g' = 9810, nu' = 1e6 nu, sigma' = 1e9 sigma, accelerations x 1000; forces come back x 1e-12.
 - **Container frame, body force.** The vial translates rigidly, so the flow is solved on a
   static mesh in the container's frame with the fictitious force -rho a(t), through the fvOption

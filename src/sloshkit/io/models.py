@@ -57,7 +57,30 @@ def model_to_document(model: Any) -> dict[str, Any]:
 
 
 def write_model_file(path: str | Path, model: Any) -> Path:
-    """Write a model file: TOML for ``.toml``, JSON otherwise; atomically."""
+    """Write a model file: TOML for ``.toml``, JSON otherwise; atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+        Target file.
+    model : SloshModel
+        The model (`SloshModel.to_dict` is what is written).
+
+    Returns
+    -------
+    Path
+        The file written.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> path = sk.write_model_file(pathlib.Path(tempfile.mkdtemp()) / "vial.toml", model)
+    >>> sk.read_model_file(path).modes[0].omega_rad_s == model.modes[0].omega_rad_s
+    True
+    """
     document = model_to_document(model)
     if Path(path).suffix.lower() == ".toml":
         import tomli_w
@@ -71,8 +94,28 @@ def write_model_file(path: str | Path, model: Any) -> Path:
 def read_model_file(path: str | Path) -> Any:
     """Read a model file written by `write_model_file` (TOML or JSON) into a `SloshModel`.
 
-    Each mode's frequency and damping are taken as written (they may be calibrated); the
-    file's ``provenance`` table says where they came from.
+    Each mode's frequency and damping are taken as written (they may be calibrated); the file's
+    ``provenance`` table says where they came from.
+
+    Parameters
+    ----------
+    path : str or Path
+        The model file.
+
+    Returns
+    -------
+    SloshModel
+        The model.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> path = sk.write_model_file(pathlib.Path(tempfile.mkdtemp()) / "vial.json", model)
+    >>> sk.read_model_file(path).fill_height_m
+    0.039
     """
     import tomllib
 

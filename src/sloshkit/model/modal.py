@@ -24,7 +24,7 @@ gravity is at h/2. Each mode's bob (slosh mass) hangs at ``bob_height_m``, its p
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import Literal, get_args
 
@@ -91,7 +91,7 @@ def bob_offset_from_cg(radius_m: float, fill_height_m: float, xi: np.ndarray | f
 
     H_n = h/2 - (d/xi_n) tanh(xi_n h / d), the spring-mass location of Dodge (2000) §3. The seed
     paper's Table 3 prints this value (-0.0015 m) as its "pendulum hinge location"; the pivot is
-    in fact L_n above the bob (see ../shared/physics-notes.md).
+    in fact L_n above the bob (Dodge (2000) §3: the hinge of the equivalent pendulum).
     """
     xi = np.asarray(xi, dtype=float)
     d = 2.0 * radius_m
@@ -199,7 +199,7 @@ class SloshMode:
 
     References
     ----------
-    R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press (2005),
+    Ibrahim, R. A., *Liquid Sloshing Dynamics*, Cambridge University Press (2005),
         doi:10.1017/CBO9780511536656.
 
     Examples
@@ -275,7 +275,7 @@ class SloshModel:
 
     References
     ----------
-    R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press (2005),
+    Ibrahim, R. A., *Liquid Sloshing Dynamics*, Cambridge University Press (2005),
         doi:10.1017/CBO9780511536656.
 
     Examples
@@ -432,7 +432,7 @@ def equivalent_model(
 
     References
     ----------
-    H. N. Abramson (ed.), *The Dynamic Behavior of Liquids in Moving Containers*, NASA SP-106
+    Abramson, H. N. (ed.), *The Dynamic Behavior of Liquids in Moving Containers*, NASA SP-106
     (1966), ch. 2 and 6; R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press
     (2005), doi:10.1017/CBO9780511536656; M. C. De Simone et al., Appl. Sci. 14 (2024) 4522,
     eqs. 1, 2, 8, 9, doi:10.3390/app14114522.
@@ -524,3 +524,60 @@ def equivalent_model(
         surface_tension_correction=surface_tension,
         provenance=provenance,
     )
+
+
+def model_family(
+    container: UprightCylinder,
+    liquid: Liquid,
+    *,
+    n_modes: int = 3,
+    damping_law: DampingLaw = "seed",
+    damping_ratio: float | None = None,
+    surface_tension: bool = False,
+    gravity_m_s2: float = GRAVITY_M_S2,
+) -> Callable[[float], SloshModel]:
+    """The `equivalent_model` of one container and liquid as a function of the fill height.
+
+    Parameters
+    ----------
+    container : UprightCylinder
+        The container.
+    liquid : Liquid
+        The liquid.
+    n_modes : int
+        Number of modes.
+    damping_law : str
+        Damping correlation (see `equivalent_model`).
+    damping_ratio : float, optional
+        Damping ratio overriding the correlation [-].
+    surface_tension : bool
+        Apply the Bond-number frequency correction.
+    gravity_m_s2 : float
+        Gravitational acceleration [m/s^2].
+
+    Returns
+    -------
+    callable
+        ``family(fill_height_m) -> SloshModel``, e.g. for `sloshkit.run_sweep`.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> family = model_family(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"))
+    >>> family(0.039).fill_height_m
+    0.039
+    """
+
+    def family(fill_height_m: float) -> SloshModel:
+        return equivalent_model(
+            container,
+            liquid,
+            fill_height_m,
+            n_modes=n_modes,
+            damping_law=damping_law,
+            damping_ratio=damping_ratio,
+            surface_tension=surface_tension,
+            gravity_m_s2=gravity_m_s2,
+        )
+
+    return family

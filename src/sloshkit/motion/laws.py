@@ -55,6 +55,20 @@ class Motion:
     """A rest-to-rest motion: position s(t) [m] as a piecewise polynomial on [0, T].
 
     Build it with a law function (`trapezoidal`, `quintic`, `s_curve`, ...), not directly.
+
+    Parameters
+    ----------
+    name : str
+        The law's name.
+    position_pp : scipy.interpolate.PPoly
+        Position s(t) [m], t from 0 to T [s].
+
+    Examples
+    --------
+    >>> from sloshkit import quintic
+    >>> law = quintic(0.1, 1.0)
+    >>> law.duration_s, round(law.distance_m, 12), round(law.peak_acceleration_m_s2, 4)
+    (1.0, 0.1, 0.5774)
     """
 
     name: str
@@ -184,24 +198,123 @@ def _normalised_polynomial(
 
 
 def cubic(distance_m: float, duration_s: float) -> Motion:
-    """Cubic polynomial, zero end velocities (``cubicpolytraj``): s = D (3 tau^2 - 2 tau^3)."""
+    """Cubic polynomial, zero end velocities (``cubicpolytraj``): s = D (3 tau^2 - 2 tau^3).
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    duration_s : float
+        Move duration T [s].
+
+    Returns
+    -------
+    Motion
+        The law as an exact piecewise polynomial.
+
+    References
+    ----------
+    Biagiotti, L., C. Melchiorri, *Trajectory Planning for Automatic Machines and Robots*,
+    Springer (2008), §2.1, doi:10.1007/978-3-540-85629-0.
+
+    Examples
+    --------
+    >>> from sloshkit import cubic
+    >>> law = cubic(0.1, 1.0)
+    >>> round(law.peak_velocity_m_s, 4)
+    0.15
+    """
     return _normalised_polynomial("cubic", distance_m, duration_s, [0, 0, 3, -2])
 
 
 def quintic(distance_m: float, duration_s: float) -> Motion:
-    """Quintic, zero end velocity and acceleration: s = D (10 tau^3 - 15 tau^4 + 6 tau^5)."""
+    """Quintic, zero end velocity and acceleration: s = D (10 tau^3 - 15 tau^4 + 6 tau^5).
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    duration_s : float
+        Move duration T [s].
+
+    Returns
+    -------
+    Motion
+        The law as an exact piecewise polynomial.
+
+    References
+    ----------
+    Biagiotti, L., C. Melchiorri, *Trajectory Planning for Automatic Machines and Robots*,
+    Springer (2008), §2.1, doi:10.1007/978-3-540-85629-0.
+
+    Examples
+    --------
+    >>> from sloshkit import quintic
+    >>> law = quintic(0.1, 1.0)
+    >>> round(law.peak_velocity_m_s, 4)
+    0.1875
+    """
     return _normalised_polynomial("quintic", distance_m, duration_s, [0, 0, 0, 10, -15, 6])
 
 
 def septic(distance_m: float, duration_s: float) -> Motion:
     """Jerk-continuous 7th-degree polynomial, zero end velocity, acceleration and jerk:
-    s = D (35 tau^4 - 84 tau^5 + 70 tau^6 - 20 tau^7) (Biagiotti & Melchiorri 2008 §2.1.6)."""
+    s = D (35 tau^4 - 84 tau^5 + 70 tau^6 - 20 tau^7).
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    duration_s : float
+        Move duration T [s].
+
+    Returns
+    -------
+    Motion
+        The law as an exact piecewise polynomial.
+
+    References
+    ----------
+    Biagiotti, L., C. Melchiorri, *Trajectory Planning for Automatic Machines and Robots*,
+    Springer (2008), §2.1.6, doi:10.1007/978-3-540-85629-0.
+
+    Examples
+    --------
+    >>> from sloshkit import septic
+    >>> law = septic(0.1, 1.0)
+    >>> round(law.peak_velocity_m_s, 4)
+    0.2188
+    """
     return _normalised_polynomial("septic", distance_m, duration_s, [0, 0, 0, 0, 35, -84, 70, -20])
 
 
 def minimum_jerk(distance_m: float, duration_s: float) -> Motion:
-    """Minimum integral of squared jerk between rest states (Flash & Hogan 1985); equal to the
-    quintic rest-to-rest polynomial."""
+    """Minimum integral of squared jerk between rest states; equal to the quintic polynomial.
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    duration_s : float
+        Move duration T [s].
+
+    Returns
+    -------
+    Motion
+        The law as an exact piecewise polynomial.
+
+    References
+    ----------
+    Flash, T., N. Hogan, The coordination of arm movements, J. Neurosci. 5 (1985) 1688-1703,
+    doi:10.1523/JNEUROSCI.05-07-01688.1985.
+
+    Examples
+    --------
+    >>> from sloshkit import minimum_jerk
+    >>> law = minimum_jerk(0.1, 1.0)
+    >>> round(law.peak_velocity_m_s, 4)
+    0.1875
+    """
     return _normalised_polynomial("minimum-jerk", distance_m, duration_s, [0, 0, 0, 10, -15, 6])
 
 
@@ -214,9 +327,38 @@ def trapezoidal(
     """Trapezoidal velocity profile with MATLAB ``trapveltraj`` semantics.
 
     Give the peak velocity V, the duration T, or both. With one of them the acceleration (and
-    deceleration) phase lasts ``acceleration_fraction`` of T (default 1/3, as ``trapveltraj``),
-    so D = V T (1 - f): e.g. D = 0.5 m, V = 0.5 m/s gives T = 1.5 s and a = 1 m/s^2. With both,
-    the acceleration time is T - D/V and must lie in (0, T/2].
+    deceleration) phase lasts ``acceleration_fraction`` of T (default 1/3, as ``trapveltraj``), so
+    D = V T (1 - f): e.g. D = 0.5 m, V = 0.5 m/s gives T = 1.5 s and a = 1 m/s^2. With both, the
+    acceleration time is T - D/V and must lie in (0, T/2].
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    peak_velocity_m_s : float, optional
+        Peak (cruise) velocity V [m/s].
+    duration_s : float, optional
+        Move duration T [s].
+    acceleration_fraction : float, optional
+        Fraction of T spent accelerating, in (0, 0.5].
+
+    Returns
+    -------
+    Motion
+        The law (a cubic `PPoly` with acceleration jumps).
+
+    References
+    ----------
+    Biagiotti, L., C. Melchiorri, *Trajectory Planning for Automatic Machines and Robots*,
+    Springer (2008), §3.2, doi:10.1007/978-3-540-85629-0; M. C. De Simone et al., Appl. Sci. 14
+    (2024) 4522, doi:10.3390/app14114522.
+
+    Examples
+    --------
+    >>> from sloshkit import trapezoidal
+    >>> law = trapezoidal(0.5, peak_velocity_m_s=0.5)
+    >>> round(law.duration_s, 9), round(law.peak_acceleration_m_s2, 6)
+    (1.5, 1.0)
     """
     distance = require_positive("distance", distance_m, "m")
     if peak_velocity_m_s is None and duration_s is None:
@@ -294,6 +436,34 @@ def s_curve(
 
     The segment durations and jerks ruckig returns are integrated exactly, so the law is a cubic
     `PPoly` that matches ruckig's trajectory to rounding.
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance [m].
+    max_velocity_m_s : float
+        Velocity limit [m/s].
+    max_acceleration_m_s2 : float
+        Acceleration limit [m/s^2].
+    max_jerk_m_s3 : float
+        Jerk limit [m/s^3].
+
+    Returns
+    -------
+    Motion
+        The shortest move within the limits.
+
+    References
+    ----------
+    Berscheid, L., T. Kröger, Jerk-limited real-time trajectory generation with arbitrary target
+    states, Robotics: Science and Systems XVII (2021), doi:10.15607/RSS.2021.XVII.015.
+
+    Examples
+    --------
+    >>> from sloshkit import s_curve
+    >>> law = s_curve(0.1, 1.0, 2.0, 50.0)
+    >>> round(law.peak_acceleration_m_s2, 6), round(law.peak_jerk_m_s3, 6)
+    (2.0, 50.0)
     """
     from ruckig import InputParameter, Result, Ruckig, Trajectory
 
@@ -326,13 +496,38 @@ def from_samples(
 ) -> Motion:
     """A user motion from samples of position or of acceleration (times strictly increasing).
 
-    - position: interpolating quintic spline with zero velocity and acceleration at both ends
-      (the move is rest to rest), differentiated analytically; give smooth, well-sampled data,
-      since differentiation amplifies noise.
+    - position: interpolating quintic spline with zero velocity and acceleration at both ends (the
+      move is rest to rest), differentiated analytically; give smooth, well-sampled data, since
+      differentiation amplifies noise.
     - acceleration: interpolating cubic spline (not-a-knot), integrated analytically from rest;
       the distance is what the integral gives.
 
     Time is shifted to start at 0.
+
+    Parameters
+    ----------
+    time_s : array_like
+        Sample times [s], strictly increasing.
+    position_m : array_like, optional
+        Position samples [m] (give these or ``acceleration_m_s2``).
+    acceleration_m_s2 : array_like, optional
+        Acceleration samples [m/s^2].
+    name : str
+        Name of the motion.
+
+    Returns
+    -------
+    Motion
+        The interpolated motion.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit import from_samples, quintic
+    >>> t = np.linspace(0.0, 1.0, 101)
+    >>> law = from_samples(t, position_m=quintic(0.1, 1.0).position(t))
+    >>> round(law.distance_m, 9)
+    0.1
     """
     t = np.asarray(time_s, dtype=float)
     if (position_m is None) == (acceleration_m_s2 is None):
@@ -397,6 +592,36 @@ def make_law(
     Polynomial laws need a duration, or a peak velocity from which the duration is that of the
     trapezoidal law with the same peak velocity (the seed paper's comparison at equal time).
     ``s-curve`` needs the three machine limits; its duration follows from them.
+
+    Parameters
+    ----------
+    name : str
+        One of `LAW_NAMES`.
+    distance_m : float
+        Travel distance [m].
+    duration_s : float, optional
+        Move duration [s].
+    peak_velocity_m_s : float, optional
+        Peak velocity [m/s] (sets the duration through the trapezoidal law).
+    max_velocity_m_s, max_acceleration_m_s2, max_jerk_m_s3 : float, optional
+        Limits of an ``s-curve`` [m/s, m/s^2, m/s^3].
+    acceleration_fraction : float, optional
+        Acceleration fraction of the trapezoidal law.
+
+    Returns
+    -------
+    Motion
+        The law.
+
+    References
+    ----------
+    M. C. De Simone et al., Appl. Sci. 14 (2024) 4522, doi:10.3390/app14114522.
+
+    Examples
+    --------
+    >>> from sloshkit import make_law
+    >>> make_law("septic", 0.1, duration_s=2.0).duration_s
+    2.0
     """
     if name == "s-curve":
         missing = [

@@ -7,10 +7,13 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from sloshkit.calibration import CalibrationResult
 from sloshkit.plotting.base import panels, save_figure
 from sloshkit.results import register_plot
+
+FloatArray = NDArray[np.float64]
 
 
 @register_plot(CalibrationResult)
@@ -54,4 +57,45 @@ def plot_calibration(
     axis.set_ylabel("signal (detrended)")
     axis.grid(alpha=0.3)
     axis.legend(loc="upper right")
+    return save_figure(figure, path)
+
+
+def plot_free_response(
+    time_s: FloatArray,
+    measured_m: FloatArray,
+    model_m: FloatArray,
+    model_label: str,
+    path: str | Path | None = None,
+    *,
+    ax: Any = None,
+) -> Any:
+    """A measured (or CFD) wall elevation and the pendulum's free response over it (seed Fig. 9).
+
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Sample times [s].
+    measured_m : numpy.ndarray
+        Measured wall elevation [m].
+    model_m : numpy.ndarray
+        The model's free response at the same times [m].
+    model_label : str
+        Legend of the model's curve.
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+    """
+    figure, axis = panels(ax, 1, figsize=(8, 4), layout="constrained")
+    axis.plot(time_s, 1e3 * measured_m, label="CFD (interFoam), wall elevation")
+    axis.plot(time_s, 1e3 * model_m, "--", label=model_label)
+    axis.set_xlabel("time [s]")
+    axis.set_ylabel("wall elevation [mm]")
+    axis.grid(alpha=0.3)
+    axis.legend()
     return save_figure(figure, path)

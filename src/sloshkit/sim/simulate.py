@@ -65,7 +65,7 @@ def simulate(
     settle_time_s : float, optional
         Time simulated after the move [s] (default `sloshkit.sim.metrics.default_settle_time`).
     settle_tolerance_rad : float
-        Tolerance on |theta_1| for the settling time [rad].
+        Tolerance on abs(theta_1) for the settling time [rad].
 
     Returns
     -------
