@@ -19,7 +19,7 @@ from sloshkit.cfd.results import CfdSignals, read_signals
 from sloshkit.cfd.run import RunResult, run_case, write_case
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import from_samples
+from sloshkit.motion.recorded import from_samples
 from sloshkit.sim.simulate import simulate
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).

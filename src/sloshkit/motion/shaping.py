@@ -26,7 +26,7 @@ from scipy.interpolate import PPoly
 from scipy.optimize import least_squares
 
 from sloshkit.errors import InputError, require_in_range, require_positive
-from sloshkit.motion.laws import Motion
+from sloshkit.motion.profile import Motion
 
 FloatArray = NDArray[np.float64]
 SHAPER_NAMES: tuple[str, ...] = ("zv", "zvd", "ei")

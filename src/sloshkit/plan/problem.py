@@ -9,7 +9,7 @@ from typing import Any
 
 from sloshkit.errors import require_in_range, require_positive
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion
+from sloshkit.motion.profile import Motion
 
 PAPER_LAWS: tuple[str, ...] = ("trapezoidal", "cubic", "quintic", "septic")
 

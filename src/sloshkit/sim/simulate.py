@@ -20,7 +20,7 @@ from scipy.integrate import solve_ivp
 
 from sloshkit.errors import InputError, require_positive, warn_validity
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion
+from sloshkit.motion.profile import Motion
 from sloshkit.sim.discretisation import linear_response
 from sloshkit.sim.equations import pendulum_angular_acceleration
 from sloshkit.sim.metrics import (
