@@ -136,10 +136,12 @@ def test_cli_forced_identification_from_motion_and_pose_files(tmp_path):
         (tm + record.motion_start_s, zeros, position, zeros, zeros, zeros, zeros, ones),
     )
     model_options = ("--radius", "40mm", "--fill-height", "60mm", "--liquid", "water-25C")
-    for motion in (move, poses):
+    figures = ("--plot", str(tmp_path / "forced.png"), "--backbone-plot", str(tmp_path / "b.png"))
+    for motion, extra in ((move, figures), (poses, ())):
         proc = run_entry_point(
             "calibrate", str(data), "--time-column", "t", "--signal-column", "fy",
             "--signal-kind", "force", "--motion-file", str(motion), *model_options, "--json",
+            *extra,
         )  # fmt: skip
         assert proc.returncode == 0, proc.stderr
         payload = json.loads(proc.stdout)
@@ -151,6 +153,8 @@ def test_cli_forced_identification_from_motion_and_pose_files(tmp_path):
         assert payload["decay"]["window"]["forcing_end_s"] == pytest.approx(
             record.motion_start_s + record.motion.duration_s, abs=1e-6
         )
+    assert (tmp_path / "forced.png").stat().st_size > 10_000
+    assert (tmp_path / "b.png").stat().st_size > 10_000
     proc = run_entry_point(
         "calibrate", str(data), "--time-column", "t", "--signal-column", "fy",
         "--method", "forced",
