@@ -25,12 +25,14 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
 from sloshkit.cfd.excitation import (
     Excitation,
     FreeDecay,
     Harmonic,
     MotionExcitation,
-    acceleration_table,
+    frame_motion,
 )
 from sloshkit.cfd.fields import initial_fields, set_fields_dict, transport_properties
 from sloshkit.cfd.foam import Raw, foam_file, format_number
@@ -44,6 +46,7 @@ __all__ = [
     "FreeDecay",
     "Harmonic",
     "MotionExcitation",
+    "acceleration_table",
     "block_mesh_dict",
     "case_files",
     "control_dict",
@@ -67,6 +70,24 @@ MPI_LOCAL_OPTIONS = (
     "oob_tcp_if_include",
     "lo",
 )
+
+
+def acceleration_table(spec: CaseSpec, step_s: float = 1e-3) -> str:
+    """``constant/acceleration.dat``: (t ((ax ay az) (wx wy wz) (dwx dwy dwz))), lengths in mm,
+    covering [0, endTime + 0.1 s] (a time outside the table is fatal)."""
+    end = spec.end_time_s + 0.1
+    t = np.arange(0.0, end + step_s, step_s)
+    linear, omega, alpha = frame_motion(spec.excitation, t)
+    linear = linear * SCALE
+
+    def vector(v: np.ndarray) -> str:
+        return "(" + " ".join(format_number(float(x)) for x in v) + ")"
+
+    rows = "\n".join(
+        f"({format_number(round(float(time), 9))} ({vector(a)} {vector(w)} {vector(dw)}))"
+        for time, a, w, dw in zip(t, linear, omega, alpha, strict=True)
+    )
+    return f"{t.size}\n(\n{rows}\n)\n"
 
 
 def probe_points(spec: CaseSpec) -> list[str]:

@@ -11,16 +11,9 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
-
-from sloshkit.cfd.foam import format_number
-from sloshkit.cfd.spec import SCALE
-
-if TYPE_CHECKING:
-    from sloshkit.cfd.spec import CaseSpec
 
 FloatArray = NDArray[np.float64]
 
@@ -69,10 +62,11 @@ class MotionExcitation:
 Excitation = FreeDecay | Harmonic | MotionExcitation
 
 
-def frame_motion(spec: CaseSpec, t: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+def frame_motion(
+    excitation: Excitation, t: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Linear acceleration [m/s^2], angular velocity [rad/s] and angular acceleration
     [rad/s^2] of the container frame at ``t``, each (n, 3)."""
-    excitation = spec.excitation
     frames = getattr(excitation, "frame_motion", None)
     if frames is not None:
         linear, omega, alpha = frames(t)
@@ -80,21 +74,3 @@ def frame_motion(spec: CaseSpec, t: FloatArray) -> tuple[FloatArray, FloatArray,
     linear = np.zeros((t.size, 3))
     linear[:, 0] = excitation.acceleration(t)
     return linear, np.zeros((t.size, 3)), np.zeros((t.size, 3))
-
-
-def acceleration_table(spec: CaseSpec, step_s: float = 1e-3) -> str:
-    """``constant/acceleration.dat``: (t ((ax ay az) (wx wy wz) (dwx dwy dwz))), lengths in mm,
-    covering [0, endTime + 0.1 s] (a time outside the table is fatal)."""
-    end = spec.end_time_s + 0.1
-    t = np.arange(0.0, end + step_s, step_s)
-    linear, omega, alpha = frame_motion(spec, t)
-    linear = linear * SCALE
-
-    def vector(v: FloatArray) -> str:
-        return "(" + " ".join(format_number(float(x)) for x in v) + ")"
-
-    rows = "\n".join(
-        f"({format_number(round(float(time), 9))} ({vector(a)} {vector(w)} {vector(dw)}))"
-        for time, a, w, dw in zip(t, linear, omega, alpha, strict=True)
-    )
-    return f"{t.size}\n(\n{rows}\n)\n"

@@ -7,25 +7,16 @@ diverged within a few steps on v1912, the same mesh scaled by 1000 ran stably.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
+from sloshkit.cfd.excitation import Excitation, FreeDecay
 from sloshkit.errors import InputError, require_in_range, require_positive
 from sloshkit.model.liquids import Liquid
-
-if TYPE_CHECKING:
-    from sloshkit.cfd.excitation import Excitation
 
 SCALE = 1000.0  # metres -> millimetres
 #: Air at 25 degC, 1 atm: the seed paper's Table 1.
 AIR_DENSITY_KG_M3 = 1.185
 AIR_VISCOSITY_PA_S = 1.831e-5
 DDT_SCHEMES = ("Euler", "CrankNicolson 0.9", "backward")
-
-
-def _default_excitation() -> Excitation:
-    from sloshkit.cfd.excitation import FreeDecay
-
-    return FreeDecay()
 
 
 @dataclass(frozen=True)
@@ -47,7 +38,7 @@ class CaseSpec:
     radius_m: float
     fill_height_m: float
     liquid: Liquid
-    excitation: Excitation = field(default_factory=_default_excitation)
+    excitation: Excitation = field(default_factory=FreeDecay)
     domain_height_m: float | None = None
     cells_per_radius: int = 10
     end_time_s: float = 3.0
