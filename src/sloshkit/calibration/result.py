@@ -48,8 +48,42 @@ def _estimate_dict(estimate: Estimate) -> dict[str, Any]:
 class CalibrationResult(ResultMixin):
     """Calibrated frequency and damping, with every estimator's answer for comparison.
 
-    ``method`` is the estimator reported (and written to a model file); ``requested_method``
-    the one asked for (they differ when it failed and another answered, with a warning).
+    ``method`` is the estimator reported (and written to a model file); ``requested_method`` the
+    one asked for (they differ when it failed and another answered, with a warning).
+
+    Attributes
+    ----------
+    method : str
+        The estimator reported.
+    chosen : Estimate
+        Its estimate.
+    estimates : dict of str to Estimate
+        Every estimator's estimate.
+    signal : PreparedSignal
+        The windowed, detrended signal.
+    source : str
+        Where the signal comes from.
+    peak_times_s, peak_values : numpy.ndarray
+        Detected peaks [s] and their values.
+    window : DecayWindow, optional
+        The free-decay window found (or given).
+    warnings : tuple of str
+        Warnings raised while calibrating.
+    noise_rms : float, optional
+        Noise level of the record.
+    backbone : Backbone, optional
+        Frequency and damping against amplitude, when computed.
+    requested_method : str
+        The estimator asked for.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sloshkit as sk
+    >>> t = np.linspace(0.0, 4.0, 2001)
+    >>> result = sk.calibrate(t, np.exp(-0.9 * t) * np.cos(30.0 * t))
+    >>> round(result.omega_n_rad_s, 0)
+    30.0
     """
 
     method: str
