@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ast
 import importlib
 import inspect
 import subprocess
@@ -125,4 +126,18 @@ def test_nothing_refers_outside_the_repository():
             if path.is_file() and path.suffix in {".py", ".md", ".toml", ".rst", ".txt", ".j2"}:
                 text = path.read_text(encoding="utf-8", errors="replace")
                 offenders += [f"{path.relative_to(ROOT)}: {n}" for n in needles if n in text]
+    assert offenders == [], offenders
+
+
+def test_no_public_signature_names_a_time_step_otherwise_than_sample_period_s():
+    offenders = []
+    for path in (ROOT / "src" / "sloshkit").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
+                arguments = node.args.args + node.args.kwonlyargs
+                offenders += [
+                    f"{path.relative_to(ROOT)}:{node.lineno} {node.name}({a.arg})"
+                    for a in arguments
+                    if a.arg in TIME_STEP_ALIASES
+                ]
     assert offenders == [], offenders
