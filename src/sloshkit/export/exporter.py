@@ -23,8 +23,8 @@ from sloshkit.export.ik import JointPath, solve_joint_path
 from sloshkit.export.kinematics import Arm
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
 from sloshkit.export.roundtrip import RoundTrip, compare_line, container_poses_in_path
-from sloshkit.modal import SloshModel
-from sloshkit.planning import SloshLimits
+from sloshkit.model.modal import SloshModel
+from sloshkit.plan.problem import SloshLimits
 
 FloatArray = NDArray[np.float64]
 

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -37,12 +36,13 @@ from sloshkit.export.kinematics import (
     REACH_TOLERANCE_RAD,
     Arm,
 )
+from sloshkit.results import ResultMixin
 
 FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True, eq=False)
-class JointPath:
+class JointPath(ResultMixin):
     """Joint samples of an arm on a uniform time grid.
 
     Attributes
@@ -92,18 +92,6 @@ class JointPath:
             "max_condition_number": self.max_condition_number,
             "max_tip_error_m": self.max_tip_error_m,
         }
-
-    def to_csv(self, path: str | Path) -> Path:
-        """Write `columns` as CSV, atomically."""
-        from sloshkit.io import write_columns_csv
-
-        return write_columns_csv(path, self.columns())
-
-    def to_pandas(self) -> Any:
-        """`columns` as a pandas DataFrame (pandas is optional)."""
-        import pandas as pd
-
-        return pd.DataFrame(self.columns())
 
 
 def joint_derivatives(

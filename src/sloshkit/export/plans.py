@@ -263,7 +263,7 @@ def read_plan(path: str | Path) -> LinePlan | PoseStream:
     >>> type(read_plan(folder / "p.csv")).__name__
     'PoseStream'
     """
-    from sloshkit.io import read_table
+    from sloshkit.io.tables import read_table
 
     header, data = read_table(path)
     metadata = read_metadata(path)

@@ -3,15 +3,16 @@
 1-D plans: the exported file's container positions (forward kinematics for joint formats,
 ``T_base_flange T_flange_container``, brought back into the path frame) are projected on the
 plan's axis; the position samples become a motion (`sloshkit.motion.laws.from_samples`, a
-quintic spline at rest at both ends) and the 1-D model is simulated (`sloshkit.dynamics.simulate`,
-linear). The plan, interpolated on the export's grid by its quintic Hermite polynomials
-(`sloshkit.export.plans.LinePlan.evaluate`), goes through the same two steps, so the two
-results differ only by what the export changed. The round trip also measures how far the
-rebuilt poses leave the plan's path (position and tilt), which the 1-D model cannot see.
+quintic spline at rest at both ends) and the 1-D model is simulated
+(`sloshkit.sim.simulate.simulate`, linear). The plan, interpolated on the export's grid by
+its quintic Hermite polynomials (`sloshkit.export.plans.LinePlan.evaluate`), goes through
+the same two steps, so the two results differ only by what the export changed. The round
+trip also measures how far the rebuilt poses leave the plan's path (position and tilt),
+which the 1-D model cannot see.
 
 The comparison passes when peak and residual first-mode angle and peak and residual wall
 elevation agree within `TOLERANCE` (2 %) relative to the plan's value, and no slosh limit is
-broken. A residual that is itself below `RESIDUAL_FLOOR_RAD` of the plan's peak (0.1 %) is
+broken. A residual that is itself below `RESIDUAL_FLOOR` of the plan's peak (0.1 %) is
 compared against that floor instead: 2 % of a residual that is numerically zero is noise.
 """
 
@@ -25,19 +26,19 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.dynamics import simulate
 from sloshkit.errors import ValidityWarning
 from sloshkit.export.frames import invert, rotation_angle_rad
 from sloshkit.export.plans import PoseStream
-from sloshkit.modal import SloshModel
-from sloshkit.planning import SloshLimits
+from sloshkit.model.modal import SloshModel
+from sloshkit.plan.problem import SloshLimits
+from sloshkit.sim.simulate import simulate
 
 FloatArray = NDArray[np.float64]
 
 #: Largest relative difference of a slosh metric between plan and export.
 TOLERANCE = 0.02
 #: Residuals are compared relative to max(plan residual, this fraction of the plan's peak).
-RESIDUAL_FLOOR_RAD = 1e-3
+RESIDUAL_FLOOR = 1e-3
 
 METRICS = (
     "peak_angle_deg",
@@ -66,7 +67,7 @@ class RoundTrip:
     max_position_error_m: float
     max_tilt_error_rad: float
     violations: tuple[str, ...] = field(default_factory=tuple)
-    method: str = "1-D linear model (sloshkit.dynamics.simulate)"
+    method: str = "1-D linear model (sloshkit.sim.simulate)"
 
     @property
     def passed(self) -> bool:
@@ -109,7 +110,7 @@ def line_metrics(model: SloshModel, time_s: FloatArray, position_m: FloatArray) 
 
     References
     ----------
-    `sloshkit.dynamics.simulate` (seed paper eq. 7 per mode, exact discretisation).
+    `sloshkit.sim.simulate.simulate` (seed paper eq. 7 per mode, exact discretisation).
 
     Examples
     --------
@@ -127,7 +128,9 @@ def line_metrics(model: SloshModel, time_s: FloatArray, position_m: FloatArray) 
     period = float(time_s[1] - time_s[0])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
-        response = simulate(motion, model, "linear", period, 0.0)
+        response = simulate(
+            motion=motion, model=model, kind="linear", sample_period_s=period, settle_time_s=0.0
+        )
     return {
         "peak_angle_deg": math.degrees(response.peak_angle_rad),
         "residual_angle_deg": math.degrees(response.residual_angle_rad),
@@ -195,7 +198,7 @@ def _verdict(
     position_error: float,
     tilt: float,
     limits: SloshLimits | None,
-    method: str = "1-D linear model (sloshkit.dynamics.simulate)",
+    method: str = "1-D linear model (sloshkit.sim.simulate)",
 ) -> RoundTrip:
     differences: dict[str, float] = {}
     violations: list[str] = []
@@ -204,7 +207,7 @@ def _verdict(
         scale = abs(planned)
         if key.startswith("residual"):
             peak = plan_metrics[key.replace("residual", "peak")]
-            scale = max(scale, RESIDUAL_FLOOR_RAD * abs(peak))
+            scale = max(scale, RESIDUAL_FLOOR * abs(peak))
         difference = abs(exported - planned) / scale if scale > 0.0 else abs(exported - planned)
         differences[key] = difference
         if difference > TOLERANCE:

@@ -16,7 +16,7 @@ from pathlib import Path
 from sloshkit.errors import InputError
 from sloshkit.export.formats.common import header_lines, rows_csv
 from sloshkit.export.plans import LinePlan, read_plan
-from sloshkit.io import atomic_open
+from sloshkit.files import atomic_open
 
 
 def write_cam_table(path: str | Path, line: LinePlan, metadata: Mapping[str, object]) -> Path:

@@ -15,7 +15,7 @@ import numpy as np
 from sloshkit.errors import InputError
 from sloshkit.export.formats.common import header_lines, rows_csv
 from sloshkit.export.ik import JointPath
-from sloshkit.io import atomic_open
+from sloshkit.files import atomic_open
 
 
 def write_joint_csv(path: str | Path, joints: JointPath, metadata: Mapping[str, object]) -> Path:
@@ -57,7 +57,7 @@ def read_joint_csv(path: str | Path) -> JointPath:
     >>> read_joint_csv(out).position_rad[:, 0]
     array([0. , 0.1, 0.2])
     """
-    from sloshkit.io import read_table
+    from sloshkit.io.tables import read_table
 
     header, data = read_table(path)
     if not header or header[0] != "t_s":

@@ -13,7 +13,7 @@ from pathlib import Path
 from sloshkit.errors import InputError
 from sloshkit.export.formats.common import header_lines, rows_csv
 from sloshkit.export.plans import PoseStream, read_plan
-from sloshkit.io import atomic_open
+from sloshkit.files import atomic_open
 
 UNITS = "t [s]; x, y, z [m]; qx, qy, qz, qw [-] (unit quaternion, scalar last)"
 

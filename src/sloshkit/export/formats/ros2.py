@@ -20,7 +20,7 @@ import numpy as np
 from sloshkit.errors import InputError
 from sloshkit.export.formats.common import header_lines, number
 from sloshkit.export.ik import JointPath
-from sloshkit.io import atomic_open
+from sloshkit.files import atomic_open
 
 NANOSECONDS = 1_000_000_000
 

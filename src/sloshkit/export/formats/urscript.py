@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from sloshkit.errors import InputError, require_in_range
 from sloshkit.export.formats.common import header_lines, number
 from sloshkit.export.ik import JointPath
-from sloshkit.io import atomic_open
+from sloshkit.files import atomic_open
 
 #: The UR e-Series controller period [s] (500 Hz).
 UR_SAMPLE_PERIOD_S = 0.002
