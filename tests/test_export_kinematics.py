@@ -93,12 +93,11 @@ def test_ik_of_a_reachable_tilting_path_reproduces_the_container_poses(ur5e):
     assert rotation_angle_rad(rebuilt, container).max() < 1e-6
     assert path.max_tip_error_m < 1e-6
     assert path.max_condition_number < 100.0
-    # Velocities are the central differences of the samples.
-    np.testing.assert_allclose(
-        path.velocity_rad_s[1:-1],
-        (path.position_rad[2:] - path.position_rad[:-2]) / (2 * 0.01),
-        atol=1e-9,
-    )
+    # Velocities: at rest at both ends, close to central differences inside.
+    np.testing.assert_allclose(path.velocity_rad_s[[0, -1]], 0.0, atol=1e-12)
+    central = (path.position_rad[2:] - path.position_rad[:-2]) / (2 * 0.01)
+    scale = np.max(np.abs(central))
+    np.testing.assert_allclose(path.velocity_rad_s[1:-1], central, atol=0.02 * scale)
 
 
 def test_unreachable_pose_names_the_sample(ur5e):

@@ -200,16 +200,64 @@ def export_plan(
     notes: list[str] = []
     trip = None
     if check and model is not None:
-        time, rebuilt = rebuild_container_poses(fmt, path, arm, mounting, axis)
-        in_path = container_poses_in_path(rebuilt, base_to_path)
-        if stream.line is not None:
-            trip = compare_line(model, planned, time, in_path, limits)
-        else:
-            notes.append(
-                "3-D pose streams: slosh round trip needs the spatial simulator "
-                "(sloshkit.sim.spatial), not available in this version"
-            )
+        trip, note = check_round_trip(
+            fmt, path, planned, model, arm=arm, mounting=mounting, limits=limits
+        )
+        notes += [note] if note else []
     return ExportResult(fmt, path, int(stream.time_s.size), period, joints, trip, tuple(notes))
+
+
+def check_round_trip(
+    fmt: str,
+    path: str | Path,
+    plan: PoseStream,
+    model: SloshModel,
+    *,
+    arm: Arm | None = None,
+    mounting: Mounting = Mounting(),  # noqa: B008 - frozen dataclass
+    limits: SloshLimits | None = None,
+) -> tuple[RoundTrip | None, str]:
+    """Parse an exported file back, rebuild the container motion and compare its slosh with
+    the plan's (`sloshkit.export.roundtrip`).
+
+    Parameters
+    ----------
+    fmt : the file's format (one of `FORMATS`)
+    path : the exported file
+    plan : the pose stream it was exported from (at the plan's own sample period)
+    model : the slosh model
+    arm, mounting : as given to `export_plan`
+    limits : slosh limits to check, if known
+
+    Returns
+    -------
+    tuple
+        The `RoundTrip` (None when it cannot be run) and a note saying why not ("" if run).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(101) * 0.004
+    >>> s = t / t[-1]
+    >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
+    >>> plan = LinePlan(t, x, np.gradient(x, t), np.gradient(np.gradient(x, t), t))
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "move.cam.csv"
+    >>> _ = export_plan(plan, "cam-table", out, check=False)
+    >>> trip, _ = check_round_trip("cam-table", out, line_to_poses(plan, np.ones(3)), model)
+    >>> trip.passed
+    True
+    """
+    axis = (1.0, 0.0, 0.0) if plan.axis is None else tuple(float(v) for v in plan.axis)
+    time, rebuilt = rebuild_container_poses(fmt, path, arm, mounting, axis)  # type: ignore[arg-type]
+    in_path = container_poses_in_path(rebuilt, mounting.base_to_path)
+    if plan.line is None:
+        return None, (
+            "3-D pose streams: the slosh round trip needs the spatial simulator "
+            "(sloshkit.sim.spatial), not available in this version"
+        )
+    return compare_line(model, plan, time, in_path, limits), ""
 
 
 def rebuild_container_poses(

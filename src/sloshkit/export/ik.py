@@ -14,8 +14,8 @@ configuration. The joint path is then checked, in this order, and the first fail
    (the joint named is the one that dominates the lost direction);
 5. joint velocity limits (URDF ``velocity``), on velocities from the samples.
 
-Joint velocities and accelerations are central differences of the joint samples with the
-sample period (second order; one-sided second order at the ends, ``numpy.gradient``).
+Joint velocities and accelerations are the derivatives, at the samples, of the quintic spline
+through the joint samples that is at rest at both ends (`joint_derivatives`).
 """
 
 from __future__ import annotations
@@ -97,8 +97,13 @@ class JointPath(ResultMixin):
 def joint_derivatives(
     position_rad: FloatArray, sample_period_s: float
 ) -> tuple[FloatArray, FloatArray]:
-    """Velocities and accelerations of joint samples (samples on axis 0) by second-order
-    central differences with the sample period (``numpy.gradient``, ``edge_order=2``).
+    """Velocities and accelerations of rest-to-rest joint samples (samples on axis 0).
+
+    The samples, at t_k = k Ts, are interpolated by a quintic spline with zero velocity and
+    acceleration at both ends (the move starts and ends at rest, as every sloshkit plan does;
+    the same interpolation as `sloshkit.motion.laws.from_samples`), and the spline's first and
+    second derivatives are taken at the samples: exact for joint motions that are quintic
+    polynomials, and at rest at both ends.
 
     Parameters
     ----------
@@ -112,21 +117,29 @@ def joint_derivatives(
 
     References
     ----------
-    B. Fornberg, "Generation of finite difference formulas on arbitrarily spaced grids",
-    Math. Comp. 51 (1988) 699-706; doi:10.1090/S0025-5718-1988-0935077-0.
+    C. de Boor, *A Practical Guide to Splines*, Springer (2001), ch. XIII (spline
+    interpolation with end derivatives); scipy ``make_interp_spline``.
 
     Examples
     --------
-    >>> t = np.arange(5) * 0.1
-    >>> velocity, acceleration = joint_derivatives((t**2)[:, None], 0.1)
-    >>> velocity[:, 0].round(6), acceleration[:, 0].round(6)
-    (array([0. , 0.2, 0.4, 0.6, 0.8]), array([2., 2., 2., 2., 2.]))
+    >>> t = np.arange(11) * 0.1
+    >>> s = t / t[-1]
+    >>> velocity, acceleration = joint_derivatives((s**3 * (10 - 15 * s + 6 * s**2))[:, None], 0.1)
+    >>> bool(np.allclose(velocity[:, 0], 30 * s**2 * (1 - s) ** 2, atol=1e-9))
+    True
     """
+    from scipy.interpolate import make_interp_spline
+
     if position_rad.shape[0] < 3:
         raise InputError("samples", position_rad.shape[0], "need at least 3 samples")
-    velocity = np.gradient(position_rad, sample_period_s, axis=0, edge_order=2)
-    acceleration = np.gradient(velocity, sample_period_s, axis=0, edge_order=2)
-    return np.asarray(velocity, dtype=float), np.asarray(acceleration, dtype=float)
+    time = np.arange(position_rad.shape[0], dtype=float) * sample_period_s
+    rest = np.zeros(position_rad.shape[1:])
+    spline = make_interp_spline(
+        time, position_rad, k=5, bc_type=([(1, rest), (2, rest)], [(1, rest), (2, rest)])
+    )
+    velocity = np.asarray(spline(time, 1), dtype=float)
+    acceleration = np.asarray(spline(time, 2), dtype=float)
+    return velocity, acceleration
 
 
 def solve_joint_path(

@@ -14,10 +14,21 @@ FloatArray = NDArray[np.float64]
 NUMBER_FORMAT = ".12g"
 
 
+#: Magnitudes below this are written as 0 (round-off of quantities that are zero).
+ZERO_BELOW = 1e-12
+
+
 def number(value: float) -> str:
-    """A float as text (`NUMBER_FORMAT`; ``-0`` written as ``0``)."""
-    text = format(float(value), NUMBER_FORMAT)
-    return "0" if text == "-0" else text
+    """A float as text (`NUMBER_FORMAT`; magnitudes below `ZERO_BELOW` and ``-0`` as ``0``).
+
+    Examples
+    --------
+    >>> number(0.1 + 0.2), number(-1e-14)
+    ('0.3', '0')
+    """
+    if abs(float(value)) < ZERO_BELOW:
+        return "0"
+    return format(float(value), NUMBER_FORMAT)
 
 
 def numbers(values: Iterable[float]) -> str:
