@@ -167,7 +167,7 @@ def test_urscript_rejects_out_of_range_parameters(tmp_path: Path, ur5e) -> None:
             gain=50.0,
             check=False,
         )
-    with pytest.raises(InputError, match="0.002"):
+    with pytest.raises(InputError, match=r"0\.002"):
         export_plan(
             quintic_plan(),
             "urscript",
@@ -181,7 +181,7 @@ def test_urscript_rejects_out_of_range_parameters(tmp_path: Path, ur5e) -> None:
         quintic_plan(), "joint-csv", tmp_path / "j.csv", arm=ur5e, mounting=MOUNTING, check=False
     )
     assert result.joints is not None
-    with pytest.raises(InputError, match="0.002"):
+    with pytest.raises(InputError, match=r"0\.002"):
         write_urscript(tmp_path / "x.script", result.joints, {})
 
 

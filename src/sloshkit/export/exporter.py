@@ -357,7 +357,9 @@ def _metadata(
             metadata["tip_link"] = arm.tip_link
             metadata["joints"] = ",".join(arm.joint_names)
         metadata["units"] = (
-            "time [s]; joint positions [rad], velocities [rad/s], accelerations [rad/s^2]"
+            "joint positions [rad]; servoj t and lookahead_time [s]"
+            if fmt == "urscript"
+            else "time [s]; joint positions [rad], velocities [rad/s], accelerations [rad/s^2]"
         )
     if fmt != "cam-table":
         metadata["mounting"] = json.dumps(
