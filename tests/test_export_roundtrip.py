@@ -1,0 +1,128 @@
+"""Round trip: a plan from the 1-D planner, exported to every format, parsed back, rebuilt
+(forward kinematics for joint formats) and re-simulated, keeps its peak and residual slosh;
+a file that no longer matches the plan, or a broken limit, fails the check."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sloshkit.export.exporter import FORMATS, SUFFIXES, check_round_trip, export_plan
+from sloshkit.export.frames import Mounting
+from sloshkit.export.kinematics import load_arm
+from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
+from sloshkit.export.roundtrip import TOLERANCE
+from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from tests.conftest import seed_vial_table3
+
+MOUNTING = Mounting(base_xyz_m=(-0.55, -0.13, 0.39))
+LIMITS = SloshLimits(math.radians(5.0), math.radians(0.25))
+
+
+@pytest.fixture(scope="module")
+def planned(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The fastest shaped move of 80 mm for the seed vial, as `sloshkit plan --out` writes."""
+    from sloshkit.plan.planner import plan
+
+    problem = PlanProblem(
+        distance_m=0.08,
+        machine=MachineLimits(1.0, 10.0, 200.0),
+        slosh=LIMITS,
+        model=seed_vial_table3(),
+        sample_period_s=0.004,
+    )
+    result = plan(problem, "shaped")
+    assert result.feasible
+    return Path(result.to_csv(tmp_path_factory.mktemp("plan") / "plan.csv"))
+
+
+@pytest.fixture(scope="module")
+def ur5e():
+    return load_arm("ur5e")
+
+
+@pytest.mark.parametrize("fmt", FORMATS)
+def test_every_format_keeps_the_planned_slosh(fmt: str, planned: Path, ur5e, tmp_path: Path):
+    result = export_plan(
+        planned,
+        fmt,
+        tmp_path / f"move{SUFFIXES[fmt]}",
+        arm=ur5e,
+        mounting=MOUNTING,
+        model=seed_vial_table3(),
+        limits=LIMITS,
+    )
+    trip = result.round_trip
+    assert trip is not None and trip.passed, trip
+    assert result.passed
+    # Far inside the 2 % tolerance: the export changes the motion by IK round-off only. (The
+    # residuals are ~1e-5 deg, compared against 0.1 % of the peak, so they move more.)
+    assert trip.relative_differences["peak_angle_deg"] < 1e-5
+    assert trip.relative_differences["peak_wall_elevation_m"] < 1e-5
+    assert max(trip.relative_differences.values()) < 0.25 * TOLERANCE
+    assert trip.max_position_error_m < 1e-6
+    assert trip.max_tilt_error_rad < 1e-6
+    assert trip.plan_metrics["peak_angle_deg"] > 1.0  # a real move, not a trivial one
+    payload = result.to_dict()
+    assert payload["round_trip"]["plan"]["peak_angle_deg"] == trip.plan_metrics["peak_angle_deg"]
+    assert set(payload["round_trip"]["plan"]) == {
+        "peak_angle_deg",
+        "residual_angle_deg",
+        "peak_wall_elevation_m",
+        "residual_wall_elevation_m",
+    }
+
+
+def test_a_file_played_faster_than_planned_fails(planned: Path, tmp_path: Path):
+    """The cam table with its time axis compressed by 20 %: more slosh, the check fails."""
+    out = tmp_path / "fast.cam.csv"
+    export_plan(planned, "cam-table", out, check=False)
+    lines = out.read_text().splitlines()
+    edited = [
+        line
+        if line.startswith(("#", "t_s"))
+        else ",".join([format(0.8 * float(line.split(",")[0]), ".12g"), *line.split(",")[1:]])
+        for line in lines
+    ]
+    out.write_text("\n".join(edited) + "\n")
+    plan = read_plan(planned)
+    assert isinstance(plan, LinePlan)
+    trip, _ = check_round_trip(
+        "cam-table", out, line_to_poses(plan, np.array([1.0, 0, 0])), seed_vial_table3()
+    )
+    assert trip is not None and not trip.passed
+    assert any("peak_angle_deg" in violation for violation in trip.violations)
+
+
+def test_a_broken_slosh_limit_fails(planned: Path, tmp_path: Path):
+    tight = SloshLimits(math.radians(1.0), math.radians(0.25))
+    result = export_plan(
+        planned, "pose-csv", tmp_path / "p.csv", model=seed_vial_table3(), limits=tight
+    )
+    assert result.round_trip is not None and not result.passed
+    assert any("> limit" in violation for violation in result.round_trip.violations)
+    assert max(result.round_trip.relative_differences.values()) < TOLERANCE
+
+
+def test_pose_streams_export_and_say_what_was_not_checked(tmp_path: Path, ur5e):
+    count = 41
+    s = np.linspace(0.0, 1.0, count)
+    smooth = s**3 * (10 - 15 * s + 6 * s**2)
+    stream = PoseStream(
+        np.arange(count) * 0.01,
+        np.column_stack([0.1 * smooth, 0.05 * smooth, 0.02 * smooth]),
+        np.tile([0.0, 0.0, 0.0, 1.0], (count, 1)),
+    )
+    result = export_plan(
+        stream,
+        "joint-csv",
+        tmp_path / "j.csv",
+        arm=ur5e,
+        mounting=MOUNTING,
+        model=seed_vial_table3(),
+    )
+    assert result.round_trip is None and result.passed
+    assert "spatial simulator" in result.notes[0]
