@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import seed_vial_table3
 
 from sloshkit.export.exporter import FORMATS, SUFFIXES, check_round_trip, export_plan
 from sloshkit.export.frames import Mounting
@@ -16,7 +17,6 @@ from sloshkit.export.kinematics import load_arm
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
 from sloshkit.export.roundtrip import TOLERANCE
 from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
-from tests.conftest import seed_vial_table3
 
 MOUNTING = Mounting(base_xyz_m=(-0.55, -0.13, 0.39))
 LIMITS = SloshLimits(math.radians(5.0), math.radians(0.25))
