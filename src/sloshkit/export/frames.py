@@ -16,8 +16,6 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
-from sloshkit.errors import InputError
-
 FloatArray = NDArray[np.float64]
 
 
@@ -143,15 +141,3 @@ def rotation_angle_rad(matrices_a: FloatArray, matrices_b: FloatArray) -> FloatA
         axis=-1,
     )
     return np.asarray(np.arctan2(np.linalg.norm(skew, axis=-1) / 2.0, trace), dtype=float)
-
-
-def parse_vector(text: str, parameter: str, count: int = 3) -> tuple[float, ...]:
-    """``count`` comma-separated plain numbers (SI, radians) from text, or `InputError`."""
-    cells = [cell.strip() for cell in text.split(",")]
-    try:
-        values = tuple(float(cell) for cell in cells)
-    except ValueError:
-        raise InputError(parameter, text, f"must be {count} comma-separated numbers") from None
-    if len(values) != count or not all(np.isfinite(values)):
-        raise InputError(parameter, text, f"must be {count} comma-separated finite numbers")
-    return values
