@@ -263,9 +263,9 @@ def read_plan(path: str | Path) -> LinePlan | PoseStream:
     >>> type(read_plan(folder / "p.csv")).__name__
     'PoseStream'
     """
-    from sloshkit.io.tables import read_table
+    from sloshkit.export.tables import read_csv_table
 
-    header, data = read_table(path)
+    header, data = read_csv_table(path)
     metadata = read_metadata(path)
     names = [name.strip().lower() for name in header]
     if all(column in names for column in POSE_COLUMNS):

@@ -57,9 +57,9 @@ def read_joint_csv(path: str | Path) -> JointPath:
     >>> read_joint_csv(out).position_rad[:, 0]
     array([0. , 0.1, 0.2])
     """
-    from sloshkit.io.tables import read_table
+    from sloshkit.export.tables import read_csv_table
 
-    header, data = read_table(path)
+    header, data = read_csv_table(path)
     if not header or header[0] != "t_s":
         raise InputError("file", str(path), "is not a joint CSV (first column t_s)")
     names = tuple(name[: -len("_rad")] for name in header[1:] if name.endswith("_rad"))
