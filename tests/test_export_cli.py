@@ -62,7 +62,7 @@ def test_export_joint_csv_json_contract(tmp_path: Path) -> None:
         "export",
         "relative_difference",
         "max_position_error_m",
-        "max_tilt_error_deg",
+        "max_orientation_error_deg",
         "violations",
     }
     assert trip["max_position_error_m"] < 1e-6

@@ -4,6 +4,7 @@ a file that no longer matches the plan, or a broken limit, fails the check."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -64,7 +65,7 @@ def test_every_format_keeps_the_planned_slosh(fmt: str, planned: Path, ur5e, tmp
     assert trip.relative_differences["peak_wall_elevation_m"] < 1e-5
     assert max(trip.relative_differences.values()) < 0.25 * TOLERANCE
     assert trip.max_position_error_m < 1e-6
-    assert trip.max_tilt_error_rad < 1e-6
+    assert trip.max_orientation_error_rad < 1e-6
     assert trip.plan_metrics["peak_angle_deg"] > 1.0  # a real move, not a trivial one
     payload = result.to_dict()
     assert payload["round_trip"]["plan"]["peak_angle_deg"] == trip.plan_metrics["peak_angle_deg"]
@@ -126,3 +127,27 @@ def test_pose_streams_export_and_say_what_was_not_checked(tmp_path: Path, ur5e):
     )
     assert result.round_trip is None and result.passed
     assert "spatial simulator" in result.notes[0]
+
+
+def test_a_joint_file_beyond_the_velocity_limit_fails(planned: Path, ur5e, tmp_path: Path):
+    """Spinning wrist 3 by 3 rad during the move leaves the container's path and slosh as
+    planned (it turns the container about its own axis) but breaks the joint speed limit."""
+    from sloshkit.export.formats.joint_csv import read_joint_csv, write_joint_csv
+
+    out = tmp_path / "j.csv"
+    export_plan(planned, "joint-csv", out, arm=ur5e, mounting=MOUNTING, check=False)
+    joints = read_joint_csv(out)
+    position = joints.position_rad.copy()
+    position[:, 5] += np.linspace(0.0, 3.0, position.shape[0])
+    write_joint_csv(out, dataclasses.replace(joints, position_rad=position), {})
+    plan = read_plan(planned)
+    assert isinstance(plan, LinePlan)
+    stream = line_to_poses(plan, np.array([1.0, 0.0, 0.0]))
+    trip, _ = check_round_trip(
+        "joint-csv", out, stream, seed_vial_table3(), arm=ur5e, mounting=MOUNTING
+    )
+    assert trip is not None and not trip.passed
+    assert max(trip.relative_differences.values()) < TOLERANCE
+    assert any("wrist_3_joint" in v and "velocity limit" in v for v in trip.violations)
+    assert any("planned orientation" in v for v in trip.violations)
+    assert trip.max_position_error_m < 1e-6 and trip.max_orientation_error_rad > 1.0

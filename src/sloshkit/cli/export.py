@@ -240,7 +240,7 @@ def show_export(result: Any) -> None:
     stdout.print(table)
     stdout.print(
         f"path deviation: {1e3 * trip.max_position_error_m:.3g} mm, "
-        f"tilt {math.degrees(trip.max_tilt_error_rad):.3g} deg"
+        f"orientation {math.degrees(trip.max_orientation_error_rad):.3g} deg"
     )
     if trip.passed:
         stdout.print("round trip: passed (within 2 %, no limit broken)")

@@ -8,6 +8,7 @@ frame (``T_flange_container``), so the flange must follow
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from dataclasses import dataclass, field
@@ -19,7 +20,7 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.export.frames import Mounting, invert, matrices_to_poses, poses_to_matrices
-from sloshkit.export.ik import JointPath, solve_joint_path
+from sloshkit.export.ik import JointPath, joint_limit_violations, solve_joint_path
 from sloshkit.export.kinematics import Arm
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
 from sloshkit.export.roundtrip import RoundTrip, compare_line, container_poses_in_path
@@ -218,7 +219,8 @@ def check_round_trip(
     limits: SloshLimits | None = None,
 ) -> tuple[RoundTrip | None, str]:
     """Parse an exported file back, rebuild the container motion and compare its slosh with
-    the plan's (`sloshkit.export.roundtrip`).
+    the plan's (`sloshkit.export.roundtrip`); joint files are also checked against the arm's
+    joint position and velocity limits and for jumps (`joint_limit_violations`).
 
     Parameters
     ----------
@@ -257,7 +259,12 @@ def check_round_trip(
             "3-D pose streams: the slosh round trip needs the spatial simulator "
             "(sloshkit.sim.spatial), not available in this version"
         )
-    return compare_line(model, plan, time, in_path, limits), ""
+    trip = compare_line(model, plan, time, in_path, limits)
+    if fmt in JOINT_FORMATS and arm is not None:
+        joint_time, position = read_joint_samples(fmt, path)
+        extra = joint_limit_violations(arm, joint_time, position)
+        trip = dataclasses.replace(trip, violations=trip.violations + tuple(extra))
+    return trip, ""
 
 
 def rebuild_container_poses(
@@ -281,7 +288,7 @@ def rebuild_container_poses(
     >>> rebuild_container_poses("pose-csv", out, None, Mounting())[1][3, :3, 3]
     array([1., 1., 1.])
     """
-    from sloshkit.export.formats import cam_table, joint_csv, pose_csv, ros2, urscript
+    from sloshkit.export.formats import cam_table, pose_csv
 
     if fmt == "pose-csv":
         stream = pose_csv.read_pose_csv(path)
@@ -294,18 +301,37 @@ def rebuild_container_poses(
         return line.time_s, mounting.base_to_path[None] @ poses
     if arm is None:
         raise InputError("robot", None, f"format {fmt} needs an arm (--robot or --urdf)")
-    if fmt == "joint-csv":
-        joints = joint_csv.read_joint_csv(path)
-        time, position = joints.time_s, joints.position_rad
-    elif fmt == "ros2":
-        joints, _ = ros2.read_ros2_yaml(path)
-        time, position = joints.time_s, joints.position_rad
-    else:
-        time, position = urscript.read_urscript(path)
+    time, position = read_joint_samples(fmt, path)
     if position.shape[1] != arm.dof:
         raise InputError("file", str(path), f"has {position.shape[1]} joints, the arm {arm.dof}")
     flange = arm.forward(position)
     return time, flange @ mounting.flange_to_container[None]
+
+
+def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArray]:
+    """Times [s] and joint positions (samples, joints) [rad] of a joint-format file.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit.export.formats.joint_csv import write_joint_csv
+    >>> t = np.arange(3) * 0.1
+    >>> path = JointPath(t, t[:, None], 0 * t[:, None], 0 * t[:, None], ("j1",))
+    >>> out = write_joint_csv(pathlib.Path(tempfile.mkdtemp()) / "j.csv", path, {})
+    >>> read_joint_samples("joint-csv", out)[1][:, 0]
+    array([0. , 0.1, 0.2])
+    """
+    from sloshkit.export.formats import joint_csv, ros2, urscript
+
+    if fmt == "joint-csv":
+        joints = joint_csv.read_joint_csv(path)
+        return joints.time_s, joints.position_rad
+    if fmt == "ros2":
+        joints, _ = ros2.read_ros2_yaml(path)
+        return joints.time_s, joints.position_rad
+    if fmt == "urscript":
+        return urscript.read_urscript(path)
+    raise InputError("format", fmt, "is not a joint format: " + ", ".join(JOINT_FORMATS))
 
 
 def _output_period(fmt: str, stream: PoseStream, requested: float | None) -> float:

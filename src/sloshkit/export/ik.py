@@ -335,3 +335,41 @@ def _check_velocity(arm: Arm, velocity: FloatArray, times: FloatArray) -> None:
             f"beyond its velocity limit {arm.velocity_limit_rad_s[joint]:.4g} rad/s",
             "slow the plan down or move the path away from singularities",
         )
+
+
+def joint_limit_violations(arm: Arm, time_s: FloatArray, position_rad: FloatArray) -> list[str]:
+    """The joint checks of `solve_joint_path` (position limits, jumps, velocity limits) on
+    joint samples read back from a file, as sentences instead of errors (empty if all hold).
+
+    Parameters
+    ----------
+    arm : the arm the samples are for
+    time_s : uniform sample times [s]
+    position_rad : (samples, joints) joint positions [rad]
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> from sloshkit.export.kinematics import load_arm
+    >>> arm = load_arm("ur5e")
+    >>> q = arm.home_rad + np.outer(np.linspace(0.0, 1.0, 5), [0, 0, 0, 0, 0, 1.0])
+    >>> joint_limit_violations(arm, np.arange(5) * 0.01, q)[0][:13]
+    'wrist_3_joint'
+    """
+    times = np.asarray(time_s, dtype=float)
+    position = np.asarray(position_rad, dtype=float)
+    found = []
+    for check in (_check_limits, _check_steps):
+        try:
+            check(arm, position, times)
+        except InputError as error:
+            found.append(str(error))
+    try:
+        velocity, _ = joint_derivatives(position, float(times[1] - times[0]))
+        _check_velocity(arm, velocity, times)
+    except InputError as error:
+        found.append(str(error))
+    return found

@@ -7,13 +7,15 @@ quintic spline at rest at both ends) and the 1-D model is simulated
 (`sloshkit.sim.simulate.simulate`, linear). The plan, interpolated on the export's grid by
 its quintic Hermite polynomials (`sloshkit.export.plans.LinePlan.evaluate`), goes through
 the same two steps, so the two results differ only by what the export changed. The round
-trip also measures how far the rebuilt poses leave the plan's path (position and tilt),
+trip also measures how far the rebuilt poses leave the plan's path (position and orientation),
 which the 1-D model cannot see.
 
 The comparison passes when peak and residual first-mode angle and peak and residual wall
-elevation agree within `TOLERANCE` (2 %) relative to the plan's value, and no slosh limit is
-broken. A residual that is itself below `RESIDUAL_FLOOR` of the plan's peak (0.1 %) is
-compared against that floor instead: 2 % of a residual that is numerically zero is noise.
+elevation agree within `TOLERANCE` (2 %) relative to the plan's value, no slosh limit is
+broken, and the rebuilt container stays within `PATH_TOLERANCE_M` of the planned path and
+`ORIENTATION_TOLERANCE_RAD` of the planned orientation. A residual below `RESIDUAL_FLOOR` of
+the plan's peak (0.1 %) is compared against that floor instead: 2 % of a residual that is
+numerically zero is noise.
 """
 
 from __future__ import annotations
@@ -37,6 +39,11 @@ FloatArray = NDArray[np.float64]
 
 #: Largest relative difference of a slosh metric between plan and export.
 TOLERANCE = 0.02
+#: Largest distance of the rebuilt container from the planned path [m] and largest angle
+#: between rebuilt and planned orientations [rad]: far above IK round-off (1e-9), far below
+#: what changes the slosh.
+PATH_TOLERANCE_M = 1e-4
+ORIENTATION_TOLERANCE_RAD = 1e-3
 #: Residuals are compared relative to max(plan residual, this fraction of the plan's peak).
 RESIDUAL_FLOOR = 1e-3
 
@@ -57,7 +64,7 @@ class RoundTrip:
     plan_metrics, export_metrics : the four `METRICS` (degrees and metres, as named)
     relative_differences : |export - plan| / scale per metric [-]
     max_position_error_m : largest distance of a rebuilt container position from the plan's
-    max_tilt_error_rad : largest angle between rebuilt and planned container orientations
+    max_orientation_error_rad : largest angle between rebuilt and planned container orientations
     violations : broken tolerances and limits, as sentences
     """
 
@@ -65,7 +72,7 @@ class RoundTrip:
     export_metrics: dict[str, float]
     relative_differences: dict[str, float]
     max_position_error_m: float
-    max_tilt_error_rad: float
+    max_orientation_error_rad: float
     violations: tuple[str, ...] = field(default_factory=tuple)
     method: str = "1-D linear model (sloshkit.sim.simulate)"
 
@@ -84,7 +91,7 @@ class RoundTrip:
             "export": dict(self.export_metrics),
             "relative_difference": dict(self.relative_differences),
             "max_position_error_m": self.max_position_error_m,
-            "max_tilt_error_deg": math.degrees(self.max_tilt_error_rad),
+            "max_orientation_error_deg": math.degrees(self.max_orientation_error_rad),
             "violations": list(self.violations),
         }
 
@@ -184,19 +191,19 @@ def compare_line(
     planned = start + np.outer(line.evaluate(time_s)[0] - line.position_m[0], axis)
     position_error = float(np.max(np.linalg.norm(container_in_path[:, :3, 3] - planned, axis=1)))
     upright = np.broadcast_to(np.eye(4), container_in_path.shape)
-    tilt = float(np.max(rotation_angle_rad(container_in_path, upright)))
+    turned = float(np.max(rotation_angle_rad(container_in_path, upright)))
     # The plan is simulated on the export's grid (its quintic Hermite interpolant there), so
     # that the comparison sees only what the export changed, not the simulation's step.
     plan_metrics = line_metrics(model, time_s, planned @ axis - start @ axis)
     export_metrics = line_metrics(model, time_s, along)
-    return _verdict(plan_metrics, export_metrics, position_error, tilt, limits)
+    return _verdict(plan_metrics, export_metrics, position_error, turned, limits)
 
 
 def _verdict(
     plan_metrics: dict[str, float],
     export_metrics: dict[str, float],
     position_error: float,
-    tilt: float,
+    turned: float,
     limits: SloshLimits | None,
     method: str = "1-D linear model (sloshkit.sim.simulate)",
 ) -> RoundTrip:
@@ -215,6 +222,16 @@ def _verdict(
                 f"{key}: export {exported:.6g} vs plan {planned:.6g} "
                 f"({100 * difference:.2f} % > {100 * TOLERANCE:g} %)"
             )
+    if position_error > PATH_TOLERANCE_M:
+        violations.append(
+            f"the rebuilt container leaves the planned path by {1e3 * position_error:.3g} mm "
+            f"(> {1e3 * PATH_TOLERANCE_M:g} mm)"
+        )
+    if turned > ORIENTATION_TOLERANCE_RAD:
+        violations.append(
+            f"the rebuilt container turns {math.degrees(turned):.3g} deg from the planned "
+            f"orientation (> {math.degrees(ORIENTATION_TOLERANCE_RAD):.3g} deg)"
+        )
     if limits is not None:
         checks = [
             ("peak_angle_deg", math.degrees(limits.max_angle_rad)),
@@ -226,5 +243,5 @@ def _verdict(
             if export_metrics[key] > limit * (1.0 + 1e-9):
                 violations.append(f"{key}: export {export_metrics[key]:.6g} > limit {limit:.6g}")
     return RoundTrip(
-        plan_metrics, export_metrics, differences, position_error, tilt, tuple(violations), method
+        plan_metrics, export_metrics, differences, position_error, turned, tuple(violations), method
     )
