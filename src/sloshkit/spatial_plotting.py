@@ -1,0 +1,115 @@
+"""Figures of 3-D slosh responses (matplotlib imported only here, only when drawing).
+
+Kept apart from `sloshkit.plotting` until the package layout moves plotting into
+`sloshkit/plotting/`; it draws `sloshkit.sim.spatial_response.SpatialResponse` objects only.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from sloshkit.sim.spatial_response import SpatialResponse
+
+
+def _pyplot() -> Any:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_spatial_response(
+    response: SpatialResponse,
+    ax: Any = None,
+    *,
+    limit_m: float | None = None,
+    path: str | Path | None = None,
+) -> Any:
+    """Top view of the path and slosh height against time; returns the Figure.
+
+    Parameters
+    ----------
+    response : the 3-D slosh response
+    ax : optional pair of matplotlib Axes (path, height); a new figure otherwise
+    limit_m : slosh-height limit drawn as a horizontal line [m] (default: the free board
+        wall height - fill height when the wall height is known)
+    path : save the figure there when given
+    """
+    plt = _pyplot()
+    if ax is None:
+        figure, axes = plt.subplots(1, 2, figsize=(11, 4.2), gridspec_kw={"width_ratios": [1, 2]})
+    else:
+        axes = list(ax)
+        figure = axes[0].figure
+    xyz = response.path_m
+    time = response.time_s
+    moving = time <= response.motion_end_s + 1e-12
+    axes[0].plot(1e3 * xyz[moving, 0], 1e3 * xyz[moving, 1], color="tab:blue")
+    axes[0].plot(1e3 * xyz[0, 0], 1e3 * xyz[0, 1], "o", color="tab:green", label="start")
+    axes[0].plot(1e3 * xyz[-1, 0], 1e3 * xyz[-1, 1], "s", color="tab:red", label="end")
+    axes[0].set_xlabel("x [mm]")
+    axes[0].set_ylabel("y [mm]")
+    axes[0].set_aspect("equal", adjustable="datalim")
+    axes[0].set_title("path (top view)")
+    axes[0].legend(loc="best", fontsize=8)
+    axes[1].plot(time, 1e3 * response.slosh_height_m, label=f"slosh height ({response.kind})")
+    wall = response.model.container.wall_height_m
+    limit = limit_m
+    if limit is None and wall is not None:
+        limit = wall - response.model.fill_height_m
+    if limit is not None:
+        axes[1].axhline(1e3 * limit, color="tab:red", linestyle="--", label="limit")
+    axes[1].axvline(response.motion_end_s, color="grey", linestyle=":", linewidth=1)
+    axes[1].set_xlabel("time [s]")
+    axes[1].set_ylabel("slosh height [mm]")
+    axes[1].set_title(response.motion_name or "3-D slosh")
+    axes[1].grid(alpha=0.3)
+    axes[1].legend(loc="upper right", fontsize=8)
+    figure.tight_layout()
+    if path is not None:
+        from sloshkit.plotting import save_figure
+
+        save_figure(figure, path)
+    return figure
+
+
+def plot_measured_comparison(
+    series: list[dict[str, Any]], path: str | Path | None = None, columns: int = 2
+) -> Any:
+    """Measured against predicted slosh-height series, one panel per series.
+
+    Each item has ``name``, ``measured_t_s``, ``measured_m`` and ``predicted`` (a list of
+    (label, time [s], height [m])).
+    """
+    plt = _pyplot()
+    rows = int(np.ceil(len(series) / columns))
+    figure, axes = plt.subplots(rows, columns, figsize=(6 * columns, 2.8 * rows), squeeze=False)
+    for axis, item in zip(axes.flat, series, strict=False):
+        axis.plot(
+            item["measured_t_s"],
+            1e3 * np.asarray(item["measured_m"]),
+            color="black",
+            linewidth=1.0,
+            label="measured",
+        )
+        for label, t, height in item["predicted"]:
+            axis.plot(t, 1e3 * np.asarray(height), linewidth=1.0, label=label, alpha=0.85)
+        axis.set_title(item["name"], fontsize=9)
+        axis.set_xlabel("time, pose clock [s]")
+        axis.set_ylabel("slosh height [mm]")
+        axis.grid(alpha=0.3)
+    for axis in list(axes.flat)[len(series) :]:
+        axis.axis("off")
+    axes.flat[0].legend(loc="upper left", fontsize=7)
+    figure.tight_layout()
+    if path is not None:
+        from sloshkit.plotting import save_figure
+
+        save_figure(figure, path)
+    return figure
