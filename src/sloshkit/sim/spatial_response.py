@@ -22,7 +22,8 @@ if TYPE_CHECKING:
     from sloshkit.sim.spatial import SpatialDrive
 
 FloatArray = NDArray[np.float64]
-HeightMapping = Literal["linear", "sine"]
+HeightMapping = Literal["modal", "planar"]
+HEIGHT_MAPPINGS: tuple[str, ...] = ("modal", "planar")
 
 
 def _rotate(vectors: FloatArray, angle: FloatArray) -> FloatArray:
@@ -58,7 +59,8 @@ class SpatialResponse:
     pendulum_rate : (modes, M, 3) their time derivatives in N
     nonlinear : which model was run
     motion_end_s : time of the last pose [s]; the container rests afterwards
-    height_mapping, truncation_correction : the wall-elevation mapping used
+    height_mapping : ``"modal"`` (sum over the simulated modes, as in 1-D) or ``"planar"``
+        (plus the quasi-static remainder of the modes not simulated: exact planar statics)
     """
 
     model: SloshModel
@@ -67,8 +69,7 @@ class SpatialResponse:
     pendulum_rate: FloatArray
     nonlinear: bool
     motion_end_s: float
-    height_mapping: HeightMapping = "linear"
-    truncation_correction: bool = True
+    height_mapping: HeightMapping = "modal"
     motion_name: str = ""
     elapsed_s: float = float("nan")
 
@@ -110,7 +111,7 @@ class SpatialResponse:
     def mode_slope(self) -> FloatArray:
         """Per-mode surface-slope vector used by the height mapping, (modes, M, 2) in N [-]."""
         lateral = self.pendulum[..., :2]
-        if not self.nonlinear or self.height_mapping == "sine":
+        if not self.nonlinear:
             return np.asarray(lateral, dtype=float)
         axial = np.maximum(-self.pendulum[..., 2], 1e-6)
         return np.asarray(lateral / axial[..., None], dtype=float)
@@ -126,16 +127,26 @@ class SpatialResponse:
     @property
     def truncation_factor_m(self) -> float:
         """R - sum_n 2R/(xi_n^2 - 1): wall height per unit slope carried by unmodelled modes."""
-        if not self.truncation_correction:
-            return 0.0
         return self.model.radius_m - sum(m.wall_elevation_factor_m for m in self.model.modes)
+
+    def _modal_vector(self) -> FloatArray:
+        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
+        return np.asarray(np.einsum("n,nmk->mk", factors, self.mode_slope), dtype=float)
+
+    @property
+    def planar_vector_m(self) -> FloatArray:
+        """Wall-elevation vector with the quasi-static remainder of the unmodelled modes,
+        (M, 2) in N [m]: exact (R tan psi) for a static or slow tilt of the apparent gravity."""
+        remainder = self.truncation_factor_m * self.quasi_static_slope
+        return np.asarray(self._modal_vector() + remainder, dtype=float)
 
     @property
     def elevation_vector_m(self) -> FloatArray:
-        """Wall-elevation vector in N, (M, 2) [m]: eta(alpha) = vector . (cos, sin)(alpha)."""
-        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
-        vector = np.einsum("n,nmk->mk", factors, self.mode_slope)
-        return np.asarray(vector + self.truncation_factor_m * self.quasi_static_slope, dtype=float)
+        """Wall-elevation vector in N with the chosen ``height_mapping``, (M, 2) [m]:
+        eta(alpha) = vector . (cos alpha, sin alpha)."""
+        if self.height_mapping == "planar":
+            return self.planar_vector_m
+        return self._modal_vector()
 
     @property
     def slosh_height_m(self) -> FloatArray:
@@ -154,9 +165,9 @@ class SpatialResponse:
 
     @property
     def surface_tilt_rad(self) -> FloatArray:
-        """Tilt of the plane through the wall elevation, components in C (M, 2) [rad]:
-        atan(eta_x / R), atan(eta_y / R)."""
-        vector = _rotate(self.elevation_vector_m, -self.drive.spin_angle_rad)
+        """Tilt of the mean surface plane (planar mapping), components in C (M, 2) [rad]:
+        atan(eta_x / R), atan(eta_y / R); a static tilt psi gives psi exactly."""
+        vector = _rotate(self.planar_vector_m, -self.drive.spin_angle_rad)
         return np.asarray(np.arctan(vector / self.model.radius_m), dtype=float)
 
     @property
@@ -272,7 +283,7 @@ class SpatialResponse:
             "y_m": path[:, 1],
             "z_m": path[:, 2],
             "slosh_height_m": self.slosh_height_m,
-            "surface_tilt_rad": np.arctan(self.slosh_height_m / self.model.radius_m),
+            "surface_tilt_rad": np.arctan(np.hypot(*np.tan(tilt).T)),
             "surface_tilt_x_rad": tilt[:, 0],
             "surface_tilt_y_rad": tilt[:, 1],
         }
