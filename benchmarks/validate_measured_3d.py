@@ -140,7 +140,8 @@ def table(rows: list[dict[str, Any]], markdown: bool = False) -> str:
     lines = []
     if markdown:
         lines.append(
-            "| series | variant | measured peak [mm] | predicted peak [mm] | peak error | RMS error [mm] |"
+            "| series | variant | measured peak [mm] | predicted peak [mm] | peak error "
+            "| RMS error [mm] |"
         )
         lines.append("|---|---|---:|---:|---:|---:|")
     for row in rows:
@@ -170,7 +171,8 @@ def table(rows: list[dict[str, Any]], markdown: bool = False) -> str:
             )
         else:
             lines.append(
-                f"{label:>22s}: median |peak error| {100 * median:5.1f} %, 90th pct {100 * p90:5.1f} %, median RMS/peak {100 * rms:5.1f} %"
+                f"{label:>22s}: median |peak error| {100 * median:5.1f} %, "
+                f"90th pct {100 * p90:5.1f} %, median RMS/peak {100 * rms:5.1f} %"
             )
     return "\n".join(lines)
 

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -79,37 +80,60 @@ class PoseKinematics:
         """Orientations (container -> world)."""
         return Rotation.from_quat(self.quaternion_xyzw)
 
-    @property
+    @cached_property
     def rotation_matrix(self) -> FloatArray:
         """Rotation matrices (M, 3, 3), columns = container axes in world coordinates."""
-        return np.asarray(self.rotation.as_matrix(), dtype=float)
+        return quaternion_matrix(self.quaternion_xyzw)
 
-    @property
+    def to_world(self, body_vectors: ArrayLike) -> FloatArray:
+        """Body-frame vectors (M, 3) or one (3,) vector in world coordinates (M, 3)."""
+        vectors = np.broadcast_to(np.asarray(body_vectors, dtype=float), self.position_m.shape)
+        return np.asarray(np.einsum("kij,kj->ki", self.rotation_matrix, vectors), dtype=float)
+
+    @cached_property
     def angular_velocity_world_rad_s(self) -> FloatArray:
         """Angular velocity in world coordinates (M, 3) [rad/s]."""
-        return np.asarray(self.rotation.apply(self.angular_velocity_body_rad_s), dtype=float)
+        return self.to_world(self.angular_velocity_body_rad_s)
 
-    @property
+    @cached_property
     def angular_acceleration_world_rad_s2(self) -> FloatArray:
         """Angular acceleration in world coordinates (M, 3) [rad/s^2]."""
-        return np.asarray(self.rotation.apply(self.angular_acceleration_body_rad_s2), dtype=float)
+        return self.to_world(self.angular_acceleration_body_rad_s2)
 
     def point_velocity(self, offset_body_m: ArrayLike) -> FloatArray:
         """World velocity of the body-fixed point ``offset_body_m`` (container frame) [m/s]."""
-        arm = self.rotation.apply(np.asarray(offset_body_m, dtype=float).reshape(3))
+        arm = self.to_world(np.asarray(offset_body_m, dtype=float).reshape(3))
         return np.asarray(
             self.velocity_m_s + np.cross(self.angular_velocity_world_rad_s, arm), dtype=float
         )
 
     def point_acceleration(self, offset_body_m: ArrayLike) -> FloatArray:
         """World acceleration of a body-fixed point: a_O + alpha x r + omega x (omega x r)."""
-        arm = self.rotation.apply(np.asarray(offset_body_m, dtype=float).reshape(3))
+        arm = self.to_world(np.asarray(offset_body_m, dtype=float).reshape(3))
         omega = self.angular_velocity_world_rad_s
         alpha = self.angular_acceleration_world_rad_s2
         return np.asarray(
             self.acceleration_m_s2 + np.cross(alpha, arm) + np.cross(omega, np.cross(omega, arm)),
             dtype=float,
         )
+
+
+def quaternion_matrix(quaternion_xyzw: ArrayLike) -> FloatArray:
+    """Rotation matrices (M, 3, 3) of unit quaternions (x, y, z, w), as
+    `scipy.spatial.transform.Rotation.as_matrix` (Diebel 2006 eq. 125), vectorised in numpy."""
+    q = np.asarray(quaternion_xyzw, dtype=float)
+    x, y, z, w = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    out = np.empty((*q.shape[:-1], 3, 3))
+    out[..., 0, 0] = 1 - 2 * (y * y + z * z)
+    out[..., 0, 1] = 2 * (x * y - z * w)
+    out[..., 0, 2] = 2 * (x * z + y * w)
+    out[..., 1, 0] = 2 * (x * y + z * w)
+    out[..., 1, 1] = 1 - 2 * (x * x + z * z)
+    out[..., 1, 2] = 2 * (y * z - x * w)
+    out[..., 2, 0] = 2 * (x * z - y * w)
+    out[..., 2, 1] = 2 * (y * z + x * w)
+    out[..., 2, 2] = 1 - 2 * (x * x + y * y)
+    return out
 
 
 def savgol_half_width(cutoff_hz: float, sample_period_s: float, degree: int = SAVGOL_DEGREE) -> int:
@@ -186,28 +210,13 @@ def pose_kinematics(
         return _spline_kinematics(grid, dt)
     half = savgol_half_width(cutoff_hz, dt)
     window = 2 * half + 1
-    pad = window
-    position = np.vstack(
-        (
-            np.repeat(grid.position_m[:1], pad, 0),
-            grid.position_m,
-            np.repeat(grid.position_m[-1:], pad, 0),
-        )
-    )
-    quaternion = np.vstack(
-        (
-            np.repeat(grid.quaternion_xyzw[:1], pad, 0),
-            grid.quaternion_xyzw,
-            np.repeat(grid.quaternion_xyzw[-1:], pad, 0),
-        )
-    )
-    data = np.hstack((position, quaternion))
-    if data.shape[0] <= window:
-        raise InputError("poses", count, f"too few samples for a {window}-sample filter window")
-    keep = slice(pad, pad + count)
-    smooth = savgol_filter(data, window, SAVGOL_DEGREE, deriv=0, axis=0)[keep]
-    first = savgol_filter(data, window, SAVGOL_DEGREE, deriv=1, delta=dt, axis=0)[keep]
-    second = savgol_filter(data, window, SAVGOL_DEGREE, deriv=2, delta=dt, axis=0)[keep]
+    data = np.hstack((grid.position_m, grid.quaternion_xyzw))
+    if count < 2:
+        raise InputError("poses", count, "need at least 2 samples")
+    # mode="nearest" extends the data with the held first and last pose (rest before/after)
+    smooth = savgol_filter(data, window, SAVGOL_DEGREE, deriv=0, axis=0, mode="nearest")
+    first = savgol_filter(data, window, SAVGOL_DEGREE, deriv=1, delta=dt, axis=0, mode="nearest")
+    second = savgol_filter(data, window, SAVGOL_DEGREE, deriv=2, delta=dt, axis=0, mode="nearest")
     omega, alpha = _quaternion_rates(smooth[:, 3:], first[:, 3:], second[:, 3:])
     quaternion_out = smooth[:, 3:] / np.linalg.norm(smooth[:, 3:], axis=1)[:, None]
     nyquist = 0.5 / dt

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -115,12 +116,12 @@ class PoseTrajectory:
         """Time from the first to the last pose [s]."""
         return self.end_s - self.start_s
 
-    @property
+    @cached_property
     def sample_period_s(self) -> float:
         """Median step between poses [s]."""
         return float(np.median(np.diff(self.time_s)))
 
-    @property
+    @cached_property
     def is_uniform(self) -> bool:
         """True when every step equals the median step within 1e-6 relative."""
         steps = np.diff(self.time_s)
@@ -430,24 +431,32 @@ def poses_from_rotation(
 
 
 def concatenate(parts: Sequence[PoseTrajectory], name: str = "") -> PoseTrajectory:
-    """Poses of several trajectories one after the other (each starts where the last ended).
+    """Several trajectories one after the other, chained rigidly.
 
-    Each part is shifted in time to start at the end of the previous one; its first sample is
-    dropped when it coincides with the previous part's last.
+    Each part is shifted in time to start when the previous one ends, and moved as a rigid
+    body (D = R_prev_end R_start^-1, p' = p_prev_end + D (p - p_start), R' = D R) so that its
+    first pose coincides with the previous part's last pose; that first sample is dropped.
+
+    Examples
+    --------
+    >>> from sloshkit.motion.laws import septic
+    >>> a = poses_from_law(septic(0.1, 1.0), (1, 0, 0), sample_period_s=0.01)
+    >>> b = poses_from_law(septic(0.1, 1.0), (0, 1, 0), sample_period_s=0.01)
+    >>> concatenate([a, b]).position_m[-1].round(9).tolist()
+    [0.1, 0.1, 0.0]
     """
     if not parts:
         raise InputError("parts", 0, "need at least one trajectory")
-    times, positions, quaternions = (
-        [parts[0].time_s],
-        [parts[0].position_m],
-        [parts[0].quaternion_xyzw],
-    )
-    end = parts[0].end_s
+    first = parts[0]
+    times, positions, rotations = [first.time_s], [first.position_m], [first.rotation]
+    end_time, end_position, end_rotation = first.end_s, first.position_m[-1], first.rotation[-1]
     for part in parts[1:]:
-        shifted = part.time_s - part.start_s + end
-        keep = slice(1, None)
-        times.append(shifted[keep])
-        positions.append(part.position_m[keep])
-        quaternions.append(part.quaternion_xyzw[keep])
-        end = float(shifted[-1])
-    return PoseTrajectory(np.concatenate(times), np.vstack(positions), np.vstack(quaternions), name)
+        shift = end_rotation * part.rotation[0].inv()
+        moved = end_position + shift.apply(part.position_m - part.position_m[0])
+        turned = shift * part.rotation
+        times.append((part.time_s - part.start_s + end_time)[1:])
+        positions.append(moved[1:])
+        rotations.append(turned[1:])
+        end_time, end_position, end_rotation = float(times[-1][-1]), moved[-1], turned[-1]
+    quaternion = np.vstack([rotation.as_quat() for rotation in rotations])
+    return PoseTrajectory(np.concatenate(times), np.vstack(positions), quaternion, name)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -85,7 +86,7 @@ class SpatialResponse:
         """``"nonlinear"`` or ``"linear"``."""
         return "nonlinear" if self.nonlinear else "linear"
 
-    @property
+    @cached_property
     def angle_rad(self) -> FloatArray:
         """Pendulum deflection as a 2-D vector in N, (modes, M, 2) [rad]: theta (linear), or
         the polar angle from the axis times the unit direction of the bob (nonlinear)."""
@@ -107,16 +108,17 @@ class SpatialResponse:
         """`angle_rad` in the container frame C (follows the spin about the axis) [rad]."""
         return _rotate(self.angle_rad, -self.drive.spin_angle_rad)
 
-    @property
+    @cached_property
     def mode_slope(self) -> FloatArray:
         """Per-mode surface-slope vector used by the height mapping, (modes, M, 2) in N [-]."""
         lateral = self.pendulum[..., :2]
         if not self.nonlinear:
             return np.asarray(lateral, dtype=float)
-        axial = np.maximum(-self.pendulum[..., 2], 1e-6)
+        # tan of the deflection, capped at 84 deg (beyond it the model is invalid and warns)
+        axial = np.maximum(-self.pendulum[..., 2], 0.1)
         return np.asarray(lateral / axial[..., None], dtype=float)
 
-    @property
+    @cached_property
     def quasi_static_slope(self) -> FloatArray:
         """f_lat / |f_z| at the free-surface centre, (M, 2) in N: the slope of a surface
         normal to the apparent gravity [-]."""
@@ -133,14 +135,14 @@ class SpatialResponse:
         factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
         return np.asarray(np.einsum("n,nmk->mk", factors, self.mode_slope), dtype=float)
 
-    @property
+    @cached_property
     def planar_vector_m(self) -> FloatArray:
         """Wall-elevation vector with the quasi-static remainder of the unmodelled modes,
         (M, 2) in N [m]: exact (R tan psi) for a static or slow tilt of the apparent gravity."""
         remainder = self.truncation_factor_m * self.quasi_static_slope
         return np.asarray(self._modal_vector() + remainder, dtype=float)
 
-    @property
+    @cached_property
     def elevation_vector_m(self) -> FloatArray:
         """Wall-elevation vector in N with the chosen ``height_mapping``, (M, 2) [m]:
         eta(alpha) = vector . (cos alpha, sin alpha)."""
@@ -148,7 +150,7 @@ class SpatialResponse:
             return self.planar_vector_m
         return self._modal_vector()
 
-    @property
+    @cached_property
     def slosh_height_m(self) -> FloatArray:
         """Maximum over the circumference of the wall elevation above the rest level (M,) [m]."""
         vector = self.elevation_vector_m
@@ -170,7 +172,7 @@ class SpatialResponse:
         vector = _rotate(self.planar_vector_m, -self.drive.spin_angle_rad)
         return np.asarray(np.arctan(vector / self.model.radius_m), dtype=float)
 
-    @property
+    @cached_property
     def slosh_force_n(self) -> FloatArray:
         """Force of the sloshing masses on the container beyond rigid-body inertia, world
         frame (M, 3) [N]: -sum_n m_n L_n (bob acceleration relative to N), from the
@@ -224,7 +226,8 @@ class SpatialResponse:
         angle = self.angle_rad[0]
         return float(np.max(np.hypot(angle[:, 0], angle[:, 1])))
 
-    def _free_amplitudes(self) -> FloatArray:
+    @cached_property
+    def free_amplitudes_rad(self) -> FloatArray:
         """Per mode, the semi-major axis of the free oscillation left at the end [rad]."""
         index = int(np.searchsorted(self.time_s, self.motion_end_s - 1e-12))
         index = min(index, self.time_s.size - 1)
@@ -232,7 +235,10 @@ class SpatialResponse:
         force = self.drive.specific_force_m_s2[:, index]
         amplitudes = []
         for row, mode in enumerate(self.model.modes):
-            equilibrium = force[row, :2] / max(-force[row, 2], 1e-9)
+            if self.nonlinear:  # deflection from the unit vector along f
+                equilibrium = force[row, :2] / max(float(np.linalg.norm(force[row])), 1e-9)
+            else:
+                equilibrium = force[row, :2] / max(-force[row, 2], 1e-9)
             offset = self.pendulum[row, index, :2] - equilibrium
             rate = self.pendulum_rate[row, index, :2]
             damped = mode.omega_rad_s * math.sqrt(max(1e-300, 1.0 - mode.damping_ratio**2))
@@ -244,14 +250,14 @@ class SpatialResponse:
     @property
     def residual_angle_rad(self) -> float:
         """Amplitude of the first mode's free oscillation left at the end of the motion [rad]."""
-        return float(self._free_amplitudes()[0])
+        return float(self.free_amplitudes_rad[0])
 
     @property
     def residual_slosh_height_m(self) -> float:
         """Bound on the slosh height of the free oscillation left at the end of the motion:
         sum_n 2R/(xi_n^2 - 1) A_n (A_n: semi-major axis of mode n's free motion) [m]."""
         factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
-        return float(factors @ self._free_amplitudes())
+        return float(factors @ self.free_amplitudes_rad)
 
     @property
     def peak_tilt_rad(self) -> float:
