@@ -24,9 +24,9 @@ from typing import Any
 import numpy as np
 
 from sloshkit.errors import ValidityWarning
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import get_liquid
-from sloshkit.modal import SloshModel, equivalent_model
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import SloshModel, equivalent_model
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.spatial import simulate_spatial
 
@@ -179,7 +179,7 @@ def table(rows: list[dict[str, Any]], markdown: bool = False) -> str:
 
 def figure(rows: list[dict[str, Any]], series: list[dict[str, Any]], path: Path) -> None:
     """Measured against predicted series (linear and nonlinear), one panel per series."""
-    from sloshkit.spatial_plotting import plot_measured_comparison
+    from sloshkit.plotting.spatial import plot_measured_comparison
 
     panels = []
     for item in series:

@@ -10,7 +10,8 @@ from scipy.spatial.transform import Rotation
 
 from sloshkit.errors import InputError
 from sloshkit.motion.laws import septic
-from sloshkit.motion.pose_kinematics import pose_kinematics, quaternion_matrix, savgol_half_width
+from sloshkit.motion.pose_kinematics import pose_kinematics, savgol_half_width
+from sloshkit.motion.quaternions import quaternion_matrix
 from sloshkit.motion.poses import (
     PoseTrajectory,
     concatenate,

@@ -11,11 +11,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from sloshkit.dynamics import simulate
 from sloshkit.errors import ValidityWarning
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import get_liquid
-from sloshkit.modal import SloshModel, equivalent_model
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import SloshModel, equivalent_model
 from sloshkit.motion.laws import quintic, septic
 from sloshkit.motion.poses import (
     PoseTrajectory,
@@ -24,6 +23,7 @@ from sloshkit.motion.poses import (
     poses_from_path,
     poses_from_rotation,
 )
+from sloshkit.sim.simulate import simulate
 from sloshkit.sim.spatial import simulate_spatial
 
 
@@ -78,7 +78,7 @@ def test_spin_about_the_own_axis_gives_no_slosh(model: SloshModel) -> None:
 
 def test_a_1d_law_as_poses_equals_the_1d_simulation(model: SloshModel) -> None:
     law = septic(0.3, 1.2)
-    one_d = simulate(law, model, "linear", sample_period_s=1e-3, settle_time_s=1.0)
+    one_d = simulate(model, law, kind="linear", sample_period_s=1e-3, settle_time_s=1.0)
     for cutoff, tolerance in ((None, 2e-5), (25.0, 2e-3)):
         response = _quiet(
             model, poses_from_law(law), settle_time_s=1.0, sample_period_s=1e-3, cutoff_hz=cutoff
@@ -230,3 +230,10 @@ def test_response_protocol(model: SloshModel, tmp_path) -> None:  # type: ignore
     header = path.read_text().splitlines()[0].split(",")
     assert header[:2] == ["t_s", "x_m"]
     assert response.slosh_force_n.shape == (response.time_s.size, 3)
+
+
+def test_plot_draws_path_and_height(model: SloshModel, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    response = _quiet(model, _rich_motion())
+    figure = response.plot(path=tmp_path / "spatial.png", limit_m=0.01)
+    assert len(figure.axes) == 2
+    assert (tmp_path / "spatial.png").stat().st_size > 1000

@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 
 from sloshkit.errors import ValidityWarning
-from sloshkit.geometry import UprightCylinder
-from sloshkit.liquids import get_liquid
-from sloshkit.modal import equivalent_model
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import equivalent_model
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.spatial import simulate_spatial
 

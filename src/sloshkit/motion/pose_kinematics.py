@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -41,7 +42,10 @@ from scipy.signal import savgol_filter
 from scipy.spatial.transform import Rotation
 
 from sloshkit.errors import InputError, require_positive
-from sloshkit.motion.poses import PoseTrajectory, sign_continuous
+from sloshkit.motion.quaternions import quaternion_matrix, quaternion_rates, sign_continuous
+
+if TYPE_CHECKING:
+    from sloshkit.motion.poses import PoseTrajectory
 
 FloatArray = NDArray[np.float64]
 
@@ -118,24 +122,6 @@ class PoseKinematics:
         )
 
 
-def quaternion_matrix(quaternion_xyzw: ArrayLike) -> FloatArray:
-    """Rotation matrices (M, 3, 3) of unit quaternions (x, y, z, w), as
-    `scipy.spatial.transform.Rotation.as_matrix` (Diebel 2006 eq. 125), vectorised in numpy."""
-    q = np.asarray(quaternion_xyzw, dtype=float)
-    x, y, z, w = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
-    out = np.empty((*q.shape[:-1], 3, 3))
-    out[..., 0, 0] = 1 - 2 * (y * y + z * z)
-    out[..., 0, 1] = 2 * (x * y - z * w)
-    out[..., 0, 2] = 2 * (x * z + y * w)
-    out[..., 1, 0] = 2 * (x * y + z * w)
-    out[..., 1, 1] = 1 - 2 * (x * x + z * z)
-    out[..., 1, 2] = 2 * (y * z - x * w)
-    out[..., 2, 0] = 2 * (x * z - y * w)
-    out[..., 2, 1] = 2 * (y * z + x * w)
-    out[..., 2, 2] = 1 - 2 * (x * x + y * y)
-    return out
-
-
 def savgol_half_width(cutoff_hz: float, sample_period_s: float, degree: int = SAVGOL_DEGREE) -> int:
     """Half-width M of the Savitzky-Golay window for a 3-dB cut-off ``cutoff_hz``.
 
@@ -151,20 +137,6 @@ def savgol_half_width(cutoff_hz: float, sample_period_s: float, degree: int = SA
     ratio = require_positive("cutoff", cutoff_hz, "Hz") / nyquist
     half = round(((degree + 1) / min(ratio, 1.0) + 4.6) / 3.2)
     return int(max(half, degree // 2 + 1))
-
-
-def _quaternion_rates(
-    q: FloatArray, q_dot: FloatArray, q_ddot: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """Body angular velocity 2 vec(q* q') and acceleration 2 vec(q* q''), scaled by 1/|q|^2."""
-
-    def vec_conj_product(a: FloatArray, b: FloatArray) -> FloatArray:
-        av, aw = a[:, :3], a[:, 3:4]
-        bv, bw = b[:, :3], b[:, 3:4]
-        return np.asarray(aw * bv - bw * av - np.cross(av, bv), dtype=float)
-
-    scale = 2.0 / np.einsum("ij,ij->i", q, q)[:, None]
-    return scale * vec_conj_product(q, q_dot), scale * vec_conj_product(q, q_ddot)
 
 
 def pose_kinematics(
@@ -217,7 +189,7 @@ def pose_kinematics(
     smooth = savgol_filter(data, window, SAVGOL_DEGREE, deriv=0, axis=0, mode="nearest")
     first = savgol_filter(data, window, SAVGOL_DEGREE, deriv=1, delta=dt, axis=0, mode="nearest")
     second = savgol_filter(data, window, SAVGOL_DEGREE, deriv=2, delta=dt, axis=0, mode="nearest")
-    omega, alpha = _quaternion_rates(smooth[:, 3:], first[:, 3:], second[:, 3:])
+    omega, alpha = quaternion_rates(smooth[:, 3:], first[:, 3:], second[:, 3:])
     quaternion_out = smooth[:, 3:] / np.linalg.norm(smooth[:, 3:], axis=1)[:, None]
     nyquist = 0.5 / dt
     actual = (
@@ -247,7 +219,7 @@ def _spline_kinematics(grid: PoseTrajectory, dt: float) -> PoseKinematics:
     smooth = np.asarray(spline(time), dtype=float)
     first = np.asarray(spline(time, 1), dtype=float)
     second = np.asarray(spline(time, 2), dtype=float) if degree >= 2 else np.zeros_like(first)
-    omega, alpha = _quaternion_rates(smooth[:, 3:], first[:, 3:], second[:, 3:])
+    omega, alpha = quaternion_rates(smooth[:, 3:], first[:, 3:], second[:, 3:])
     return PoseKinematics(
         time_s=time,
         position_m=smooth[:, :3],

@@ -31,7 +31,9 @@ from scipy.interpolate import make_interp_spline
 from scipy.spatial.transform import Rotation, RotationSpline
 
 from sloshkit.errors import InputError, require_increasing, require_positive
-from sloshkit.motion.laws import Motion, sample_times
+from sloshkit.motion.laws import Motion
+from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.sampling import sample_times
 
 if TYPE_CHECKING:
     from sloshkit.motion.pose_kinematics import PoseKinematics
@@ -242,21 +244,6 @@ class PoseTrajectory:
             sample_period_s,
             cutoff_hz=DEFAULT_CUTOFF_HZ if cutoff_hz is None else cutoff_hz,
         )
-
-
-def sign_continuous(quaternion_xyzw: ArrayLike) -> FloatArray:
-    """Flip quaternion signs so that consecutive quaternions have a non-negative dot product.
-
-    The first quaternion is made to have w >= 0. q and -q are the same rotation; continuity is
-    needed before any interpolation or differentiation of the components.
-    """
-    q = np.array(quaternion_xyzw, dtype=float, copy=True)
-    if q[0, 3] < 0.0:
-        q[0] = -q[0]
-    dots = np.einsum("ij,ij->i", q[1:], q[:-1])
-    flips = np.cumsum(dots < 0.0) % 2 == 1
-    q[1:][flips] = -q[1:][flips]
-    return q
 
 
 # ---------------------------------------------------------------------------------------------

@@ -2,7 +2,7 @@
 
 Model
 -----
-Each lateral mode n of the equivalent model (`sloshkit.modal.SloshModel`: omega_n, zeta_n,
+Each lateral mode n of the equivalent model (`sloshkit.model.modal.SloshModel`: omega_n, zeta_n,
 L_n, bob height, unchanged) is a spherical pendulum of length L_n hinged on the container
 axis at the pivot height H_n = bob height + L_n (Abramson, NASA SP-106 (1966) ch. 6; Dodge,
 SwRI (2000) §3: the same pendulum reproduces the slosh forces and moments for translation
@@ -33,7 +33,7 @@ Omega Omega^T). A static tilt psi gives f_lat / |f_z| = tan psi: the pendulums h
 gravity and the surface stays horizontal. Nonlinear: the damped spherical pendulum with the
 same drive (`sloshkit.sim.spatial_kernels`), damping on the motion relative to N.
 
-Wall elevation (mode-shape mapping of the 1-D model, `sloshkit.modal.wall_elevation_factor`)::
+Wall elevation (mode-shape mapping of the 1-D model, `sloshkit.model.modal.wall_elevation_factor`)::
 
     eta(alpha) = sum_n F_n theta_n . e(alpha),   F_n = 2R/(xi_n^2 - 1)     ("modal", default)
     eta(alpha) += (R - sum_n F_n) s_qs . e(alpha)                          ("planar")
@@ -61,11 +61,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.dynamics import LARGE_ANGLE_DEG, default_settle_time
 from sloshkit.errors import InputError, require_positive, warn_validity
-from sloshkit.modal import SloshModel
+from sloshkit.model.modal import SloshModel
 from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, PoseKinematics, pose_kinematics
 from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.sim.metrics import default_settle_time
+from sloshkit.sim.simulate import LARGE_ANGLE_DEG
 from sloshkit.sim.spatial_kernels import linear_pendulums, nonlinear_pendulums
 from sloshkit.sim.spatial_response import HEIGHT_MAPPINGS, HeightMapping, SpatialResponse
 
@@ -119,9 +120,9 @@ def spatial_drive(model: SloshModel, kinematics: PoseKinematics) -> SpatialDrive
 
     Examples
     --------
-    >>> from sloshkit.geometry import UprightCylinder
-    >>> from sloshkit.liquids import get_liquid
-    >>> from sloshkit.modal import equivalent_model
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion.laws import quintic
     >>> from sloshkit.motion.poses import poses_from_law
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08, 1)
@@ -197,13 +198,13 @@ def simulate_spatial(
 
     Parameters
     ----------
-    model : equivalent pendulum model (`sloshkit.modal.equivalent_model`)
+    model : equivalent pendulum model (`sloshkit.model.modal.equivalent_model`)
     poses : pose trajectory of the container's bottom centre; at rest before the first and
         after the last pose
     nonlinear : large-angle spherical pendulums (RK4) instead of the linear 2-D oscillators
         (closed-form steps)
     settle_time_s : time simulated after the last pose, the final pose held [s] (default
-        `sloshkit.dynamics.default_settle_time`)
+        `sloshkit.sim.metrics.default_settle_time`)
     sample_period_s : simulation step [s] (default: the poses' step if uniform, else 1 ms)
     cutoff_hz : cut-off of the pose differentiation (`sloshkit.motion.pose_kinematics`);
         None for exact (unsmoothed) data
@@ -224,9 +225,9 @@ def simulate_spatial(
 
     Examples
     --------
-    >>> from sloshkit.geometry import UprightCylinder
-    >>> from sloshkit.liquids import get_liquid
-    >>> from sloshkit.modal import equivalent_model
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion.laws import septic
     >>> from sloshkit.motion.poses import poses_from_law
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08,

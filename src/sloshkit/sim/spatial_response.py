@@ -11,13 +11,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.modal import SloshModel
+from sloshkit.model.modal import SloshModel
+from sloshkit.results import ResultMixin
+from sloshkit.sim.metrics import free_oscillation_components, wall_elevation_factors
 
 if TYPE_CHECKING:
     from sloshkit.sim.spatial import SpatialDrive
@@ -48,7 +49,7 @@ def ellipse_semi_major(first: FloatArray, second: FloatArray) -> FloatArray:
 
 
 @dataclass(frozen=True, eq=False)
-class SpatialResponse:
+class SpatialResponse(ResultMixin):
     """Slosh response to a 3-D pose trajectory (arrays over time; modes on the first axis).
 
     Attributes
@@ -132,7 +133,7 @@ class SpatialResponse:
         return self.model.radius_m - sum(m.wall_elevation_factor_m for m in self.model.modes)
 
     def _modal_vector(self) -> FloatArray:
-        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
+        factors = wall_elevation_factors(self.model)
         return np.asarray(np.einsum("n,nmk->mk", factors, self.mode_slope), dtype=float)
 
     @cached_property
@@ -241,8 +242,9 @@ class SpatialResponse:
                 equilibrium = force[row, :2] / max(-force[row, 2], 1e-9)
             offset = self.pendulum[row, index, :2] - equilibrium
             rate = self.pendulum_rate[row, index, :2]
-            damped = mode.omega_rad_s * math.sqrt(max(1e-300, 1.0 - mode.damping_ratio**2))
-            quadrature = (rate + mode.damping_ratio * mode.omega_rad_s * offset) / damped
+            offset, quadrature = free_oscillation_components(
+                offset, rate, mode.omega_rad_s, mode.damping_ratio
+            )
             semi = float(ellipse_semi_major(offset, quadrature))
             amplitudes.append(semi * math.exp(mode.damping_ratio * mode.omega_rad_s * lag))
         return np.asarray(amplitudes)
@@ -256,7 +258,7 @@ class SpatialResponse:
     def residual_slosh_height_m(self) -> float:
         """Bound on the slosh height of the free oscillation left at the end of the motion:
         sum_n 2R/(xi_n^2 - 1) A_n (A_n: semi-major axis of mode n's free motion) [m]."""
-        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
+        factors = wall_elevation_factors(self.model)
         return float(factors @ self.free_amplitudes_rad)
 
     @property
@@ -308,23 +310,3 @@ class SpatialResponse:
         if include_series:
             payload["series"] = {key: value.tolist() for key, value in self.columns().items()}
         return payload
-
-    def to_pandas(self) -> Any:
-        """`columns` as a pandas DataFrame (pandas is imported lazily)."""
-        try:
-            import pandas as pd
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError("to_pandas() needs pandas: pip install pandas") from exc
-        return pd.DataFrame(self.columns())
-
-    def to_csv(self, path: str | Path) -> Path:
-        """Write `columns` as CSV, atomically."""
-        from sloshkit.io import write_columns_csv
-
-        return write_columns_csv(path, self.columns())
-
-    def plot(self, ax: Any = None, *, limit_m: float | None = None) -> Any:
-        """Figure: top view of the path and the slosh height against time (with a limit)."""
-        from sloshkit.spatial_plotting import plot_spatial_response
-
-        return plot_spatial_response(self, ax=ax, limit_m=limit_m)

@@ -1,52 +1,44 @@
-"""Figures of 3-D slosh responses (matplotlib imported only here, only when drawing).
+"""Figures of 3-D slosh responses: path (top view) and slosh height, measured against predicted.
 
-Kept apart from `sloshkit.plotting` until the package layout moves plotting into
-`sloshkit/plotting/`; it draws `sloshkit.sim.spatial_response.SpatialResponse` objects only.
+Draws `sloshkit.sim.spatial_response.SpatialResponse` objects (registered for ``plot()``) and
+the measured-data comparison of ``benchmarks/validate_measured_3d.py``.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from sloshkit.sim.spatial_response import SpatialResponse
+from sloshkit.plotting.base import panels, save_figure
+from sloshkit.results import register_plot
+from sloshkit.sim.spatial_response import SpatialResponse
 
 
-def _pyplot() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
+@register_plot(SpatialResponse)
 def plot_spatial_response(
     response: SpatialResponse,
-    ax: Any = None,
-    *,
-    limit_m: float | None = None,
     path: str | Path | None = None,
+    *,
+    ax: Any = None,
+    limit_m: float | None = None,
 ) -> Any:
     """Top view of the path and slosh height against time; returns the Figure.
 
     Parameters
     ----------
     response : the 3-D slosh response
-    ax : optional pair of matplotlib Axes (path, height); a new figure otherwise
+    path : save the figure there when given
+    ax : an Axes whose area holds the two panels; a new figure otherwise
     limit_m : slosh-height limit drawn as a horizontal line [m] (default: the free board
         wall height - fill height when the wall height is known)
-    path : save the figure there when given
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
-    plt = _pyplot()
-    if ax is None:
-        figure, axes = plt.subplots(1, 2, figsize=(11, 4.2), gridspec_kw={"width_ratios": [1, 2]})
-    else:
-        axes = list(ax)
-        figure = axes[0].figure
+    figure, axes = panels(ax, 1, 2, figsize=(11, 4.2))
     xyz = response.path_m
     time = response.time_s
     moving = time <= response.motion_end_s + 1e-12
@@ -71,12 +63,9 @@ def plot_spatial_response(
     axes[1].set_title(response.motion_name or "3-D slosh")
     axes[1].grid(alpha=0.3)
     axes[1].legend(loc="upper right", fontsize=8)
-    figure.tight_layout()
-    if path is not None:
-        from sloshkit.plotting import save_figure
-
-        save_figure(figure, path)
-    return figure
+    if ax is None:
+        figure.tight_layout()
+    return save_figure(figure, path)
 
 
 def plot_measured_comparison(
@@ -87,9 +76,8 @@ def plot_measured_comparison(
     Each item has ``name``, ``measured_t_s``, ``measured_m`` and ``predicted`` (a list of
     (label, time [s], height [m])).
     """
-    plt = _pyplot()
     rows = int(np.ceil(len(series) / columns))
-    figure, axes = plt.subplots(rows, columns, figsize=(6 * columns, 2.8 * rows), squeeze=False)
+    figure, axes = panels(None, rows, columns, figsize=(6 * columns, 2.8 * rows), squeeze=False)
     for axis, item in zip(axes.flat, series, strict=False):
         axis.plot(
             item["measured_t_s"],
@@ -108,8 +96,4 @@ def plot_measured_comparison(
         axis.axis("off")
     axes.flat[0].legend(loc="upper left", fontsize=7)
     figure.tight_layout()
-    if path is not None:
-        from sloshkit.plotting import save_figure
-
-        save_figure(figure, path)
-    return figure
+    return save_figure(figure, path)
