@@ -108,25 +108,40 @@ def test_a_broken_slosh_limit_fails(planned: Path, tmp_path: Path):
     assert max(result.round_trip.relative_differences.values()) < TOLERANCE
 
 
-def test_pose_streams_export_and_say_what_was_not_checked(tmp_path: Path, ur5e):
-    count = 41
+@pytest.mark.parametrize("fmt", ["pose-csv", "ros2"])
+def test_a_3d_pose_stream_keeps_its_slosh(fmt: str, tmp_path: Path, ur5e):
+    """A tilting, turning 3-D move: the export is re-simulated with the 3-D model."""
+    from scipy.spatial.transform import Rotation
+
+    count = 101
     s = np.linspace(0.0, 1.0, count)
     smooth = s**3 * (10 - 15 * s + 6 * s**2)
+    angles = np.column_stack([np.radians(8.0) * np.sin(np.pi * smooth), 0 * s, 0.3 * smooth])
     stream = PoseStream(
-        np.arange(count) * 0.01,
+        np.arange(count) * 0.004,
         np.column_stack([0.1 * smooth, 0.05 * smooth, 0.02 * smooth]),
-        np.tile([0.0, 0.0, 0.0, 1.0], (count, 1)),
+        Rotation.from_euler("xyz", angles).as_quat(),
     )
     result = export_plan(
         stream,
-        "joint-csv",
-        tmp_path / "j.csv",
+        fmt,
+        tmp_path / f"move{SUFFIXES[fmt]}",
         arm=ur5e,
         mounting=MOUNTING,
         model=seed_vial_table3(),
     )
-    assert result.round_trip is None and result.passed
-    assert "spatial simulator" in result.notes[0]
+    trip = result.round_trip
+    assert trip is not None and trip.passed, trip
+    assert "3-D" in trip.method
+    assert set(trip.plan_metrics) == {
+        "peak_angle_deg",
+        "residual_angle_deg",
+        "peak_slosh_height_m",
+        "residual_slosh_height_m",
+    }
+    assert trip.plan_metrics["peak_angle_deg"] > 1.0
+    assert max(trip.relative_differences.values()) < 1e-3
+    assert trip.max_position_error_m < 1e-6
 
 
 def test_a_joint_file_beyond_the_velocity_limit_fails(planned: Path, ur5e, tmp_path: Path):

@@ -221,16 +221,19 @@ def show_export(result: Any) -> None:
     trip = result.round_trip
     if trip is None:
         return
-    table = Table(title="Round trip: plan vs exported file (re-simulated)")
+    table = Table(title=f"Round trip: plan vs exported file, re-simulated ({trip.method})")
     for header in ("metric", "plan", "export", "difference"):
         table.add_column(Text(header), justify="right")
-    rows = (
-        ("peak θ₁ [deg]", "peak_angle_deg", 1.0),
-        ("residual θ₁ [deg]", "residual_angle_deg", 1.0),
-        ("peak wall elevation [mm]", "peak_wall_elevation_m", 1e3),
-        ("residual wall elevation [mm]", "residual_wall_elevation_m", 1e3),
-    )
-    for label, key, scale in rows:
+    labels = {
+        "peak_angle_deg": ("peak θ₁ [deg]", 1.0),
+        "residual_angle_deg": ("residual θ₁ [deg]", 1.0),
+        "peak_wall_elevation_m": ("peak wall elevation [mm]", 1e3),
+        "residual_wall_elevation_m": ("residual wall elevation [mm]", 1e3),
+        "peak_slosh_height_m": ("peak slosh height [mm]", 1e3),
+        "residual_slosh_height_m": ("residual slosh height [mm]", 1e3),
+    }
+    for key in trip.plan_metrics:
+        label, scale = labels.get(key, (key, 1.0))
         table.add_row(
             Text(label),
             f"{scale * trip.plan_metrics[key]:.5g}",

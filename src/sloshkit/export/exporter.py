@@ -23,7 +23,12 @@ from sloshkit.export.frames import Mounting, invert, matrices_to_poses, poses_to
 from sloshkit.export.ik import JointPath, joint_limit_violations, solve_joint_path
 from sloshkit.export.kinematics import Arm
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
-from sloshkit.export.roundtrip import RoundTrip, compare_line, container_poses_in_path
+from sloshkit.export.roundtrip import (
+    RoundTrip,
+    compare_line,
+    compare_spatial,
+    container_poses_in_path,
+)
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.problem import SloshLimits
 
@@ -234,7 +239,8 @@ def check_round_trip(
     Returns
     -------
     tuple
-        The `RoundTrip` (None when it cannot be run) and a note saying why not ("" if run).
+        The `RoundTrip` (1-D model for a 1-D plan, 3-D model for a pose stream) and a note
+        ("" when there is nothing to add).
 
     Examples
     --------
@@ -255,11 +261,9 @@ def check_round_trip(
     time, rebuilt = rebuild_container_poses(fmt, path, arm, mounting, axis)  # type: ignore[arg-type]
     in_path = container_poses_in_path(rebuilt, mounting.base_to_path)
     if plan.line is None:
-        return None, (
-            "3-D pose streams: the slosh round trip needs the spatial simulator "
-            "(sloshkit.sim.spatial), not available in this version"
-        )
-    trip = compare_line(model, plan, time, in_path, limits)
+        trip = compare_spatial(model, plan, time, in_path, limits)
+    else:
+        trip = compare_line(model, plan, time, in_path, limits)
     if fmt in JOINT_FORMATS and arm is not None:
         joint_time, position = read_joint_samples(fmt, path)
         extra = joint_limit_violations(arm, joint_time, position)

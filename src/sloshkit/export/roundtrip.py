@@ -10,6 +10,10 @@ the same two steps, so the two results differ only by what the export changed. T
 trip also measures how far the rebuilt poses leave the plan's path (position and orientation),
 which the 1-D model cannot see.
 
+Pose streams (3-D plans): the rebuilt container poses and the plan, resampled to the same grid,
+are both simulated with the 3-D model (`sloshkit.sim.spatial.simulate_spatial`, exact pose
+derivatives) and compared on peak and residual first-mode angle and slosh height.
+
 The comparison passes when peak and residual first-mode angle and peak and residual wall
 elevation agree within `TOLERANCE` (2 %) relative to the plan's value, no slosh limit is
 broken, and the rebuilt container stays within `PATH_TOLERANCE_M` of the planned path and
