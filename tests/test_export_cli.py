@@ -112,3 +112,23 @@ def test_plan_export_writes_the_chosen_move(tmp_path: Path) -> None:
     header = (tmp_path / "move.cam.csv").read_text().splitlines()
     assert any(line.startswith("# limits: ") for line in header)
     assert any(line.startswith("# model: ") for line in header)
+
+
+def test_export_of_a_pose_stream_uses_the_3d_model(tmp_path: Path) -> None:
+    """A pose-csv written by export is itself a plan: its joint export is checked in 3-D."""
+    from sloshkit.export import Mounting, export_plan, read_plan
+
+    plan = write_quintic_plan(tmp_path / "plan.csv", duration_s=0.2)
+    poses = tmp_path / "poses.csv"
+    export_plan(
+        read_plan(plan),
+        "pose-csv",
+        poses,
+        mounting=Mounting(base_xyz_m=(-0.49, -0.13, 0.39)),
+        check=False,
+    )
+    result = runner.invoke(app, ["export", str(poses), "--format", "joint-csv", "--json"])
+    assert result.exit_code == 0, result.output
+    trip = json.loads(result.output)["round_trip"]
+    assert trip["passed"] and "3-D" in trip["method"]
+    assert "peak_slosh_height_m" in trip["plan"]

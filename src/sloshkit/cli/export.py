@@ -294,7 +294,7 @@ def export_command(
 
     Example:
 
-      sloshkit export plan.csv --format urscript --robot ur5e --base-pose -0.5m,-0.13m,0.39m
+      sloshkit export plan.csv --format urscript --robot ur5e --base-pose=-0.5m,-0.13m,0.39m
     """
     from sloshkit.export.exporter import SUFFIXES
 
