@@ -57,7 +57,7 @@ def test_export_joint_csv_json_contract(tmp_path: Path) -> None:
     assert set(trip) == {
         "passed",
         "method",
-        "tolerance",
+        "relative_tolerance",
         "plan",
         "export",
         "relative_difference",

@@ -90,7 +90,7 @@ class RoundTrip:
         return {
             "passed": self.passed,
             "method": self.method,
-            "tolerance": TOLERANCE,
+            "relative_tolerance": TOLERANCE,
             "plan": dict(self.plan_metrics),
             "export": dict(self.export_metrics),
             "relative_difference": dict(self.relative_differences),
