@@ -132,3 +132,24 @@ def test_export_of_a_pose_stream_uses_the_3d_model(tmp_path: Path) -> None:
     trip = json.loads(result.output)["round_trip"]
     assert trip["passed"] and "3-D" in trip["method"]
     assert "peak_slosh_height_m" in trip["plan"]
+
+
+def test_mounting_and_seed_options_are_parsed_with_units(tmp_path: Path) -> None:
+    plan = write_quintic_plan(tmp_path / "plan.csv", distance_m=0.05, duration_s=0.2)
+    result = runner.invoke(
+        app,
+        [
+            *("export", str(plan), "--format", "joint-csv", "--axis", "y", "--json"),
+            *("--seed-joints", "0,-90deg,90deg,-90deg,-90deg,0"),
+            *("--tool-offset", "0,0,0.1m", "--tool-rotation", "3.141592653589793,0,0"),
+            "--base-pose=-490mm,-0.13m,0.39m,0deg,0deg,90deg",
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    payload = json.loads(result.output)
+    assert payload["round_trip"]["passed"]
+    header = (tmp_path / "plan.joints.csv").read_text()
+    assert '"base_rotation_rpy_rad": [0.0, 0.0, 1.570796326795]' in header
+    bad = runner.invoke(app, ["export", str(plan), "--base-pose", "1,2"])
+    assert bad.exit_code != 0
+    assert "base_pose" in str(bad.exception) or "base_pose" in bad.output
