@@ -3,8 +3,9 @@
 Each sample's IK (ikpy, bounded least squares on the tip frame, with the analytic Jacobian of
 its residual) starts from the previous sample's solution, extrapolated linearly from the two
 before, so the arm stays on one branch; the first sample starts from the arm's home
-configuration. The joint path is then checked, in this order, and the first failure raises
-`InputError` naming the sample (index and time) and the joint:
+configuration (and, if that misses, from `FIRST_SAMPLE_SEEDS` around it). The joint path is
+then checked, in this order, and the first failure raises `InputError` naming the sample
+(index and time) and the joint:
 
 1. reach: the IK tip frame must match the target within `REACH_TOLERANCE_M` and
    `REACH_TOLERANCE_RAD` (a joint stuck on a position limit is named as the cause);
@@ -191,14 +192,18 @@ def solve_joint_path(
     solution = np.empty((count, arm.dof))
     worst_error = 0.0
     for index in range(count):
-        # Seed: the previous solution, extrapolated linearly once two are known.
+        # Seed: the previous solution, extrapolated linearly once two are known; the first
+        # sample also tries `FIRST_SAMPLE_SEEDS` starts around the seed if that one misses.
         guess = 2.0 * previous - solution[index - 2] if index >= 2 else previous
         guess = np.clip(guess, arm.lower_rad, arm.upper_rad)
-        joints = _solve_one(arm, targets[index], guess)
-        reached = arm.forward(joints[None])[0]
-        distance = float(np.linalg.norm(reached[:3, 3] - targets[index][:3, 3]))
-        angle = float(rotation_angle_rad(reached, targets[index]))
-        if distance > REACH_TOLERANCE_M or angle > REACH_TOLERANCE_RAD:
+        joints, distance, angle = _solve_and_measure(arm, targets[index], guess)
+        if index == 0 and not _reached(distance, angle):
+            for seed in _first_sample_seeds(arm, guess):
+                candidate = _solve_and_measure(arm, targets[index], seed)
+                if _reached(candidate[1], candidate[2]):
+                    joints, distance, angle = candidate
+                    break
+        if not _reached(distance, angle):
             raise _unreachable(arm, index, times[index], joints, distance, angle)
         worst_error = max(worst_error, distance)
         solution[index] = joints
@@ -217,6 +222,35 @@ def solve_joint_path(
         max_condition_number=worst_condition,
         max_tip_error_m=worst_error,
     )
+
+
+#: Extra IK starts tried for the first sample when the seed misses: the seed with each joint
+#: in turn moved by +-pi/2 (clipped to its range), in a fixed order.
+FIRST_SAMPLE_SEEDS = "each joint +-pi/2"
+
+
+def _first_sample_seeds(arm: Arm, seed: FloatArray) -> list[FloatArray]:
+    seeds = []
+    for joint in range(arm.dof):
+        for step in (math.pi / 2, -math.pi / 2):
+            moved = seed.copy()
+            moved[joint] += step
+            seeds.append(np.clip(moved, arm.lower_rad, arm.upper_rad))
+    return seeds
+
+
+def _reached(distance: float, angle: float) -> bool:
+    return distance <= REACH_TOLERANCE_M and angle <= REACH_TOLERANCE_RAD
+
+
+def _solve_and_measure(
+    arm: Arm, target: FloatArray, seed: FloatArray
+) -> tuple[FloatArray, float, float]:
+    """IK from ``seed``, and how far the solution's tip is from the target [m, rad]."""
+    joints = _solve_one(arm, target, seed)
+    reached = arm.forward(joints[None])[0]
+    distance = float(np.linalg.norm(reached[:3, 3] - target[:3, 3]))
+    return joints, distance, float(rotation_angle_rad(reached, target))
 
 
 def _solve_one(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
