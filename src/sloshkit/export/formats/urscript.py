@@ -1,6 +1,9 @@
 """``urscript``: a URScript program that streams joint samples with ``servoj`` every 2 ms.
 
-The program moves to the first sample with ``movej`` (slowly), then calls
+The file is one ``def ... end`` block (what the controller's primary and secondary interfaces
+run when it is sent to them; in a Polyscope Script node, call the function after loading it),
+with the metadata as comments inside it. The program moves to the first sample with
+``movej`` (slowly), then calls
 ``servoj(q, a, v, t, lookahead_time, gain)`` once per sample, ``t`` = 0.002 s (the e-Series
 controller period; ``servoj`` blocks for ``t``), and ends with ``stopj``. ``a`` and ``v`` are
 not used by the controller (written as 0). Signature and ranges from the URScript manual
@@ -46,7 +49,7 @@ def write_urscript(
     ----------
     path : output ``.script`` file
     joints : joint samples on the 2 ms grid (6 joints, base to wrist 3)
-    metadata : written as ``#`` comment lines first
+    metadata : written as ``#`` comment lines at the top of the function body
     lookahead_time_s : servoj ``lookahead_time`` [s], 0.03..0.2
     gain : servoj ``gain``, 100..2000
     name : the program's function name
@@ -85,8 +88,8 @@ def write_urscript(
         return "[" + ", ".join(number(value) for value in row) + "]"
 
     lines = [
-        header_lines(metadata),
         f"def {name}():\n",
+        header_lines(metadata, prefix="  # "),
         f"  # approach the first sample, then stream {joints.time_s.size} samples every "
         f"{number(period)} s\n",
         f"  movej({q(joints.position_rad[0])}, a={number(APPROACH_ACCELERATION_RAD_S2)}, "
@@ -94,7 +97,7 @@ def write_urscript(
     ]
     tail = f", 0, 0, {number(period)}, {number(lookahead)}, {number(gain)})\n"
     lines += [f"  servoj({q(row)}{tail}" for row in joints.position_rad]
-    lines += ["  stopj(2.0)\n", "end\n", f"{name}()\n"]
+    lines += ["  stopj(2.0)\n", "end\n"]
     with atomic_open(path) as handle:
         handle.write("".join(lines))
     return Path(path)
