@@ -138,6 +138,7 @@ def identify_simulated(
         bounds=(low, high),
         x_scale=np.array(scale),
         diff_step=1e-5,
+        max_nfev=200,
     )
     fit = fit_statistics(y, design_at, np.asarray(solution.x, dtype=float))
     omega, zeta = float(solution.x[0]), float(solution.x[1])
