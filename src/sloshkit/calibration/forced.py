@@ -308,10 +308,10 @@ def identify_forced(
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion import quintic
     >>> from sloshkit.sim.simulate import simulate
-    >>> model = equivalent_model(UprightCylinder(0.04), get_liquid("water-25C"), 0.06,
+    >>> model = equivalent_model(UprightCylinder(0.04), get_liquid("water-25C"), 0.06, 1,
     ...                          damping_ratio=0.02)
     >>> move = quintic(0.05, 0.5)
-    >>> response = simulate(model, move, sample_period_s=0.002, settle_time_s=0.0)
+    >>> response = simulate(model, move, sample_period_s=0.004, settle_time_s=0.0)
     >>> guess = model.with_mode(1, omega_rad_s=19.0).with_mode(1, damping_ratio=0.05)
     >>> found = identify_forced(guess, AppliedMotion(move), response.time_s,
     ...                         response.wall_elevation_m)

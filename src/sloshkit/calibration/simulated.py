@@ -75,13 +75,13 @@ def identify_simulated(
     --------
     >>> import numpy as np
     >>> def simulate(omega, zeta):
-    ...     t = np.arange(0, 6, 0.002)
+    ...     t = np.arange(0, 3, 0.005)
     ...     damped = omega * np.sqrt(1 - zeta**2)
     ...     return t, np.where(t > 1, np.exp(-zeta * omega * (t - 1)) * np.sin(damped * (t - 1)), 0)
-    >>> t = np.arange(0, 6, 0.002)
+    >>> t = np.arange(0, 3, 0.005)
     >>> record = 2 * np.interp(t - 0.3, *simulate(20.0, 0.02), left=0) + 0.1
     >>> found = identify_simulated(simulate, t, record, omega_guess_rad_s=18.0, delay_s=0.25,
-    ...                            fit_delay=True)
+    ...                            fit_delay=True, delay_range_s=0.1)
     >>> round(found.omega_n_rad_s, 3), round(found.damping_ratio, 4), round(found.delay_s, 3)
     (20.0, 0.02, 0.3)
     """
