@@ -55,7 +55,7 @@ def test_linear_fast_path_matches_solve_ivp(seed_model_table3, name):
         max_acceleration_m_s2=1.0,
         max_jerk_m_s3=10.0,
     )
-    response = simulate(motion, seed_model_table3, sample_period_s=1e-3, settle_time_s=1.0)
+    response = simulate(seed_model_table3, motion, sample_period_s=1e-3, settle_time_s=1.0)
     for row, mode in enumerate(seed_model_table3.modes):
         angle, rate = _solve_ivp_reference(motion, mode, response.time_s)
         scale = np.max(np.abs(angle))
@@ -66,8 +66,8 @@ def test_linear_fast_path_matches_solve_ivp(seed_model_table3, name):
 
 def test_nonlinear_equals_linear_at_small_amplitude(seed_model_table3):
     motion = quintic(0.005, 1.0)  # 5 mm move: angles of a few hundredths of a degree
-    linear = simulate(motion, seed_model_table3)
-    nonlinear = simulate(motion, seed_model_table3, kind="nonlinear")
+    linear = simulate(seed_model_table3, motion)
+    nonlinear = simulate(seed_model_table3, motion, kind="nonlinear")
     scale = np.max(np.abs(linear.angle_rad))
     assert np.max(np.abs(linear.angle_rad - nonlinear.angle_rad)) < 1e-4 * scale
     assert nonlinear.residual_angle_rad == pytest.approx(linear.residual_angle_rad, rel=1e-3)
@@ -79,15 +79,15 @@ def test_nonlinear_softens_at_large_amplitude(seed_model_table3):
     )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
-        linear = simulate(motion, seed_model_table3)
-        nonlinear = simulate(motion, seed_model_table3, kind="nonlinear")
+        linear = simulate(seed_model_table3, motion)
+        nonlinear = simulate(seed_model_table3, motion, kind="nonlinear")
     assert not np.allclose(linear.angle_rad[0], nonlinear.angle_rad[0], atol=1e-3)
 
 
 def test_free_decay_recovers_damped_frequency_and_damping(seed_model_table3):
     """After the move the first mode rings at omega_d and decays at zeta omega."""
     model = seed_model_table3
-    response = simulate(trapezoidal(0.01, duration_s=0.3), model, settle_time_s=4.0)
+    response = simulate(model, trapezoidal(0.01, duration_s=0.3), settle_time_s=4.0)
     mode = model.modes[0]
     after = response.time_s > 0.3
     t = response.time_s[after]
@@ -107,7 +107,7 @@ def test_free_decay_recovers_damped_frequency_and_damping(seed_model_table3):
 def test_residual_from_state_equals_sampled_peaks_after_the_move(seed_model_table3):
     model = dataclasses.replace(seed_model_table3, modes=seed_model_table3.modes[:1])
     motion = trapezoidal(0.5, peak_velocity_m_s=0.5)
-    response = simulate(motion, model, sample_period_s=2e-4, settle_time_s=0.5)
+    response = simulate(model, motion, sample_period_s=2e-4, settle_time_s=0.5)
     mode = model.modes[0]
     after = response.time_s >= motion.duration_s
     decay = np.exp(
@@ -120,7 +120,7 @@ def test_residual_from_state_equals_sampled_peaks_after_the_move(seed_model_tabl
 
 def test_zero_motion_gives_zero_slosh(seed_model):
     motion = trapezoidal(1e-12, duration_s=1.0)
-    response = simulate(motion, seed_model)
+    response = simulate(seed_model, motion)
     assert np.max(np.abs(response.angle_rad)) < 1e-9
 
 
@@ -130,10 +130,10 @@ def test_zero_motion_gives_zero_slosh(seed_model):
 )
 def test_linear_response_scales_with_distance(scale, name):
     seed_model_table3 = seed_vial_table3()
-    base = simulate(make_law(name, 0.1, duration_s=1.2), seed_model_table3)
+    base = simulate(seed_model_table3, make_law(name, 0.1, duration_s=1.2))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
-        scaled = simulate(make_law(name, 0.1 * scale, duration_s=1.2), seed_model_table3)
+        scaled = simulate(seed_model_table3, make_law(name, 0.1 * scale, duration_s=1.2))
     peak = np.max(np.abs(scaled.angle_rad))
     np.testing.assert_allclose(scaled.angle_rad, scale * base.angle_rad, rtol=0, atol=1e-10 * peak)
     assert scaled.residual_angle_rad == pytest.approx(scale * base.residual_angle_rad, rel=1e-9)
@@ -151,7 +151,7 @@ def test_free_motion_never_gains_energy(zeta, distance, kind):
         model = model.with_mode(n, damping_ratio=zeta)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
-        response = simulate(quintic(distance, 0.4), model, kind=kind, settle_time_s=1.0)
+        response = simulate(model, quintic(distance, 0.4), kind=kind, settle_time_s=1.0)
     after = response.time_s >= 0.4
     for row, mode in enumerate(model.modes):
         theta, rate = response.angle_rad[row, after], response.rate_rad_s[row, after]
@@ -167,7 +167,7 @@ def test_desimone2024_finding_jerk_continuous_laws_slosh_less(seed_model_table3)
     residual = {}
     for name in ("trapezoidal", "cubic", "quintic", "septic"):
         motion = make_law(name, 0.5, peak_velocity_m_s=0.5)
-        residual[name] = simulate(motion, seed_model_table3).residual_angle_rad
+        residual[name] = simulate(seed_model_table3, motion).residual_angle_rad
     assert residual["trapezoidal"] > 5 * residual["septic"]
     assert residual["cubic"] > 5 * residual["septic"]
     assert residual["trapezoidal"] > 3 * residual["quintic"]
@@ -183,7 +183,9 @@ def test_cart_pendulum_reduces_to_acceleration_driven_model(seed_model_table3):
     def force(t):
         return 0.2 * math.sin(2 * math.pi * 1.0 * t) if t < 1.0 else 0.0
 
-    cart = simulate_cart_pendulum(force, model, cart_mass, duration_s=2.0, sample_period_s=1e-3)
+    cart = simulate_cart_pendulum(
+        model, force, cart_mass_kg=cart_mass, duration_s=2.0, sample_period_s=1e-3
+    )
     velocity = cart.velocity_m_s
     from sloshkit.sim.discretisation import linear_mode_response
 
@@ -205,7 +207,7 @@ def test_cart_pendulum_reduces_to_acceleration_driven_model(seed_model_table3):
 
 
 def test_metrics_and_exports(seed_model_table3, tmp_path):
-    response = simulate(septic(0.5, 1.5), seed_model_table3)
+    response = simulate(seed_model_table3, septic(0.5, 1.5))
     metrics = response.metrics()
     assert set(metrics) == {
         "duration_s",
@@ -235,4 +237,4 @@ def test_spill_warning_when_wall_is_low(seed_model_table3):
 
     model = dataclasses.replace(seed_model_table3, container=UprightCylinder(0.0205, 0.040))
     with pytest.warns(ValidityWarning, match="spill"):
-        simulate(trapezoidal(0.5, peak_velocity_m_s=0.5), model)
+        simulate(model, trapezoidal(0.5, peak_velocity_m_s=0.5))

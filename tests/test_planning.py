@@ -68,8 +68,8 @@ def test_shaped_move_residual_follows_the_insensitivity_curve(make, factor):
     true_model = scale_frequencies(model, factor)
     shaper = make(model.modes[0].omega_rad_s, ZETA)
     base = s_curve(0.3, 1.0, 2.0, 40.0)
-    unshaped = simulate(base, true_model, settle_time_s=0.0).residual_angle_rad
-    shaped = simulate(shape_motion(base, shaper), true_model, settle_time_s=0.0).residual_angle_rad
+    unshaped = simulate(true_model, base, settle_time_s=0.0).residual_angle_rad
+    shaped = simulate(true_model, shape_motion(base, shaper), settle_time_s=0.0).residual_angle_rad
     mode = true_model.modes[0]
     expected = residual_vibration(shaper, mode.omega_rad_s, ZETA) * unshaped
     assert shaped == pytest.approx(expected, rel=1e-3, abs=1e-6 * unshaped)
@@ -90,7 +90,7 @@ def _problem(**overrides):
 def _independent_check(motion, problem):
     """Simulate the motion with `simulate` (1 ms) on every model of the band."""
     for model in problem.models():
-        response = simulate(motion, model, sample_period_s=1e-3, settle_time_s=0.0)
+        response = simulate(model, motion, sample_period_s=1e-3, settle_time_s=0.0)
         assert response.peak_angle_rad <= problem.slosh.max_angle_rad * 1.01
         assert response.residual_angle_rad <= problem.slosh.max_residual_rad * 1.02
     assert motion.peak_velocity_m_s <= problem.machine.max_velocity_m_s * (1 + 1e-9)
@@ -218,7 +218,7 @@ def test_plan_cli_csv_json_and_independent_resimulation(tmp_path):
     assert data[-1, 2] == 0.0 and data[-1, 3] == 0.0
     # An independent re-simulation of the exported samples (quintic-spline reconstruction).
     motion = read_motion_file(out)
-    response = simulate(motion, seed_vial_table3(), sample_period_s=1e-3, settle_time_s=0.0)
+    response = simulate(seed_vial_table3(), motion, sample_period_s=1e-3, settle_time_s=0.0)
     assert math.degrees(response.peak_angle_rad) <= 5.0 * 1.02
     assert math.degrees(response.residual_angle_rad) <= 0.25 * 1.05
     assert (tmp_path / "plan.png").stat().st_size > 10_000

@@ -23,6 +23,7 @@ Examples
 from __future__ import annotations
 
 import importlib
+import os
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
@@ -59,7 +60,7 @@ class Result(Protocol):
         """`columns` written as CSV."""
         ...  # pragma: no cover
 
-    def plot(self, ax: Any = None, *, path: str | Path | None = None) -> Any:
+    def plot(self, ax: Any = None, *, path: str | Path | None = None, **options: Any) -> Any:
         """The result's figure."""
         ...  # pragma: no cover
 
@@ -106,13 +107,19 @@ def plotter_for(result_type: type) -> PlotFunction:
 
     Returns
     -------
-    Callable
+    callable
         The registered function; `sloshkit.plotting` is imported first if nothing is registered.
 
     Raises
     ------
     TypeError
         When no function is registered for the type.
+
+    Examples
+    --------
+    >>> from sloshkit.sim.response import SloshResponse
+    >>> plotter_for(SloshResponse).__name__
+    'plot_response'
     """
     for klass in result_type.__mro__:
         if klass in _PLOTTERS:
@@ -131,6 +138,11 @@ def require_pandas() -> Any:
     -------
     module
         The ``pandas`` module.
+
+    Examples
+    --------
+    >>> require_pandas().__name__
+    'pandas'
     """
     try:
         import pandas
@@ -142,7 +154,17 @@ def require_pandas() -> Any:
 
 
 class ResultMixin:
-    """Default implementation of the result protocol from the `columns` hook."""
+    """Default implementation of the result protocol from the `columns` hook.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> class Trace(ResultMixin):
+    ...     def columns(self):
+    ...         return {"t_s": np.array([0.0, 1.0])}
+    >>> Trace().to_dict()
+    {'t_s': [0.0, 1.0]}
+    """
 
     def columns(self) -> Mapping[str, ArrayLike]:
         """Named, equal-length 1-D arrays (SI units in the names); implemented by each result."""
@@ -164,10 +186,14 @@ class ResultMixin:
         columns = {name: np.asarray(v, dtype=float) for name, v in self.columns().items()}
         return write_columns_csv(path, columns)
 
-    def plot(self, ax: Any = None, *, path: str | Path | None = None) -> Any:
+    def plot(self, ax: Any = None, *, path: str | Path | None = None, **options: Any) -> Any:
         """The result's matplotlib Figure, drawn by the function registered for its type.
 
         ``ax``: an Axes to draw into (its figure is returned) or None for a new Figure; the
-        figure is saved to ``path`` when given. No pyplot backend is selected.
+        figure is saved to ``path`` when given; ``options`` go to the plotting function. No
+        pyplot backend is selected. A path given in place of ``ax`` (the v1 signature
+        ``plot(path)``) is taken as ``path``.
         """
-        return plotter_for(type(self))(self, ax=ax, path=path)
+        if isinstance(ax, str | os.PathLike):
+            ax, path = None, ax
+        return plotter_for(type(self))(self, ax=ax, path=path, **options)

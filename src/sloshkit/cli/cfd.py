@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+import json
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -9,12 +11,18 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cfd.pipeline import analyse, case_spec, describe, excitation_from_options, validate
+from sloshkit.cfd.pipeline import run as run_cfd
+from sloshkit.cfd.run import CfdError, CfdInterrupted
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.errors import InputError
+from sloshkit.files import write_columns_csv
+from sloshkit.io.models import write_model_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
+from sloshkit.plotting import plot_cfd_validation
 
 cfd_app = typer.Typer(
     help="The volume-of-fluid step with OpenFOAM (interFoam): generate, run, analyse, validate.",
@@ -68,7 +76,16 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
             Annotated[str, typer.Option("--ddt", help="Euler, 'CrankNicolson 0.9' or backward.")],
             "Euler",
         ),
-        "np_": (Annotated[int, typer.Option("--np", help="MPI processes (1: serial).")], 1),
+        "np_": (
+            Annotated[
+                int | None,
+                typer.Option(
+                    "--np",
+                    help="MPI processes (default 1, serial; with --resume, the case's own).",
+                ),
+            ],
+            None,
+        ),
         "cfd_surface_tension": (
             Annotated[
                 bool,
@@ -80,7 +97,6 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
 
 
 def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
-    from sloshkit.cfd.pipeline import case_spec, excitation_from_options
 
     motion = None
     if options["excitation"] == "law":
@@ -103,7 +119,7 @@ def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
         end_time_s=parse_quantity(options["end_time"], "time", "end_time"),
         delta_t_s=parse_quantity(options["delta_t"], "time", "delta_t"),
         ddt_scheme=options["ddt"],
-        processes=options["np_"],
+        processes=options["np_"] or 1,
         surface_tension=options["cfd_surface_tension"],
     )
 
@@ -116,9 +132,6 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
         TimeElapsedColumn,
         TimeRemainingColumn,
     )
-
-    from sloshkit.cfd.pipeline import run as run_cfd
-    from sloshkit.cfd.run import CfdError
 
     with Progress(
         TextColumn("interFoam"),
@@ -144,8 +157,18 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
         try:
             return run_cfd(spec, case, resume=resume, overwrite=overwrite, progress=advance)
         except CfdError as error:
-            stderr.print(f"[red]error:[/red] {error}", highlight=False)
+            stderr.print(Text("error: ", style="red") + Text(str(error)), highlight=False)
             raise typer.Exit(1) from None
+        except CfdInterrupted as stop:
+            bar.stop()
+            stderr.print(
+                Text(
+                    f"interrupted at t = {stop.simulated_s:.4g} s of {spec.end_time_s:g} s; "
+                    f"continue with: sloshkit cfd run --case {case} --resume"
+                ),
+                highlight=False,
+            )
+            raise typer.Exit(128 + int(stop.signum)) from None
 
 
 def _print_analysis(
@@ -155,7 +178,6 @@ def _print_analysis(
     plot: Path | None,
     slosh_model: SloshModel | None,
 ) -> None:
-    from sloshkit.cfd.pipeline import describe
 
     payload = analysis.to_dict()
     if slosh_model is not None:
@@ -164,8 +186,6 @@ def _print_analysis(
             "frequency_hz": slosh_model.modes[0].frequency_hz,
         }
         if model_file_out is not None:
-            from sloshkit.io.models import write_model_file
-
             write_model_file(model_file_out, analysis.calibration.calibrated_model(slosh_model))
             payload["model_file"] = str(model_file_out)
     if plot is not None:
@@ -197,6 +217,19 @@ def _print_analysis(
         stdout.print(line)
 
 
+def _resumed_spec(spec: Any, case: Path, processes: int | None) -> Any:
+    """A resumed case keeps its own end time and (unless --np is given) its process count."""
+    summary_path = case / "sloshkit-case.json"
+    if not summary_path.is_file():
+        raise InputError("case", str(case), "has no sloshkit case to resume")
+    summary = json.loads(summary_path.read_text(encoding="utf-8"))
+    return dataclasses.replace(
+        spec,
+        end_time_s=float(summary["end_time_s"]),
+        processes=processes or int(summary.get("processes", 1)),
+    )
+
+
 @cfd_app.command("run")
 @with_model_options
 @with_options(cfd_options("free-decay", "3s"), "case_options", dict)
@@ -222,11 +255,31 @@ def cfd_run_command(
 
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
     """
-    from sloshkit.cfd.pipeline import analyse
 
     spec = _cfd_spec(slosh_model, case_options)
-    _run_with_progress(spec, case, resume, overwrite)
-    _print_analysis(analyse(case), json_output, model_file_out, plot, slosh_model)
+    if resume:
+        spec = _resumed_spec(spec, case, case_options["np_"])
+    result = _run_with_progress(spec, case, resume, overwrite)
+    try:
+        analysis = analyse(case)
+    except InputError as error:
+        # The run itself succeeded; a record too short to calibrate is not a failed run.
+        if json_output:
+            print_json(
+                {
+                    "case": str(case),
+                    "simulated_s": result.simulated_s,
+                    "wall_clock_s": result.wall_clock_s,
+                    "processes": result.processes,
+                    "cells": result.cells,
+                    "calibration_error": str(error),
+                }
+            )
+        else:
+            stdout.print(Text(f"{result.simulated_s:g} s simulated in {case}"))
+        stderr.print(Text(f"warning: no calibration: {error}", style="yellow"), highlight=False)
+        return
+    _print_analysis(analysis, json_output, model_file_out, plot, slosh_model)
 
 
 @cfd_app.command("analyse")
@@ -245,7 +298,6 @@ def cfd_analyse_command(
 
       sloshkit cfd analyse vial-decay --json
     """
-    from sloshkit.cfd.pipeline import analyse
 
     if not (case / "sloshkit-case.json").is_file():
         raise InputError("case", str(case), "is not a sloshkit CFD case")
@@ -253,8 +305,6 @@ def cfd_analyse_command(
         case, method, None if start is None else parse_quantity(start, "time", "start")
     )
     if csv is not None:
-        from sloshkit.files import write_columns_csv
-
         write_columns_csv(csv, analysis.signals.columns())
     _print_analysis(analysis, json_output, None, plot, None)
 
@@ -269,6 +319,9 @@ def cfd_validate_command(
     reuse: Annotated[
         bool, typer.Option("--reuse", help="Use the case's existing results.")
     ] = False,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace an existing sloshkit case.")
+    ] = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="CFD vs pendulum (Fig. 9).")] = None,
     json_output: Json = False,
 ) -> None:
@@ -279,15 +332,12 @@ def cfd_validate_command(
 
       sloshkit cfd validate --case vial-harmonic --excitation harmonic --np 2 --plot fig9.png
     """
-    from sloshkit.cfd.pipeline import validate
 
     if not reuse:
         spec = _cfd_spec(slosh_model, case_options)
-        _run_with_progress(spec, case, False, True)
+        _run_with_progress(spec, case, False, overwrite)
     result = validate(case, slosh_model)
     if plot is not None:
-        from sloshkit.plotting.figures import plot_cfd_validation
-
         plot_cfd_validation(result, plot)
     summary = {
         k: v

@@ -13,9 +13,11 @@ import typer
 
 from sloshkit.cli.options import json_number, with_options
 from sloshkit.errors import InputError
+from sloshkit.io.tables import read_motion_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion, comparison_s_curve_limits, make_law
+from sloshkit.motion.laws import comparison_s_curve_limits, make_law
+from sloshkit.motion.profile import Motion
 from sloshkit.sim.response import SloshResponse
 from sloshkit.sim.simulate import MODEL_KINDS, simulate
 
@@ -108,8 +110,6 @@ class MoveRequest:
     def law(self, name: str) -> Motion:
         """The motion law called ``name`` (or ``file:PATH``) for this move."""
         if name.startswith("file:"):
-            from sloshkit.io.tables import read_motion_file
-
             return typing.cast(Motion, read_motion_file(name.removeprefix("file:"), name))
         vmax, amax, jmax = self.vmax, self.amax, self.jmax
         if name == "s-curve" and self.peak_velocity_m_s is not None:
@@ -139,8 +139,8 @@ def _simulate(
     if model_kind not in MODEL_KINDS:
         raise InputError("model", model_kind, "must be one of " + ", ".join(MODEL_KINDS))
     return simulate(
-        motion,
         slosh_model,
+        motion,
         kind=model_kind,  # type: ignore[arg-type]
         sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
         settle_time_s=None

@@ -20,8 +20,10 @@ from sloshkit.cli.moves import (
 )
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError
+from sloshkit.files import write_json, write_rows_csv
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES
+from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison
 
 
 @app.command("simulate")
@@ -109,9 +111,6 @@ def compare_command(
         for motion, response in zip(motions, responses, strict=True)
     ]
     if out is not None:
-        from sloshkit.files import write_json, write_rows_csv
-        from sloshkit.plotting.figures import plot_law_comparison, plot_slosh_comparison
-
         write_rows_csv(out / "compare.csv", rows)
         write_json(out / "compare.json", rows)
         plot_law_comparison(motions, out / "fig7_laws.png")

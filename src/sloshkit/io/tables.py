@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.motion.recorded import from_samples
 
 FloatArray = NDArray[np.float64]
 
@@ -106,7 +107,6 @@ def read_motion_file(path: str | Path, name: str | None = None) -> Any:
     ``acceleration_m_s2``. Without a header, column 0 is time and column 1 is position.
     See `sloshkit.motion.laws.from_samples` for the interpolation.
     """
-    from sloshkit.motion.laws import from_samples
 
     header, data = read_table(path)
     lowered = [column.lower() for column in header]

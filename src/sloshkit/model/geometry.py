@@ -14,9 +14,18 @@ class UprightCylinder:
 
     Parameters
     ----------
-    radius_m : inner radius R [m]
-    wall_height_m : inner height of the wall above the bottom [m]; ``None`` means unknown
-        (no check that the fill fits).
+    radius_m : float
+        Inner radius R [m].
+    wall_height_m : float, optional
+        Inner height of the wall above the bottom [m]; None means unknown (no check that the
+        fill fits).
+
+    Examples
+    --------
+    >>> from sloshkit import UprightCylinder
+    >>> vial = UprightCylinder(0.0205, wall_height_m=0.08)
+    >>> round(vial.volume_for_fill_height(0.039) * 1e6, 2)  # ml
+    51.49
     """
 
     radius_m: float

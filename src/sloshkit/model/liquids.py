@@ -16,11 +16,23 @@ class Liquid:
 
     Parameters
     ----------
-    name : short identifier, e.g. ``"water-25C"``
-    density_kg_m3 : density rho [kg/m^3]
-    viscosity_pa_s : dynamic viscosity mu [Pa s]
-    surface_tension_n_m : liquid-air surface tension sigma [N/m]
-    source : where the values come from
+    name : str
+        Short identifier, e.g. ``"water-25C"``.
+    density_kg_m3 : float
+        Density rho [kg/m^3].
+    viscosity_pa_s : float
+        Dynamic viscosity mu [Pa s].
+    surface_tension_n_m : float
+        Liquid-air surface tension sigma [N/m].
+    source : str
+        Where the values come from.
+
+    Examples
+    --------
+    >>> from sloshkit import Liquid
+    >>> glycerol_water = Liquid("glycerol-50", 1126.0, 6.0e-3, 0.070, source="user")
+    >>> round(glycerol_water.kinematic_viscosity_m2_s * 1e6, 3)  # mm^2/s
+    5.329
     """
 
     name: str
@@ -95,7 +107,29 @@ LIQUIDS: dict[str, Liquid] = {
 
 
 def get_liquid(name: str) -> Liquid:
-    """Return the preset `Liquid` called ``name``; `InputError` lists the known names."""
+    """The preset `Liquid` called ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A key of `LIQUIDS`, e.g. ``"water-25C"``.
+
+    Returns
+    -------
+    Liquid
+        The preset, with its source.
+
+    Raises
+    ------
+    InputError
+        For an unknown name (the message lists the known ones).
+
+    Examples
+    --------
+    >>> from sloshkit import get_liquid
+    >>> get_liquid("water-25C").density_kg_m3
+    997.0
+    """
     try:
         return LIQUIDS[name]
     except KeyError:

@@ -24,7 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from sloshkit.motion.laws import Motion, _piecewise_constant_jerk, s_curve
+from sloshkit.motion.laws import s_curve
+from sloshkit.motion.profile import Motion, _piecewise_constant_jerk
 from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus
 from sloshkit.plan.verification import _candidate
 

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -35,6 +34,8 @@ from sloshkit.motion.sampling import export_samples
 from sloshkit.plan.optimal import plan_optimal
 from sloshkit.plan.problem import PAPER_LAWS, Candidate, PlanProblem
 from sloshkit.plan.searches import plan_paper_law, plan_shaped
+from sloshkit.results import ResultMixin
+from sloshkit.sim.discretisation import linear_response
 
 FloatArray = NDArray[np.float64]
 
@@ -43,8 +44,36 @@ METHODS: tuple[str, ...] = ("auto", "paper", *PAPER_LAWS, "fast", "shaped", "opt
 
 
 @dataclass(frozen=True, eq=False)
-class PlanResult:
-    """The chosen motion and every candidate tried."""
+class PlanResult(ResultMixin):
+    """The chosen motion and every candidate tried.
+
+    Follows the result protocol (`sloshkit.results.ResultMixin`): ``to_csv`` writes the chosen
+    motion's controller samples, ``to_dict`` the plan command's JSON.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        The problem solved.
+    chosen : Candidate or None
+        The fastest verified candidate (or the fastest at all when none is feasible).
+    candidates : tuple of Candidate
+        Every method's result.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(
+    ...     0.1,
+    ...     sk.MachineLimits(1.0, 5.0, 200.0),
+    ...     sk.SloshLimits(max_angle_rad=0.1, max_residual_rad=0.01),
+    ...     model,
+    ... )
+    >>> result = sk.plan(problem, "quintic")
+    >>> result.feasible, result.chosen.method
+    (True, 'quintic')
+    """
 
     problem: PlanProblem
     chosen: Candidate | None
@@ -61,11 +90,40 @@ class PlanResult:
             raise InputError("plan", "infeasible", "no motion to export")
         return export_samples(self.chosen.motion, self.problem.sample_period_s)
 
-    def to_csv(self, path: str | Path) -> Path:
-        """Write the controller samples, atomically."""
-        from sloshkit.files import write_columns_csv
+    def columns(self) -> dict[str, FloatArray]:
+        """The controller samples of the chosen motion (`samples`): the CSV columns."""
+        return self.samples()
 
-        return write_columns_csv(path, self.samples())
+    def histories(self) -> list[dict[str, Any]]:
+        """Per verified candidate: its exported samples and the first mode's angle re-simulated
+        from them (nominal model), for figures.
+
+        Returns
+        -------
+        list of dict
+            Keys ``method``, ``duration_s``, ``chosen``, ``t_s``, ``velocity_m_s``,
+            ``acceleration_m_s2`` and ``angle_1_rad``.
+        """
+        histories = []
+        for candidate in self.candidates:
+            if candidate.motion is None or not candidate.feasible:
+                continue
+            samples = export_samples(candidate.motion, self.problem.sample_period_s)
+            angle, _ = linear_response(
+                self.problem.model, samples["velocity_m_s"], self.problem.sample_period_s
+            )
+            histories.append(
+                {
+                    "method": candidate.method,
+                    "duration_s": candidate.duration_s,
+                    "chosen": candidate is self.chosen,
+                    "t_s": samples["t_s"],
+                    "velocity_m_s": samples["velocity_m_s"],
+                    "acceleration_m_s2": samples["acceleration_m_s2"],
+                    "angle_1_rad": angle[0],
+                }
+            )
+        return histories
 
     def to_dict(self) -> dict[str, Any]:
         """The plan command's JSON."""
@@ -88,12 +146,6 @@ class PlanResult:
             "candidates": [c.to_dict() for c in self.candidates],
         }
 
-    def plot(self, path: str | Path | None = None) -> Any:
-        """Velocity, acceleration and slosh angle of the chosen move and the candidates."""
-        from sloshkit.plotting.figures import plot_plan
-
-        return plot_plan(self, path)
-
 
 def plan(
     problem: PlanProblem,
@@ -104,11 +156,50 @@ def plan(
 ) -> PlanResult:
     """Run the requested method(s) and return the fastest verified candidate.
 
-    ``method``: ``auto`` (everything), ``paper`` (the four laws), one law name, ``fast`` (a
-    ZV-shaped S-curve only), ``shaped`` (all shapers) or ``optimal`` (warm-started from the
-    shaped result). ``smooth``: the optimal method returns its smooth variant
-    (`sloshkit.plan.optimal.SMOOTH_PRICE` longer than the minimum time, least squared jerk
-    rate) instead of the time-optimal move; ``PlanResult.to_dict()["variant"]`` says which.
+    Every candidate is verified from its sampled export (`sloshkit.plan.verification.verify`).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Distance, limits, model and controller period.
+    method : str
+        ``auto`` (everything), ``paper`` (the four laws), one law name, ``fast`` (a ZV-shaped
+        S-curve only), ``shaped`` (all shapers) or ``optimal`` (casadi/IPOPT, warm-started from
+        the shaped result).
+    nonlinear_optimal : bool
+        Optimise (and verify) with the large-angle pendulums.
+    progress : callable, optional
+        Called with a short message before each method.
+    smooth : bool
+        The optimal method returns its smooth variant (`sloshkit.plan.optimal.SMOOTH_PRICE`
+        longer than the minimum time, least squared jerk rate) instead of the time-optimal
+        move; ``PlanResult.to_dict()["variant"]`` says which.
+
+    Returns
+    -------
+    PlanResult
+        The chosen motion and every candidate.
+
+    References
+    ----------
+    Singer, N. C., W. P. Seering, J. Dyn. Syst. Meas. Control 112 (1990) 76-82,
+    doi:10.1115/1.2894142; Betts, J. T., *Practical Methods for Optimal Control and Estimation
+    Using Nonlinear Programming*, 2nd ed., SIAM (2010), ch. 4, doi:10.1137/1.9780898718577.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(
+    ...     0.1,
+    ...     sk.MachineLimits(1.0, 5.0, 200.0),
+    ...     sk.SloshLimits(max_angle_rad=0.1, max_residual_rad=0.01),
+    ...     model,
+    ... )
+    >>> result = sk.plan(problem, "paper")
+    >>> sorted(c.method for c in result.candidates)
+    ['cubic', 'quintic', 'septic', 'trapezoidal']
     """
     if method not in METHODS:
         raise InputError("method", method, "must be one of " + ", ".join(METHODS))

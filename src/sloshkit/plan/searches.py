@@ -13,7 +13,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion, make_law, s_curve
+from sloshkit.motion.laws import make_law, s_curve
+from sloshkit.motion.profile import Motion
+from sloshkit.motion.sampling import steps_for
+from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv
 from sloshkit.plan.problem import (
     SEARCH_MARGIN,
@@ -84,8 +87,6 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
     Laws with acceleration jumps have unbounded jerk: they are reported with the duration that
     meets the other limits, and flagged infeasible under a jerk limit.
     """
-    from sloshkit.motion.sampling import steps_for
-    from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 
     started = time.perf_counter()
     shape = unit_duration_shape(make_law(law, problem.distance_m, duration_s=1.0))

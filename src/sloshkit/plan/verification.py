@@ -14,11 +14,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.motion.laws import Motion
+from sloshkit.errors import ValidityWarning
+from sloshkit.motion.profile import Motion
+from sloshkit.motion.recorded import from_samples
 from sloshkit.motion.sampling import export_samples
 from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus, Verification
-from sloshkit.sim.discretisation import linear_mode_response
-from sloshkit.sim.metrics import free_amplitude
+from sloshkit.sim.discretisation import linear_response
+from sloshkit.sim.metrics import free_amplitude, wall_elevation, wall_elevation_factors
+from sloshkit.sim.simulate import simulate
 
 FloatArray = NDArray[np.float64]
 
@@ -38,20 +41,16 @@ def verify(motion: Motion, problem: PlanProblem) -> Verification:
     if problem.nonlinear:
         peak_angle, residual, peak_wall = _verify_nonlinear(samples, problem)
     for model in [] if problem.nonlinear else problem.models():
-        wall = np.zeros_like(velocity)
-        for row, mode in enumerate(model.modes):
-            theta, rate = linear_mode_response(
-                velocity, ts, mode.omega_rad_s, mode.damping_ratio, mode.length_m
-            )
-            wall += mode.wall_elevation_factor_m * theta
-            if row == 0:
-                peak_angle = max(peak_angle, float(np.max(np.abs(theta))))
-                residual = max(
-                    residual,
-                    float(
-                        free_amplitude(theta[-1], rate[-1], mode.omega_rad_s, mode.damping_ratio)
-                    ),
-                )
+        theta, rate = linear_response(model, velocity, ts)
+        first = model.modes[0]
+        wall = wall_elevation(wall_elevation_factors(model), theta)
+        peak_angle = max(peak_angle, float(np.max(np.abs(theta[0]))))
+        residual = max(
+            residual,
+            float(
+                free_amplitude(theta[0, -1], rate[0, -1], first.omega_rad_s, first.damping_ratio)
+            ),
+        )
         peak_wall = max(peak_wall, float(np.max(np.abs(wall))))
     machine, slosh = problem.machine, problem.slosh
     peaks = {
@@ -98,16 +97,18 @@ def _verify_nonlinear(
     (cubic spline) with the large-angle pendulums, worst over the band."""
     import warnings
 
-    from sloshkit.errors import ValidityWarning
-    from sloshkit.motion.laws import from_samples
-    from sloshkit.sim.simulate import simulate
-
     motion = from_samples(samples["t_s"], acceleration_m_s2=samples["acceleration_m_s2"])
     peak = residual = wall = 0.0
     for model in problem.models():
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ValidityWarning)
-            response = simulate(motion, model, "nonlinear", problem.sample_period_s, 0.0)
+            response = simulate(
+                model,
+                motion,
+                kind="nonlinear",
+                sample_period_s=problem.sample_period_s,
+                settle_time_s=0.0,
+            )
         peak = max(peak, float(np.max(np.abs(response.angle_rad[0]))))
         residual = max(residual, response.residual_angle_rad)
         wall = max(wall, float(np.max(np.abs(response.wall_elevation_m))))

@@ -42,7 +42,7 @@ def _compile() -> Any:
     block = BLOCK
 
     @njit(cache=True, fastmath=True, nogil=True)  # type: ignore[untyped-decorator]
-    def kernel(breaks, coefficients, durations, dt, p, out):  # type: ignore[no-untyped-def]
+    def kernel(breaks, coefficients, durations, sample_period_s, p, out):  # type: ignore[no-untyped-def]
         # p rows per mode: p00 p01 p10 p11 q0 q1 h0 h1 wall_factor 1/L
         modes = p.shape[0]
         pieces = breaks.size - 1
@@ -52,13 +52,13 @@ def _compile() -> Any:
         first_after = np.empty(cases, dtype=np.int64)
         for c in range(cases):
             duration = durations[c]
-            k = int((duration + 1e-12) / dt)
-            while (k + 1) * dt <= duration + 1e-12:
+            k = int((duration + 1e-12) / sample_period_s)
+            while (k + 1) * sample_period_s <= duration + 1e-12:
                 k += 1
-            while k * dt > duration + 1e-12:
+            while k * sample_period_s > duration + 1e-12:
                 k -= 1
             last_move[c] = k
-            first_after[c] = k if k * dt >= duration - 1e-12 else k + 1
+            first_after[c] = k if k * sample_period_s >= duration - 1e-12 else k + 1
         steps = int(first_after.max()) + 1 if cases else 0
         velocity = np.zeros((steps, block))
         z0 = np.zeros((modes, block))
@@ -78,7 +78,7 @@ def _compile() -> Any:
             for j in range(width):
                 c = start + j
                 inverse = 1.0 / durations[c]
-                scale = dt * inverse
+                scale = sample_period_s * inverse
                 k_stop = first_after[c] + 1
                 k = 0
                 for piece in range(pieces):
@@ -165,7 +165,7 @@ def _compile() -> Any:
                 for m in range(modes):
                     out[c, 2 + 2 * m] = theta[m, j]
                     out[c, 3 + 2 * m] = rate[m, j]
-                out[c, 2 + 2 * modes] = first_after[c] * dt - durations[c]
+                out[c, 2 + 2 * modes] = first_after[c] * sample_period_s - durations[c]
 
     return kernel
 

@@ -4,30 +4,63 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.model.modal import SloshModel
-from sloshkit.sim.metrics import DEFAULT_SETTLE_TOLERANCE_RAD
+from sloshkit.results import ResultMixin
+from sloshkit.sim.equations import pendulum_angular_acceleration
+from sloshkit.sim.metrics import (
+    DEFAULT_SETTLE_TOLERANCE_RAD,
+    wall_elevation,
+    wall_elevation_factors,
+)
 
 FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True, eq=False)
-class SloshResponse:
+class SloshResponse(ResultMixin):
     """Slosh response to a container motion (arrays over time; modes on the first axis).
 
-    Attributes
+    Follows the result protocol (`sloshkit.results.ResultMixin`): `columns`, ``to_dict``,
+    ``to_pandas``, ``to_csv`` and ``plot``.
+
+    Parameters
     ----------
-    time_s : sample times [s], from 0, uniform step
-    position_m, velocity_m_s, acceleration_m_s2 : the container's motion
-    angle_rad, rate_rad_s : pendulum angle and angular rate, shape (modes, samples)
-    move_duration_s : the move's duration T [s]; after T the container rests
-    model : the `SloshModel` simulated; kind: ``"linear"`` or ``"nonlinear"``
-    residual_amplitude_rad : per mode, amplitude of the free oscillation left at T [rad]
+    time_s : numpy.ndarray
+        Sample times [s], from 0, uniform step.
+    position_m, velocity_m_s, acceleration_m_s2 : numpy.ndarray
+        The container's motion [m, m/s, m/s^2].
+    angle_rad, rate_rad_s : numpy.ndarray
+        Pendulum angle [rad] and angular rate [rad/s], shape (modes, samples).
+    move_duration_s : float
+        The move's duration T [s]; after T the container rests.
+    model : SloshModel
+        The model simulated.
+    kind : str
+        ``"linear"`` or ``"nonlinear"``.
+    residual_amplitude_rad : numpy.ndarray
+        Per mode, amplitude of the free oscillation left at T [rad].
+    motion_name : str
+        Name of the motion.
+    peak_jerk_m_s3 : float
+        The motion's peak jerk [m/s^3] (inf with acceleration jumps).
+    settle_tolerance_rad : float
+        Tolerance on abs(theta_1) for `settling_time_s` [rad].
+    extra : dict
+        Additional data of the simulation.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> response = sk.simulate(model, sk.quintic(0.1, 1.0), sample_period_s=2e-3)
+    >>> sorted(response.columns())[:3]
+    ['acceleration_m_s2', 'angle_1_rad', 'angle_2_rad']
     """
 
     time_s: FloatArray
@@ -50,9 +83,12 @@ class SloshResponse:
         """Free-surface elevation at the wall on the +x side [m]: sum_n 2R/(xi_n^2-1) theta_n for
         the linear model, with sin(theta_n) for the nonlinear one (linear mode-shape mapping,
         see `sloshkit.model.modal.wall_elevation_factor`)."""
-        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
-        angles = self.angle_rad if self.kind == "linear" else np.sin(self.angle_rad)
-        return np.asarray(factors @ angles, dtype=float)
+        return np.asarray(
+            wall_elevation(
+                wall_elevation_factors(self.model), self.angle_rad, nonlinear=self.kind != "linear"
+            ),
+            dtype=float,
+        )
 
     @property
     def angular_acceleration_rad_s2(self) -> FloatArray:
@@ -60,18 +96,16 @@ class SloshResponse:
         omega = np.array([mode.omega_rad_s for mode in self.model.modes])[:, None]
         zeta = np.array([mode.damping_ratio for mode in self.model.modes])[:, None]
         length = np.array([mode.length_m for mode in self.model.modes])[:, None]
-        theta = self.angle_rad
-        if self.kind == "linear":
-            return np.asarray(
-                -2 * zeta * omega * self.rate_rad_s
-                - omega**2 * theta
-                - self.acceleration_m_s2 / length,
-                dtype=float,
-            )
         return np.asarray(
-            -2 * zeta * omega * self.rate_rad_s
-            - omega**2 * np.sin(theta)
-            - self.acceleration_m_s2 / length * np.cos(theta),
+            pendulum_angular_acceleration(
+                self.angle_rad,
+                self.rate_rad_s,
+                self.acceleration_m_s2,
+                omega,
+                zeta,
+                length,
+                nonlinear=self.kind != "linear",
+            ),
             dtype=float,
         )
 
@@ -92,7 +126,7 @@ class SloshResponse:
 
     @property
     def peak_angle_rad(self) -> float:
-        """Peak |theta_1| during the move [rad]."""
+        """Peak abs(theta_1) during the move [rad]."""
         return float(np.max(np.abs(self.angle_rad[0, self._during_move()])))
 
     @property
@@ -108,12 +142,11 @@ class SloshResponse:
     @property
     def residual_wall_elevation_m(self) -> float:
         """Bound on the wall elevation after the move: sum_n 2R/(xi_n^2-1) A_n [m]."""
-        factors = np.array([mode.wall_elevation_factor_m for mode in self.model.modes])
-        return float(factors @ self.residual_amplitude_rad)
+        return float(wall_elevation_factors(self.model) @ self.residual_amplitude_rad)
 
     @property
     def settling_time_s(self) -> float:
-        """Time from the start until |theta_1| stays below the tolerance [s].
+        """Time from the start until abs(theta_1) stays below the tolerance [s].
 
         After the move the first mode decays as A_T exp(-zeta omega (t - T)); if A_T is above
         the tolerance the settling time is T + ln(A_T / tol) / (zeta omega) (inf without
@@ -162,32 +195,38 @@ class SloshResponse:
         data["slosh_force_n"] = self.slosh_force_n
         return data
 
-    def to_csv(self, path: str | Path) -> Path:
-        """Write `columns` as CSV, atomically (temporary file, then rename)."""
-        from sloshkit.files import write_columns_csv
-
-        return write_columns_csv(path, self.columns())
-
-    def to_pandas(self) -> Any:
-        """`columns` as a pandas DataFrame (pandas is optional)."""
-        try:
-            import pandas as pd
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError("to_pandas() needs pandas: pip install pandas") from exc
-        return pd.DataFrame(self.columns())
-
-    def plot(self, path: str | Path | None = None) -> Any:
-        """Figure of the motion, the slosh angles and the wall elevation; saved if ``path``."""
-        from sloshkit.plotting.figures import plot_response
-
-        return plot_response(self, path)
+    def to_dict(self) -> dict[str, Any]:
+        """The metrics (`metrics`), the model kind, the motion's name and the time series."""
+        return {
+            "kind": self.kind,
+            "motion": self.motion_name,
+            **self.metrics(),
+            "columns": {name: values.tolist() for name, values in self.columns().items()},
+        }
 
 
 @dataclass(frozen=True, eq=False)
 class CartPendulumResponse:
     """Response of the cart-pendulum system to a force on the cart.
 
-    ``position_m``, ``velocity_m_s``: the cart; ``angle_rad``, ``rate_rad_s``: (modes, samples).
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Sample times [s].
+    position_m, velocity_m_s, acceleration_m_s2 : numpy.ndarray
+        The cart's motion [m, m/s, m/s^2].
+    angle_rad, rate_rad_s : numpy.ndarray
+        Pendulum angles [rad] and rates [rad/s], shape (modes, samples).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> cart = sk.sim.simulate.simulate_cart_pendulum(
+    ...     model, lambda t: 1.0, cart_mass_kg=1.0, duration_s=0.01)
+    >>> cart.angle_rad.shape[0]
+    3
     """
 
     time_s: FloatArray

@@ -1,33 +1,10 @@
-"""Equations of motion of the equivalent pendulums, simulation and slosh metrics.
+"""Simulation of the equivalent pendulums driven by a container motion.
 
-One convention for every model: x is the container's position along the move [m], theta_n the
-angle of mode n's pendulum [rad] (positive when the bob swings towards +x, i.e. it lags the
-container with theta < 0 while accelerating forward), omega_n, zeta_n and L_n from the
-`SloshModel`.
-
-Models
-------
-- ``linear`` (seed paper eq. 7, per mode; Ibrahim 2005 §6.2):
-  theta'' + 2 zeta omega theta' + omega^2 theta = -x''/L.
-- ``nonlinear`` (large-angle pendulum in the container frame; Ibrahim 2005 §6.2):
-  theta'' + 2 zeta omega theta' + omega^2 sin(theta) = -(x''/L) cos(theta).
+- `simulate`: every mode of a `SloshModel` driven by a `Motion`, linear (exact discretisation,
+  `sloshkit.sim.discretisation`) or nonlinear (large-angle pendulums integrated with DOP853);
+  the equations are those of `sloshkit.sim.equations`.
 - `simulate_cart_pendulum`: the seed paper's cart-pendulum eqs. 4-5, generalised to all modes,
   driven by a force on the cart (see its docstring).
-
-The paper prints a cos^2(theta) factor on the damper of eq. 5; we put the damper on the
-pendulum's relative rotation, c_theta theta' with c_theta = 2 zeta omega m L^2, which is what a
-rotational damper in the hinge (the paper's Simscape revolute joint) does and which reduces to
-eq. 7 when linearised.
-
-Fast linear path
-----------------
-The linear equation is rewritten with y = theta' + v/L so that it is driven by the container's
-velocity v (continuous for every rest-to-rest law) instead of its acceleration:
-theta' = y - v/L, y' = -omega^2 theta - 2 zeta omega (y - v/L). It is discretised exactly for a
-velocity that is linear between samples (first-order hold, Franklin, Powell & Workman, *Digital
-Control of Dynamic Systems*, 3rd ed. (1998) §6.3.2): exact for the trapezoidal law and
-second-order accurate for the others. The resulting recursion is a second-order IIR filter run
-by `scipy.signal.lfilter`, vectorised over any number of cases that share a mode.
 """
 
 from __future__ import annotations
@@ -43,8 +20,9 @@ from scipy.integrate import solve_ivp
 
 from sloshkit.errors import InputError, require_positive, warn_validity
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion
-from sloshkit.sim.discretisation import linear_mode_response
+from sloshkit.motion.profile import Motion
+from sloshkit.sim.discretisation import linear_response
+from sloshkit.sim.equations import cart_pendulum_accelerations, pendulum_angular_acceleration
 from sloshkit.sim.metrics import (
     DEFAULT_SETTLE_TOLERANCE_RAD,
     default_settle_time,
@@ -63,8 +41,9 @@ MODEL_KINDS: tuple[str, ...] = ("linear", "nonlinear")
 
 
 def simulate(
-    motion: Motion,
     model: SloshModel,
+    motion: Motion,
+    *,
     kind: ModelKind = "linear",
     sample_period_s: float = 1e-3,
     settle_time_s: float | None = None,
@@ -74,14 +53,42 @@ def simulate(
 
     Parameters
     ----------
-    motion : the container's rest-to-rest motion
-    model : equivalent pendulum model
-    kind : ``"linear"`` (exact discretisation, fast) or ``"nonlinear"`` (large-angle pendulum,
-        integrated with DOP853 piece by piece between the motion's breakpoints)
-    sample_period_s : output sample period dt [s]
-    settle_time_s : time simulated after the move [s] (default `default_settle_time`)
-    settle_tolerance_rad : tolerance on |theta_1| for the settling time [rad]
+    model : SloshModel
+        Equivalent pendulum model (`sloshkit.equivalent_model`).
+    motion : Motion
+        The container's rest-to-rest motion (`sloshkit.motion`).
+    kind : {"linear", "nonlinear"}
+        ``"linear"``: exact first-order-hold discretisation (fast); ``"nonlinear"``: large-angle
+        pendulums integrated with DOP853 piece by piece between the motion's breakpoints.
+    sample_period_s : float
+        Output sample period [s].
+    settle_time_s : float, optional
+        Time simulated after the move [s] (default `sloshkit.sim.metrics.default_settle_time`).
+    settle_tolerance_rad : float
+        Tolerance on abs(theta_1) for the settling time [rad].
+
+    Returns
+    -------
+    SloshResponse
+        Time histories and metrics (`SloshResponse.metrics`).
+
+    References
+    ----------
+    Seed paper eq. 7; R. A. Ibrahim, *Liquid Sloshing Dynamics* (2005) §6.2,
+    doi:10.1017/CBO9780511536656; G. F. Franklin, J. D. Powell, M. Workman, *Digital Control of
+    Dynamic Systems*, 3rd ed. (1998) §6.3.2.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> response = sk.simulate(model, sk.quintic(0.2, 1.0), sample_period_s=2e-3)
+    >>> round(response.metrics()["peak_angle_deg"], 2)
+    8.95
     """
+    if isinstance(model, Motion) and isinstance(motion, SloshModel):
+        raise TypeError("simulate takes (model, motion, *, ...): the model comes first")
     if kind not in MODEL_KINDS:
         raise InputError("model", kind, "must be one of " + ", ".join(MODEL_KINDS))
     dt = require_positive("sample_period", sample_period_s, "s")
@@ -92,12 +99,7 @@ def simulate(
     velocity = motion.velocity(time)
     acceleration = motion.acceleration(time)
     if kind == "linear":
-        angle = np.empty((len(model.modes), time.size))
-        rate = np.empty_like(angle)
-        for row, mode in enumerate(model.modes):
-            angle[row], rate[row] = linear_mode_response(
-                velocity, dt, mode.omega_rad_s, mode.damping_ratio, mode.length_m
-            )
+        angle, rate = linear_response(model, velocity, dt)
     else:
         angle, rate = _nonlinear_modes(motion, model, time)
     residual = residual_from_state(time, angle, rate, motion.duration_s, model)
@@ -175,10 +177,10 @@ def _nonlinear_modes(
             ) -> list[float]:
                 moment = min(max(t, start), last)
                 accel = float(acceleration_pp(moment)) if moment < end_of_move else 0.0
-                return [
-                    y[1],
-                    -2 * z * w * y[1] - w * w * math.sin(y[0]) - accel / length * math.cos(y[0]),
-                ]
+                second = pendulum_angular_acceleration(
+                    y[0], y[1], accel, w, z, length, nonlinear=True, sin=math.sin, cos=math.cos
+                )
+                return [y[1], second]
 
             inside = (time >= start) & (time <= stop)
             t_eval = np.union1d(time[inside], [stop])
@@ -195,8 +197,9 @@ def _nonlinear_modes(
 
 
 def simulate_cart_pendulum(
-    force_n: Callable[[float], float],
     model: SloshModel,
+    force_n: Callable[[float], float],
+    *,
     cart_mass_kg: float,
     duration_s: float,
     sample_period_s: float = 1e-3,
@@ -204,14 +207,41 @@ def simulate_cart_pendulum(
 ) -> CartPendulumResponse:
     """Cart of mass M (plus the rigid liquid m_0) carrying one pendulum per mode, driven by F(t).
 
-    Seed paper eqs. 4-5 (one mode), written for N modes with a hinge damper:
+    The equations are `sloshkit.sim.equations.cart_pendulum_accelerations` (seed paper eqs. 4-5
+    for N modes), integrated with DOP853.
 
-    (M + m_0 + sum m_n) x'' + sum m_n L_n (theta_n'' cos theta_n - theta_n'^2 sin theta_n) = F
-    L_n cos(theta_n) x'' + L_n^2 theta_n'' + 2 zeta_n omega_n L_n^2 theta_n'
-        + omega_n^2 L_n^2 sin(theta_n) = 0,
+    Parameters
+    ----------
+    model : SloshModel
+        The equivalent model (its pendulums and rigid mass).
+    force_n : callable
+        Force on the cart F(t) [N].
+    cart_mass_kg : float
+        Cart mass M [kg].
+    duration_s : float
+        Simulated time [s].
+    sample_period_s : float
+        Output sample period [s].
+    include_rigid_liquid : bool
+        Add the non-sloshing liquid mass m_0 to the cart.
 
-    with omega_n^2 L_n in place of g so that a calibrated frequency is honoured. The mass matrix
-    is solved at every step (Lagrange's equations; Ibrahim 2005 §6.2; Dodge 2000 §3).
+    Returns
+    -------
+    CartPendulumResponse
+        The cart's motion and the pendulums' angles.
+
+    References
+    ----------
+    De Simone, M. C., et al., Appl. Sci. 14 (2024) 4522, eqs. 4-5, doi:10.3390/app14114522.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> cart = simulate_cart_pendulum(model, lambda t: 0.0, cart_mass_kg=1.0, duration_s=0.1)
+    >>> float(abs(cart.angle_rad).max())
+    0.0
     """
     mass_cart = require_positive("cart_mass", cart_mass_kg, "kg")
     end = require_positive("duration", duration_s, "s")
@@ -225,19 +255,16 @@ def simulate_cart_pendulum(
     total = mass_cart + masses.sum() + (model.rigid_mass_kg if include_rigid_liquid else 0.0)
 
     def accelerations(t: float, state: FloatArray) -> FloatArray:
-        theta = state[2 : 2 + count]
-        theta_dot = state[2 + count :]
-        matrix = np.zeros((count + 1, count + 1))
-        rhs = np.zeros(count + 1)
-        matrix[0, 0] = total
-        matrix[0, 1:] = masses * lengths * np.cos(theta)
-        rhs[0] = force_n(t) + np.sum(masses * lengths * theta_dot**2 * np.sin(theta))
-        matrix[1:, 0] = lengths * np.cos(theta)
-        matrix[1:, 1:] = np.diag(lengths**2)
-        rhs[1:] = -2 * zetas * omegas * lengths**2 * theta_dot - omegas**2 * lengths**2 * np.sin(
-            theta
+        return cart_pendulum_accelerations(
+            force_n(t),
+            state[2 : 2 + count],
+            state[2 + count :],
+            total_mass_kg=total,
+            masses_kg=masses,
+            lengths_m=lengths,
+            omegas_rad_s=omegas,
+            damping_ratios=zetas,
         )
-        return np.asarray(np.linalg.solve(matrix, rhs), dtype=float)
 
     def rhs_function(t: float, state: FloatArray) -> FloatArray:
         second = accelerations(t, state)
