@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError, require_positive
-from sloshkit.files import write_rows_csv
+from sloshkit.files import atomic_open
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES, make_law
 from sloshkit.motion.scaling import unit_duration_shape
@@ -152,9 +152,35 @@ class SweepResult(ResultMixin):
                     )
         return rows
 
+    def columns(self) -> dict[str, NDArray[Any]]:
+        """The CSV columns as flat arrays, one entry per case (the order of `rows`)."""
+        laws, heights, durations = self.peak_angle_deg.shape
+        law_index = np.repeat(np.arange(laws), heights * durations)
+        height_index = np.tile(np.repeat(np.arange(heights), durations), laws)
+        return {
+            "law": np.asarray(self.laws, dtype=object)[law_index],
+            "fill_height_m": self.fill_heights_m[height_index],
+            "duration_s": np.repeat(self.durations_s, heights, axis=0).ravel(),
+            "omega_1_rad_s": self.omega_1_rad_s[height_index],
+            "peak_angle_deg": self.peak_angle_deg.ravel(),
+            "residual_angle_deg": self.residual_angle_deg.ravel(),
+            "peak_wall_elevation_m": self.peak_wall_elevation_m.ravel(),
+            "residual_wall_elevation_m": self.residual_wall_elevation_m.ravel(),
+            "peak_acceleration_m_s2": np.repeat(
+                self.peak_acceleration_m_s2, heights, axis=0
+            ).ravel(),
+            "safe": self.safe().ravel(),
+        }
+
     def to_csv(self, path: str | Path) -> Path:
-        """Write `rows` as CSV, atomically."""
-        return write_rows_csv(path, self.rows())
+        """Write the cases as CSV (the columns of `rows`), atomically, from the arrays:
+        numbers in their shortest round-trip form, as `rows` would write them."""
+        columns = self.columns()
+        text = [column.astype(str) for column in columns.values()]
+        lines = [",".join(columns), *map(",".join, zip(*text, strict=True))]
+        with atomic_open(path, "w") as stream:
+            stream.write("\n".join(lines) + "\n")
+        return Path(path)
 
     def to_pandas(self) -> Any:
         """`rows` as a pandas DataFrame (one row per case; pandas is optional)."""

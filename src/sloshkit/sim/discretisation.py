@@ -15,8 +15,6 @@ from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import expm
-from scipy.signal import lfilter, ss2tf
 
 from sloshkit.model.modal import SloshModel
 
@@ -32,6 +30,8 @@ def velocity_driven_discretisation(
     With s_k = (theta_k, y_k), y = theta' + v/L, and velocity samples u_k: z_k = s_k - g1 u_k,
     z_{k+1} = phi z_k + gamma u_k, s_k = z_k + g1 u_k, z_0 = 0 for a start from rest.
     """
+    from scipy.linalg import expm  # lazily: keeps start-up short
+
     w, z, length, h = omega_rad_s, damping_ratio, length_m, sample_period_s
     a_matrix = np.array([[0.0, 1.0], [-(w**2), -2.0 * z * w]])
     b_vector = np.array([-1.0 / length, 2.0 * z * w / length])
@@ -57,6 +57,8 @@ def velocity_driven_filters(
     ``lfilter(b_theta, a, v)`` gives theta_k and ``lfilter(b_y, a, v)`` gives
     y_k = theta'_k + v_k / L for velocity samples v_k starting from rest (v_0 = 0).
     """
+    from scipy.signal import ss2tf  # lazily: keeps start-up short
+
     phi, gamma, g1 = velocity_driven_discretisation(
         omega_rad_s, damping_ratio, length_m, sample_period_s
     )
@@ -112,6 +114,8 @@ def linear_mode_response(
     >>> theta.tolist()
     [0.0, 0.0, 0.0, 0.0]
     """
+    from scipy.signal import lfilter  # lazily: keeps start-up short
+
     b_theta, a, b_y, _ = velocity_driven_filters(
         float(omega_rad_s), float(damping_ratio), float(length_m), float(sample_period_s)
     )
