@@ -15,16 +15,28 @@ from sloshkit.sim.batch_kernel import kernel_rows, law_metrics
 from sloshkit.sim.discretisation import velocity_driven_discretisation
 
 
-@pytest.mark.parametrize("sample_period", [1e-3, 4e-3, 0.05])
-def test_vectorised_discretisation_equals_the_scalar_one(sample_period):
+@pytest.mark.parametrize("sample_period", [1e-3, 4e-3, 0.05, 0.3])
+def test_vectorised_discretisation_equals_scipy_expm(sample_period):
+    """The numpy scaling-and-squaring exponential against scipy.linalg.expm of the augmented
+    matrix (first-order hold, Franklin, Powell & Workman §6.3.2)."""
+    from scipy.linalg import expm
+
     model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039, n_modes=5)
     rows = kernel_rows(model, sample_period)
     for row, mode in zip(rows, model.modes, strict=True):
-        phi, gamma, g1 = velocity_driven_discretisation(
-            mode.omega_rad_s, mode.damping_ratio, mode.length_m, sample_period
-        )
-        expected = np.concatenate((phi.ravel(), gamma, g1))
+        w, z, length = mode.omega_rad_s, mode.damping_ratio, mode.length_m
+        augmented = np.zeros((4, 4))
+        augmented[:2, :2] = [[0.0, 1.0], [-(w**2), -2.0 * z * w]]
+        augmented[:2, 2] = [-1.0 / length, 2.0 * z * w / length]
+        augmented[2, 3] = 1.0
+        exponential = expm(augmented * sample_period)
+        phi = exponential[:2, :2]
+        ramp = exponential[:2, 3] / sample_period
+        gamma = phi @ ramp + exponential[:2, 2] - ramp
+        expected = np.concatenate((phi.ravel(), gamma, ramp))
         np.testing.assert_allclose(row[:8], expected, rtol=0, atol=1e-13 * np.abs(expected).max())
+        scalar = velocity_driven_discretisation(w, z, length, sample_period)
+        np.testing.assert_array_equal(np.concatenate([a.ravel() for a in scalar]), row[:8])
 
 
 @pytest.mark.parametrize("law", ["trapezoidal", "septic", "s-curve"])

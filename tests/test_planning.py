@@ -272,3 +272,17 @@ def test_nonlinear_verification_uses_the_large_angle_pendulum():
     assert linear.feasible
     assert nonlinear.peak_angle_rad > linear.peak_angle_rad
     assert nonlinear.peak_angle_rad == pytest.approx(linear.peak_angle_rad, rel=0.05)
+
+
+def test_optimal_plan_with_a_wall_limit_keeps_every_mode():
+    problem = _problem(
+        distance_m=0.2,
+        slosh=SloshLimits(
+            math.radians(5.0), math.radians(0.25), max_wall_elevation_m=0.0015, robustness=0.05
+        ),
+    )
+    optimal = plan_optimal(problem)
+    assert optimal.feasible, optimal.message
+    check = optimal.verification
+    # The wall limit is the active one (5 deg alone would allow a higher wall).
+    assert check.peak_wall_elevation_m == pytest.approx(0.0015, rel=1e-4)

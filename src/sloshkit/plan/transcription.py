@@ -148,11 +148,14 @@ def _build(ca: Any, steps: int, per_model: int, models: int, wall: bool) -> tupl
     for i in firsts:
         omega, zeta = q[9, i], q[10, i]
         end_angle, end_rate = angles[i, n - 1], states[2 * i + 1, n]  # y_N = theta'_N
+        # B of `sloshkit.sim.metrics.free_oscillation_components`, the damping a parameter here
         quadrature = (end_rate + zeta * omega * end_angle) / (omega * ca.sqrt(1 - zeta**2))
         residuals.append((end_angle**2 + quadrature**2) / residual_max**2 - bound**2)
     if wall:
         for m in range(models):
             members = range(m * per_model, (m + 1) * per_model)
+            # sum f_n theta_n as `sloshkit.sim.metrics.wall_elevation`, whose factors must be
+            # numbers; here they are parameters of the solver.
             eta = sum(q[11, i] * angles[i, :] for i in members) / eta_max
             rows.append(eta.T)
             bounds.append(1 + active[1:] * slack)

@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from sloshkit.errors import InputError
 from sloshkit.model.modal import SloshModel
 from sloshkit.sim.batch import BatchMetrics
+from sloshkit.sim.discretisation import velocity_driven_discretisations
 from sloshkit.sim.metrics import free_amplitude
 
 FloatArray = NDArray[np.float64]
@@ -179,31 +180,10 @@ def _kernel() -> Any:
     return _KERNEL
 
 
-def _expm_batch(matrices: FloatArray) -> FloatArray:
-    """Matrix exponentials of a stack of small matrices: scaling and squaring with a degree-20
-    Taylor polynomial (the scaled norm is <= 1/2, so the truncation is below 1e-25), in numpy
-    without BLAS calls (Moler & Van Loan, SIAM Review 45 (2003) 3, doi:10.1137/S00361445024180,
-    method 3)."""
-    norm = np.abs(matrices).sum(axis=-1).max(axis=-1)
-    squarings = np.maximum(0, np.ceil(np.log2(np.maximum(norm, 1e-300) / 0.5))).astype(int)
-    scaled = matrices / (2.0**squarings)[:, None, None]
-    identity = np.broadcast_to(np.eye(matrices.shape[-1]), matrices.shape)
-    result = identity.copy()
-    term = identity.copy()
-    for order in range(1, 21):
-        term = np.einsum("nij,njk->nik", term, scaled) / order
-        result = result + term
-    for level in range(int(squarings.max(initial=0))):
-        square = np.einsum("nij,njk->nik", result, result)
-        result = np.where((squarings > level)[:, None, None], square, result)
-    return np.asarray(result, dtype=float)
-
-
 def kernel_rows(model: SloshModel, sample_period_s: float) -> FloatArray:
     """Per mode: Phi (4, row-major), Gamma (2), g1 (2), wall factor, 1/L of the
-    first-order-hold discretisation in the shifted state, all modes in one vectorised matrix
-    exponential (the same numbers as
-    `sloshkit.sim.discretisation.velocity_driven_discretisation`, to rounding).
+    first-order-hold discretisation in the shifted state
+    (`sloshkit.sim.discretisation.velocity_driven_discretisations`, all modes at once).
 
     Parameters
     ----------
@@ -228,22 +208,10 @@ def kernel_rows(model: SloshModel, sample_period_s: float) -> FloatArray:
     >>> kernel_rows(model, 1e-3).shape
     (3, 10)
     """
-    h = float(sample_period_s)
     omega = np.array([mode.omega_rad_s for mode in model.modes])
     zeta = np.array([mode.damping_ratio for mode in model.modes])
     length = np.array([mode.length_m for mode in model.modes])
-    augmented = np.zeros((omega.size, 4, 4))
-    augmented[:, 0, 1] = 1.0
-    augmented[:, 1, 0] = -(omega**2)
-    augmented[:, 1, 1] = -2.0 * zeta * omega
-    augmented[:, 0, 2] = -1.0 / length
-    augmented[:, 1, 2] = 2.0 * zeta * omega / length
-    augmented[:, 2, 3] = 1.0
-    exponential = _expm_batch(augmented * h)
-    phi = exponential[:, :2, :2]
-    ramp = exponential[:, :2, 3] / h
-    hold = exponential[:, :2, 2]
-    gamma = np.einsum("nij,nj->ni", phi, ramp) + hold - ramp
+    phi, gamma, ramp = velocity_driven_discretisations(omega, zeta, length, sample_period_s)
     factor = np.array([mode.wall_elevation_factor_m for mode in model.modes])
     return np.column_stack((phi.reshape(-1, 4), gamma, ramp, factor, 1.0 / length))
 
