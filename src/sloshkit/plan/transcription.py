@@ -180,7 +180,7 @@ def _build(ca: Any, steps: int, per_model: int, models: int, wall: bool) -> tupl
                 "print_level": 0,
                 "sb": "yes",
                 "max_iter": 400,
-                "tol": 1e-9,
+                "tol": 1e-7,
                 "constr_viol_tol": 1e-10,
                 "bound_relax_factor": 0.0,
                 "mu_strategy": "adaptive",
