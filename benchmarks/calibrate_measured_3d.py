@@ -16,14 +16,14 @@ import warnings
 from pathlib import Path
 
 import numpy as np
-from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.sim.spatial import simulate_spatial
 
 from sloshkit.calibration import identify_simulated
 from sloshkit.errors import ValidityWarning
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.sim.spatial import simulate_spatial
 
 DATA = Path(__file__).parents[1] / "tests" / "data" / "measured-3d"
 FREE_DECAY_OMEGA_D = 19.04
