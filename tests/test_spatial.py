@@ -15,7 +15,7 @@ from sloshkit.errors import ValidityWarning
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import SloshModel, equivalent_model
-from sloshkit.motion.laws import quintic, septic
+from sloshkit.motion.laws import quintic, septic, trapezoidal
 from sloshkit.motion.poses import (
     PoseTrajectory,
     concatenate,
@@ -76,10 +76,14 @@ def test_spin_about_the_own_axis_gives_no_slosh(model: SloshModel) -> None:
         assert response.drive.spin_angle_rad[-1] == pytest.approx(6 * math.pi, rel=1e-4)
 
 
-def test_a_1d_law_as_poses_equals_the_1d_simulation(model: SloshModel) -> None:
-    law = septic(0.3, 1.2)
+@pytest.mark.parametrize("law_name", ["septic", "trapezoidal"])
+def test_a_1d_law_as_poses_equals_the_1d_simulation(model: SloshModel, law_name: str) -> None:
+    """Exact data (no smoothing) reproduces the 1-D model to the discretisation error; the
+    default 25 Hz differentiator smooths the acceleration jumps of the trapezoid (a few %)."""
+    law = septic(0.3, 1.2) if law_name == "septic" else trapezoidal(0.3, duration_s=1.2)
     one_d = simulate(model, law, kind="linear", sample_period_s=1e-3, settle_time_s=1.0)
-    for cutoff, tolerance in ((None, 2e-5), (25.0, 2e-3)):
+    smoothed = 2e-3 if law_name == "septic" else 5e-2
+    for cutoff, tolerance in ((None, 2e-4), (25.0, smoothed)):
         response = _quiet(
             model, poses_from_law(law), settle_time_s=1.0, sample_period_s=1e-3, cutoff_hz=cutoff
         )

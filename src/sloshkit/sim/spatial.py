@@ -91,6 +91,8 @@ class SpatialDrive:
     tilt_acceleration_rad_s2 : (M, 2) its derivative
     spin_angle_rad : (M,) phi, the container's rotation about its own axis relative to N
     kinematics : the pose kinematics used
+    rest_force_m_s2 : (modes + 1, 3) kappa_n g_vec in the container frame of the first pose:
+        the drive of the container resting before the motion (initial equilibrium)
     """
 
     time_s: FloatArray
@@ -99,6 +101,7 @@ class SpatialDrive:
     tilt_acceleration_rad_s2: FloatArray
     spin_angle_rad: FloatArray
     kinematics: PoseKinematics
+    rest_force_m_s2: FloatArray
 
 
 def spatial_drive(model: SloshModel, kinematics: PoseKinematics) -> SpatialDrive:
@@ -180,7 +183,9 @@ def spatial_drive(model: SloshModel, kinematics: PoseKinematics) -> SpatialDrive
     )
     spin_rate = omega_b[:, 2:3]
     tilt_accel = accel_rot + spin_rate * np.stack((-rate_n[:, 1], rate_n[:, 0]), -1)
-    return SpatialDrive(time, forces, rate_n, tilt_accel, spin, kinematics)
+    gravity_body = matrix[0].T @ np.array([0.0, 0.0, -g])
+    rest = np.outer(kappas, gravity_body)
+    return SpatialDrive(time, forces, rate_n, tilt_accel, spin, kinematics, rest)
 
 
 def simulate_spatial(
@@ -261,6 +266,7 @@ def simulate_spatial(
     if nonlinear:
         unit, unit_rate = nonlinear_pendulums(
             drive.specific_force_m_s2[:count],
+            drive.rest_force_m_s2[:count],
             drive.tilt_rate_rad_s,
             drive.tilt_acceleration_rad_s2,
             length,
@@ -276,11 +282,13 @@ def simulate_spatial(
             drive.tilt_acceleration_rad_s2[full],
             drive.spin_angle_rad[full],
             kinematics,
+            drive.rest_force_m_s2,
         )
         unit, unit_rate = unit[:, : drive.time_s.size], unit_rate[:, : drive.time_s.size]
     else:
         angle, rate = linear_pendulums(
             drive.specific_force_m_s2[:count],
+            drive.rest_force_m_s2[:count],
             drive.tilt_rate_rad_s,
             drive.tilt_acceleration_rad_s2,
             length,

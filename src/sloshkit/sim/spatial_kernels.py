@@ -66,25 +66,17 @@ def _compile() -> dict[str, Any]:
         return y1 + xp1, w1 + vp
 
     @njit(cache=True)  # type: ignore[untyped-decorator]
-    def linear(force, tilt_rate, tilt_accel, length, omega, zeta, k_floor, h):  # type: ignore[no-untyped-def]
+    def linear(force, rest_force, tilt_rate, tilt_accel, length, omega, zeta, k_floor, h):  # type: ignore[no-untyped-def]
         modes, steps, _ = force.shape
         angle = np.zeros((modes, steps, 2))
         rate = np.zeros((modes, steps, 2))
         for m in range(modes):
             inv_l = 1.0 / length[m]
             c = 2.0 * zeta[m] * omega[m]
-            # equilibrium at the start (container at rest): K theta = u
-            k0 = max(-force[m, 0, 2] * inv_l, k_floor[m])
-            p0 = tilt_rate[0, 0]
-            q0 = tilt_rate[0, 1]
-            ux = force[m, 0, 0] * inv_l + tilt_accel[0, 1]
-            uy = force[m, 0, 1] * inv_l - tilt_accel[0, 0]
-            a11 = k0 + p0 * p0
-            a12 = p0 * q0
-            a22 = k0 + q0 * q0
-            det = a11 * a22 - a12 * a12
-            tx = (a22 * ux - a12 * uy) / det
-            ty = (a11 * uy - a12 * ux) / det
+            # start from the equilibrium of the container at rest in its first pose
+            k0 = max(-rest_force[m, 2] * inv_l, k_floor[m])
+            tx = rest_force[m, 0] * inv_l / k0
+            ty = rest_force[m, 1] * inv_l / k0
             vx = 0.0
             vy = 0.0
             angle[m, 0, 0] = tx
@@ -169,7 +161,7 @@ def _compile() -> dict[str, Any]:
         return out
 
     @njit(cache=True)  # type: ignore[untyped-decorator]
-    def nonlinear(force, tilt_rate, tilt_accel, length, omega, zeta, h):  # type: ignore[no-untyped-def]
+    def nonlinear(force, rest_force, tilt_rate, tilt_accel, length, omega, zeta, h):  # type: ignore[no-untyped-def]
         """Drive on the half-step grid (2 steps + 1 samples); returns u, u' on the full grid."""
         modes, half_samples, _ = force.shape
         steps = (half_samples - 1) // 2 + 1
@@ -178,7 +170,7 @@ def _compile() -> dict[str, Any]:
         for m in range(modes):
             ln = length[m]
             c = 2.0 * zeta[m] * omega[m]
-            u = force[m, 0].copy()
+            u = rest_force[m].copy()  # hanging along the apparent gravity at rest
             norm = np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
             u /= norm
             v = np.zeros(3)
@@ -260,6 +252,7 @@ def kernels() -> dict[str, Any]:
 
 def linear_pendulums(
     force: FloatArray,
+    rest_force: FloatArray,
     tilt_rate: FloatArray,
     tilt_accel: FloatArray,
     length: FloatArray,
@@ -269,12 +262,16 @@ def linear_pendulums(
 ) -> tuple[FloatArray, FloatArray]:
     """Linear 2-D pendulum angles and rates (modes, steps, 2) in the non-spinning frame.
 
+    ``rest_force`` (modes, 3): the specific force of the container at rest in its first pose;
+    the pendulums start in its equilibrium (the container rests before the first pose).
+
     The stiffness is floored at 1e-3 omega_n^2 (apparent gravity along the axis reversed or
     nearly zero: the caller warns, the model is not valid there).
     """
     floor = 1e-3 * np.asarray(omega, dtype=float) ** 2
     angle, rate = kernels()["linear"](
         np.ascontiguousarray(force),
+        np.ascontiguousarray(rest_force),
         np.ascontiguousarray(tilt_rate),
         np.ascontiguousarray(tilt_accel),
         np.asarray(length, dtype=float),
@@ -288,6 +285,7 @@ def linear_pendulums(
 
 def nonlinear_pendulums(
     force_half: FloatArray,
+    rest_force: FloatArray,
     tilt_rate_half: FloatArray,
     tilt_accel_half: FloatArray,
     length: FloatArray,
@@ -298,6 +296,7 @@ def nonlinear_pendulums(
     """Spherical pendulums: unit vectors u and u' (modes, steps, 3), drive on the half grid."""
     unit, velocity = kernels()["nonlinear"](
         np.ascontiguousarray(force_half),
+        np.ascontiguousarray(rest_force),
         np.ascontiguousarray(tilt_rate_half),
         np.ascontiguousarray(tilt_accel_half),
         np.asarray(length, dtype=float),
