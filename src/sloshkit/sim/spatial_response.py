@@ -63,6 +63,18 @@ class SpatialResponse(ResultMixin):
     motion_end_s : time of the last pose [s]; the container rests afterwards
     height_mapping : ``"modal"`` (sum over the simulated modes, as in 1-D) or ``"planar"``
         (plus the quasi-static remainder of the modes not simulated: exact planar statics)
+    motion_name : label of the pose trajectory
+    elapsed_s : wall-clock time of the simulation [s]
+
+    Built by `sloshkit.sim.spatial.simulate_spatial`, not directly.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
+    >>> response = sk.simulate_spatial(model, sk.poses_from_law(sk.septic(0.1, 1.5)))
+    >>> sorted(response.to_dict())[:3]
+    ['duration_s', 'height_mapping', 'model']
     """
 
     model: SloshModel
