@@ -241,3 +241,25 @@ def test_plot_draws_path_and_height(model: SloshModel, tmp_path) -> None:  # typ
     figure = response.plot(path=tmp_path / "spatial.png", limit_m=0.01)
     assert len(figure.axes) == 2
     assert (tmp_path / "spatial.png").stat().st_size > 1000
+
+
+@pytest.mark.parametrize("mapping", ["modal", "planar"])
+def test_batch_metrics_equal_single_simulations(model: SloshModel, mapping: str) -> None:
+    from sloshkit.sim.spatial_batch import spatial_batch_metrics
+
+    cases = [
+        _rich_motion(),
+        poses_from_law(septic(0.2, 0.8), (0, 1, 0), sample_period_s=2e-3),
+        poses_from_rotation(septic(0.3, 1.0), (1, 0, 0), sample_period_s=2e-3),
+    ]
+    batch = spatial_batch_metrics(model, cases, settle_time_s=0.5, height_mapping=mapping)  # type: ignore[arg-type]
+    for index, poses in enumerate(cases):
+        single = _quiet(model, poses, settle_time_s=0.5, height_mapping=mapping)
+        assert batch.peak_slosh_height_m[index] == pytest.approx(
+            single.peak_slosh_height_m, rel=1e-12
+        )
+        assert batch.peak_angle_rad[index] == pytest.approx(single.peak_angle_rad, rel=1e-12)
+        assert batch.residual_slosh_height_m[index] == pytest.approx(
+            single.residual_slosh_height_m, rel=1e-9
+        )
+        assert batch.residual_angle_rad[index] == pytest.approx(single.residual_angle_rad, rel=1e-9)

@@ -142,7 +142,8 @@ class PoseTrajectory:
     @property
     def tilt_rad(self) -> FloatArray:
         """Angle between the container axis and the world vertical, shape (N,) [rad]."""
-        return np.arccos(np.clip(self.axis_world[:, 2], -1.0, 1.0))
+        x, y = self.quaternion_xyzw[:, 0], self.quaternion_xyzw[:, 1]
+        return np.arccos(np.clip(1.0 - 2.0 * (x * x + y * y), -1.0, 1.0))  # R_zz
 
     # -- transformations --------------------------------------------------------------------
 
