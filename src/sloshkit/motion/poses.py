@@ -189,9 +189,8 @@ class PoseTrajectory:
 
         Examples
         --------
-        >>> import numpy as np
-        >>> poses = poses_from_law(__import__("sloshkit.motion.laws").motion.laws.quintic(
-        ...     0.2, 1.0), sample_period_s=0.01)
+        >>> from sloshkit.motion.laws import quintic
+        >>> poses = poses_from_law(quintic(0.2, 1.0), sample_period_s=0.01)
         >>> poses.resample(0.05).time_s.size
         21
         """
