@@ -15,10 +15,12 @@ with r_n = H_n times the container axis, g_vec = (0, 0, -g) and kappa_n = omega_
 does). Everything is written in a frame N that tilts with the container axis but does **not
 spin about it**: N = C Rz(-phi), phi' = omega_z (body). An ideal liquid in an axisymmetric
 container is not dragged by rotation about the axis: the Stokes-Joukowski potential for that
-rotation is zero (Lamb, *Hydrodynamics*, 6th ed. (1932) §72; Ibrahim, *Liquid Sloshing
-Dynamics* (2005) §2.5), and viscous spin-up takes t ~ h / sqrt(nu Omega) (Greenspan &
-Howard, J. Fluid Mech. 17 (1963) 385, doi:10.1017/S0022112063001415), seconds to minutes
-for vials and beakers, so short rotations about the axis leave the liquid's slosh unchanged.
+rotation is zero: the wall and bottom move tangentially, no normal velocity is imposed, so
+irrotational flow stays at rest (Stokes 1880, Zhukovsky 1885; Lamb, *Hydrodynamics*, 6th ed.
+(1932), ch. III on liquid in rotating vessels). Viscous spin-up takes t ~ h / sqrt(nu Omega)
+(Greenspan & Howard, J. Fluid Mech. 17 (1963) 385, doi:10.1017/S0022112063001415), tens of
+seconds for vials and beakers (36 s for h = 80 mm of water at 5 rad/s), so rotations about
+the axis during a move leave the slosh unchanged.
 N has the angular velocity Omega = (p, q, 0) (lateral part of the container's).
 
 Linear (per mode, theta = 2-D pendulum angle in N, positive when the bob swings to +x/+y)::
