@@ -19,7 +19,7 @@ def test_root_help_table_matches_the_commands_own_help():
     for name, (module, short) in COMMANDS.items():
         command = group.commands[name]
         first_paragraph = " ".join((command.help or "").split("\n\n")[0].split())
-        assert first_paragraph == short, name
+        assert first_paragraph == short, f"{name}: update sloshkit.cli.COMMANDS"
         assert sys.modules[module] is not None
 
 
