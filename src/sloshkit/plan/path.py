@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path as FilePath
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -38,8 +37,6 @@ FloatArray = NDArray[np.float64]
 ROTATION_LENGTH_M = 0.05
 #: Largest knot spacing [m] of the path splines.
 KNOT_SPACING_M = 2e-3
-_LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "cm": 1e-2}
-_ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
 
 
 @dataclass(frozen=True, eq=False)
@@ -79,7 +76,7 @@ class Path:
         return float(self.knots_m[-1])
 
     def _clip(self, s_m: ArrayLike) -> FloatArray:
-        return np.clip(np.asarray(s_m, dtype=float), 0.0, self.length_m)
+        return np.asarray(np.clip(np.asarray(s_m, dtype=float), 0.0, self.length_m), dtype=float)
 
     def position(self, s_m: ArrayLike, order: int = 0) -> FloatArray:
         """Position p(s) [m] (``order`` 0) or its ``order``-th derivative d^k p / ds^k."""
@@ -302,50 +299,3 @@ def path_from_waypoints(
         spline = CubicSpline(corner_s, yaw, bc_type="clamped")
         rotations = Rotation.from_euler("z", spline(s_all)[:, None])
     return _resampled(name, s_all, p_all, rotations, KNOT_SPACING_M)
-
-
-def _scale(name: str, default: str, table: dict[str, float], parameter: str) -> float:
-    """Factor to SI of the unit written in a column name (``x [mm]``, ``x_mm``)."""
-    from sloshkit.io import unit_from_name
-
-    unit = unit_from_name(name)
-    if unit is None and "_" in name:
-        unit = name.rsplit("_", 1)[1]
-    unit = (unit or default).strip().lower()
-    if unit not in table:
-        raise InputError(parameter, name, "unit must be one of " + ", ".join(table))
-    return table[unit]
-
-
-def read_waypoints(path: str | FilePath) -> tuple[FloatArray, FloatArray | None]:
-    """Waypoints [m] and optional yaw [rad] from a CSV (``x,y,z[,yaw]`` with units in the header,
-    e.g. ``x [mm]``, ``yaw [deg]``; bare names are m and rad) or a TOML file
-    (``waypoints = [[x, y, z], ...]`` in m, optional ``yaw_deg = [...]``)."""
-    source = FilePath(path)
-    if source.suffix.lower() == ".toml":
-        import tomllib
-
-        try:
-            document = tomllib.loads(source.read_text(encoding="utf-8"))
-        except (OSError, tomllib.TOMLDecodeError) as exc:
-            raise InputError("path", str(source), f"is not a readable TOML file ({exc})") from None
-        if "waypoints" not in document:
-            raise InputError("path", str(source), "needs waypoints = [[x, y, z], ...] in m")
-        points = np.asarray(document["waypoints"], dtype=float)
-        yaw = document.get("yaw_deg")
-        return points, None if yaw is None else np.radians(np.asarray(yaw, dtype=float))
-    from sloshkit.io import read_table
-
-    header, data = read_table(source)
-    names = [name.split("[")[0].split("(")[0].strip().lower() for name in header]
-    base = [name.split("_")[0] for name in names]
-    if not all(axis in base for axis in "xyz"):
-        raise InputError("path", str(source), "needs columns x, y, z (e.g. 'x [mm]')")
-    columns = [base.index(axis) for axis in "xyz"]
-    points = np.column_stack(
-        [data[:, c] * _scale(header[c], "m", _LENGTH_UNITS, "path") for c in columns]
-    )
-    if "yaw" not in base:
-        return points, None
-    index = base.index("yaw")
-    return points, data[:, index] * _scale(header[index], "rad", _ANGLE_UNITS, "path")

@@ -1,18 +1,25 @@
-"""Timings s(t) along a 3-D path: time-optimal without slosh, uniformly slowed, slosh-optimal.
+"""Timings s(t) along a 3-D path: a jerk-limited, slosh-aware parametric family.
 
-- `cartesian_timing`: the time-optimal jerk-limited S-curve of s under constant limits derived
-  from the path's largest speed, curvature and rotation rates (ruckig), slowed uniformly until
-  the sampled export meets every Cartesian and angular limit;
-- `slowed_until`: the naive fix: stretch a timing uniformly in time (t -> c t) until the linear
-  slosh screen passes (bisection on c);
-- `optimal_timing`: minimum-time s(t) by direct multiple shooting in casadi/IPOPT (Betts,
-  *Practical Methods for Optimal Control*, 2nd ed., SIAM (2010) ch. 4): states s, s', s'' and,
-  for every mode and every frequency of the robustness band, the 2-D deflection of the
-  spherical pendulum and its rate (`sloshkit.plan.spatial` states the model); control: the path
-  jerk s''', piecewise constant; path-dependent speed, acceleration (tangential and
-  centripetal), jerk and angular limits and the slosh-height limit at the nodes, the residual
-  amplitude at the end. The path enters through tables of its derivatives on a grid of s
-  (linear interpolants).
+A timing of the family is built in three steps:
+
+1. **acceleration-capped time-optimal speed profile** (numerical TOPP: Bobrow, Dubowsky &
+   Gibson, Int. J. Robotics Research 4(3) (1985) 3-17, doi:10.1177/027836498500400301; Pham,
+   IEEE T-RO 30(6) (2014) 1533-1540, doi:10.1109/TRO.2014.2351113): the fastest speed v(s)
+   with the total acceleration of the reference point, tangential and centripetal,
+   a_t^2 + (kappa v^2)^2 <= A^2 (a "friction circle"), under the speed and angular-speed limits,
+   by a forward and a backward integration on a grid of s;
+2. **jerk limit**: the timing is averaged over a sliding window of width tau (a box FIR filter
+   of s(t)), which turns acceleration jumps into ramps of jerk <= 2 A / tau and keeps the path
+   (the timing changes, the geometry does not) (Biagiotti & Melchiorri, *Trajectory Planning
+   for Automatic Machines and Robots*, Springer (2008) ch. 4, FIR-filter trajectories);
+3. **input shaping** of the timing on the first slosh mode: ZV, or ZVD with a robustness band
+   (Singer & Seering, ASME J. Dyn. Syst. Meas. Control 112 (1990) 76-82,
+   doi:10.1115/1.2894142), which cancels the residual oscillation the timing leaves.
+
+The quasi-static slosh height grows with the acceleration the liquid feels (about
+0.94 R |a| / g for three modes), so the cap A is the one parameter that trades duration for
+slosh: `fastest_capped` bisects on A until the linear slosh screen passes. A uniform stretch in
+time t -> c t (`stretch_until`) is the naive alternative it is compared with.
 """
 
 from __future__ import annotations
@@ -20,17 +27,15 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
-from scipy.interpolate import PPoly
-from scipy.spatial.transform import Rotation
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
-from sloshkit.motion.laws import Motion, _piecewise_constant_jerk, s_curve
+from sloshkit.errors import InputError
+from sloshkit.motion.shaping import Shaper, zv, zvd
 from sloshkit.plan.path import Path
 from sloshkit.plan.spatial import (
-    GRAVITY,
     PathProblem,
     PoseSamples,
     linear_screen,
@@ -40,41 +45,200 @@ from sloshkit.plan.spatial import (
 )
 
 FloatArray = NDArray[np.float64]
-#: Fraction of the Cartesian limits the transcription uses (they hold at its nodes only).
-MARGIN = 0.98
+#: Resolution of the fine time grid the composed timings are tabulated on [s].
+FINE_STEP_S = 5e-4
+#: Grid spacing of the speed-profile integration [m].
+PROFILE_STEP_M = 1e-3
 
 
-def scale_timing(timing: Motion, factor: float) -> Motion:
-    """s(t / c): the same timing stretched by ``factor`` c in time (speeds / c, accelerations
-    / c^2, jerks / c^3)."""
-    pp = timing.position_pp
-    order = pp.c.shape[0] - 1
-    powers = factor ** (order - np.arange(order + 1, dtype=float))
-    return Motion(timing.name, PPoly(pp.c / powers[:, None], pp.x * factor))
+@dataclass(frozen=True, eq=False)
+class Timing:
+    """A rest-to-rest timing s(t) [m] of a path on [0, ``duration_s``], tabulated on a fine grid
+    and interpolated by a cubic spline (held at 0 before and at ``length_m`` after).
+
+    Examples
+    --------
+    >>> timing = Timing.from_samples("ramp", np.linspace(0, 1, 11), np.linspace(0, 1, 11) ** 2)
+    >>> round(float(timing.position(0.5)), 3), timing.duration_s
+    (0.25, 1.0)
+    """
+
+    name: str
+    time_s: FloatArray
+    s_m: FloatArray
+
+    @classmethod
+    def from_samples(cls, name: str, time_s: ArrayLike, s_m: ArrayLike) -> Timing:
+        """A timing through the samples (times increasing from 0)."""
+        t = np.asarray(time_s, dtype=float)
+        s = np.asarray(s_m, dtype=float)
+        if t.ndim != 1 or t.size < 2 or t[0] != 0.0 or np.any(np.diff(t) <= 0):
+            raise InputError("timing", t.size, "needs increasing times from 0")
+        return cls(name, t, s)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_spline", CubicSpline(self.time_s, self.s_m))
+
+    @property
+    def duration_s(self) -> float:
+        """Duration T [s]."""
+        return float(self.time_s[-1])
+
+    @property
+    def length_m(self) -> float:
+        """Final s [m]."""
+        return float(self.s_m[-1])
+
+    def position(self, time_s: ArrayLike) -> FloatArray:
+        """s(t) [m]."""
+        spline: CubicSpline = self._spline  # type: ignore[attr-defined]
+        t = np.asarray(time_s, dtype=float)
+        inside = np.asarray(spline(np.clip(t, 0.0, self.duration_s)), dtype=float)
+        return np.where(t <= 0.0, 0.0, np.where(t >= self.duration_s, self.length_m, inside))
+
+    def derivative(self, time_s: ArrayLike, order: int) -> FloatArray:
+        """d^k s / dt^k (0 outside the move)."""
+        spline: CubicSpline = self._spline  # type: ignore[attr-defined]
+        t = np.asarray(time_s, dtype=float)
+        inside = (t > 0.0) & (t < self.duration_s)
+        return np.where(inside, spline(np.clip(t, 0.0, self.duration_s), order), 0.0)
+
+    def velocity(self, time_s: ArrayLike) -> FloatArray:
+        """s' [m/s]."""
+        return self.derivative(time_s, 1)
+
+    def acceleration(self, time_s: ArrayLike) -> FloatArray:
+        """s'' [m/s^2]."""
+        return self.derivative(time_s, 2)
+
+    def jerk(self, time_s: ArrayLike) -> FloatArray:
+        """s''' [m/s^3]."""
+        return self.derivative(time_s, 3)
+
+    def stretched(self, factor: float) -> Timing:
+        """s(t / c): speeds / c, accelerations / c^2, jerks / c^3."""
+        return Timing(self.name, self.time_s * factor, self.s_m)
 
 
-@dataclass(frozen=True)
-class PathBounds:
-    """Largest |p'|, |p''|, |p'''| [1, 1/m, 1/m^2] and angular |omega_s|, |omega_s'| per unit s."""
-
-    speed: float
-    curvature: float
-    third: float
-    turn: float
-    turn_rate: float
+def _fine_grid(duration_s: float) -> FloatArray:
+    count = max(8, math.ceil(duration_s / FINE_STEP_S))
+    return np.linspace(0.0, duration_s, count + 1)
 
 
-def path_bounds(path: Path, count: int = 4000) -> PathBounds:
-    """`PathBounds` sampled on ``count`` points."""
-    s = np.linspace(0.0, path.length_m, count)
-    norms = [float(np.max(np.linalg.norm(path.position(s, k), axis=1))) for k in (1, 2, 3)]
-    turn = float(np.max(np.linalg.norm(path.angular_rate(s, 1), axis=1)))
-    turn_rate = float(np.max(np.linalg.norm(path.angular_rate(s, 2), axis=1)))
-    return PathBounds(*norms, turn, turn_rate)
+def box_smoothed(timing: Timing, width_s: float) -> Timing:
+    """(1/tau) integral_{t-tau}^{t} s(u) du: a jerk-limited timing, tau longer [s]."""
+    if width_s <= 0.0:
+        return timing
+    grid = _fine_grid(timing.duration_s + width_s)
+    step = grid[1] - grid[0]
+    values = timing.position(grid)
+    integral = np.concatenate(([0.0], np.cumsum(0.5 * (values[1:] + values[:-1]) * step)))
+    before = np.interp(grid - width_s, grid, integral, left=0.0)
+    smoothed = (integral - before) / width_s
+    smoothed[-1] = timing.length_m
+    return Timing(timing.name, grid, smoothed)
+
+
+def shaped_timing(timing: Timing, shaper: Shaper) -> Timing:
+    """sum_i A_i s(t - t_i) (duration T + t_N)."""
+    grid = _fine_grid(timing.duration_s + float(shaper.times_s[-1]))
+    values = sum(
+        amplitude * timing.position(grid - delay)
+        for amplitude, delay in zip(shaper.amplitudes, shaper.times_s, strict=True)
+    )
+    values = np.asarray(values, dtype=float)
+    values[-1] = timing.length_m
+    return Timing(timing.name, grid, values)
+
+
+def speed_profile(
+    path: Path, problem: PathProblem, acceleration_cap: float
+) -> tuple[FloatArray, FloatArray]:
+    """Fastest s' (s) [m/s] with total acceleration <= ``acceleration_cap`` [m/s^2] (module
+    docstring, step 1), on a grid of s [m]; returns (s, s')."""
+    machine = problem.machine
+    count = max(50, math.ceil(path.length_m / PROFILE_STEP_M))
+    s = np.linspace(0.0, path.length_m, count + 1)
+    step = s[1] - s[0]
+    speed = np.maximum(np.linalg.norm(path.position(s, 1), axis=1), 1e-9)
+    curvature = np.linalg.norm(path.position(s, 2), axis=1) / speed**2
+    limit = np.full(s.size, machine.max_velocity_m_s) / speed
+    cap = min(acceleration_cap, machine.max_acceleration_m_s2)
+    limit = np.minimum(limit, np.sqrt(cap / np.maximum(curvature, 1e-12)) / speed)
+    turn = np.linalg.norm(path.angular_rate(s, 1), axis=1)
+    if machine.max_angular_velocity_rad_s is not None:
+        limit = np.minimum(limit, machine.max_angular_velocity_rad_s / np.maximum(turn, 1e-12))
+    tangential = np.full(s.size, cap)
+    if machine.max_angular_acceleration_rad_s2 is not None:
+        turn_rate = np.linalg.norm(path.angular_rate(s, 2), axis=1)
+        half = 0.5 * machine.max_angular_acceleration_rad_s2
+        limit = np.minimum(limit, np.sqrt(half / np.maximum(turn_rate, 1e-12)))
+        tangential = np.minimum(tangential, half / np.maximum(turn, 1e-12) * speed)
+
+    def usable(index: int, rate: float) -> float:
+        lateral = curvature[index] * (speed[index] * rate) ** 2
+        return math.sqrt(max(float(tangential[index] ** 2 - lateral**2), 0.0)) / float(speed[index])
+
+    forward = np.zeros(s.size)
+    for i in range(s.size - 1):
+        forward[i + 1] = min(
+            limit[i + 1], math.sqrt(forward[i] ** 2 + 2.0 * usable(i, forward[i]) * step)
+        )
+    profile = forward.copy()
+    profile[-1] = 0.0
+    for i in range(s.size - 2, -1, -1):
+        profile[i] = min(
+            profile[i], math.sqrt(profile[i + 1] ** 2 + 2.0 * usable(i + 1, profile[i + 1]) * step)
+        )
+    profile[0] = 0.0
+    return s, profile
+
+
+def capped_timing(problem: PathProblem, acceleration_cap: float) -> Timing:
+    """The speed profile of `speed_profile` as a timing (C1 Hermite in time)."""
+    s, rate = speed_profile(problem.path, problem, acceleration_cap)
+    durations = 2.0 * np.diff(s) / np.maximum(rate[1:] + rate[:-1], 1e-12)
+    t = np.concatenate(([0.0], np.cumsum(durations)))
+    spline = CubicHermiteSpline(t, s, rate)
+    grid = _fine_grid(float(t[-1]))
+    return Timing("capped", grid, np.asarray(spline(grid), dtype=float))
+
+
+def first_mode_shaper(problem: PathProblem) -> Shaper:
+    """ZV on the nominal first mode, ZVD when a robustness band is asked for."""
+    first = problem.model.modes[0]
+    make = zvd if problem.slosh.robustness > 0 else zv
+    return make(first.omega_rad_s, first.damping_ratio)
+
+
+def family_member(problem: PathProblem, acceleration_cap: float, shaper: Shaper | None) -> Timing:
+    """The family member with cap A: the box width is the shortest of 2 A / jmax * 1.25^k
+    (k = 0..8) whose export meets every Cartesian and angular limit."""
+    base = capped_timing(problem, acceleration_cap)
+    width = 2.0 * acceleration_cap / problem.machine.max_jerk_m_s3
+    timing = base
+    for _ in range(9):
+        timing = box_smoothed(base, width)
+        if shaper is not None:
+            timing = shaped_timing(timing, shaper)
+        poses = sample_path(problem.path, timing, problem.sample_period_s)
+        if not machine_violations(problem, poses, False):
+            break
+        width *= 1.25
+    return timing
+
+
+def stretcher(problem: PathProblem, timing: Timing) -> Callable[[float], PoseSamples]:
+    """Sampled poses of ``timing`` stretched uniformly by a factor c."""
+
+    def poses_for(factor: float) -> PoseSamples:
+        return sample_path(problem.path, timing.stretched(factor), problem.sample_period_s)
+
+    return poses_for
 
 
 def _bisect(ok: Callable[[float], bool], low: float, high: float, steps: int = 14) -> float:
-    """Smallest c in [low, high] with ok(c) (ok is assumed monotone; ok(high) is True)."""
+    """Smallest c in [low, high] with ok(c) (ok assumed monotone; ok(high) True)."""
     for _ in range(steps):
         middle = math.sqrt(low * high)
         if ok(middle):
@@ -86,9 +250,11 @@ def _bisect(ok: Callable[[float], bool], low: float, high: float, steps: int = 1
     return high
 
 
-def stretch_until(ok: Callable[[float], bool], start: float = 1.0, limit: float = 64.0) -> float | None:
-    """Smallest stretch factor c >= ``start`` with ok(c): doubling, then bisection; None when
-    nothing up to ``limit`` passes."""
+def stretch_until(
+    ok: Callable[[float], bool], start: float = 1.0, limit: float = 64.0
+) -> float | None:
+    """Smallest stretch c >= ``start`` with ok(c): doubling, then bisection; None when nothing
+    up to ``limit`` passes."""
     if ok(start):
         return start
     low, high = start, 2.0 * start
@@ -97,39 +263,6 @@ def stretch_until(ok: Callable[[float], bool], start: float = 1.0, limit: float 
         if high > limit:
             return None
     return _bisect(ok, low, high)
-
-
-def cartesian_timing(problem: PathProblem) -> Motion:
-    """Time-optimal jerk-limited S-curve of s that meets every Cartesian and angular limit.
-
-    Constant limits on s: speed vmax/|p'|max and sqrt(amax/2 / |p''|max) (half the acceleration
-    for the centripetal part), acceleration amax/2 / |p'|max, jerk jmax/4 / |p'|max, and the
-    angular limits through |omega_s|max; the export is then checked and, if needed, stretched.
-    """
-    bounds = path_bounds(problem.path)
-    machine = problem.machine
-    speed = machine.max_velocity_m_s / bounds.speed
-    if bounds.curvature > 0:
-        speed = min(speed, math.sqrt(0.5 * machine.max_acceleration_m_s2 / bounds.curvature))
-    if machine.max_angular_velocity_rad_s is not None and bounds.turn > 0:
-        speed = min(speed, machine.max_angular_velocity_rad_s / bounds.turn)
-    acceleration = 0.5 * machine.max_acceleration_m_s2 / bounds.speed
-    if machine.max_angular_acceleration_rad_s2 is not None and bounds.turn > 0:
-        acceleration = min(acceleration, 0.5 * machine.max_angular_acceleration_rad_s2 / bounds.turn)
-        if bounds.turn_rate > 0:
-            speed = min(
-                speed, math.sqrt(0.5 * machine.max_angular_acceleration_rad_s2 / bounds.turn_rate)
-            )
-    jerk = 0.25 * machine.max_jerk_m_s3 / bounds.speed
-    base = s_curve(problem.path.length_m, speed, acceleration, jerk)
-    factor = stretch_until(
-        lambda c: not machine_violations(
-            problem, sample_path(problem.path, scale_timing(base, c), problem.sample_period_s), False
-        )
-    )
-    if factor is None:  # pragma: no cover - the constant limits are conservative
-        factor = 64.0
-    return Motion("cartesian", scale_timing(base, factor).position_pp)
 
 
 def slowed_until(
@@ -142,247 +275,35 @@ def slowed_until(
     return None if factor is None else (factor, poses_for(factor))
 
 
-# ---------------------------------------------------------------------------------------------
-# Direct multiple shooting (casadi / IPOPT)
-# ---------------------------------------------------------------------------------------------
-
-
-def path_tables(path: Path, count: int) -> tuple[FloatArray, FloatArray]:
-    """Grid of s [m] and a (22, count) table of the path quantities the transcription needs:
-    rows 0-1 R_N^T g, 2-3 R_N^T p', 4-5 R_N^T (R e_z)', 6-7 R_N^T p'', 8-9 R_N^T (R e_z)''
-    (lateral components in the spin-free container frame R_N), 10-12 p', 13-15 p'', 16-18
-    p''', 19-21 omega_s (world)."""
-    grid = np.linspace(0.0, path.length_m, count)
-    rotation = path.orientation(grid)
-    axis = rotation.apply([0.0, 0.0, 1.0])
-    omega = path.angular_rate(grid, 1)
-    omega_rate = path.angular_rate(grid, 2)
-    axis_first = np.cross(omega, axis)
-    axis_second = np.cross(omega_rate, axis) + np.cross(omega, axis_first)
-    body_spin = rotation.inv().apply(omega)[:, 2]
-    spin = np.concatenate(
-        ([0.0], np.cumsum(0.5 * (body_spin[1:] + body_spin[:-1]) * np.diff(grid)))
-    )
-    frame = rotation * Rotation.from_rotvec(-spin[:, None] * np.array([0.0, 0.0, 1.0]))
-
-    def lateral(vectors: FloatArray) -> FloatArray:
-        return np.asarray(frame.inv().apply(vectors)[:, :2].T)
-
-    first, second, third = (path.position(grid, k) for k in (1, 2, 3))
-    table = np.vstack(
-        (
-            lateral(np.tile(GRAVITY, (grid.size, 1))),
-            lateral(first),
-            lateral(axis_first),
-            lateral(second),
-            lateral(axis_second),
-            first.T,
-            second.T,
-            third.T,
-            omega.T,
-        )
-    )
-    return grid, table
-
-
-def optimal_timing(
+def fastest_capped(
     problem: PathProblem,
-    warm: Motion,
-    intervals: int | None = None,
-    tightening: float = 1.0,
-    slosh_dynamics: bool = True,
-) -> tuple[Motion, str] | None:
-    """Solve the minimum-time transcription from the warm start; (timing, IPOPT status) or None.
+    passes: Callable[[PoseSamples], bool],
+    shaper: Shaper | None,
+    low_fraction: float = 1e-3,
+) -> tuple[float, Timing] | None:
+    """The largest acceleration cap A (bisection in log A between ``low_fraction`` amax and
+    amax) whose family member's export passes ``passes``; (A, the member's timing)."""
+    amax = problem.machine.max_acceleration_m_s2
 
-    Without ``slosh_dynamics`` only the Cartesian and angular limits remain (the jerk-limited
-    time-optimal timing of the path). ``tightening`` (<= 1) scales the slosh limits the solver sees, so that a verified export
-    that exceeds a limit can be solved again with the limit reduced by the excess.
-    """
-    import casadi as ca
+    def ok(member: Timing) -> bool:
+        return passes(sample_path(problem.path, member, problem.sample_period_s))
 
-    path, machine, slosh = problem.path, problem.machine, problem.slosh
-    count = intervals or int(np.clip(round(warm.duration_s / 0.015), 60, 160))
-    grid, table = path_tables(path, int(np.clip(path.length_m / 2e-3, 300, 2000)))
-    geometry = ca.interpolant(
-        "geometry", "linear", [grid], table.ravel(order="F"), {"lookup_mode": ["exact"]}
-    )
-    models = problem.models() if slosh_dynamics else []
-    modes = [(number, mode) for number, model in enumerate(models) for mode in model.modes]
-    size = len(modes)
-    width = 3 + 4 * size
-    x = ca.SX.sym("x", width)
-    jerk = ca.SX.sym("u")
-    geo = ca.SX.sym("g", 10)  # forcing rows of the table at the current s
-    s_rate, s_acc = x[1], x[2]
-    rows = [x[1], x[2], jerk]
-    for index, (_, mode) in enumerate(modes):
-        phi = x[3 + 4 * index : 5 + 4 * index]
-        rate = x[5 + 4 * index : 7 + 4 * index]
-        force = (
-            geo[0:2]
-            - (geo[2:4] + mode.bob_height_m * geo[4:6]) * s_acc
-            - (geo[6:8] + mode.bob_height_m * geo[8:10]) * s_rate**2
-        )
-        accel = (
-            force / mode.length_m
-            - 2 * mode.damping_ratio * mode.omega_rad_s * rate
-            - mode.omega_rad_s**2 * phi
-        )
-        rows.extend([rate[0], rate[1], accel[0], accel[1]])
-    derivative = ca.Function("f", [x, jerk, geo], [ca.vertcat(*rows)])
-    # RK4, two sub-steps per interval; the path quantities vary linearly in time between
-    # their values at the interval's two nodes (only the nodes call the interpolant).
-    step = ca.SX.sym("h")
-    geo_start, geo_end = ca.SX.sym("ga", 10), ca.SX.sym("gb", 10)
-
-    def geo_at(fraction: float) -> Any:
-        return geo_start + fraction * (geo_end - geo_start)
-
-    state = x
-    sub = step / 2
-    for half in range(2):
-        k1 = derivative(state, jerk, geo_at(0.5 * half))
-        k2 = derivative(state + sub / 2 * k1, jerk, geo_at(0.5 * half + 0.25))
-        k3 = derivative(state + sub / 2 * k2, jerk, geo_at(0.5 * half + 0.25))
-        k4 = derivative(state + sub * k3, jerk, geo_at(0.5 * half + 0.5))
-        state = state + sub / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-    advance = ca.Function("F", [x, jerk, step, geo_start, geo_end], [state])
-
-    duration = ca.MX.sym("T")
-    states = ca.MX.sym("X", width, count + 1)
-    controls = ca.MX.sym("U", count)
-    node_geo = geometry.map(count + 1)(states[0, :])
-    shooting = advance.map(count)(
-        states[:, :-1],
-        controls.T,
-        ca.repmat(duration / count, 1, count),
-        node_geo[0:10, :-1],
-        node_geo[0:10, 1:],
-    )
-    constraints: list[Any] = [ca.vec(states[:, 1:] - shooting)]
-    low: list[FloatArray] = [np.zeros(width * count)]
-    high: list[FloatArray] = [np.zeros(width * count)]
-
-    def add(expression: Any, upper: float) -> None:
-        flat = ca.vec(expression)
-        constraints.append(flat)
-        low.append(np.full(flat.shape[0], -np.inf))
-        high.append(np.full(flat.shape[0], upper))
-
-    rate_n, acc_n = states[1, :], states[2, :]
-    first, second, third, omega = (node_geo[r : r + 3, :] for r in (10, 13, 16, 19))
-
-    def rows3(row: Any) -> Any:
-        return ca.repmat(row, 3, 1)
-
-    add(ca.sum1(first**2) * rate_n**2, (MARGIN * machine.max_velocity_m_s) ** 2)
-    add(
-        ca.sum1((first * rows3(acc_n) + second * rows3(rate_n**2)) ** 2),
-        (MARGIN * machine.max_acceleration_m_s2) ** 2,
-    )
-    for offset in (0, 1):  # the piecewise-constant jerk at both ends of its interval
-        nodes = slice(offset, count + offset)
-        cartesian_jerk = (
-            first[:, nodes] * rows3(controls.T)
-            + 3 * second[:, nodes] * rows3(rate_n[nodes] * acc_n[nodes])
-            + third[:, nodes] * rows3(rate_n[nodes] ** 3)
-        )
-        add(ca.sum1(cartesian_jerk**2), (MARGIN * machine.max_jerk_m_s3) ** 2)
-    if machine.max_angular_velocity_rad_s is not None:
-        add(ca.sum1(omega**2) * rate_n**2, (MARGIN * machine.max_angular_velocity_rad_s) ** 2)
-    limit = slosh.max_height_m * tightening
-    start_geo = np.asarray(table[:, 0])
-    end_geo = np.asarray(table[:, -1])
-    residual_terms: dict[int, Any] = {}
-    for index, (model_index, mode) in enumerate(modes):
-        phi = states[3 + 4 * index : 5 + 4 * index, :]
-        residual_terms.setdefault(model_index, 0)
-        rest_end = end_geo[0:2] / (mode.length_m * mode.omega_rad_s**2)
-        cosine = phi[:, count] - ca.DM(rest_end)
-        damped = mode.omega_rad_s * math.sqrt(1 - mode.damping_ratio**2)
-        sine = (
-            states[5 + 4 * index : 7 + 4 * index, count]
-            + mode.damping_ratio * mode.omega_rad_s * cosine
-        ) / damped
-        residual_terms[model_index] += mode.wall_elevation_factor_m * ca.sqrt(
-            ca.sumsqr(cosine) + ca.sumsqr(sine) + 1e-14
-        )
-        if mode.n == 1 and slosh.max_surface_angle_rad is not None:
-            add(ca.sum1(phi**2), (slosh.max_surface_angle_rad * tightening) ** 2)
-    for model_index, model in enumerate(models):
-        wall = 0
-        for index, (owner, mode) in enumerate(modes):
-            if owner == model_index:
-                wall = wall + mode.wall_elevation_factor_m * states[3 + 4 * index : 5 + 4 * index, :]
-        add(ca.sum1(wall**2), limit**2)
-        add(residual_terms[model_index], slosh.max_residual_height_m * tightening)
-
-    state_low = np.full((width, count + 1), -np.inf)
-    state_high = np.full((width, count + 1), np.inf)
-    state_low[0], state_high[0] = 0.0, path.length_m
-    state_low[1] = 0.0
-    acceleration_cap = machine.max_acceleration_m_s2 / max(
-        1e-9, float(np.min(np.linalg.norm(table[10:13], axis=0)))
-    )
-    state_low[2], state_high[2] = -acceleration_cap, acceleration_cap
-    initial = np.zeros(width)
-    for index, (_, mode) in enumerate(modes):
-        initial[3 + 4 * index : 5 + 4 * index] = start_geo[0:2] / (
-            mode.length_m * mode.omega_rad_s**2
-        )
-    state_low[:, 0] = state_high[:, 0] = initial
-    state_low[0:3, count] = state_high[0:3, count] = (path.length_m, 0.0, 0.0)
-    jerk_cap = machine.max_jerk_m_s3 * 1e3
-    variables = ca.vertcat(duration, ca.vec(states), controls)
-    bounds_low = np.concatenate(([1e-2], state_low.ravel(order="F"), np.full(count, -jerk_cap)))
-    bounds_high = np.concatenate(([np.inf], state_high.ravel(order="F"), np.full(count, jerk_cap)))
-    scale = machine.max_jerk_m_s3
-    regularisation = 1e-6 * duration * ca.sumsqr(controls / scale) / count
-    solver = ca.nlpsol(
-        "retime",
-        "ipopt",
-        {"x": variables, "f": duration + regularisation, "g": ca.vertcat(*constraints)},
-        {
-            "print_time": False,
-            "expand": True,
-            "ipopt": {
-                "print_level": 0,
-                "sb": "yes",
-                "max_iter": 1500,
-                "tol": 1e-8,
-                "acceptable_tol": 1e-6,
-                "max_cpu_time": 60.0,
-                "mu_strategy": "adaptive",
-            },
-        },
-    )
-    # Warm start: the guess on the grid, its slosh states integrated with the same map.
-    t_guess = np.linspace(0.0, warm.duration_s, count + 1)
-    mid = 0.5 * (t_guess[1:] + t_guess[:-1])
-    guess_jerk = warm.jerk(mid)
-    guess = np.zeros((width, count + 1))
-    guess[:, 0] = initial
-    h = warm.duration_s / count
-    guess[0] = np.clip(warm.position(t_guess), 0.0, path.length_m)
-    guess[1] = np.maximum(warm.velocity(t_guess), 0.0)
-    guess[2] = warm.acceleration(t_guess)
-    guess_geo = np.asarray(geometry.map(count + 1)(guess[0]))[0:10]
-    for k in range(count):
-        guess[3:, k + 1] = np.asarray(
-            advance(guess[:, k], guess_jerk[k], h, guess_geo[:, k], guess_geo[:, k + 1])
-        ).ravel()[3:]
-    result = solver(
-        x0=np.concatenate(([warm.duration_s], guess.ravel(order="F"), guess_jerk)),
-        lbx=bounds_low,
-        ubx=bounds_high,
-        lbg=np.concatenate(low),
-        ubg=np.concatenate(high),
-    )
-    stats = solver.stats()
-    status = str(stats.get("return_status", ""))
-    if not stats.get("success", False) and status != "Solved_To_Acceptable_Level":
+    top = family_member(problem, amax, shaper)
+    if ok(top):
+        return amax, top
+    low, high = low_fraction * amax, amax
+    found: tuple[float, Timing] | None = None
+    member = family_member(problem, low, shaper)
+    if not ok(member):
         return None
-    solution = np.asarray(result["x"], dtype=float).ravel()
-    interval = float(solution[0]) / count
-    timing = _piecewise_constant_jerk("retime", [interval] * count, list(solution[-count:]))
-    return Motion("retime", timing.position_pp), status
+    found = (low, member)
+    for _ in range(12):
+        middle = math.sqrt(low * high)
+        member = family_member(problem, middle, shaper)
+        if ok(member):
+            low, found = middle, (middle, member)
+        else:
+            high = middle
+        if high / low < 1.02:
+            break
+    return found

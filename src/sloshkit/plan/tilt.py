@@ -13,10 +13,16 @@ mass sits), from the sampled export, smoothed by a zero-phase Gaussian filter so
 rate stays continuous; the tilt is clipped to ``max_tilt``. The rotation is the smallest one
 that carries the path's own container axis onto the compensating axis, about a centre on the
 axis at ``tilt_centre_height_m`` above the container bottom (the bottom by default), which keeps
-that point on the path. Two fixed-point passes account for the bob point moving with the tilt.
+that point on the path. The smoothing blurs the acceleration beyond the ends of the move, so the
+export gets 3 standard deviations of rest before and after the move, during which the container
+tilts in and back out: it starts and ends upright at rest. (Feeding the tilted bob point's
+acceleration back into the tilt was tried and is unstable: the tilt would then depend on its own
+second derivative.)
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from numpy.typing import NDArray
@@ -55,14 +61,13 @@ def tilt_compensated(
     max_tilt_rad: float,
     centre_height_m: float = 0.0,
     smoothing_s: float = SMOOTHING_S,
-    passes: int = 2,
 ) -> PoseSamples:
     """``poses`` re-oriented so the container axis follows the apparent gravity (module doc).
 
     Parameters
     ----------
     poses : PoseSamples
-        The untilted export (uniform sample period).
+        The untilted export (uniform sample period, at rest at both ends).
     bob_height_m : float
         Height of the first mode's bob above the container bottom [m].
     max_tilt_rad : float
@@ -71,13 +76,12 @@ def tilt_compensated(
         Rotation centre on the axis above the bottom [m]; it stays on the path.
     smoothing_s : float
         Standard deviation of the zero-phase Gaussian filter on the acceleration [s].
-    passes : int
-        Fixed-point passes (the bob point moves with the tilt).
 
     Returns
     -------
     PoseSamples
-        Same times; positions changed only when the centre is not the bottom.
+        Rest samples added before and after (3 ``smoothing_s`` each); positions change only
+        when the centre is not the bottom.
 
     References
     ----------
@@ -90,33 +94,32 @@ def tilt_compensated(
     >>> poses = PoseSamples(t, np.c_[x, 0 * t, 0 * t], np.tile([0, 0, 0, 1.0], (t.size, 1)))
     >>> tilted = tilt_compensated(poses, 0.03, np.radians(30), smoothing_s=0.0)
     >>> axis = tilted.rotation.apply([0, 0, 1])[200]
-    >>> round(float(np.degrees(np.arctan2(axis[0], axis[2]))), 2)
+    >>> round(float(np.degrees(np.arctan2(axis[0], axis[2]))), 2)  # atan(2 / 9.80665)
     11.53
     """
     ts = float(poses.time_s[1] - poses.time_s[0])
-    base = poses.rotation
+    pad = math.ceil(3.0 * smoothing_s / ts)
+    count = poses.time_s.size + 2 * pad
+    index = np.clip(np.arange(count) - pad, 0, poses.time_s.size - 1)
+    position = poses.position_m[index]
+    base = Rotation.from_quat(poses.quaternion_xyzw[index])
     base_axis = base.apply([0.0, 0.0, 1.0])
+    acceleration = _second_difference(position + bob_height_m * base_axis, ts)
+    if smoothing_s > 0:
+        acceleration = gaussian_filter1d(acceleration, smoothing_s / ts, axis=0, mode="nearest")
+    target = compensating_axis(acceleration, max_tilt_rad)
+    cross = np.cross(base_axis, target)
+    sine = np.linalg.norm(cross, axis=1)
+    angle = np.arctan2(sine, np.sum(base_axis * target, axis=1))
+    unit = np.where(sine[:, None] > 1e-15, cross / np.maximum(sine, 1e-15)[:, None], 0.0)
+    rotation = Rotation.from_rotvec(unit * angle[:, None]) * base
     centre = np.array([0.0, 0.0, centre_height_m])
-    rotation, position = base, poses.position_m
-    for _ in range(passes):
-        bob = position + bob_height_m * rotation.apply([0.0, 0.0, 1.0])
-        acceleration = _second_difference(bob, ts)
-        if smoothing_s > 0:
-            acceleration = gaussian_filter1d(
-                acceleration, smoothing_s / ts, axis=0, mode="nearest"
-            )
-        target = compensating_axis(acceleration, max_tilt_rad)
-        cross = np.cross(base_axis, target)
-        sine = np.linalg.norm(cross, axis=1)
-        angle = np.arctan2(sine, np.sum(base_axis * target, axis=1))
-        unit = np.where(sine[:, None] > 1e-15, cross / np.maximum(sine, 1e-15)[:, None], 0.0)
-        rotation = Rotation.from_rotvec(unit * angle[:, None]) * base
-        position = poses.position_m + base.apply(centre) - rotation.apply(centre)
-    return PoseSamples(poses.time_s, position, _continuous(rotation.as_quat()))
+    position = position + base.apply(centre) - rotation.apply(centre)
+    time_s = np.arange(count, dtype=float) * ts
+    return PoseSamples(time_s, position, _continuous(rotation.as_quat()))
 
 
 def peak_tilt_rad(poses: PoseSamples) -> float:
     """Largest angle between the container axis and the vertical [rad]."""
     axis = poses.rotation.apply([0.0, 0.0, 1.0])
     return float(np.max(np.arccos(np.clip(axis[:, 2], -1.0, 1.0))))
-
