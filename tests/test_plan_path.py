@@ -160,8 +160,9 @@ def test_every_plan_meets_its_limits_when_its_export_is_simulated_again(
 
 def test_tilt_compensation_of_constant_horizontal_acceleration(robot_vial: SloshModel) -> None:
     """Feddema et al. (1997): tilt atan(a/g) under a constant acceleration a, and the liquid
-    stays calm: a smooth rest-to-rest move whose acceleration holds 3 m/s^2 for 1.5 s leaves
-    well under 1 % of the untilted quasi-static height during the hold and no residual."""
+    stays calm: a smooth rest-to-rest move whose acceleration holds 3 m/s^2 for 1 s keeps
+    under 2 % of the untilted quasi-static height during the hold and leaves under 3 % of it
+    as residual (nonlinear 3-D model)."""
     ts, accel = 2e-3, 3.0
     t = np.arange(0.0, 4.5, ts)
 
@@ -194,8 +195,11 @@ def test_tilt_compensation_of_constant_horizontal_acceleration(robot_vial: Slosh
         )
     quasi_static = 0.9 * robot_vial.radius_m * accel / 9.80665
     assert plain.peak_slosh_height_m > quasi_static
-    assert calm.peak_slosh_height_m < 0.05 * quasi_static
-    assert calm.residual_slosh_height_m < 1e-4
+    during = (calm.time_s > 0.9) & (calm.time_s < 1.4)  # the hold, after the padding
+    assert np.max(calm.slosh_height_m[during]) < 0.02 * quasi_static
+    # What remains comes from the 0.5 s ramps of the tilt (its angular acceleration).
+    assert calm.peak_slosh_height_m < 0.15 * plain.peak_slosh_height_m
+    assert calm.residual_slosh_height_m < 0.03 * quasi_static
 
 
 def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:

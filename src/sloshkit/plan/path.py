@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -100,6 +101,27 @@ class Path:
         """Container-to-world rotation R(s)."""
         spline: RotationSpline = self._rotation  # type: ignore[attr-defined]
         return spline(self._clip(s_m))
+
+    def distance_to(self, points_m: ArrayLike) -> FloatArray:
+        """Distance [m] of each point from the position curve: the nearest of 2e5 dense points,
+        refined on the chord between its neighbours (below 1 um for paths up to 20 m)."""
+        from scipy.spatial import cKDTree
+
+        cache: dict[str, Any] = self.__dict__.setdefault("_dense", {})
+        if not cache:
+            cache["points"] = self.position(np.linspace(0.0, self.length_m, 200_001))
+            cache["tree"] = cKDTree(cache["points"])
+        dense = cache["points"]
+        points = np.atleast_2d(np.asarray(points_m, dtype=float))
+        _, index = cache["tree"].query(points)
+        low = dense[np.maximum(index - 1, 0)]
+        chord = dense[np.minimum(index + 1, len(dense) - 1)] - low
+        weight = np.clip(
+            np.sum((points - low) * chord, axis=1) / np.maximum(np.sum(chord**2, axis=1), 1e-300),
+            0.0,
+            1.0,
+        )
+        return np.asarray(np.linalg.norm(points - low - weight[:, None] * chord, axis=1))
 
     def angular_rate(self, s_m: ArrayLike, order: int = 1) -> FloatArray:
         """d omega / ds (``order`` 1: the angular velocity per unit s [rad/m], world frame;

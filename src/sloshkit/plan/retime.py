@@ -38,6 +38,7 @@ from sloshkit.plan.path import Path
 from sloshkit.plan.spatial import (
     PathProblem,
     PoseSamples,
+    _continuous,
     linear_screen,
     machine_violations,
     sample_path,
@@ -149,6 +150,27 @@ def shaped_timing(timing: Timing, shaper: Shaper) -> Timing:
     values = np.asarray(values, dtype=float)
     values[-1] = timing.length_m
     return Timing(timing.name, grid, values)
+
+
+def axis_shaped_samples(
+    path: Path, timing: Timing, shaper: Shaper, sample_period_s: float
+) -> PoseSamples:
+    """Per-axis input shaping: positions sum_i A_i p(s(t - t_i)) (each Cartesian axis shaped,
+    so the lateral forcing of every direction is shaped and the residual of the shaped mode
+    cancels in the linear model), orientation R(sum_i A_i s(t - t_i)). Corners are cut: the
+    positions leave the path by up to about kappa (v t_N)^2 / 8."""
+    count = math.ceil((timing.duration_s + float(shaper.times_s[-1])) / sample_period_s - 1e-9)
+    t = np.arange(count + 1, dtype=float) * sample_period_s
+    positions = np.zeros((t.size, 3))
+    mean_s = np.zeros(t.size)
+    for amplitude, delay in zip(shaper.amplitudes, shaper.times_s, strict=True):
+        s = timing.position(t - delay)
+        positions += amplitude * path.position(s)
+        mean_s += amplitude * s
+    mean_s[-1] = path.length_m
+    positions[-1] = path.position(path.length_m)
+    quaternions = path.orientation(np.clip(mean_s, 0.0, path.length_m)).as_quat()
+    return PoseSamples(t, positions, _continuous(quaternions))
 
 
 def speed_profile(
@@ -280,12 +302,16 @@ def fastest_capped(
     passes: Callable[[PoseSamples], bool],
     shaper: Shaper | None,
     low_fraction: float = 1e-3,
+    sampler: Callable[[Timing], PoseSamples] | None = None,
 ) -> tuple[float, Timing] | None:
     """The largest acceleration cap A (bisection in log A between ``low_fraction`` amax and
-    amax) whose family member's export passes ``passes``; (A, the member's timing)."""
+    amax) whose family member's export (``sampler``, default `sample_path`) passes ``passes``;
+    (A, the member's timing)."""
     amax = problem.machine.max_acceleration_m_s2
 
     def ok(member: Timing) -> bool:
+        if sampler is not None:
+            return passes(sampler(member))
         return passes(sample_path(problem.path, member, problem.sample_period_s))
 
     top = family_member(problem, amax, shaper)

@@ -77,9 +77,10 @@ class SpatialSloshLimits:
 @dataclass(frozen=True, eq=False)
 class PathProblem:
     """A path, its limits, the container model (any object with ``modes`` and ``radius_m``,
-    see `sloshkit.modal.SloshModel`), the controller sample period [s], the largest tilt [rad]
-    the ``tilt`` method may use and the height of its rotation centre above the container
-    bottom on the axis [m]."""
+    see `sloshkit.model.modal.SloshModel`), the controller sample period [s], the largest tilt
+    [rad] the ``tilt`` method may use, the height of its rotation centre above the container
+    bottom on the axis [m], and the largest distance from the path [m] the ``shaped`` method
+    may leave (per-axis shaping cuts corners)."""
 
     path: Path
     machine: CartesianLimits
@@ -88,6 +89,7 @@ class PathProblem:
     sample_period_s: float = 4e-3
     max_tilt_rad: float = math.radians(30.0)
     tilt_centre_height_m: float = 0.0
+    max_path_deviation_m: float = 5e-3
 
     def __post_init__(self) -> None:
         require_in_range("sample_period", self.sample_period_s, 1e-4, 0.05, "s")
@@ -308,25 +310,8 @@ def machine_violations(problem: PathProblem, poses: PoseSamples, tilted: bool) -
 
 
 def path_deviation(path: Path, poses: PoseSamples) -> float:
-    """Largest distance [m] of the exported positions from the path's position curve: the
-    nearest of 2e5 dense points (at most 0.1 mm apart), then refined on the chord between its
-    neighbours (resolution below 1 um for paths up to 20 m)."""
-    from scipy.spatial import cKDTree
-
-    dense_s = np.linspace(0.0, path.length_m, 200_001)
-    dense = path.position(dense_s)
-    _, index = cKDTree(dense).query(poses.position_m)
-    low = dense[np.maximum(index - 1, 0)]
-    high = dense[np.minimum(index + 1, dense_s.size - 1)]
-    chord = high - low
-    weight = np.clip(
-        np.sum((poses.position_m - low) * chord, axis=1)
-        / np.maximum(np.sum(chord**2, axis=1), 1e-300),
-        0.0,
-        1.0,
-    )
-    nearest = low + weight[:, None] * chord
-    return float(np.max(np.linalg.norm(poses.position_m - nearest, axis=1)))
+    """Largest distance [m] of the exported positions from the path (`Path.distance_to`)."""
+    return float(np.max(path.distance_to(poses.position_m)))
 
 
 @dataclass(frozen=True)
