@@ -38,8 +38,9 @@ LIMITS = CartesianLimits(2.0, 10.0, 100.0)
 RESIDUAL_M = 0.002
 
 
-def reference_timing(time_s: np.ndarray, positions: np.ndarray, quaternions: np.ndarray,
-                     length_m: float) -> Timing:
+def reference_timing(
+    time_s: np.ndarray, positions: np.ndarray, quaternions: np.ndarray, length_m: float
+) -> Timing:
     from scipy.spatial.transform import Rotation
 
     s = generalised_arc_length(positions, Rotation.from_quat(quaternions))
@@ -76,7 +77,10 @@ def main() -> None:
             )
             started = time.perf_counter()
             result = plan_path(
-                problem, "auto", reference=reference, tilt=True,
+                problem,
+                "auto",
+                reference=reference,
+                tilt=True,
                 transcription=not arguments.no_transcription,
             )
             found = {c.method: c for c in result.candidates}

@@ -98,8 +98,10 @@ def test_straight_path_screen_equals_one_dimensional_model(robot_vial: SloshMode
 
 def test_straight_path_plan_matches_one_dimensional_planner(robot_vial: SloshModel) -> None:
     """The 3-D planner on a straight 0.3 m path against the 1-D planner with the same limits
-    (peak wall elevation, residual): the 3-D shaped result is within 15 % of the 1-D shaped
-    S-curve (different families: capped time-optimal profile vs S-curve, both ZV-shaped)."""
+    (peak wall elevation, residual): the 1-D answer run along the path gives the same peak
+    wall height in the 3-D screen (1 %), and the 3-D retime duration is within 20 % of the
+    1-D shaped one (different families: capped time-optimal profile with a box filter vs
+    S-curves with four shapers and searched jerk)."""
     from sloshkit.plan.planner import plan
     from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 
@@ -123,7 +125,12 @@ def test_straight_path_plan_matches_one_dimensional_planner(robot_vial: SloshMod
     three_d = plan_path(problem, "retime", verifier=linear_verifier, transcription=False)
     assert one_d.feasible and three_d.feasible
     assert three_d.chosen is not None and one_d.chosen is not None
-    assert three_d.chosen.duration_s == pytest.approx(one_d.chosen.duration_s, rel=0.15)
+    assert three_d.chosen.duration_s == pytest.approx(one_d.chosen.duration_s, rel=0.2)
+    assert one_d.chosen.motion is not None and one_d.chosen.verification is not None
+    along = sample_path(problem.path, one_d.chosen.motion, problem.sample_period_s)
+    assert linear_screen([robot_vial], along).peak_height_m == pytest.approx(
+        one_d.chosen.verification.peak_wall_elevation_m, rel=0.01
+    )
 
 
 def test_every_plan_meets_its_limits_when_its_export_is_simulated_again(

@@ -203,15 +203,28 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
 
     found = fastest_capped(problem, passes, None, sampler=sampler)
     if found is None:
-        return PathCandidate("shaped", None, None, time.perf_counter() - started,
-                             "no per-axis shaped timing meets the limits")
+        return PathCandidate(
+            "shaped",
+            None,
+            None,
+            time.perf_counter() - started,
+            "no per-axis shaped timing meets the limits",
+        )
     cap, member = found
 
     def poses_for(factor: float) -> PoseSamples:
         return sampler(member.stretched(factor))
 
-    return _verified("shaped", problem, poses_for, 1.0, started, verifier, False,
-                     {"shaper": shaper.name, "acceleration_cap_m_s2": cap})
+    return _verified(
+        "shaped",
+        problem,
+        poses_for,
+        1.0,
+        started,
+        verifier,
+        False,
+        {"shaper": shaper.name, "acceleration_cap_m_s2": cap},
+    )
 
 
 def plan_retime(

@@ -304,9 +304,9 @@ def fastest_capped(
     low_fraction: float = 1e-3,
     sampler: Callable[[Timing], PoseSamples] | None = None,
 ) -> tuple[float, Timing] | None:
-    """The largest acceleration cap A (bisection in log A between ``low_fraction`` amax and
-    amax) whose family member's export (``sampler``, default `sample_path`) passes ``passes``;
-    (A, the member's timing)."""
+    """The largest acceleration cap A between ``low_fraction`` amax and amax whose family
+    member's export (``sampler``, default `sample_path`) passes ``passes``: a descending scan
+    of 20 log-spaced caps, then a bisection; (A, the member's timing) or None."""
     amax = problem.machine.max_acceleration_m_s2
 
     def ok(member: Timing) -> bool:
@@ -314,16 +314,23 @@ def fastest_capped(
             return passes(sampler(member))
         return passes(sample_path(problem.path, member, problem.sample_period_s))
 
-    top = family_member(problem, amax, shaper)
-    if ok(top):
-        return amax, top
-    low, high = low_fraction * amax, amax
-    found: tuple[float, Timing] | None = None
-    member = family_member(problem, low, shaper)
-    if not ok(member):
+    # Slosh is not monotone in A (the residual oscillates with the move's duration), so a
+    # descending scan finds the largest passing cap, then a bisection towards the next larger
+    # (failing) grid value refines it.
+    caps = np.geomspace(amax, low_fraction * amax, 20)
+    passing = None
+    for position, cap in enumerate(caps):
+        member = family_member(problem, float(cap), shaper)
+        if ok(member):
+            passing = position
+            break
+    if passing is None:
         return None
-    found = (low, member)
-    for _ in range(12):
+    found = (float(caps[passing]), member)
+    if passing == 0:
+        return found
+    low, high = float(caps[passing]), float(caps[passing - 1])
+    for _ in range(8):
         middle = math.sqrt(low * high)
         member = family_member(problem, middle, shaper)
         if ok(member):

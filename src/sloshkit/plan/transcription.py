@@ -209,10 +209,10 @@ def optimal_timing(
     end_geo = np.asarray(table[:, -1])
     residual_terms: dict[int, Any] = {}
     for index, (model_index, mode) in enumerate(modes):
-        phi = states[3 + 4 * index : 5 + 4 * index, :]
+        deflection = states[3 + 4 * index : 5 + 4 * index, :]
         residual_terms.setdefault(model_index, 0)
         rest_end = end_geo[0:2] / (mode.length_m * mode.omega_rad_s**2)
-        cosine = phi[:, count] - ca.DM(rest_end)
+        cosine = deflection[:, count] - ca.DM(rest_end)
         damped = mode.omega_rad_s * math.sqrt(1 - mode.damping_ratio**2)
         sine = (
             states[5 + 4 * index : 7 + 4 * index, count]
@@ -222,7 +222,7 @@ def optimal_timing(
             ca.sumsqr(cosine) + ca.sumsqr(sine) + 1e-14
         )
         if mode.n == 1 and slosh.max_surface_angle_rad is not None:
-            add(ca.sum1(phi**2), (slosh.max_surface_angle_rad * tightening) ** 2)
+            add(ca.sum1(deflection**2), (slosh.max_surface_angle_rad * tightening) ** 2)
     for model_index, _model in enumerate(models):
         wall = 0
         for index, (owner, mode) in enumerate(modes):
