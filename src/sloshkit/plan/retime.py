@@ -314,9 +314,10 @@ def fastest_capped(
             return passes(sampler(member))
         return passes(sample_path(problem.path, member, problem.sample_period_s))
 
-    # Slosh is not monotone in A (the residual oscillates with the move's duration), so a
-    # descending scan finds the largest passing cap, then a bisection towards the next larger
-    # (failing) grid value refines it.
+    # Slosh is not monotone in A (the residual oscillates with the move's duration): a
+    # descending scan finds the largest passing grid cap and a bisection towards the next
+    # larger (failing) grid value refines it; a plain bisection over the whole range can land
+    # in a passing pocket between grid values; the larger of the two caps wins.
     caps = np.geomspace(amax, low_fraction * amax, 20)
     passing = None
     for position, cap in enumerate(caps):
@@ -326,17 +327,36 @@ def fastest_capped(
             break
     if passing is None:
         return None
-    found = (float(caps[passing]), member)
-    if passing == 0:
-        return found
-    low, high = float(caps[passing]), float(caps[passing - 1])
-    for _ in range(8):
-        middle = math.sqrt(low * high)
-        member = family_member(problem, middle, shaper)
-        if ok(member):
-            low, found = middle, (middle, member)
-        else:
-            high = middle
+    scanned = _refine(
+        problem, ok, shaper, float(caps[passing]), member, float(caps[max(passing - 1, 0)])
+    )
+    bisected = _refine(problem, ok, shaper, float(caps[-1]), None, amax)
+    if scanned is None or (bisected is not None and bisected[0] > scanned[0]):
+        return bisected
+    return scanned
+
+
+def _refine(
+    problem: PathProblem,
+    ok: Callable[[Timing], bool],
+    shaper: Shaper | None,
+    low: float,
+    member: Timing | None,
+    high: float,
+) -> tuple[float, Timing] | None:
+    """Bisection in log A between a passing ``low`` (its member, if known) and ``high``."""
+    if member is None:
+        member = family_member(problem, low, shaper)
+        if not ok(member):
+            return None
+    found = (low, member)
+    for _ in range(10):
         if high / low < 1.02:
             break
+        middle = math.sqrt(low * high)
+        candidate = family_member(problem, middle, shaper)
+        if ok(candidate):
+            low, found = middle, (middle, candidate)
+        else:
+            high = middle
     return found

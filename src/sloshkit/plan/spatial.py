@@ -351,7 +351,7 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
 
     trajectory = poses.to_pose_trajectory()
     peak = residual = angle = 0.0
-    (np.empty(0), np.empty(0))
+    series: tuple[FloatArray, FloatArray] = (np.empty(0), np.empty(0))
     models = problem.models()
     for index, model in enumerate(models):
         for cutoff in (None, DEFAULT_CUTOFF_HZ):
@@ -362,7 +362,7 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
             residual = max(residual, float(response.residual_slosh_height_m))
             angle = max(angle, float(response.peak_angle_rad))
             if cutoff is None and index == len(models) // 2:
-                pass
+                series = (response.time_s, response.slosh_height_m)
     slosh = problem.slosh
     violations = machine_violations(problem, poses, tilted)
     if peak > slosh.max_height_m:
@@ -386,4 +386,5 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
         kinematics(poses)["tilt"],
         path_deviation(problem.path, poses),
         tuple(violations),
+        *series,
     )
