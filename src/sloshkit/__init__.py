@@ -40,7 +40,7 @@ _API: dict[str, str] = {
     "SloshModel": "sloshkit.model.modal",
     "equivalent_model": "sloshkit.model.modal",
     # motion
-    "Motion": "sloshkit.motion.laws",
+    "Motion": "sloshkit.motion.profile",
     "LAW_NAMES": "sloshkit.motion.laws",
     "make_law": "sloshkit.motion.laws",
     "trapezoidal": "sloshkit.motion.laws",
@@ -49,7 +49,7 @@ _API: dict[str, str] = {
     "septic": "sloshkit.motion.laws",
     "minimum_jerk": "sloshkit.motion.laws",
     "s_curve": "sloshkit.motion.laws",
-    "from_samples": "sloshkit.motion.laws",
+    "from_samples": "sloshkit.motion.recorded",
     "Shaper": "sloshkit.motion.shaping",
     "zv": "sloshkit.motion.shaping",
     "zvd": "sloshkit.motion.shaping",
@@ -58,17 +58,19 @@ _API: dict[str, str] = {
     # simulation
     "simulate": "sloshkit.sim.simulate",
     "SloshResponse": "sloshkit.sim.response",
+    "simulate_spatial": "sloshkit.sim.spatial",
     # sweeps, planning, calibration
     "run_sweep": "sloshkit.sweep",
     "SweepResult": "sloshkit.sweep",
-    "plan": "sloshkit.plan.planner",
+    "plan": "sloshkit",  # the callable package sloshkit.plan (see its docstring)
     "PlanResult": "sloshkit.plan.planner",
     "PlanProblem": "sloshkit.plan.problem",
     "MachineLimits": "sloshkit.plan.problem",
     "SloshLimits": "sloshkit.plan.problem",
     "calibrate": "sloshkit.calibration",
     "CalibrationResult": "sloshkit.calibration",
-    # files
+    # files and controller export
+    "export_plan": "sloshkit.export.exporter",
     "read_model_file": "sloshkit.io.models",
     "write_model_file": "sloshkit.io.models",
 }
@@ -96,6 +98,7 @@ __all__ = [
     "cubic",
     "ei",
     "equivalent_model",
+    "export_plan",
     "from_samples",
     "get_liquid",
     "make_law",
@@ -108,6 +111,7 @@ __all__ = [
     "septic",
     "shape_motion",
     "simulate",
+    "simulate_spatial",
     "trapezoidal",
     "write_model_file",
     "zv",
@@ -120,7 +124,10 @@ def __getattr__(name: str) -> Any:
     module = _API.get(name)
     if module is None:
         raise AttributeError(f"module 'sloshkit' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
+    if module == __name__:  # a callable subpackage
+        value = importlib.import_module(f"{__name__}.{name}")
+    else:
+        value = getattr(importlib.import_module(module), name)
     globals()[name] = value
     return value
 
@@ -132,15 +139,14 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.calibration import CalibrationResult, calibrate
     from sloshkit.errors import InputError, ValidityWarning
+    from sloshkit.export.exporter import export_plan
     from sloshkit.io.models import read_model_file, write_model_file
     from sloshkit.model.geometry import UprightCylinder
     from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
     from sloshkit.model.modal import SloshMode, SloshModel, equivalent_model
     from sloshkit.motion.laws import (
         LAW_NAMES,
-        Motion,
         cubic,
-        from_samples,
         make_law,
         minimum_jerk,
         quintic,
@@ -148,9 +154,12 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         septic,
         trapezoidal,
     )
+    from sloshkit.motion.profile import Motion
+    from sloshkit.motion.recorded import from_samples
     from sloshkit.motion.shaping import Shaper, ei, shape_motion, zv, zvd
     from sloshkit.plan.planner import PlanResult, plan
     from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
     from sloshkit.sim.response import SloshResponse
     from sloshkit.sim.simulate import simulate
+    from sloshkit.sim.spatial import simulate_spatial
     from sloshkit.sweep import SweepResult, run_sweep

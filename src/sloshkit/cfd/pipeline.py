@@ -16,10 +16,18 @@ from scipy.special import j1
 from sloshkit.calibration import CalibrationResult, calibrate
 from sloshkit.cfd.case import CaseSpec, Excitation, FreeDecay, Harmonic, MotionExcitation
 from sloshkit.cfd.results import CfdSignals, read_signals
-from sloshkit.cfd.run import RunResult, run_case, write_case
+from sloshkit.cfd.run import (
+    RunResult,
+    check_processes,
+    expected_cells,
+    interruptible,
+    require_openfoam,
+    run_case,
+    write_case,
+)
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import from_samples
+from sloshkit.motion.recorded import from_samples
 from sloshkit.sim.simulate import simulate
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).
@@ -55,21 +63,37 @@ def case_spec(
 def run(
     spec: CaseSpec, case: Path, resume: bool = False, overwrite: bool = False, progress: Any = None
 ) -> RunResult:
-    """Write (unless resuming) and run a case; record the run in sloshkit-run.json."""
-    if not resume:
-        write_case(spec, case, overwrite=overwrite)
-    elif not (case / "sloshkit-case.json").is_file():
-        raise InputError("case", str(case), "has no sloshkit case to resume")
-    result = run_case(case, spec.processes, resume=resume, progress=progress)
-    record = {
-        "simulated_s": result.simulated_s,
-        "wall_clock_s": result.wall_clock_s,
-        "processes": result.processes,
-        "cells": result.cells,
-        "finished": time.time(),
-    }
-    (case / "sloshkit-run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
+    """Write (unless resuming) and run a case; record the run in sloshkit-run.json.
+
+    Everything that can be checked before writing is checked first (OpenFOAM and mpirun
+    present, a sensible --np), so a refused run leaves no files behind.
+    """
+    require_openfoam(spec.processes)
+    with interruptible([], [0.0]):
+        _check_and_write(spec, case, resume, overwrite)
+        result = run_case(case, spec.processes, resume=resume, progress=progress)
+        record = {
+            "simulated_s": result.simulated_s,
+            "wall_clock_s": result.wall_clock_s,
+            "processes": result.processes,
+            "cells": result.cells,
+            "finished": time.time(),
+        }
+        staging = case / "sloshkit-run.json.tmp"
+        staging.write_text(json.dumps(record, indent=2), encoding="utf-8")
+        staging.replace(case / "sloshkit-run.json")
     return result
+
+
+def _check_and_write(spec: CaseSpec, case: Path, resume: bool, overwrite: bool) -> None:
+    if resume:
+        if not (case / "sloshkit-case.json").is_file():
+            raise InputError("case", str(case), "has no sloshkit case to resume")
+        summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
+        check_processes(spec.processes, int(summary["cells"]))
+    else:
+        check_processes(spec.processes, expected_cells(spec))
+        write_case(spec, case, overwrite=overwrite)
 
 
 def excitation_end(summary: dict[str, Any]) -> float:
@@ -106,8 +130,12 @@ class CfdAnalysis:
 
 def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> CfdAnalysis:
     """Calibrate frequency and damping from the antisymmetric wall elevation of a case, over
-    the free decay (after the excitation, or from the largest peak)."""
-    signals = read_signals(case)
+    the free decay (after the excitation, or from the largest peak).
+
+    Raises `InputError` for a folder that is not a sloshkit case and for an unfinished run
+    (saying how far it got), rather than calibrating a truncated record.
+    """
+    signals = read_finished_signals(case)
     if start_s is None:
         end = excitation_end(dict(signals.summary))
         start_s = end if end > 0 else None
@@ -123,6 +151,26 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
     record_path = case / "sloshkit-run.json"
     record = json.loads(record_path.read_text(encoding="utf-8")) if record_path.is_file() else {}
     return CfdAnalysis(case, signals, result, record)
+
+
+def read_finished_signals(case: Path) -> CfdSignals:
+    """The signals of a finished case; `InputError` when the case is missing or unfinished."""
+    summary_path = case / "sloshkit-case.json"
+    if not summary_path.is_file():
+        raise InputError("case", str(case), "is not a sloshkit CFD case (no sloshkit-case.json)")
+    summary = json.loads(summary_path.read_text(encoding="utf-8"))
+    end = float(summary["end_time_s"])
+    resume = f"continue it with: sloshkit cfd run --case {case} --resume"
+    if not (case / "postProcessing" / "wallProbes").is_dir():
+        raise InputError("case", str(case), f"is unfinished (simulated 0 of {end:g} s)", resume)
+    signals = read_signals(case)
+    simulated = float(signals.time_s[-1])
+    step = float(summary.get("delta_t_s", 0.0))
+    if simulated < end - max(1.5 * step, 1e-6):
+        raise InputError(
+            "case", str(case), f"is unfinished (simulated {simulated:.4g} of {end:g} s)", resume
+        )
+    return signals
 
 
 def model_wall_elevation(

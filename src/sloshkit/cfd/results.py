@@ -67,56 +67,106 @@ def _is_number(text: str) -> bool:
 
 @dataclass(frozen=True)
 class CfdSignals:
-    """Signals of a run in SI: wall elevations at x = +-0.98 R, mean surface tilt, wall force."""
+    """Signals of a run in SI: wall elevations of every probe column (at r = 0.98 R, angles
+    ``angles_rad`` about the axis, counted from +x), mean surface tilt, wall force."""
 
     time_s: FloatArray
-    elevation_plus_m: FloatArray
-    elevation_minus_m: FloatArray
+    elevations_m: FloatArray  # (samples, columns)
+    angles_rad: FloatArray
     tilt_rad: FloatArray
     force_x_n: FloatArray
     summary: dict[str, object]
+
+    def _column(self, angle: float) -> FloatArray:
+        distance = np.abs(np.angle(np.exp(1j * (self.angles_rad - angle))))
+        return np.asarray(self.elevations_m[:, int(np.argmin(distance))], dtype=float)
+
+    @property
+    def elevation_plus_m(self) -> FloatArray:
+        """Wall elevation at +x [m]."""
+        return self._column(0.0)
+
+    @property
+    def elevation_minus_m(self) -> FloatArray:
+        """Wall elevation at -x [m]."""
+        return self._column(math.pi)
 
     @property
     def elevation_m(self) -> FloatArray:
         """Antisymmetric wall elevation (eta(+x) - eta(-x)) / 2: the first mode's signal [m]."""
         return 0.5 * (self.elevation_plus_m - self.elevation_minus_m)
 
+    @property
+    def slosh_height_m(self) -> FloatArray:
+        """Slosh height: the largest wall elevation above rest over the probe columns [m]."""
+        return np.asarray(np.max(self.elevations_m, axis=1), dtype=float)
+
     def columns(self) -> dict[str, FloatArray]:
         """Named columns for CSV export."""
-        return {
+        columns = {
             "t_s": self.time_s,
             "elevation_plus_m": self.elevation_plus_m,
             "elevation_minus_m": self.elevation_minus_m,
             "elevation_m": self.elevation_m,
+            "slosh_height_m": self.slosh_height_m,
             "tilt_rad": self.tilt_rad,
             "force_x_n": self.force_x_n,
         }
+        if self.angles_rad.size > 2:
+            for k, angle in enumerate(self.angles_rad):
+                columns[f"elevation_{math.degrees(angle):.0f}deg_m"] = self.elevations_m[:, k]
+        return columns
+
+
+def _uniform(time: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Resample rows logged at adaptive time steps onto a uniform grid (the median step)."""
+    if time.size < 3:
+        return time, values
+    steps = np.diff(time)
+    step = float(np.median(steps))
+    if np.max(np.abs(steps - step)) <= 1e-6 * step:
+        return time, values
+    grid = np.arange(time[0], time[-1] + 0.5 * step, step)
+    grid = grid[grid <= time[-1] + 1e-12]
+    columns = [np.interp(grid, time, values[:, k]) for k in range(values.shape[1])]
+    return grid, np.column_stack(columns)
 
 
 def read_signals(case: Path) -> CfdSignals:
-    """Wall elevations, tilt and force of a finished (or partly finished) case."""
+    """Wall elevations, tilt and force of a finished (or partly finished) case, on a uniform
+    time grid (runs with an adaptive step are resampled linearly at their median step)."""
     summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
     probes = read_function_object(case, "wallProbes", "alpha.water")
     count = int(summary["probes_per_column"])
-    if probes.shape[1] != 1 + 2 * count:
+    angles = np.asarray(summary.get("probe_angles_rad", [0.0, math.pi]), dtype=float)
+    if probes.shape[1] != 1 + angles.size * count:
         raise InputError(
-            "case", str(case), f"expected {2 * count} probes, found {probes.shape[1] - 1}"
+            "case",
+            str(case),
+            f"expected {angles.size * count} probes, found {probes.shape[1] - 1}",
         )
     dz = float(summary["probe_dz_m"])
     fill = float(summary["fill_height_m"])
-    alpha = np.clip(probes[:, 1:], 0.0, 1.0)
-    plus = alpha[:, :count].sum(axis=1) * dz - fill
-    minus = alpha[:, count:].sum(axis=1) * dz - fill
-    time = probes[:, 0]
+    alpha = np.clip(probes[:, 1:], 0.0, 1.0).reshape(probes.shape[0], angles.size, count)
+    elevations = alpha.sum(axis=2) * dz - fill
     tilt_table = read_function_object(case, "surfaceTilt", "volFieldValue.dat")
     tilt = np.arctan2(tilt_table[:, 1], -tilt_table[:, 3])
     forces = read_function_object(case, "wallForces", "force.dat")
     force_x = forces[:, 1] / SCALE**4  # mm units: N' = kg mm s^-2 scaled; see case.py
+    raw_time = probes[:, 0]
+    stacked = np.column_stack(
+        (
+            elevations,
+            np.interp(raw_time, tilt_table[:, 0], tilt),
+            np.interp(raw_time, forces[:, 0], force_x),
+        )
+    )
+    time, stacked = _uniform(raw_time, stacked)
     return CfdSignals(
         time_s=time,
-        elevation_plus_m=plus,
-        elevation_minus_m=minus,
-        tilt_rad=np.interp(time, tilt_table[:, 0], tilt),
-        force_x_n=np.interp(time, forces[:, 0], force_x),
+        elevations_m=stacked[:, : angles.size],
+        angles_rad=angles,
+        tilt_rad=stacked[:, angles.size],
+        force_x_n=stacked[:, angles.size + 1],
         summary=summary,
     )

@@ -4,34 +4,76 @@ Writes a generated case to disk, then runs blockMesh, checkMesh (poor meshes are
 setFields, decomposePar and interFoam (serial, or ``mpirun -np N``), feeding a progress callback
 from the solver log. A solver that stops early (exit code 136 is a floating-point exception)
 raises `CfdError` with the tail of the log.
+
+Interruptions: the tools run in their own process group, which is stopped when sloshkit is
+interrupted (SIGINT, SIGTERM) or dies; every finished preparation step leaves a marker, and a
+resumed run restarts from the latest *complete* time folder (every field of every processor
+written to its end), discarding later, half-written ones.
+
+Network: MPI runs use shared memory between the ranks and loopback for anything else, and run
+in a private network namespace (``unshare -rn``, loopback only) where the kernel allows it,
+because Open MPI 4.1's out-of-band listener binds to every interface.
 """
 
 from __future__ import annotations
 
+import contextlib
 import enum
 import json
-import math
 import os
 import re
 import shutil
+import signal
 import subprocess
+import sys
+import tempfile
+import threading
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cache
 from pathlib import Path
+from typing import Any
 
-from sloshkit.cfd.case import CaseSpec, case_files, mesh_layout, spec_summary
-from sloshkit.errors import InputError
+from sloshkit.cfd.case import MPI_LOCAL_OPTIONS, CaseSpec, case_files, mesh_layout, spec_summary
+from sloshkit.cfd.state import (
+    CfdError,
+    check_mesh_quality,
+    check_processes,
+    discard_after,
+    latest_complete_time,
+    latest_time,
+    tail,
+    time_folders,
+)
+from sloshkit.errors import InputError, ValidityWarning
+
+__all__ = [
+    "CfdError",
+    "CfdInterrupted",
+    "RunResult",
+    "check_processes",
+    "expected_cells",
+    "latest_complete_time",
+    "latest_time",
+    "openfoam_environment",
+    "require_openfoam",
+    "run_case",
+    "write_case",
+]
 
 TIME_LINE = re.compile(r"^Time = ([0-9.eE+-]+)$")
 COURANT_LINE = re.compile(r"^Courant Number mean: \S+ max: (\S+)")
-#: checkMesh limits beyond which interFoam was seen to diverge here (cfd-notes.md).
-MIN_DETERMINANT = 0.05
-MAX_NON_ORTHOGONALITY = 65.0
 
 
-class CfdError(RuntimeError):
-    """OpenFOAM is missing, a tool failed, or the solver stopped early."""
+class CfdInterrupted(Exception):
+    """The run was stopped by a signal (the tools are stopped too; ``--resume`` continues)."""
+
+    def __init__(self, signum: int, simulated_s: float) -> None:
+        self.signum = signum
+        self.simulated_s = simulated_s
+        super().__init__(f"interrupted by signal {signum} at t = {simulated_s:.6g} s")
 
 
 class RunStatus(enum.Enum):
@@ -67,92 +109,242 @@ def openfoam_environment() -> dict[str, str]:
     return environment
 
 
-def require_openfoam() -> None:
-    """Raise `CfdError` unless interFoam and blockMesh are on the PATH."""
+def require_openfoam(processes: int = 1) -> None:
+    """Raise `CfdError` unless the OpenFOAM tools are on the PATH, and `InputError` for
+    ``processes`` > 1 without ``mpirun``."""
     missing = [
-        tool for tool in ("blockMesh", "setFields", "interFoam") if shutil.which(tool) is None
+        tool
+        for tool in ("blockMesh", "checkMesh", "setFields", "interFoam")
+        if shutil.which(tool) is None
     ]
     if missing:
         raise CfdError(
             "OpenFOAM is not installed (missing " + ", ".join(missing) + "): "
             "apt-get install -y openfoam"
         )
+    if processes > 1:
+        for tool in ("mpirun", "decomposePar"):
+            if shutil.which(tool) is None:
+                raise InputError(
+                    "np",
+                    processes,
+                    f"needs {tool}, which is not on the PATH",
+                    "install Open MPI (apt-get install openmpi-bin) or use --np 1",
+                )
 
 
 def write_case(spec: CaseSpec, case: Path, overwrite: bool = False) -> Path:
-    """Write the case files (and sloshkit-case.json) into ``case``."""
-    if case.exists() and any(case.iterdir()) and not overwrite:
-        raise InputError("case", str(case), "exists and is not empty (use --overwrite or --resume)")
-    case.mkdir(parents=True, exist_ok=True)
-    for relative, text in case_files(spec).items():
-        path = case / relative
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text, encoding="utf-8")
-    (case / "Allrun").chmod(0o755)
-    (case / "sloshkit-case.json").write_text(
-        json.dumps(spec_summary(spec), indent=2), encoding="utf-8"
-    )
+    """Write the case files into ``case`` (sloshkit-case.json last: it marks a whole case).
+
+    An existing non-empty folder is refused unless ``overwrite`` is given and it holds a
+    sloshkit case, whose contents are then replaced; other folders are never emptied.
+    """
+    if case.exists() and not case.is_dir():
+        raise InputError("case", str(case), "is a file, not a folder")
+    if case.exists() and any(case.iterdir()):
+        if not overwrite:
+            raise InputError(
+                "case", str(case), "exists and is not empty (use --overwrite or --resume)"
+            )
+        if not (case / "sloshkit-case.json").is_file():
+            raise InputError(
+                "case",
+                str(case),
+                "is not empty and not a sloshkit case: --overwrite only replaces sloshkit cases",
+            )
+        for entry in case.iterdir():
+            if entry.is_dir() and not entry.is_symlink():
+                shutil.rmtree(entry)
+            else:
+                entry.unlink()
+    # Written into a staging folder beside the case and moved into place: an interruption
+    # leaves either no case or a whole one (the staging folder is removed on any exception).
+    case.parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{case.name}.staging-", dir=case.parent))
+    try:
+        for relative, text in case_files(spec).items():
+            path = staging / relative
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(text, encoding="utf-8")
+        (staging / "Allrun").chmod(0o755)
+        (staging / "sloshkit-case.json").write_text(
+            json.dumps(spec_summary(spec), indent=2), encoding="utf-8"
+        )
+        staging.chmod(0o755)
+        if case.exists():
+            case.rmdir()
+        staging.rename(case)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
     return case
+
+
+def _set_parent_death_signal() -> None:  # pragma: no cover - runs in the child
+    """Linux: the tool gets SIGTERM when sloshkit dies (even by SIGKILL)."""
+    with contextlib.suppress(Exception):
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+
+
+@contextlib.contextmanager
+def interruptible(process_holder: list[subprocess.Popen[str]], where: list[float]) -> Any:
+    """Turn SIGTERM, SIGHUP and SIGINT into `CfdInterrupted` inside the block; on any exit,
+    stop the process groups of the tools in ``process_holder`` (mpirun and its ranks) and wait
+    for them. ``where[0]`` is the simulated time reported with the interruption."""
+    previous: dict[signal.Signals, Any] = {}
+
+    def handler(signum: int, frame: Any) -> None:
+        raise CfdInterrupted(signum, where[0])
+
+    in_main = threading.current_thread() is threading.main_thread()
+    if in_main:
+        for signum in (signal.SIGTERM, signal.SIGHUP):
+            previous[signum] = signal.signal(signum, handler)
+    try:
+        yield
+    except KeyboardInterrupt:
+        raise CfdInterrupted(signal.SIGINT, where[0]) from None
+    finally:
+        for process in process_holder:
+            _stop_group(process)
+        for number, old in previous.items():
+            signal.signal(number, old)
+
+
+def _stop_group(process: subprocess.Popen[str], grace_s: float = 10.0) -> None:
+    if process.poll() is not None:
+        return
+    for signum, wait_s in ((signal.SIGTERM, grace_s), (signal.SIGKILL, 5.0)):
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(process.pid, signum)
+        try:
+            process.wait(timeout=wait_s)
+            return
+        except subprocess.TimeoutExpired:
+            continue
+
+
+def _start(command: list[str], case: Path, stdout: Any) -> subprocess.Popen[str]:
+    return subprocess.Popen(
+        command,
+        cwd=case,
+        env=openfoam_environment(),
+        stdout=stdout,
+        stderr=subprocess.STDOUT,
+        text=True,
+        bufsize=1,
+        start_new_session=True,
+        preexec_fn=_set_parent_death_signal,
+    )
 
 
 def _tool(case: Path, command: list[str], log_name: str) -> str:
     log = case / log_name
-    with open(log, "w", encoding="utf-8") as stream:
-        completed = subprocess.run(
-            command,
-            cwd=case,
-            env=openfoam_environment(),
-            stdout=stream,
-            stderr=subprocess.STDOUT,
-            check=False,
-        )
+    holder: list[subprocess.Popen[str]] = []
+    with open(log, "w", encoding="utf-8") as stream, interruptible(holder, [0.0]):
+        holder.append(_start(command, case, stream))
+        code = holder[0].wait()
     text = log.read_text(encoding="utf-8", errors="replace")
-    if completed.returncode != 0:
-        raise CfdError(f"{command[0]} failed (exit {completed.returncode}):\n" + _tail(text))
+    if code != 0:
+        raise CfdError(f"{command[0]} failed (exit {code}):\n" + tail(text))
     return text
 
 
-def _tail(text: str, lines: int = 25) -> str:
-    return "\n".join(text.splitlines()[-lines:])
+def _marker(case: Path, name: str) -> Path:
+    return case / f".sloshkit-{name}-done"
 
 
-def check_mesh_quality(log: str) -> dict[str, float]:
-    """Parse checkMesh's cell count, non-orthogonality and skewness; refuse poor meshes."""
-    cells = re.search(r"^\s*cells:\s+(\d+)", log, re.M)
-    orthogonality = re.search(r"Mesh non-orthogonality Max: ([0-9.eE+-]+)", log)
-    skewness = re.search(r"Max skewness = ([0-9.eE+-]+)", log)
-    determinant = re.search(r"Cell determinant \(wellposedness\) : minimum: ([0-9.eE+-]+)", log)
-    quality = {
-        "cells": float(cells.group(1)) if cells else math.nan,
-        "max_non_orthogonality_deg": float(orthogonality.group(1)) if orthogonality else math.nan,
-        "max_skewness": float(skewness.group(1)) if skewness else math.nan,
-    }
-    if determinant:
-        quality["min_determinant"] = float(determinant.group(1))
-        if quality["min_determinant"] < MIN_DETERMINANT:
-            raise CfdError(
-                f"mesh refused: minimum cell determinant {quality['min_determinant']:.3g} "
-                f"< {MIN_DETERMINANT} (interFoam diverges on such meshes here)"
-            )
-    if "Failed" in log and "mesh checks" in log:
-        raise CfdError("checkMesh reports failed mesh checks:\n" + _tail(log))
-    if quality["max_non_orthogonality_deg"] > MAX_NON_ORTHOGONALITY:
-        raise CfdError(
-            f"mesh refused: non-orthogonality {quality['max_non_orthogonality_deg']:.1f} deg"
+def _prepare(case: Path, processes: int, resume: bool) -> None:
+    """blockMesh, checkMesh, setFields and decomposePar, skipping the steps a resumed case
+    finished (each finished step leaves a marker)."""
+    if not (resume and _marker(case, "fill").is_file()):
+        for name in ("mesh", "fill", "decompose"):
+            _marker(case, name).unlink(missing_ok=True)
+        for processor in case.glob("processor*"):
+            shutil.rmtree(processor)
+        shutil.rmtree(case / "postProcessing", ignore_errors=True)
+        for value, folder in time_folders(case).items():
+            if value > 0:
+                shutil.rmtree(folder)
+        _tool(case, ["blockMesh"], "log.blockMesh")
+        check_mesh_quality(_tool(case, ["checkMesh", "-allGeometry"], "log.checkMesh"))
+        _marker(case, "mesh").touch()
+        _tool(case, ["setFields"], "log.setFields")
+        _marker(case, "fill").touch()
+    decomposed = _marker(case, "decompose")
+    if processes > 1:
+        done = decomposed.is_file() and decomposed.read_text(encoding="utf-8") == str(processes)
+        if not done:
+            if resume and any(time_folders(case / "processor0")):
+                _check_no_progress_lost(case, processes)
+            decomposed.unlink(missing_ok=True)
+            for processor in case.glob("processor*"):
+                shutil.rmtree(processor)
+            _set_subdomains(case, processes)
+            _tool(case, ["decomposePar", "-force"], "log.decomposePar")
+            decomposed.write_text(str(processes), encoding="utf-8")
+
+
+def _check_no_progress_lost(case: Path, processes: int) -> None:
+    existing = sorted(case.glob("processor*"))
+    if len(existing) != processes and latest_complete_time(case, len(existing) or 1):
+        raise InputError(
+            "np",
+            processes,
+            f"must match the case's decomposition ({len(existing)} processes) when resuming",
         )
-    return quality
 
 
-def latest_time(case: Path, processes: int) -> float:
-    """The latest written time of a (possibly decomposed) case [s]."""
-    folder = case / "processor0" if processes > 1 and (case / "processor0").is_dir() else case
-    times = []
-    for entry in folder.iterdir():
-        try:
-            times.append(float(entry.name))
-        except ValueError:
-            continue
-    return max(times, default=0.0)
+@cache
+def network_namespace_available() -> bool:
+    """True when ``unshare -rn`` can start a process in a private network namespace."""
+    unshare = shutil.which("unshare")
+    if unshare is None:
+        return False
+    probe = subprocess.run(
+        [unshare, "-rn", sys.executable, "-c", LOOPBACK_UP],
+        capture_output=True,
+        check=False,
+        timeout=30,
+    )
+    return probe.returncode == 0
+
+
+#: Brings the loopback interface up in a fresh network namespace, then runs argv[1:].
+LOOPBACK_UP = (
+    "import fcntl, os, socket, struct, sys\n"
+    "s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)\n"
+    "fcntl.ioctl(s, 0x8914, struct.pack('16sh', b'lo', 0x1 | 0x8 | 0x40))\n"
+    "s.close()\n"
+    "len(sys.argv) > 1 and os.execvp(sys.argv[1], sys.argv[1:])\n"
+)
+
+
+def solver_command(processes: int) -> list[str]:
+    """interFoam, or mpirun on this host only (see the module notes on the network)."""
+    if processes == 1:
+        return ["interFoam"]
+    command = [
+        "mpirun",
+        "--oversubscribe",
+        *MPI_LOCAL_OPTIONS,
+        "-np",
+        str(processes),
+        "interFoam",
+        "-parallel",
+    ]
+    if network_namespace_available():
+        return ["unshare", "-rn", sys.executable, "-c", LOOPBACK_UP, *command]
+    warnings.warn(
+        "no private network namespace (unshare -rn failed): MPI uses shared memory and "
+        "loopback, but Open MPI's out-of-band listener binds to every interface",
+        ValidityWarning,
+        stacklevel=2,
+    )
+    return command
 
 
 def run_case(
@@ -163,65 +355,45 @@ def run_case(
 ) -> RunResult:
     """Mesh, initialise and run the case written in ``case``.
 
-    ``resume`` continues from the latest written time (the mesh and fields are kept).
+    ``resume`` continues from the latest complete time folder (later, half-written folders
+    are discarded); preparation steps a previous run finished are not repeated.
     """
-    require_openfoam()
+    require_openfoam(processes)
     summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
     end = float(summary["end_time_s"])
+    check_processes(processes, int(summary["cells"]))
     started = time.perf_counter()
-    if not resume or not (case / "constant" / "polyMesh").is_dir():
-        _tool(case, ["blockMesh"], "log.blockMesh")
-        check_mesh_quality(_tool(case, ["checkMesh", "-allGeometry"], "log.checkMesh"))
-        _tool(case, ["setFields"], "log.setFields")
-        for processor in case.glob("processor*"):
-            shutil.rmtree(processor)
-        for folder in (case / "postProcessing",):
-            shutil.rmtree(folder, ignore_errors=True)
-    if processes > 1 and not (case / "processor0").is_dir():
-        _set_subdomains(case, processes)
-        _tool(case, ["decomposePar", "-force"], "log.decomposePar")
-    command = (
-        ["interFoam"]
-        if processes == 1
-        else [
-            "mpirun",
-            "--oversubscribe",
-            "-np",
-            str(processes),
-            "interFoam",
-            "-parallel",
-        ]
-    )
+    with interruptible([], [0.0]):
+        _prepare(case, processes, resume)
+    start = latest_complete_time(case, processes) or 0.0
+    discard_after(case, processes, start)
+    command = solver_command(processes)
     log_path = case / "log.interFoam"
-    mode = "a" if resume else "w"
-    simulated = latest_time(case, processes) if resume else 0.0
+    simulated = [start]
     courant: float | None = None
-    with open(log_path, mode, encoding="utf-8") as log:
-        process = subprocess.Popen(
-            command,
-            cwd=case,
-            env=openfoam_environment(),
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            text=True,
-            bufsize=1,
-        )
+    holder: list[subprocess.Popen[str]] = []
+    with (
+        open(log_path, "a" if resume else "w", encoding="utf-8") as log,
+        interruptible(holder, simulated),
+    ):
+        holder.append(_start(command, case, subprocess.PIPE))
+        process = holder[0]
         assert process.stdout is not None
         for line in process.stdout:
             log.write(line)
             stripped = line.strip()
             match = TIME_LINE.match(stripped)
             if match:
-                simulated = float(match.group(1))
+                simulated[0] = float(match.group(1))
                 if progress is not None:
-                    progress(simulated, end, courant)
+                    progress(simulated[0], end, courant)
                 continue
             match = COURANT_LINE.match(stripped)
             if match:
                 courant = float(match.group(1))
         code = process.wait()
     wall = time.perf_counter() - started
-    reached = simulated >= end - 1e-9
+    reached = simulated[0] >= end - 1e-9
     if code != 0 or not reached:
         text = log_path.read_text(encoding="utf-8", errors="replace")
         reason = (
@@ -230,10 +402,12 @@ def run_case(
             else f"exit {code}"
         )
         raise CfdError(
-            f"interFoam stopped at t = {simulated:.6g} s of {end:g} s ({reason}); log tail:\n"
-            + _tail(text)
+            f"interFoam stopped at t = {simulated[0]:.6g} s of {end:g} s ({reason}); log tail:\n"
+            + tail(text)
         )
-    return RunResult(case, RunStatus.COMPLETED, simulated, wall, processes, int(summary["cells"]))
+    return RunResult(
+        case, RunStatus.COMPLETED, simulated[0], wall, processes, int(summary["cells"])
+    )
 
 
 def _set_subdomains(case: Path, processes: int) -> None:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+import json
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -11,7 +13,7 @@ from rich.text import Text
 
 from sloshkit.cfd.pipeline import analyse, case_spec, describe, excitation_from_options, validate
 from sloshkit.cfd.pipeline import run as run_cfd
-from sloshkit.cfd.run import CfdError
+from sloshkit.cfd.run import CfdError, CfdInterrupted
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
@@ -74,7 +76,16 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
             Annotated[str, typer.Option("--ddt", help="Euler, 'CrankNicolson 0.9' or backward.")],
             "Euler",
         ),
-        "np_": (Annotated[int, typer.Option("--np", help="MPI processes (1: serial).")], 1),
+        "np_": (
+            Annotated[
+                int | None,
+                typer.Option(
+                    "--np",
+                    help="MPI processes (default 1, serial; with --resume, the case's own).",
+                ),
+            ],
+            None,
+        ),
         "cfd_surface_tension": (
             Annotated[
                 bool,
@@ -108,7 +119,7 @@ def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
         end_time_s=parse_quantity(options["end_time"], "time", "end_time"),
         delta_t_s=parse_quantity(options["delta_t"], "time", "delta_t"),
         ddt_scheme=options["ddt"],
-        processes=options["np_"],
+        processes=options["np_"] or 1,
         surface_tension=options["cfd_surface_tension"],
     )
 
@@ -146,8 +157,18 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
         try:
             return run_cfd(spec, case, resume=resume, overwrite=overwrite, progress=advance)
         except CfdError as error:
-            stderr.print(f"[red]error:[/red] {error}", highlight=False)
+            stderr.print(Text("error: ", style="red") + Text(str(error)), highlight=False)
             raise typer.Exit(1) from None
+        except CfdInterrupted as stop:
+            bar.stop()
+            stderr.print(
+                Text(
+                    f"interrupted at t = {stop.simulated_s:.4g} s of {spec.end_time_s:g} s; "
+                    f"continue with: sloshkit cfd run --case {case} --resume"
+                ),
+                highlight=False,
+            )
+            raise typer.Exit(128 + int(stop.signum)) from None
 
 
 def _print_analysis(
@@ -196,6 +217,19 @@ def _print_analysis(
         stdout.print(line)
 
 
+def _resumed_spec(spec: Any, case: Path, processes: int | None) -> Any:
+    """A resumed case keeps its own end time and (unless --np is given) its process count."""
+    summary_path = case / "sloshkit-case.json"
+    if not summary_path.is_file():
+        raise InputError("case", str(case), "has no sloshkit case to resume")
+    summary = json.loads(summary_path.read_text(encoding="utf-8"))
+    return dataclasses.replace(
+        spec,
+        end_time_s=float(summary["end_time_s"]),
+        processes=processes or int(summary.get("processes", 1)),
+    )
+
+
 @cfd_app.command("run")
 @with_model_options
 @with_options(cfd_options("free-decay", "3s"), "case_options", dict)
@@ -223,8 +257,29 @@ def cfd_run_command(
     """
 
     spec = _cfd_spec(slosh_model, case_options)
-    _run_with_progress(spec, case, resume, overwrite)
-    _print_analysis(analyse(case), json_output, model_file_out, plot, slosh_model)
+    if resume:
+        spec = _resumed_spec(spec, case, case_options["np_"])
+    result = _run_with_progress(spec, case, resume, overwrite)
+    try:
+        analysis = analyse(case)
+    except InputError as error:
+        # The run itself succeeded; a record too short to calibrate is not a failed run.
+        if json_output:
+            print_json(
+                {
+                    "case": str(case),
+                    "simulated_s": result.simulated_s,
+                    "wall_clock_s": result.wall_clock_s,
+                    "processes": result.processes,
+                    "cells": result.cells,
+                    "calibration_error": str(error),
+                }
+            )
+        else:
+            stdout.print(Text(f"{result.simulated_s:g} s simulated in {case}"))
+        stderr.print(Text(f"warning: no calibration: {error}", style="yellow"), highlight=False)
+        return
+    _print_analysis(analysis, json_output, model_file_out, plot, slosh_model)
 
 
 @cfd_app.command("analyse")
@@ -264,6 +319,9 @@ def cfd_validate_command(
     reuse: Annotated[
         bool, typer.Option("--reuse", help="Use the case's existing results.")
     ] = False,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace an existing sloshkit case.")
+    ] = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="CFD vs pendulum (Fig. 9).")] = None,
     json_output: Json = False,
 ) -> None:
@@ -277,7 +335,7 @@ def cfd_validate_command(
 
     if not reuse:
         spec = _cfd_spec(slosh_model, case_options)
-        _run_with_progress(spec, case, False, True)
+        _run_with_progress(spec, case, False, overwrite)
     result = validate(case, slosh_model)
     if plot is not None:
         plot_cfd_validation(result, plot)

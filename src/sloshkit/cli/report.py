@@ -13,9 +13,11 @@ from sloshkit.cfd.pipeline import analyse, case_spec
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.cfd import _run_with_progress
 from sloshkit.cli.options import Json, print_json
+from sloshkit.errors import InputError
 from sloshkit.io.scenario import read_scenario
 from sloshkit.model.modal import SloshModel
-from sloshkit.report.build import build_report, paper_scenario
+from sloshkit.report.build import build_report
+from sloshkit.report.paper import paper_scenario
 
 
 def _run_report(
@@ -83,15 +85,24 @@ def reproduce_command(
     calibration = None
     if cfd or cfd_case is not None:
         calibration = _cfd_free_decay(
-            scenario.model, cfd_case or out.parent / "sloshkit-cfd-free-decay"
+            scenario.model,
+            cfd_case or out.parent / "sloshkit-cfd-free-decay",
+            may_run=cfd_case is None,
         )
     _run_report(scenario, out, calibration, json_output)
 
 
-def _cfd_free_decay(slosh_model: SloshModel, case: Path) -> Any:
-    """Calibration from a free-decay CFD case: reused when it has results, else run with the
-    recommended settings on 2 MPI ranks (a few minutes), with a progress bar."""
-
+def _cfd_free_decay(slosh_model: SloshModel, case: Path, may_run: bool = True) -> Any:
+    """Calibration from a free-decay CFD case: reused when it has results, else (``may_run``)
+    run with the recommended settings on 2 MPI ranks (about a minute), with a progress bar.
+    A case named with --cfd-case is only reused: it must hold a finished sloshkit case."""
+    if not may_run and not (case / "sloshkit-case.json").is_file():
+        raise InputError(
+            "cfd-case",
+            str(case),
+            "must be a finished sloshkit CFD case",
+            f"run one with: sloshkit cfd run --case {case} --np 2; or use --cfd",
+        )
     if not (case / "postProcessing").is_dir():
         stderr.print(f"running the OpenFOAM free decay in {case} (a few minutes)")
         _run_with_progress(case_spec(slosh_model, FreeDecay(), processes=2), case, False, True)

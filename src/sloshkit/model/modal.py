@@ -1,4 +1,6 @@
-"""Equivalent mechanical model of lateral sloshing in an upright circular cylinder.
+"""Equivalent mechanical model of lateral sloshing in an upright circular cylinder: the mode and
+model objects, `equivalent_model` and `model_family` (the formulas are in
+`sloshkit.model.theory`).
 
 Linear potential-flow theory of an inviscid, incompressible liquid with a free surface, in a
 rigid upright cylinder of radius R filled to height h, replaced mode by mode by a pendulum (or
@@ -23,369 +25,27 @@ gravity is at h/2. Each mode's bob (slosh mass) hangs at ``bob_height_m``, its p
 
 from __future__ import annotations
 
-import math
-from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
-from typing import Literal, get_args
-
-import numpy as np
-from scipy.special import jnp_zeros
+from collections.abc import Callable
 
 from sloshkit.errors import InputError, require_in_range, require_positive, warn_validity
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
-
-#: Gravitational acceleration used by the seed paper and our defaults [m/s^2].
-GRAVITY_M_S2 = 9.81
-
-DampingLaw = Literal["seed", "sp106", "stephens"]
-DAMPING_LAWS: tuple[str, ...] = get_args(DampingLaw)
-MAX_MODES = 50
-
-
-def bessel_roots(n_modes: int) -> np.ndarray:
-    """First ``n_modes`` roots xi_n of J1'(x) = 0 (1.841184, 5.331443, 8.536316, ...) [-].
-
-    Computed with `scipy.special.jnp_zeros`; source: Abramson (1966) eq. 2.13.
-    """
-    count = int(require_in_range("modes", n_modes, 1, MAX_MODES))
-    return np.asarray(jnp_zeros(1, count), dtype=float)
-
-
-def natural_frequency(
-    radius_m: float,
-    fill_height_m: float,
-    xi: np.ndarray | float,
-    gravity_m_s2: float = GRAVITY_M_S2,
-) -> np.ndarray:
-    """Natural circular frequency omega_n = sqrt(g xi_n / R tanh(xi_n h / R)) [rad/s].
-
-    Source: Abramson (1966) eq. 2.14; De Simone et al. (2024) eq. 1.
-    """
-    xi = np.asarray(xi, dtype=float)
-    return np.sqrt(gravity_m_s2 * xi / radius_m * np.tanh(xi * fill_height_m / radius_m))
-
-
-def slosh_mass_ratio(radius_m: float, fill_height_m: float, xi: np.ndarray | float) -> np.ndarray:
-    """Slosh mass over liquid mass, m_n / m_F = d tanh(2 xi_n h/d) / (xi_n (xi_n^2 - 1) h) [-].
-
-    Source: Abramson (1966) §6.2; Dodge (2000) §3; De Simone et al. (2024) eq. 8 (d = 2R).
-    """
-    xi = np.asarray(xi, dtype=float)
-    d = 2.0 * radius_m
-    return d * np.tanh(2.0 * xi * fill_height_m / d) / (xi * (xi**2 - 1.0) * fill_height_m)
-
-
-def pendulum_length(radius_m: float, fill_height_m: float, xi: np.ndarray | float) -> np.ndarray:
-    """Pendulum length L_n = d / (2 xi_n tanh(2 xi_n h / d)) = g / omega_n^2 [m].
-
-    Source: Abramson (1966) §6.2; De Simone et al. (2024) eq. 9 (d = 2R).
-    """
-    xi = np.asarray(xi, dtype=float)
-    d = 2.0 * radius_m
-    return d / (2.0 * xi * np.tanh(2.0 * xi * fill_height_m / d))
-
-
-def bob_offset_from_cg(radius_m: float, fill_height_m: float, xi: np.ndarray | float) -> np.ndarray:
-    """Height of the slosh mass above the liquid's centre of gravity (z up) [m].
-
-    H_n = h/2 - (d/xi_n) tanh(xi_n h / d), the spring-mass location of Dodge (2000) §3. The seed
-    paper's Table 3 prints this value (-0.0015 m) as its "pendulum hinge location"; the pivot is
-    in fact L_n above the bob (see ../shared/physics-notes.md).
-    """
-    xi = np.asarray(xi, dtype=float)
-    d = 2.0 * radius_m
-    return fill_height_m / 2.0 - (d / xi) * np.tanh(xi * fill_height_m / d)
-
-
-def wall_elevation_factor(radius_m: float, xi: np.ndarray | float) -> np.ndarray:
-    """Linear wall elevation per unit sin(angle), eta_n / sin(theta_n) = 2R / (xi_n^2 - 1) [m].
-
-    Mapping between the pendulum angle and the free-surface elevation at the wall in the plane of
-    motion, from matching the pendulum's moment to the linear mode shape J1(xi_n r/R) cos(phi)
-    (Dodge 2000 §3; Ibrahim 2005 §6.2). Independent of h. The planar-surface mapping
-    eta = R tan(theta) gives larger values for the same angle.
-    """
-    xi = np.asarray(xi, dtype=float)
-    return 2.0 * radius_m / (xi**2 - 1.0)
-
-
-def bond_number(
-    density_kg_m3: float,
-    radius_m: float,
-    surface_tension_n_m: float,
-    gravity_m_s2: float = GRAVITY_M_S2,
-) -> float:
-    """Bond number Bo = rho g R^2 / sigma [-] (gravity over capillary forces)."""
-    return density_kg_m3 * gravity_m_s2 * radius_m**2 / surface_tension_n_m
-
-
-def surface_tension_factor(xi: np.ndarray | float, bond: float) -> np.ndarray:
-    """Frequency factor omega_sigma / omega = sqrt(1 + xi_n^2 / Bo) [-].
-
-    Capillary correction for a free contact line with a flat static meniscus; source:
-    Abramson (1966) ch. 11; Ibrahim (2005) §8.2.
-    """
-    xi = np.asarray(xi, dtype=float)
-    return np.sqrt(1.0 + xi**2 / bond)
-
-
-def damping_ratio_correlation(
-    radius_m: float,
-    fill_height_m: float,
-    kinematic_viscosity_m2_s: float,
-    law: DampingLaw = "seed",
-    gravity_m_s2: float = GRAVITY_M_S2,
-) -> float:
-    """First-mode viscous damping ratio zeta_1 from an empirical correlation [-].
-
-    All three use the inverse Galilei-type number Ga = nu / sqrt(g R^3):
-
-    - ``"seed"``: zeta = (2.89/pi) sqrt(Ga) B, with
-      B = 1 + 0.318/sinh(1.84 h/R) (1 + (1 - h/R)/cosh(1.84 h/R)); the seed paper's eq. 2 as
-      given by Ibrahim (2005) §2.8.
-    - ``"sp106"``: Mikishev & Dorozhkin (1961) in NASA SP-106 (1966) ch. 4: log decrement
-      4.98 sqrt(Ga) B, i.e. zeta = (4.98/(2 pi)) sqrt(Ga) B.
-    - ``"stephens"``: Stephens, Leonard & Perry, NASA TN D-1367 (1962), as quoted by Dodge
-      (2000) §3.2: zeta = 0.83 sqrt(Ga) tanh(1.84 h/R) (1 + 2 (1 - h/R)/cosh(3.68 h/R)).
-
-    These are fitted to tanks of decimetre size with clean walls; measured damping in small vials
-    is often higher (contact-line and meniscus losses), so calibrate from data when you can.
-    """
-    if law not in DAMPING_LAWS:
-        raise InputError("damping_law", law, "must be one of " + ", ".join(DAMPING_LAWS))
-    ga = kinematic_viscosity_m2_s / math.sqrt(gravity_m_s2 * radius_m**3)
-    ratio = fill_height_m / radius_m
-    if law == "stephens":
-        return (
-            0.83
-            * math.sqrt(ga)
-            * math.tanh(1.84 * ratio)
-            * (1.0 + 2.0 * (1.0 - ratio) / math.cosh(3.68 * ratio))
-        )
-    bracket = 1.0 + 0.318 / math.sinh(1.84 * ratio) * (
-        1.0 + (1.0 - ratio) / math.cosh(1.84 * ratio)
-    )
-    prefactor = 2.89 / math.pi if law == "seed" else 4.98 / (2.0 * math.pi)
-    return prefactor * math.sqrt(ga) * bracket
-
-
-@dataclass(frozen=True)
-class SloshMode:
-    """One sloshing mode of the equivalent pendulum model (SI units).
-
-    Heights are measured from the container bottom. ``length_m`` is the geometric pendulum length;
-    with a surface-tension or calibrated frequency, omega_n^2 differs from g / L_n and the pendulum
-    equation uses omega_n (an effective gravity) while the forcing keeps 1/L_n.
-
-    Parameters
-    ----------
-    n : int
-        Mode number (1 = fundamental lateral mode).
-    bessel_root : float
-        xi_n, the n-th root of J_1'(xi) = 0.
-    omega_rad_s : float
-        Natural circular frequency omega_n [rad/s].
-    slosh_mass_kg : float
-        Sloshing (pendulum) mass m_n [kg].
-    length_m : float
-        Pendulum length L_n [m].
-    bob_height_m : float
-        Height of the bob above the bottom [m].
-    damping_ratio : float
-        Damping ratio zeta_n [-].
-    wall_elevation_factor_m : float
-        Wall elevation per radian of pendulum angle, 2R/(xi_n^2 - 1) [m/rad].
-
-    References
-    ----------
-    R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press (2005),
-        doi:10.1017/CBO9780511536656.
-
-    Examples
-    --------
-    >>> import sloshkit as sk
-    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
-    ...                             fill_height_m=0.039)
-    >>> mode = model.modes[0]
-    >>> mode.n, round(mode.frequency_hz, 3)
-    (1, 4.72)
-    """
-
-    n: int
-    bessel_root: float
-    omega_rad_s: float
-    slosh_mass_kg: float
-    length_m: float
-    bob_height_m: float
-    damping_ratio: float
-    wall_elevation_factor_m: float
-
-    @property
-    def frequency_hz(self) -> float:
-        """Natural frequency f_n = omega_n / (2 pi) [Hz]."""
-        return self.omega_rad_s / (2.0 * math.pi)
-
-    @property
-    def damped_omega_rad_s(self) -> float:
-        """Damped circular frequency omega_n sqrt(1 - zeta^2) [rad/s]."""
-        return self.omega_rad_s * math.sqrt(max(0.0, 1.0 - self.damping_ratio**2))
-
-    @property
-    def pivot_height_m(self) -> float:
-        """Pivot (hinge) height above the container bottom: bob height + L_n [m]."""
-        return self.bob_height_m + self.length_m
-
-    @property
-    def stiffness_n_m(self) -> float:
-        """Spring-mass equivalent stiffness k_n = m_n omega_n^2 [N/m]."""
-        return self.slosh_mass_kg * self.omega_rad_s**2
-
-    @property
-    def damping_coefficient_n_s_m(self) -> float:
-        """Spring-mass equivalent damper c_n = 2 zeta_n m_n omega_n [N s/m] (paper's sigma)."""
-        return 2.0 * self.damping_ratio * self.slosh_mass_kg * self.omega_rad_s
-
-
-@dataclass(frozen=True)
-class SloshModel:
-    """Equivalent mechanical model of a filled upright cylinder: rigid mass plus pendulums.
-
-    Build it with `equivalent_model`; `with_mode` returns a calibrated copy. ``provenance`` says
-    where each value came from (theory, correlation, calibration).
-
-    Parameters
-    ----------
-    container : UprightCylinder
-        The container.
-    liquid : Liquid
-        The liquid.
-    fill_height_m : float
-        Static fill height h [m].
-    modes : tuple of SloshMode
-        The modelled modes, fundamental first.
-    gravity_m_s2 : float
-        Gravitational acceleration g [m/s^2].
-    damping_law : str
-        Name of the damping correlation used.
-    surface_tension_correction : bool
-        Whether the Bond-number frequency correction was applied.
-    provenance : mapping of str to str
-        Where each value came from.
-
-    References
-    ----------
-    R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press (2005),
-        doi:10.1017/CBO9780511536656.
-
-    Examples
-    --------
-    >>> import sloshkit as sk
-    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
-    ...                             fill_height_m=0.039)
-    >>> len(model.modes), round(model.liquid_mass_kg * 1e3, 1)  # g
-    (3, 51.3)
-    """
-
-    container: UprightCylinder
-    liquid: Liquid
-    fill_height_m: float
-    modes: tuple[SloshMode, ...]
-    gravity_m_s2: float = GRAVITY_M_S2
-    damping_law: str = "seed"
-    surface_tension_correction: bool = False
-    provenance: Mapping[str, str] = field(default_factory=dict)
-
-    @property
-    def radius_m(self) -> float:
-        """Inner radius R [m]."""
-        return self.container.radius_m
-
-    @property
-    def liquid_mass_kg(self) -> float:
-        """Liquid mass m_F = rho pi R^2 h [kg]."""
-        return self.liquid.density_kg_m3 * self.container.cross_section_m2 * self.fill_height_m
-
-    @property
-    def rigid_mass_kg(self) -> float:
-        """Non-sloshing mass m_0 = m_F - sum(m_n) over the modelled modes [kg]."""
-        return self.liquid_mass_kg - sum(mode.slosh_mass_kg for mode in self.modes)
-
-    @property
-    def cg_height_m(self) -> float:
-        """Height of the static liquid's centre of gravity above the bottom, h/2 [m]."""
-        return self.fill_height_m / 2.0
-
-    @property
-    def bond_number(self) -> float:
-        """Bond number rho g R^2 / sigma [-]."""
-        return bond_number(
-            self.liquid.density_kg_m3,
-            self.radius_m,
-            self.liquid.surface_tension_n_m,
-            self.gravity_m_s2,
-        )
-
-    def with_mode(
-        self,
-        n: int = 1,
-        *,
-        omega_rad_s: float | None = None,
-        damping_ratio: float | None = None,
-        source: str = "user",
-    ) -> SloshModel:
-        """Copy with mode ``n``'s frequency and/or damping replaced (e.g. calibrated values)."""
-        index = int(require_in_range("mode", n, 1, len(self.modes))) - 1
-        mode = self.modes[index]
-        provenance = dict(self.provenance)
-        if omega_rad_s is not None:
-            mode = replace(mode, omega_rad_s=require_positive("omega", omega_rad_s, "rad/s"))
-            provenance[f"omega_{n}"] = source
-        if damping_ratio is not None:
-            mode = replace(
-                mode, damping_ratio=require_in_range("damping_ratio", damping_ratio, 0.0, 0.99)
-            )
-            provenance[f"damping_ratio_{n}"] = source
-        modes = (*self.modes[:index], mode, *self.modes[index + 1 :])
-        return replace(self, modes=modes, provenance=provenance)
-
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready summary in SI with unit-suffixed keys (the ``model --json`` format)."""
-        return {
-            "radius_m": self.radius_m,
-            "wall_height_m": self.container.wall_height_m,
-            "fill_height_m": self.fill_height_m,
-            "liquid": self.liquid.name,
-            "density_kg_m3": self.liquid.density_kg_m3,
-            "viscosity_pa_s": self.liquid.viscosity_pa_s,
-            "surface_tension_n_m": self.liquid.surface_tension_n_m,
-            "gravity_m_s2": self.gravity_m_s2,
-            "bond_number": self.bond_number,
-            "damping_law": self.damping_law,
-            "surface_tension_correction": self.surface_tension_correction,
-            "liquid_mass_kg": self.liquid_mass_kg,
-            "rigid_mass_kg": self.rigid_mass_kg,
-            "cg_height_m": self.cg_height_m,
-            "modes": [
-                {
-                    "n": mode.n,
-                    "bessel_root": mode.bessel_root,
-                    "omega_rad_s": mode.omega_rad_s,
-                    "frequency_hz": mode.frequency_hz,
-                    "slosh_mass_kg": mode.slosh_mass_kg,
-                    "length_m": mode.length_m,
-                    "pivot_height_m": mode.pivot_height_m,
-                    "bob_height_m": mode.bob_height_m,
-                    "bob_offset_from_cg_m": mode.bob_height_m - self.cg_height_m,
-                    "stiffness_n_m": mode.stiffness_n_m,
-                    "damping_ratio": mode.damping_ratio,
-                    "damping_coefficient_n_s_m": mode.damping_coefficient_n_s_m,
-                    "wall_elevation_factor_m": mode.wall_elevation_factor_m,
-                }
-                for mode in self.modes
-            ],
-            "provenance": dict(self.provenance),
-        }
+from sloshkit.model.pendulums import SloshMode, SloshModel
+from sloshkit.model.theory import (
+    DAMPING_LAWS,
+    GRAVITY_M_S2,
+    MAX_MODES,
+    DampingLaw,
+    bessel_roots,
+    bob_offset_from_cg,
+    bond_number,
+    damping_ratio_correlation,
+    natural_frequency,
+    pendulum_length,
+    slosh_mass_ratio,
+    surface_tension_factor,
+    wall_elevation_factor,
+)
 
 
 def equivalent_model(
@@ -432,7 +92,7 @@ def equivalent_model(
 
     References
     ----------
-    H. N. Abramson (ed.), *The Dynamic Behavior of Liquids in Moving Containers*, NASA SP-106
+    Abramson, H. N. (ed.), *The Dynamic Behavior of Liquids in Moving Containers*, NASA SP-106
     (1966), ch. 2 and 6; R. A. Ibrahim, *Liquid Sloshing Dynamics*, Cambridge University Press
     (2005), doi:10.1017/CBO9780511536656; M. C. De Simone et al., Appl. Sci. 14 (2024) 4522,
     eqs. 1, 2, 8, 9, doi:10.3390/app14114522.
@@ -524,3 +184,83 @@ def equivalent_model(
         surface_tension_correction=surface_tension,
         provenance=provenance,
     )
+
+
+def model_family(
+    container: UprightCylinder,
+    liquid: Liquid,
+    *,
+    n_modes: int = 3,
+    damping_law: DampingLaw = "seed",
+    damping_ratio: float | None = None,
+    surface_tension: bool = False,
+    gravity_m_s2: float = GRAVITY_M_S2,
+) -> Callable[[float], SloshModel]:
+    """The `equivalent_model` of one container and liquid as a function of the fill height.
+
+    Parameters
+    ----------
+    container : UprightCylinder
+        The container.
+    liquid : Liquid
+        The liquid.
+    n_modes : int
+        Number of modes.
+    damping_law : str
+        Damping correlation (see `equivalent_model`).
+    damping_ratio : float, optional
+        Damping ratio overriding the correlation [-].
+    surface_tension : bool
+        Apply the Bond-number frequency correction.
+    gravity_m_s2 : float
+        Gravitational acceleration [m/s^2].
+
+    Returns
+    -------
+    callable
+        ``family(fill_height_m) -> SloshModel``, e.g. for `sloshkit.run_sweep`.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> family = model_family(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"))
+    >>> family(0.039).fill_height_m
+    0.039
+    """
+
+    def family(fill_height_m: float) -> SloshModel:
+        return equivalent_model(
+            container,
+            liquid,
+            fill_height_m,
+            n_modes=n_modes,
+            damping_law=damping_law,
+            damping_ratio=damping_ratio,
+            surface_tension=surface_tension,
+            gravity_m_s2=gravity_m_s2,
+        )
+
+    return family
+
+
+# The v1 names of this module (the formulas now live in sloshkit.model.theory, the objects in
+# sloshkit.model.pendulums) stay importable from here.
+__all__ = [
+    "DAMPING_LAWS",
+    "GRAVITY_M_S2",
+    "MAX_MODES",
+    "DampingLaw",
+    "SloshMode",
+    "SloshModel",
+    "bessel_roots",
+    "bob_offset_from_cg",
+    "bond_number",
+    "damping_ratio_correlation",
+    "equivalent_model",
+    "model_family",
+    "natural_frequency",
+    "pendulum_length",
+    "slosh_mass_ratio",
+    "surface_tension_factor",
+    "wall_elevation_factor",
+]

@@ -13,7 +13,7 @@ what a result object holds: it never simulates, plans or selects a pyplot backen
 - `sloshkit.plotting.plan3d`: a 3-D `PathPlanResult`.
 """
 
-from sloshkit.plotting.calibration import plot_calibration
+from sloshkit.plotting.calibration import plot_calibration, plot_free_response
 from sloshkit.plotting.cfd import plot_cfd_validation
 from sloshkit.plotting.plan import plot_plan
 from sloshkit.plotting.plan3d import plot_path_plan
@@ -24,6 +24,7 @@ from sloshkit.plotting.sweep import plot_sweep_map
 __all__ = [
     "plot_calibration",
     "plot_cfd_validation",
+    "plot_free_response",
     "plot_law_comparison",
     "plot_measured_comparison",
     "plot_path_plan",

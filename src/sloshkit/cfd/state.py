@@ -1,0 +1,153 @@
+"""The state of a case on disk, and checks made before running it (no processes started).
+
+- Which time folders are *complete* (every restart field of every processor written to its
+  closing line), so that an interrupted run restarts from the latest complete one.
+- checkMesh's verdict on the mesh, and the limits on the number of MPI processes.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import shutil
+import warnings
+from pathlib import Path
+
+from sloshkit.errors import InputError, ValidityWarning
+
+#: checkMesh limits beyond which interFoam was seen to diverge here (docs/cfd.md).
+MIN_DETERMINANT = 0.05
+MAX_NON_ORTHOGONALITY = 65.0
+#: Fewest cells per MPI process, and most processes per core, accepted for --np.
+MIN_CELLS_PER_PROCESS = 250
+MAX_PROCESSES_PER_CORE = 4
+#: Fields a time folder needs to restart interFoam from it.
+RESTART_FIELDS = ("alpha.water", "U", "p_rgh")
+FOAM_FILE_END = b"// ****"
+
+
+class CfdError(RuntimeError):
+    """OpenFOAM is missing, a tool failed, or the solver stopped early."""
+
+
+def tail(text: str, lines: int = 25) -> str:
+    """The last ``lines`` lines of a log."""
+    return "\n".join(text.splitlines()[-lines:])
+
+
+def check_processes(processes: int, cells: int, cores: int | None = None) -> None:
+    """Refuse absurd MPI process counts, warn about oversubscription.
+
+    More than `MAX_PROCESSES_PER_CORE` processes per core, or fewer than
+    `MIN_CELLS_PER_PROCESS` cells per process, only slow a run down (communication dominates);
+    more processes than cores runs, with a `ValidityWarning`.
+    """
+    cores = cores or os.cpu_count() or 1
+    limit = max(1, min(MAX_PROCESSES_PER_CORE * cores, cells // MIN_CELLS_PER_PROCESS))
+    if processes > limit:
+        raise InputError(
+            "np",
+            processes,
+            f"must be between 1 and {limit} here ({cores} cores, {cells} cells: at most "
+            f"{MAX_PROCESSES_PER_CORE} per core and at least {MIN_CELLS_PER_PROCESS} cells each)",
+        )
+    if processes > cores:
+        warnings.warn(
+            f"--np {processes} is more than the {cores} cores of this machine: "
+            "the ranks will share cores and the run will be slower than with --np "
+            f"{cores}",
+            ValidityWarning,
+            stacklevel=2,
+        )
+
+
+def check_mesh_quality(log: str) -> dict[str, float]:
+    """Parse checkMesh's cell count, non-orthogonality and skewness; refuse poor meshes."""
+    cells = re.search(r"^\s*cells:\s+(\d+)", log, re.M)
+    orthogonality = re.search(r"Mesh non-orthogonality Max: ([0-9.eE+-]+)", log)
+    skewness = re.search(r"Max skewness = ([0-9.eE+-]+)", log)
+    determinant = re.search(r"Cell determinant \(wellposedness\) : minimum: ([0-9.eE+-]+)", log)
+    quality = {
+        "cells": float(cells.group(1)) if cells else math.nan,
+        "max_non_orthogonality_deg": float(orthogonality.group(1)) if orthogonality else math.nan,
+        "max_skewness": float(skewness.group(1)) if skewness else math.nan,
+    }
+    if determinant:
+        quality["min_determinant"] = float(determinant.group(1))
+        if quality["min_determinant"] < MIN_DETERMINANT:
+            raise CfdError(
+                f"mesh refused: minimum cell determinant {quality['min_determinant']:.3g} "
+                f"< {MIN_DETERMINANT} (interFoam diverges on such meshes here)"
+            )
+    if "Failed" in log and "mesh checks" in log:
+        raise CfdError("checkMesh reports failed mesh checks:\n" + tail(log))
+    if quality["max_non_orthogonality_deg"] > MAX_NON_ORTHOGONALITY:
+        raise CfdError(
+            f"mesh refused: non-orthogonality {quality['max_non_orthogonality_deg']:.1f} deg"
+        )
+    return quality
+
+
+def time_folders(folder: Path) -> dict[float, Path]:
+    times = {}
+    if folder.is_dir():
+        for entry in folder.iterdir():
+            try:
+                value = float(entry.name)
+            except ValueError:
+                continue
+            if entry.is_dir():
+                times[value] = entry
+    return times
+
+
+def _complete(folder: Path) -> bool:
+    """Every restart field present and written to its closing line."""
+    for name in RESTART_FIELDS:
+        path = folder / name
+        try:
+            with open(path, "rb") as stream:
+                stream.seek(max(0, path.stat().st_size - 200))
+                if FOAM_FILE_END not in stream.read():
+                    return False
+        except OSError:
+            return False
+    return True
+
+
+def _roots(case: Path, processes: int) -> list[Path]:
+    if processes > 1:
+        return [case / f"processor{k}" for k in range(processes)]
+    return [case]
+
+
+def latest_time(case: Path, processes: int) -> float:
+    """The latest time folder, complete or not, of a (possibly decomposed) case [s]."""
+    return max(time_folders(_roots(case, processes)[0]), default=0.0)
+
+
+def latest_complete_time(case: Path, processes: int) -> float | None:
+    """The latest time whose fields are complete in every processor folder [s], or None."""
+    roots = _roots(case, processes)
+    candidates = sorted(time_folders(roots[0]), reverse=True)
+    for value in candidates:
+        folders = [time_folders(root).get(value) for root in roots]
+        if all(folder is not None and _complete(folder) for folder in folders):
+            return value
+    return None
+
+
+def discard_after(case: Path, processes: int, start: float) -> None:
+    """Remove time folders after ``start`` (half-written or stale) and the function-object
+    output that begins at or after it (interFoam writes it again from ``start``)."""
+    for root in _roots(case, processes):
+        for value, folder in time_folders(root).items():
+            if value > start + 1e-12:
+                shutil.rmtree(folder)
+    post = case / "postProcessing"
+    if post.is_dir():
+        for function in post.iterdir():
+            for value, folder in time_folders(function).items():
+                if value >= start - 1e-12:
+                    shutil.rmtree(folder)
