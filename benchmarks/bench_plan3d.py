@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from sloshkit.errors import ValidityWarning
-from sloshkit.io.waypoints import read_pose_file
+from sloshkit.io.poses import read_pose_file
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
@@ -67,7 +67,9 @@ def main() -> None:
         "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for name in SERIES:
-        time_s, positions, quaternions = read_pose_file(DATA / "poses" / f"{name}.csv")
+        trajectory = read_pose_file(DATA / "poses" / f"{name}.csv")
+        time_s = trajectory.time_s
+        positions, quaternions = trajectory.position_m, trajectory.quaternion_xyzw
         path = path_from_poses(positions, quaternions, name=name)
         reference = reference_timing(time_s, positions, quaternions, path.length_m)
         measured = float(manifest[name]["meas_peak_m"])

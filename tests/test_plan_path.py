@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from sloshkit.errors import InputError, ValidityWarning
-from sloshkit.io.waypoints import read_pose_file, read_waypoints
+from sloshkit.io.poses import read_pose_file
+from sloshkit.io.waypoints import read_waypoints
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import SloshModel, equivalent_model
@@ -160,7 +161,8 @@ def test_every_plan_meets_its_limits_when_its_export_is_simulated_again(
         assert peaks["acceleration"] <= 8.0 * (1 + 1e-6)
         assert peaks["jerk"] <= 80.0 * (1 + 1e-6)
         if out is not None:
-            _t, p, q = read_pose_file(out)
+            back = read_pose_file(out)
+            p, q = back.position_m, back.quaternion_xyzw
             assert np.allclose(p, poses.position_m) and np.allclose(q, poses.quaternion_xyzw)
             assert np.allclose(p[-1], [0.3, 0.2, 0.05], atol=1e-6)
 

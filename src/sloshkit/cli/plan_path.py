@@ -18,8 +18,9 @@ from rich.text import Text
 from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.options import print_json
 from sloshkit.errors import InputError
+from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_quantity
-from sloshkit.io.waypoints import read_pose_file, read_waypoints
+from sloshkit.io.waypoints import read_waypoints
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
 from sloshkit.plan.path_planner import plan_path
@@ -107,7 +108,9 @@ def run_path_plan(
         raise InputError("method", method, "with a path: auto, retime, shaped or tilt")
     reference: Timing | None = None
     if poses_file is not None:
-        time_s, positions, quaternions = read_pose_file(poses_file)
+        trajectory = read_pose_file(poses_file)
+        time_s = trajectory.time_s
+        positions, quaternions = trajectory.position_m, trajectory.quaternion_xyzw
         path = path_from_poses(positions, quaternions, name=poses_file.name)
         reference = _reference_timing(time_s, positions, quaternions, path.length_m)
     else:

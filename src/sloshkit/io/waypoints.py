@@ -1,11 +1,9 @@
-"""Waypoint and pose files for 3-D planning (the file edge; the core takes arrays in SI).
+"""Waypoint files for 3-D planning (the file edge; the core takes arrays in SI).
 
 - waypoints: CSV with columns ``x, y, z`` and optionally ``yaw``, units in the header
   (``x [mm]``, ``x_mm``, ``yaw [deg]``; bare names are m and rad), or TOML
   (``waypoints = [[x, y, z], ...]`` in m, optional ``yaw_deg = [...]``);
-- pose files: ``t,x,y,z,qx,qy,qz,qw`` in SI (container bottom centre, world z up, quaternion
-  container -> world, scalar last), the format ``simulate --pose-file`` reads and
-  ``plan --out`` writes.
+(pose files are read by `sloshkit.io.poses.read_pose_file`).
 """
 
 from __future__ import annotations
@@ -22,7 +20,6 @@ from sloshkit.io.tables import read_table, unit_from_name
 FloatArray = NDArray[np.float64]
 _LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "cm": 1e-2}
 _ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
-POSE_COLUMNS = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
 
 
 def _scale(name: str, default: str, table: dict[str, float], parameter: str) -> float:
@@ -87,23 +84,3 @@ def read_waypoints(path: str | FilePath) -> tuple[FloatArray, FloatArray | None]
         return points, None
     index = base.index("yaw")
     return points, data[:, index] * _scale(header[index], "rad", _ANGLE_UNITS, "path")
-
-
-def read_pose_file(path: str | FilePath) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Times [s], positions [m] (n, 3) and quaternions (n, 4, xyzw) of a pose file.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> folder = pathlib.Path(tempfile.mkdtemp())
-    >>> _ = (folder / "p.csv").write_text("t,x,y,z,qx,qy,qz,qw\\n0,0,0,0,0,0,0,1\\n")
-    >>> read_pose_file(folder / "p.csv")[2].tolist()
-    [[0.0, 0.0, 0.0, 1.0]]
-    """
-    header, data = read_table(path)
-    names = [name.strip().lower() for name in header]
-    missing = [name for name in POSE_COLUMNS if name not in names]
-    if missing:
-        raise InputError("pose file", str(path), "needs the columns " + ",".join(POSE_COLUMNS))
-    columns = [data[:, names.index(name)] for name in POSE_COLUMNS]
-    return columns[0], np.column_stack(columns[1:4]), np.column_stack(columns[4:8])
