@@ -194,9 +194,9 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
     >>> from sloshkit.model.modal import equivalent_model
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
-    >>> poses = sample_path(path, s_curve(0.5, 1.0, 5.0, 50.0), 4e-3)
-    >>> 0.005 < linear_screen([model], poses).peak_height_m < 0.05
-    True
+    >>> poses = sample_path(path, s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
+    >>> round(linear_screen([model], poses).peak_height_m * 1e3)  # [mm]
+    24
     """
     from sloshkit.sim.discretisation import linear_mode_response
 
