@@ -416,7 +416,7 @@ def plan_path(
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
-    ...                       model)
+    ...                       model, sample_period_s=0.01)
     >>> result = plan_path(problem, "shaped", verifier=linear_verifier)
     >>> result.feasible, result.chosen.method
     (True, 'shaped')
