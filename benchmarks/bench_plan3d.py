@@ -110,7 +110,7 @@ def main() -> None:
                 f"| {ratio('tilt')} | {compute} s |"
             )
             print(rows[-1], f"({time.perf_counter() - started:.0f} s)", flush=True)
-    # 20 waypoints: a zig-zag in the plane with a rise, 50 mm blends.
+    # 20 waypoints: a zig-zag in the plane with a rise, 30 mm blends.
     points = np.array([[0.12 * i, 0.1 * (i % 2), 0.01 * i] for i in range(20)])
     problem = PathProblem(
         path_from_waypoints(points, 0.03), LIMITS, SpatialSloshLimits(0.015, RESIDUAL_M), model

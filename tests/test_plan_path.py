@@ -265,3 +265,13 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
         str(DATA / "TRD_2D_0.3m_2.4s_270deg.csv"),
     )
     assert both.returncode == 2 and "exactly one of --path" in both.stderr
+
+
+def test_angular_limits_parse_rad_and_deg() -> None:
+    from sloshkit.cli.plan_path import _angular
+
+    assert _angular("90deg/s", 1, "w") == pytest.approx(math.pi / 2)
+    assert _angular("2 rad/s**2", 2, "a") == pytest.approx(2.0)
+    assert _angular(None, 1, "w") is None
+    with pytest.raises(InputError, match="angular rate"):
+        _angular("5 furlongs", 1, "max_angular_velocity")

@@ -33,17 +33,17 @@ def _quantity(text: str | None, kind: str, name: str) -> float | None:
 
 
 def _angular(text: str | None, power: int, name: str) -> float | None:
-    """``2rad/s``, ``90deg/s``, ``30deg/s^2`` (``s**2``, ``s2`` too) or a bare number in rad/s^k."""
+    """``90deg/s``, ``2rad/s``, ``300deg/s^2`` (``s**2``, ``s2`` too) or a bare number in
+    rad/s^power."""
     if text is None:
         return None
     compact = text.replace(" ", "").replace("**", "^").lower()
-    suffix = "/s" if power == 1 else "/s^2"
-    for unit, factor in (("rad", 1.0), ("deg", math.pi / 180.0), ("", 1.0)):
-        for ending in (unit + suffix, unit + suffix.replace("^", "")) if unit or power else ():
+    seconds = ("/s",) if power == 1 else ("/s^2", "/s2")
+    for unit, factor in (("rad", 1.0), ("deg", math.pi / 180.0)):
+        for ending in (unit + suffix for suffix in seconds):
             if compact.endswith(ending):
-                number = compact[: -len(ending)]
                 try:
-                    return float(number) * factor
+                    return float(compact[: -len(ending)]) * factor
                 except ValueError:
                     break
     try:
