@@ -173,47 +173,80 @@ def axis_shaped_samples(
     return PoseSamples(t, positions, _continuous(quaternions))
 
 
+def _profile_geometry(path: Path) -> tuple[FloatArray, ...]:
+    """s grid, |p'|, curvature, |omega_s|, |omega_s'| on the profile grid (cached per path)."""
+    cache: dict[str, tuple[FloatArray, ...]] = path.__dict__.setdefault("_profile", {})
+    if not cache:
+        count = max(50, math.ceil(path.length_m / PROFILE_STEP_M))
+        s = np.linspace(0.0, path.length_m, count + 1)
+        speed = np.maximum(np.linalg.norm(path.position(s, 1), axis=1), 1e-9)
+        curvature = np.linalg.norm(path.position(s, 2), axis=1) / speed**2
+        turn = np.linalg.norm(path.angular_rate(s, 1), axis=1)
+        turn_rate = np.linalg.norm(path.angular_rate(s, 2), axis=1)
+        cache["arrays"] = (s, speed, curvature, turn, turn_rate)
+    return cache["arrays"]
+
+
 def speed_profile(
     path: Path, problem: PathProblem, acceleration_cap: float
 ) -> tuple[FloatArray, FloatArray]:
     """Fastest s' (s) [m/s] with total acceleration <= ``acceleration_cap`` [m/s^2] (module
     docstring, step 1), on a grid of s [m]; returns (s, s')."""
     machine = problem.machine
-    count = max(50, math.ceil(path.length_m / PROFILE_STEP_M))
-    s = np.linspace(0.0, path.length_m, count + 1)
+    s, speed, curvature, turn, turn_rate = _profile_geometry(path)
     step = s[1] - s[0]
-    speed = np.maximum(np.linalg.norm(path.position(s, 1), axis=1), 1e-9)
-    curvature = np.linalg.norm(path.position(s, 2), axis=1) / speed**2
     limit = np.full(s.size, machine.max_velocity_m_s) / speed
     cap = min(acceleration_cap, machine.max_acceleration_m_s2)
     limit = np.minimum(limit, np.sqrt(cap / np.maximum(curvature, 1e-12)) / speed)
-    turn = np.linalg.norm(path.angular_rate(s, 1), axis=1)
     if machine.max_angular_velocity_rad_s is not None:
         limit = np.minimum(limit, machine.max_angular_velocity_rad_s / np.maximum(turn, 1e-12))
     tangential = np.full(s.size, cap)
     if machine.max_angular_acceleration_rad_s2 is not None:
-        turn_rate = np.linalg.norm(path.angular_rate(s, 2), axis=1)
         half = 0.5 * machine.max_angular_acceleration_rad_s2
         limit = np.minimum(limit, np.sqrt(half / np.maximum(turn_rate, 1e-12)))
         tangential = np.minimum(tangential, half / np.maximum(turn, 1e-12) * speed)
 
-    def usable(index: int, rate: float) -> float:
-        lateral = curvature[index] * (speed[index] * rate) ** 2
-        return math.sqrt(max(float(tangential[index] ** 2 - lateral**2), 0.0)) / float(speed[index])
+    profile = _integrate_profile(
+        np.ascontiguousarray(limit, dtype=float),
+        np.ascontiguousarray(tangential, dtype=float),
+        np.ascontiguousarray(curvature, dtype=float),
+        np.ascontiguousarray(speed, dtype=float),
+        float(step),
+    )
+    return s, profile
 
-    forward = np.zeros(s.size)
-    for i in range(s.size - 1):
-        forward[i + 1] = min(
-            limit[i + 1], math.sqrt(forward[i] ** 2 + 2.0 * usable(i, forward[i]) * step)
-        )
+
+def _passes(
+    limit: FloatArray, tangential: FloatArray, curvature: FloatArray, speed: FloatArray, step: float
+) -> FloatArray:
+    """Forward then backward integration of s' under the limit curve and the friction circle:
+    the usable tangential acceleration is sqrt(a_t,max^2 - (kappa |p'|^2 s'^2)^2) / |p'|."""
+    size = limit.size
+    forward = np.zeros(size)
+    for i in range(size - 1):
+        lateral = curvature[i] * (speed[i] * forward[i]) ** 2
+        usable = math.sqrt(max(tangential[i] ** 2 - lateral**2, 0.0)) / speed[i]
+        forward[i + 1] = min(limit[i + 1], math.sqrt(forward[i] ** 2 + 2.0 * usable * step))
     profile = forward.copy()
     profile[-1] = 0.0
-    for i in range(s.size - 2, -1, -1):
-        profile[i] = min(
-            profile[i], math.sqrt(profile[i + 1] ** 2 + 2.0 * usable(i + 1, profile[i + 1]) * step)
-        )
+    for i in range(size - 2, -1, -1):
+        lateral = curvature[i + 1] * (speed[i + 1] * profile[i + 1]) ** 2
+        usable = math.sqrt(max(tangential[i + 1] ** 2 - lateral**2, 0.0)) / speed[i + 1]
+        profile[i] = min(profile[i], math.sqrt(profile[i + 1] ** 2 + 2.0 * usable * step))
     profile[0] = 0.0
-    return s, profile
+    return profile
+
+
+def _compiled_passes() -> Callable[..., FloatArray]:
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover - numba is a dependency
+        return _passes
+    compiled: Callable[..., FloatArray] = njit(cache=True)(_passes)
+    return compiled
+
+
+_integrate_profile = _compiled_passes()
 
 
 def capped_timing(problem: PathProblem, acceleration_cap: float) -> Timing:
