@@ -1,7 +1,7 @@
 """Minimum-time control on the controller's export grid (casadi/IPOPT), and a smooth variant.
 
 The linear problem is transcribed exactly on the grid the verification simulates (see
-`sloshkit.plan.transcription`), so the move IPOPT returns meets the limits at every exported
+`sloshkit.plan.export_grid`), so the move IPOPT returns meets the limits at every exported
 sample without tightening and solving again. The number of steps is searched with the margin
 problem (the largest uniform margin from every limit, a convex problem, bracketed by a secant
 on the number of steps), then the last step is shortened to the minimum time. The smooth
@@ -40,7 +40,7 @@ MAX_STEPS = 4000
 def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
     """The `ExactGrid` solver of ``problem`` with room for ``steps`` steps (mode-1 pendulums
     of every model of the band, all modes when the wall elevation is limited)."""
-    from sloshkit.plan.transcription import ExactGrid, Limits, Pendulum
+    from sloshkit.plan.export_grid import ExactGrid, Limits, Pendulum
     from sloshkit.sim.discretisation import velocity_driven_discretisation
 
     slosh, machine, ts = problem.slosh, problem.machine, problem.sample_period_s
@@ -140,7 +140,7 @@ def plan_optimal(
         return Candidate(
             "optimal", PlanStatus.FAILED, message="casadi is not installed: pip install casadi"
         )
-    from sloshkit.plan.transcription import steps_for_duration
+    from sloshkit.plan.export_grid import steps_for_duration
 
     machine, ts = problem.machine, problem.sample_period_s
     if warm_start is None:
@@ -211,7 +211,7 @@ def _search(grid: Any, steps: int) -> tuple[Any, int]:
     few steps; the slosh of a time-scaled move grows like 1/T^2, so sqrt(1 + s) times as many
     steps is the next guess).
     """
-    from sloshkit.plan.transcription import SAFETY_MARGIN
+    from sloshkit.plan.export_grid import SAFETY_MARGIN
 
     tried: dict[int, Any] = {}
     shape, ts = grid.steps, grid.limits.sample_period_s
