@@ -12,9 +12,11 @@ a piecewise-constant jerk on its own grid (T / n with n = N, the number of expor
 the grid of the program is not the controller's), with the slosh of the exported velocity
 samples from an exact first-order-hold discretisation written out here (matrix exponential),
 every limit of the verification, and the residual circle replaced by a circumscribed polygon
-(a relaxation: the reference is a lower bound up to the bisection tolerance). It prints the
-ratio of the planner's duration to that minimum and the planner's compute time (wall clock and
-CPU time of this process; the machine is shared, so wall time includes waiting).
+(a relaxation: the reference is the minimum over the program's own class of moves, to the
+bisection tolerance; that class differs from the planner's, so a ratio can be just below 1).
+It prints the ratio of the planner's duration to that minimum and the planner's compute time
+(wall clock and CPU time of this process; the machine is shared, so wall time includes
+waiting).
 
 Run: .venv/bin/python benchmarks/bench_plan.py [--markdown] [--quick]
 """
