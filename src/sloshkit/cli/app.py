@@ -6,12 +6,15 @@ Exit codes: 0 success; 1 no feasible result (e.g. a plan that cannot meet the li
 
 from __future__ import annotations
 
+import os
 import sys
 import warnings
+from typing import Annotated
 
 import typer
 from rich.console import Console
 
+from sloshkit.cli.notes import recording
 from sloshkit.errors import InputError, ValidityWarning
 
 app = typer.Typer(
@@ -26,12 +29,28 @@ app = typer.Typer(
 )
 
 
-stdout = Console(width=None if sys.stdout.isatty() else 160)
+#: Terminal width: the terminal's, or $COLUMNS, else 160 when writing to a pipe or file.
+stdout = Console(width=None if sys.stdout.isatty() or "COLUMNS" in os.environ else 160)
+
+
+def _version(value: bool) -> None:
+    if value:
+        from importlib import metadata
+
+        stdout.print(f"sloshkit {metadata.version('sloshkit')}", highlight=False)
+        raise typer.Exit()
 
 
 @app.callback()
-def _root() -> None:
+def _root(
+    ctx: typer.Context,
+    version: Annotated[
+        bool,
+        typer.Option("--version", callback=_version, is_eager=True, help="Print the version."),
+    ] = False,
+) -> None:
     """sloshkit: the sloshing toolkit (see the README for a tour)."""
+    ctx.with_resource(recording())
 
 
 stderr = Console(stderr=True, soft_wrap=True)

@@ -8,6 +8,7 @@ import warnings
 from pathlib import Path
 from typing import Annotated
 
+import numpy as np
 import typer
 from rich.table import Table
 from rich.text import Text
@@ -26,7 +27,10 @@ from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.models import write_model_file
 from sloshkit.io.tables import (
+    TIME_NAMES,
     column_name,
+    column_si,
+    find_column,
     read_motion_file,
     read_table,
     select_column,
@@ -39,18 +43,17 @@ from sloshkit.model.modal import SloshModel
 def _read_applied_motion(path: Path, axis: str | None) -> typing.Any:
     """A pose file (t,x,y,z,qx,qy,qz,qw) or a motion file, in the file's clock."""
     header, data = read_table(path)
-    lowered = [name.lower() for name in header]
-    if all(name in lowered for name in POSE_COLUMNS):
-        index = [lowered.index(name) for name in POSE_COLUMNS]
-        return applied_from_poses(
-            data[:, index[0]], data[:, index[1:4]], data[:, index[4:8]], axis, name=str(path)
-        )
+    index = [find_column(header, (name,)) for name in POSE_COLUMNS]
+    if all(i is not None for i in index):
+        columns = typing.cast(list[int], index)
+        time = column_si(header, data, columns[0], "time")
+        position = np.column_stack([column_si(header, data, i, "length") for i in columns[1:4]])
+        return applied_from_poses(time, position, data[:, columns[4:8]], axis, name=str(path))
     if axis is not None:
         raise InputError("motion_axis", axis, "applies to pose files (t,x,y,z,qx,qy,qz,qw) only")
-    time_index = next((lowered.index(n) for n in ("t", "t_s", "time", "time_s") if n in lowered), 0)
-    return AppliedMotion(
-        read_motion_file(path), float(data[0, time_index]), (f"motion file {path}",)
-    )
+    time_index = find_column(header, TIME_NAMES)
+    start = column_si(header, data, 0 if time_index is None else time_index, "time")[0]
+    return AppliedMotion(read_motion_file(path), float(start), (f"motion file {path}",))
 
 
 @app.command("calibrate")

@@ -15,6 +15,7 @@ from typing import Annotated, Any
 
 import typer
 
+from sloshkit.cli.notes import check_bare_length
 from sloshkit.errors import InputError
 from sloshkit.files import json_safe
 from sloshkit.io.models import read_model_file
@@ -102,10 +103,12 @@ Json = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI un
 
 def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
     """The container from the model options."""
-    return UprightCylinder(
-        parse_quantity(radius, "length", "radius"),
-        None if wall_height is None else parse_quantity(wall_height, "length", "wall_height"),
-    )
+    radius_m = parse_quantity(radius, "length", "radius")
+    check_bare_length(radius, radius_m, "radius")
+    wall_m = None if wall_height is None else parse_quantity(wall_height, "length", "wall_height")
+    if wall_m is not None:
+        check_bare_length(wall_height, wall_m, "wall_height")
+    return UprightCylinder(radius_m, wall_m)
 
 
 def build_liquid(
@@ -161,6 +164,7 @@ def build_model(
         )
     else:
         height = parse_quantity(fill_height or "39mm", "length", "fill_height")
+        check_bare_length(fill_height, height, "fill_height")
     return equivalent_model(
         container,
         build_liquid(liquid, density, viscosity, sigma),
@@ -173,8 +177,12 @@ def build_model(
 
 
 def print_json(payload: object) -> None:
-    """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null)."""
+    """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null),
+    with the command's ``warnings`` list."""
 
+    from sloshkit.cli.notes import with_warnings
+
+    payload = with_warnings(payload)
     sys.stdout.write(json.dumps(json_safe(payload), indent=2, allow_nan=False) + "\n")
 
 
@@ -237,6 +245,17 @@ def with_options(
 def _model_from_options(values: dict[str, Any]) -> SloshModel:
     model_file = values.pop("model_file")
     if model_file is not None:
+        given = [
+            "--" + name.replace("_", "-")
+            for name, value in values.items()
+            if value != MODEL_OPTIONS[name][1]
+        ]
+        if given:
+            raise InputError(
+                "model_file",
+                str(model_file),
+                "replaces the model options; drop " + ", ".join(given) + " or the model file",
+            )
         return typing.cast(SloshModel, read_model_file(model_file))
     return build_model(**values)
 

@@ -113,7 +113,10 @@ def _cfd_free_decay(slosh_model: SloshModel, case: Path, may_run: bool = True) -
 def run_command(
     scenario_file: Annotated[Path, typer.Argument(help="Scenario TOML (see examples/).")],
     out: Annotated[
-        Path | None, typer.Option("--out", help="Report folder (default: beside the file).")
+        Path | None,
+        typer.Option(
+            "--out", help="Report folder (default: the file's name, in the working folder)."
+        ),
     ] = None,
     json_output: Json = False,
 ) -> None:
@@ -132,4 +135,4 @@ def run_command(
             scenario.model,
             scenario_file.parent / str(case or scenario_file.stem + "-cfd-free-decay"),
         )
-    _run_report(scenario, out or scenario_file.with_suffix(""), calibration, json_output)
+    _run_report(scenario, out or Path(scenario_file.stem + "-report"), calibration, json_output)

@@ -9,10 +9,10 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cli import display
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.moves import (
     MoveRequest,
-    _format_metric,
     _simulate,
     metrics_json,
     with_move_options,
@@ -66,10 +66,10 @@ def simulate_command(
     table = Table(
         title=f"{motion.name} move of {1e3 * motion.distance_m:.1f} mm, {model_kind} model"
     )
-    table.add_column("metric")
+    table.add_column("quantity")
     table.add_column("value", justify="right")
-    for key, value in response.metrics().items():
-        table.add_row(key, _format_metric(key, value))
+    for key, number in response.metrics().items():
+        table.add_row(Text(display.label(key)), display.value(key, number))
     stdout.print(table)
 
 
@@ -110,32 +110,26 @@ def compare_command(
         {"law": motion.name, **metrics_json(response)}
         for motion, response in zip(motions, responses, strict=True)
     ]
+    payload = {"distance_m": request.distance_m, "model": model_kind, "laws": rows}
     if out is not None:
         write_rows_csv(out / "compare.csv", rows)
-        write_json(out / "compare.json", rows)
+        write_json(out / "compare.json", payload)
         plot_law_comparison(motions, out / "fig7_laws.png")
         plot_slosh_comparison(responses, out / "fig8_slosh.png")
     if json_output:
-        print_json(rows)
+        print_json({"distance_m": request.distance_m, "model": model_kind, "laws": rows})
         return
     table = Table(
         title=f"Motion laws compared: {1e3 * request.distance_m:.0f} mm move, {model_kind} model"
     )
-    headers = [
-        ("law", None),
-        ("duration", "duration_s"),
-        ("peak acc.", "peak_acceleration_m_s2"),
-        ("peak jerk", "peak_jerk_m_s3"),
-        ("peak θ₁", "peak_angle_deg"),
-        ("residual θ₁", "residual_angle_deg"),
-        ("peak wall η", "peak_wall_elevation_m"),
-        ("settling", "settling_time_s"),
-    ]
-    for header, _ in headers:
-        table.add_column(Text(header), justify="right")
-    for motion, response in zip(motions, responses, strict=True):
-        metrics = response.metrics()
-        table.add_row(motion.name, *(_format_metric(k, metrics[k]) for _, k in headers[1:] if k))
+    table.add_column("quantity")
+    for motion in motions:
+        table.add_column(Text(motion.name), justify="right")
+    for key in responses[0].metrics() if responses else ():
+        table.add_row(
+            Text(display.label(key)),
+            *(display.value(key, response.metrics()[key]) for response in responses),
+        )
     stdout.print(table)
     if out is not None:
         stdout.print(f"wrote {out}/compare.csv, compare.json, fig7_laws.png, fig8_slosh.png")

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import typing
+import warnings
 from pathlib import Path
 from typing import Annotated
 
 import numpy as np
 import typer
 from rich.table import Table
+from rich.text import Text
 
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
@@ -29,7 +31,7 @@ from sloshkit.cli.options import (
     check_damping_law,
     print_json,
 )
-from sloshkit.errors import InputError
+from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.units import parse_quantity, parse_range
 from sloshkit.model.modal import model_family
 from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
@@ -162,6 +164,14 @@ def sweep_command(
             else parse_quantity(max_residual, "angle", "max_residual"),
             progress=advance,
         )
+    no_limits = max_angle is None and max_residual is None
+    if no_limits:
+        warnings.warn(
+            "no limits given (--max-angle, --max-residual): no case is judged safe or unsafe; "
+            "'shortest' is simply the shortest duration swept",
+            ValidityWarning,
+            stacklevel=1,
+        )
     summary = result.summary()
     if out is not None:
         csv_path = result.to_csv(out / "sweep.csv")
@@ -173,19 +183,24 @@ def sweep_command(
         return
     stderr.print(describe_rate(result))
     table = Table(
-        title=f"Shortest safe move per fill height ({summary['safe_cases']:,} of "
+        title=f"Shortest move per fill height ({summary['cases']:,} cases; no limits given)"
+        if no_limits
+        else f"Shortest safe move per fill height ({summary['safe_cases']:,} of "
         f"{summary['cases']:,} cases safe)"
     )
-    table.add_column("fill height", justify="right")
-    table.add_column("ω₁ [rad/s]", justify="right")
-    table.add_column("shortest safe duration", justify="right")
+    table.add_column(Text("fill height [mm]"), justify="right")
+    table.add_column(Text("ω₁ [rad/s]"), justify="right")
+    table.add_column(
+        Text("shortest duration [s]" if no_limits else "shortest safe duration [s]"),
+        justify="right",
+    )
     table.add_column("law")
     for row, omega in zip(result.shortest_safe(), result.omega_1_rad_s, strict=True):
         shortest = row["duration_s"]
         table.add_row(
-            f"{1e3 * float(typing.cast(float, row['fill_height_m'])):.1f} mm",
+            f"{1e3 * float(typing.cast(float, row['fill_height_m'])):.1f}",
             f"{omega:.2f}",
-            "none" if shortest is None else f"{float(typing.cast(float, shortest)):.3f} s",
+            "none" if shortest is None else f"{float(typing.cast(float, shortest)):.3f}",
             str(row["law"] or "-"),
         )
     stdout.print(table)
