@@ -14,6 +14,7 @@ from rich.text import Text
 from sloshkit.cfd.pipeline import analyse, case_spec, describe, excitation_from_options, validate
 from sloshkit.cfd.pipeline import run as run_cfd
 from sloshkit.cfd.run import CfdError, CfdInterrupted
+from sloshkit.cli import display
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
@@ -352,8 +353,8 @@ def cfd_validate_command(
         table.add_column(Text(header_text), justify="right")
     for key, row in summary["comparison"].items():
         table.add_row(
-            key,
-            *("-" if row[k] is None else f"{row[k]:.4g}" for k in ("cfd", "model")),
+            Text(display.label(key)),
+            *(display.value(key, row[k]) for k in ("cfd", "model")),
             "-"
             if row["relative_difference"] is None
             else f"{100 * row['relative_difference']:+.1f} %",

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich import box
 from rich.table import Table
 from rich.text import Text
 
@@ -142,19 +143,25 @@ def plan_command(
     if json_output:
         print_json(payload)
     else:
-        table = Table(title=f"Plans for a {1e3 * problem.distance_m:.0f} mm move")
+        table = Table(
+            title=f"Plans for a {1e3 * problem.distance_m:.0f} mm move",
+            caption="T: duration; θ₁: first-mode slosh angle; resid.: amplitude left after the move; "
+            "ok: verified against the limits",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+        )
+        table.add_column("method", no_wrap=True)
         for header_text in (
-            "method",
-            "duration",
-            "peak θ₁",
-            "residual θ₁",
-            "peak v",
-            "peak a",
-            "peak j",
-            "feasible",
-            "compute",
+            "T\n[s]",
+            "peak\nθ₁ [°]",
+            "resid.\nθ₁ [°]",
+            "peak v\n[m/s]",
+            "peak a\n[m/s²]",
+            "peak j\n[m/s³]",
+            "ok",
+            "cpu\n[s]",
         ):
-            table.add_column(Text(header_text), justify="right")
+            table.add_column(Text(header_text), justify="right", no_wrap=True)
         for candidate in payload["candidates"]:
 
             def show(value: float | None, fmt: str) -> str:
@@ -162,16 +169,16 @@ def plan_command(
 
             table.add_row(
                 candidate["method"],
-                show(candidate["duration_s"], ".4f") + " s",
-                show(candidate["peak_angle_deg"], ".3f") + "°",
-                show(candidate["residual_angle_deg"], ".3f") + "°",
+                show(candidate["duration_s"], ".4f"),
+                show(candidate["peak_angle_deg"], ".2f"),
+                show(candidate["residual_angle_deg"], ".2f"),
                 show(candidate["peak_velocity_m_s"], ".3f"),
-                show(candidate["peak_acceleration_m_s2"], ".3f"),
+                show(candidate["peak_acceleration_m_s2"], ".3g"),
                 "∞"
                 if candidate["peak_jerk_m_s3"] is None and candidate["duration_s"]
-                else show(candidate["peak_jerk_m_s3"], ".1f"),
+                else show(candidate["peak_jerk_m_s3"], ".3g"),
                 "yes" if candidate["feasible"] else "no",
-                f"{candidate['compute_time_s']:.3f} s",
+                f"{candidate['compute_time_s']:.2g}",
             )
         stdout.print(table)
         if result.feasible:
