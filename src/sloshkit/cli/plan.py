@@ -145,7 +145,8 @@ def plan_command(
     else:
         table = Table(
             title=f"Plans for a {1e3 * problem.distance_m:.0f} mm move",
-            caption="T: duration; θ₁: first-mode slosh angle; resid.: amplitude left after the move; "
+            caption="T: duration; θ₁: first-mode slosh angle; "
+            "resid.: amplitude left after the move; "
             "ok: verified against the limits",
             box=box.SIMPLE_HEAD,
             pad_edge=False,
