@@ -1,0 +1,86 @@
+"""The numbers the README quotes are recomputed here: a change in the code that moves them makes
+this test fail until the README is updated (issue 17)."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from sloshkit.cli import app
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+runner = CliRunner()
+
+
+def _json(*args: str) -> dict:
+    result = runner.invoke(app, [*args, "--json"])
+    assert result.exit_code == 0, result.output
+    return json.loads(result.stdout)
+
+
+def _close(printed: str, value: float) -> bool:
+    """``value`` rounds to the printed number (to its last printed digit)."""
+    decimals = len(printed.split(".")[1]) if "." in printed else 0
+    return abs(float(printed) - value) <= 0.5 * 10.0**-decimals + 1e-12
+
+
+def test_readme_compare_table_matches_the_code():
+    text = README.read_text(encoding="utf-8")
+    rows = re.findall(
+        r"^\| (trapezoidal|cubic|quintic|septic)[^|]* \| ([\d.]+)° \| ([\d.]+)° \| ([\d.]+) mm \|$",
+        text,
+        flags=re.MULTILINE,
+    )
+    assert len(rows) == 4, "the README's compare table changed shape"
+    payload = _json(
+        "compare", "--distance", "0.5m", "--peak-velocity", "0.5m/s", "--damping-ratio", "0.03"
+    )
+    computed = {row["law"]: row for row in payload["laws"]}
+    drift = []
+    for law, peak, residual, wall in rows:
+        row = computed[law]
+        for printed, value, what in (
+            (peak, row["peak_angle_deg"], "peak θ₁ [°]"),
+            (residual, row["residual_angle_deg"], "residual θ₁ [°]"),
+            (wall, 1e3 * row["peak_wall_elevation_m"], "peak wall η [mm]"),
+        ):
+            if not _close(printed, value):
+                drift.append(f"{law} {what}: README {printed}, code {value:.4g}")
+    ratio = re.search(r"The trapezoid leaves ([\d.]+) times the residual", text)
+    assert ratio is not None
+    value = computed["trapezoidal"]["residual_angle_deg"] / computed["septic"]["residual_angle_deg"]
+    if not _close(ratio.group(1), value):
+        drift.append(f"trapezoid/septic residual ratio: README {ratio.group(1)}, code {value:.3g}")
+    assert drift == []
+
+
+def test_readme_model_figures_match_the_code():
+    text = README.read_text(encoding="utf-8")
+    quoted = re.search(
+        r"ω₁ = ([\d.]+) rad/s \(paper 29.7\), f₁ = ([\d.]+) Hz,\s+L₁ = ([\d.]+) mm"
+        r".*?m₁ = ([\d.]+) g with ρ = 1000 kg/m³",
+        text,
+        flags=re.DOTALL,
+    )
+    assert quoted is not None, "the README's model sentence changed shape"
+    payload = _json("model", "--density", "1000kg/m^3")
+    first = payload["modes"][0]
+    omega, frequency, length, mass = quoted.groups()
+    assert _close(omega, first["omega_rad_s"])
+    assert _close(frequency, first["frequency_hz"])
+    assert _close(length, 1e3 * first["length_m"])
+    assert _close(mass, 1e3 * first["slosh_mass_kg"])
+
+
+def test_readme_says_how_to_activate_the_venv():
+    text = README.read_text(encoding="utf-8")
+    assert "source .venv/bin/activate" in text
+
+
+@pytest.mark.parametrize("command", ["sloshkit --version"])
+def test_readme_commands_exist(command):
+    assert command in README.read_text(encoding="utf-8")
