@@ -152,6 +152,16 @@ def unit_from_name(name: str) -> str | None:
 def base_name(name: str) -> str:
     """A column name without its unit, lower case: ``"T [ms]"`` -> ``"t"``, ``x_mm`` -> ``x``.
 
+    Parameters
+    ----------
+    name : str
+        The column name from a table header.
+
+    Returns
+    -------
+    str
+        The name without a bracketed unit or a unit suffix, in lower case.
+
     Examples
     --------
     >>> base_name("T [ms]"), base_name("position_m"), base_name("qx")
@@ -169,7 +179,25 @@ def base_name(name: str) -> str:
 
 
 def find_column(header: list[str], names: tuple[str, ...]) -> int | None:
-    """Index of the first column whose unit-free name is one of ``names``, else None."""
+    """Index of the first column whose unit-free name is one of ``names``, else None.
+
+    Parameters
+    ----------
+    header : list of str
+        Column names (with or without units).
+    names : tuple of str
+        Accepted unit-free names, in order of preference.
+
+    Returns
+    -------
+    int or None
+        The column index.
+
+    Examples
+    --------
+    >>> find_column(["time [ms]", "x [mm]"], ("t", "time"))
+    0
+    """
     bases = [base_name(column) for column in header]
     return next((bases.index(name) for name in names if name in bases), None)
 
@@ -270,7 +298,20 @@ def read_motion_file(path: str | Path, name: str | None = None) -> Any:
 
 def check_plausible_move(motion: Any, source: str) -> list[str]:
     """Warn (`ValidityWarning`) when a motion read from ``source`` is implausible for a
-    container move in SI units; returns the messages.
+    container move in SI units (see `PLAUSIBLE_MOVE`): most likely a file in ms or mm whose
+    header does not say so.
+
+    Parameters
+    ----------
+    motion : Motion
+        The motion as read.
+    source : str
+        Where it came from (for the message).
+
+    Returns
+    -------
+    list of str
+        The warning messages (empty when the move is plausible).
 
     Examples
     --------
