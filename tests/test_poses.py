@@ -11,7 +11,6 @@ from scipy.spatial.transform import Rotation
 from sloshkit.errors import InputError
 from sloshkit.motion.laws import septic
 from sloshkit.motion.pose_kinematics import pose_kinematics, savgol_half_width
-from sloshkit.motion.quaternions import quaternion_matrix
 from sloshkit.motion.poses import (
     PoseTrajectory,
     concatenate,
@@ -20,6 +19,7 @@ from sloshkit.motion.poses import (
     poses_from_rotation,
     poses_from_rpy,
 )
+from sloshkit.motion.quaternions import quaternion_matrix
 
 
 def _still(count: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -58,6 +58,7 @@ _API: dict[str, str] = {
     # simulation
     "simulate": "sloshkit.sim.simulate",
     "SloshResponse": "sloshkit.sim.response",
+    "simulate_spatial": "sloshkit.sim.spatial",
     # sweeps, planning, calibration
     "run_sweep": "sloshkit.sweep",
     "SweepResult": "sloshkit.sweep",
@@ -68,7 +69,8 @@ _API: dict[str, str] = {
     "SloshLimits": "sloshkit.plan.problem",
     "calibrate": "sloshkit.calibration",
     "CalibrationResult": "sloshkit.calibration",
-    # files
+    # files and controller export
+    "export_plan": "sloshkit.export.exporter",
     "read_model_file": "sloshkit.io.models",
     "write_model_file": "sloshkit.io.models",
 }
@@ -96,6 +98,7 @@ __all__ = [
     "cubic",
     "ei",
     "equivalent_model",
+    "export_plan",
     "from_samples",
     "get_liquid",
     "make_law",
@@ -108,6 +111,7 @@ __all__ = [
     "septic",
     "shape_motion",
     "simulate",
+    "simulate_spatial",
     "trapezoidal",
     "write_model_file",
     "zv",
@@ -135,6 +139,7 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.calibration import CalibrationResult, calibrate
     from sloshkit.errors import InputError, ValidityWarning
+    from sloshkit.export.exporter import export_plan
     from sloshkit.io.models import read_model_file, write_model_file
     from sloshkit.model.geometry import UprightCylinder
     from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
@@ -156,4 +161,5 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
     from sloshkit.sim.response import SloshResponse
     from sloshkit.sim.simulate import simulate
+    from sloshkit.sim.spatial import simulate_spatial
     from sloshkit.sweep import SweepResult, run_sweep

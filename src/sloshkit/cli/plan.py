@@ -22,6 +22,7 @@ from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.io.requests import fraction_request
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.planner import plan
@@ -102,11 +103,7 @@ def plan_command(
     ]
     if missing:
         raise InputError("plan", "incomplete", "needs " + ", ".join(missing))
-    band_text = robust.strip()
-    try:
-        band = float(band_text.rstrip("%")) / (100.0 if band_text.endswith("%") else 1.0)
-    except ValueError:
-        raise InputError("robust", robust, "must be a fraction or a percentage, e.g. 10%") from None
+    band = fraction_request(robust, "robust")
     problem = PlanProblem(
         distance_m=parse_quantity(distance, "length", "distance"),
         machine=MachineLimits(
