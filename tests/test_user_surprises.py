@@ -116,3 +116,18 @@ def test_sweep_without_limits_says_so():
     assert result.exit_code == 0, result.output
     payload = json.loads(result.stdout)
     assert any("no limits given" in text for text in payload["warnings"])
+
+
+def test_run_without_out_writes_to_the_working_folder(tmp_path, monkeypatch):
+    import sys
+    from pathlib import Path
+
+    module = sys.modules["sloshkit.cli.report"]
+    seen = []
+    monkeypatch.setattr(module, "_run_report", lambda scenario, out, *rest: seen.append(out))
+    monkeypatch.chdir(tmp_path)
+    example = Path(__file__).resolve().parents[1] / "examples" / "vial-2ml.toml"
+    result = runner.invoke(app, ["run", str(example)])
+    assert result.exit_code == 0, result.output
+    assert seen and seen[0].resolve().parent == tmp_path.resolve()
+    assert seen[0].name == "vial-2ml-report"
