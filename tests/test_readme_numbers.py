@@ -84,3 +84,41 @@ def test_readme_says_how_to_activate_the_venv():
 @pytest.mark.parametrize("command", ["sloshkit --version"])
 def test_readme_commands_exist(command):
     assert command in README.read_text(encoding="utf-8")
+
+
+def test_docs_validation_table_matches_the_code():
+    """The sloshkit column of docs/validation.md's model table."""
+    import dataclasses
+
+    from sloshkit.model.geometry import UprightCylinder
+    from sloshkit.model.liquids import get_liquid
+    from sloshkit.model.modal import equivalent_model
+
+    text = (README.parent / "docs" / "validation.md").read_text(encoding="utf-8")
+
+    def cell(quantity: str) -> str:
+        row = re.search(rf"^\| {re.escape(quantity)} \|[^|]*\| ([^|]+) \|", text, re.MULTILINE)
+        assert row is not None, f"docs/validation.md lost its {quantity} row"
+        return row.group(1).strip()
+
+    water = get_liquid("water-25C")
+    vial = UprightCylinder(0.0205)
+    paper = equivalent_model(
+        vial, dataclasses.replace(water, density_kg_m3=1000.0), 0.039, damping_ratio=0.03
+    )
+    first = paper.modes[0]
+    checks = [
+        (cell("ω₁").split()[0], first.omega_rad_s),
+        (cell("f₁").split()[0], first.frequency_hz),
+        (cell("L₁").split()[0], first.length_m),
+        (cell("m₁ (ρ = 1000)").split()[0], first.slosh_mass_kg),
+        (cell("k₁").split()[0], first.stiffness_n_m),
+        (cell("c₁ (ζ = 0.03)").split()[0], first.damping_coefficient_n_s_m),
+        (
+            cell('"hinge location"').split()[1].replace("−", "-"),
+            first.bob_height_m - paper.cg_height_m,
+        ),
+        (cell("ζ").split()[0], equivalent_model(vial, water, 0.039).modes[0].damping_ratio),
+    ]
+    drift = [f"{printed} vs {value:.5g}" for printed, value in checks if not _close(printed, value)]
+    assert drift == []
