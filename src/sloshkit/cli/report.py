@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import sys
 from pathlib import Path
 from typing import Annotated, Any
@@ -40,15 +41,24 @@ def _run_report(
             cfd_calibration=cfd_calibration,
             command="sloshkit " + " ".join(sys.argv[1:]),
         )
+    noted = json.loads((out / "warnings.json").read_text(encoding="utf-8"))
+    report_warnings = [f"{item['section']}: {item['message']}" for item in noted]
     if json_output:
         print_json(
             {
                 "report": str(path),
                 "figures": sorted(str(p) for p in (out / "figures").glob("*")),
                 "tables": sorted(str(p) for p in (out / "tables").glob("*")),
+                "warnings": report_warnings,
             }
         )
     else:
+        if report_warnings:
+            stderr.print(
+                f"{len(report_warnings)} validity warning(s) in the report, next to the numbers "
+                "they qualify (listed in its summary)",
+                highlight=False,
+            )
         stdout.print(f"report: {path.resolve()}")
 
 

@@ -124,6 +124,10 @@ class ReportWriter:
             contents=self.contents,
             sections=[markupsafe.Markup(section) for section in self.sections],
         )
+        write_json(
+            self.staging / "warnings.json",
+            [{"section": section, "message": message} for section, message in self.warnings],
+        )
         (self.staging / "report.html").write_text(page, encoding="utf-8")
         out_dir.mkdir(parents=True, exist_ok=True)
         for path in sorted(self.staging.rglob("*")):
