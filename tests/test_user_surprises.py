@@ -131,3 +131,26 @@ def test_run_without_out_writes_to_the_working_folder(tmp_path, monkeypatch):
     assert result.exit_code == 0, result.output
     assert seen and seen[0].resolve().parent == tmp_path.resolve()
     assert seen[0].name == "vial-2ml-report"
+
+
+def test_calibration_record_in_unlabelled_milliseconds_warns(tmp_path):
+    t = np.arange(0.0, 4.0, 0.002)
+    eta = 1e-3 * np.exp(-0.03 * 29.66 * t) * np.cos(29.66 * t)
+    path = tmp_path / "decay.csv"
+    path.write_text(
+        "t,eta\n" + "\n".join(f"{1e3 * a:.6g},{b:.6e}" for a, b in zip(t, eta, strict=True))
+    )
+    result = runner.invoke(
+        app, ["calibrate", str(path), "--time-column", "t", "--signal-column", "eta", "--json"]
+    )
+    payload = json.loads(result.stdout)
+    assert any("--time-unit ms" in text for text in payload["warnings"])
+    path.write_text(
+        "t [ms],eta\n" + "\n".join(f"{1e3 * a:.6g},{b:.6e}" for a, b in zip(t, eta, strict=True))
+    )
+    result = runner.invoke(
+        app, ["calibrate", str(path), "--time-column", "t [ms]", "--signal-column", "eta", "--json"]
+    )
+    payload = json.loads(result.stdout)
+    assert payload["frequency_hz"] == pytest.approx(29.66 / (2 * np.pi), rel=0.01)
+    assert not any("--time-unit ms" in text for text in payload["warnings"])

@@ -30,6 +30,7 @@ from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.models import write_model_file
 from sloshkit.io.tables import (
     TIME_NAMES,
+    check_plausible_record,
     column_name,
     column_si,
     find_column,
@@ -226,6 +227,7 @@ def calibrate_command(
         time_unit = unit_from_name(column_name(header, time_column)) or "s"
     time_scale = parse_quantity(f"1 {time_unit}", "time", "time_unit")
     time = select_column(header, table, time_column, "time_column") * time_scale
+    check_plausible_record(time, str(data))
     values = select_column(header, table, signal_column, "signal_column")
     lowpass_hz = None if lowpass is None else parse_quantity(lowpass, "frequency", "lowpass")
     offset = parse_quantity(clock_offset, "time", "clock_offset")

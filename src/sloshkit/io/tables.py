@@ -340,6 +340,45 @@ def check_plausible_move(motion: Any, source: str) -> list[str]:
     return [message]
 
 
+#: A slosh record (a free decay or a move and its decay) longer than this is implausible [s].
+PLAUSIBLE_RECORD_S = 600.0
+
+
+def check_plausible_record(time_s: FloatArray, source: str) -> list[str]:
+    """Warn (`ValidityWarning`) when a calibration record's time column, read in seconds, spans
+    more than `PLAUSIBLE_RECORD_S`: most likely milliseconds without a unit in the header.
+
+    Parameters
+    ----------
+    time_s : ndarray
+        The record's time column as read [s].
+    source : str
+        The record's file (for the message).
+
+    Returns
+    -------
+    list of str
+        The warning messages (empty when the span is plausible).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> check_plausible_record(np.linspace(0.0, 8.0, 801), "decay.csv")
+    []
+    """
+    from sloshkit.errors import warn_validity
+
+    span = float(np.nanmax(time_s) - np.nanmin(time_s)) if time_s.size else 0.0
+    if span <= PLAUSIBLE_RECORD_S:
+        return []
+    message = (
+        f"record {source}: the time column spans {span:,.4g} s, implausible for a slosh record; "
+        "if it is in ms, name the column 't [ms]' or pass --time-unit ms"
+    )
+    warn_validity(message)
+    return [message]
+
+
 def _split(line: str, delimiter: str | None) -> list[str]:
     return line.split(delimiter) if delimiter else line.split()
 
