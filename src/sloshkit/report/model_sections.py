@@ -13,7 +13,7 @@ import numpy as np
 from sloshkit.calibration import calibrate, zeta_from_log_decrement
 from sloshkit.errors import InputError
 from sloshkit.io.scenario import Scenario
-from sloshkit.io.tables import read_table, select_column
+from sloshkit.io.tables import base_name, read_table, select_column, unit_from_name
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import SloshModel
@@ -259,7 +259,7 @@ def _calibration_section(
     label = (
         "wall elevation (detrended) [m]"
         if not scenario.calibrate or cfd_result is not None
-        else f"{options['signal_column']} (detrended) [unit of the record]"
+        else _signal_label(str(options["signal_column"]))
     )
     body += writer.figure(
         "fig5b_calibration",
@@ -277,6 +277,13 @@ def _calibration_section(
     if cfd_result is not None or scenario.calibrate:
         return typing.cast(SloshModel, result.calibrated_model(model))
     return model
+
+
+def _signal_label(column: str) -> str:
+    """Axis label of a recorded signal: its name and the unit its header gives."""
+    unit = unit_from_name(column)
+    name = base_name(column) if unit else column
+    return f"{name} (detrended) [{unit or 'unit of the record'}]"
 
 
 def _table4_comment(theory_omega_rad_s: float) -> str:
