@@ -126,12 +126,14 @@ def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel
     body += writer.figure(
         "fig7_laws",
         plot_law_comparison(motions, None),
-        "Velocity, acceleration and jerk of each law (the paper's Fig. 7)",
+        "Velocity, acceleration and jerk of each law (the paper's Fig. 7; septic = the paper's "
+        "jerk-continuous law)",
     )
     body += writer.figure(
         "fig8_slosh",
         plot_slosh_comparison(responses, None),
-        "First-mode slosh angle and rate under each law (the paper's Figs. 8–9)",
+        "First-mode slosh angle and rate under each law (the paper's Figs. 8–9; septic = the "
+        "paper's jerk-continuous law)",
     )
     writer.section("Motion laws", body)
 
@@ -261,6 +263,9 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
     body += writer.warning_note("Fastest safe move", found, "about the planner's candidates")
     if result.feasible:
         body += writer.figure(
-            "plan", result.plot(None), "The fastest verified moves against the paper's laws"
+            "plan",
+            result.plot(None),
+            "The fastest verified moves against the paper's laws (septic = the paper's "
+            "jerk-continuous law)",
         )
     writer.section("Fastest safe move", body)
