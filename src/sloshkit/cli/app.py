@@ -35,9 +35,9 @@ stdout = Console(width=None if sys.stdout.isatty() or "COLUMNS" in os.environ el
 
 def _version(value: bool) -> None:
     if value:
-        from importlib import metadata
+        from sloshkit import __version__
 
-        stdout.print(f"sloshkit {metadata.version('sloshkit')}", highlight=False)
+        stdout.print(f"sloshkit {__version__}", highlight=False)
         raise typer.Exit()
 
 
