@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
 import typing
 import warnings
@@ -278,6 +279,11 @@ def calibrate_command(
     time = select_column(header, table, time_column, "time_column") * time_scale
     check_plausible_record(time, str(data))
     values = select_column(header, table, signal_column, "signal_column")
+    signal_unit = unit_from_name(column_name(header, signal_column))
+    signal_quantity = {"height": "length", "angle": "angle"}.get(signal_kind)
+    if signal_unit is not None and signal_quantity is not None:  # e.g. 'eta [mm]' -> metres
+        with contextlib.suppress(InputError):  # another dimension: the estimators are scale-free
+            values = values * parse_quantity(f"1 {signal_unit}", signal_quantity, "signal_column")
     lowpass_hz = None if lowpass is None else parse_quantity(lowpass, "frequency", "lowpass")
     offset = parse_quantity(clock_offset, "time", "clock_offset")
     applied, poses = (
