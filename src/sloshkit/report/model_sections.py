@@ -16,7 +16,7 @@ from sloshkit.io.scenario import Scenario
 from sloshkit.io.tables import base_name, read_table, select_column, unit_from_name
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.liquids import get_liquid
-from sloshkit.model.modal import SloshModel
+from sloshkit.model.modal import SloshModel, equivalent_model
 from sloshkit.plotting import plot_free_response
 from sloshkit.report.cfd_reference import shipped_cfd_free_decay
 from sloshkit.report.paper import PAPER_TABLE3, PAPER_TABLE4
@@ -58,6 +58,7 @@ def _model_section(writer: ReportWriter, scenario: Scenario) -> None:
         "liquid": model.liquid.name,
     }
     body += writer.table("model", rows, "Equivalent pendulum model", {"mode": "d"})
+    body += writer.warning_note("Equivalent model", _model_warnings(model), "about the model")
     if scenario.paper_comparison:
         body += writer.table(
             "table3_comparison", _table3_rows(model), "The paper's Table 3 beside sloshkit"
@@ -67,6 +68,27 @@ def _model_section(writer: ReportWriter, scenario: Scenario) -> None:
             "the paper itself prints (its eqs. 1, 8, 9) and says why in the last column.</p>"
         )
     writer.section("Equivalent model", body)
+
+
+def _model_warnings(model: SloshModel) -> list[str]:
+    """The validity warnings of the model's own inputs (Bond number, shallow fill, damping
+    correlation), raised again here because the scenario built the model before the report."""
+    from sloshkit.model.theory import DAMPING_LAWS
+
+    law = model.damping_law if model.damping_law in DAMPING_LAWS else "seed"
+    user_zeta = law != model.damping_law or model.provenance.get("damping_ratio", "") == "user"
+    with recorded_warnings() as found:
+        equivalent_model(
+            model.container,
+            model.liquid,
+            model.fill_height_m,
+            n_modes=len(model.modes),
+            damping_law=typing.cast(typing.Any, law),
+            damping_ratio=model.modes[0].damping_ratio if user_zeta else None,
+            surface_tension=model.surface_tension_correction,
+            gravity_m_s2=model.gravity_m_s2,
+        )
+    return found
 
 
 def _asterisk_note(model: SloshModel) -> str:
