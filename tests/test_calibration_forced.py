@@ -12,7 +12,12 @@ import pytest
 from calibration_records import CONTAINER_MASS_KG, machine_record, water_cylinder
 from conftest import run_entry_point
 
-from sloshkit.calibration import AppliedMotion, applied_from_poses, identify_forced
+from sloshkit.calibration import (
+    AppliedMotion,
+    applied_from_poses,
+    identify_forced,
+    identify_simulated,
+)
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.motion import quintic
 from sloshkit.sim.simulate import simulate
@@ -161,3 +166,35 @@ def test_cli_forced_identification_from_motion_and_pose_files(tmp_path):
     )  # fmt: skip
     assert proc.returncode == 2
     assert "--motion-file" in proc.stderr
+
+
+def test_simulator_in_the_loop_finds_the_clock_offset():
+    """A camera record 7.3 s behind the motion's clock, the offset only known to 0.3 s: any
+    simulator (here sloshkit's 1-D one) recovers omega, zeta and the offset."""
+    truth = water_cylinder(ZETA)
+    record = _record("height", model=truth, decay_s=3.0, rest_s=0.0, seed=8)
+    camera_time = record.time_s + 7.3
+
+    def simulate_height(omega, zeta):
+        model = truth.with_mode(1, omega_rad_s=omega)
+        for mode in model.modes:
+            model = model.with_mode(mode.n, damping_ratio=zeta)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            response = simulate(model, record.motion, sample_period_s=0.002, settle_time_s=3.0)
+        return response.time_s, response.wall_elevation_m
+
+    found = identify_simulated(
+        simulate_height,
+        camera_time,
+        record.values,
+        omega_guess_rad_s=1.1 * truth.modes[0].omega_rad_s,
+        zeta_guess=0.05,
+        delay_s=7.0,
+        fit_delay=True,
+    )
+    assert found.omega_n_rad_s == pytest.approx(truth.modes[0].omega_rad_s, rel=3e-3)
+    assert found.damping_ratio == pytest.approx(ZETA, rel=0.05)
+    assert found.delay_s == pytest.approx(7.3, abs=0.005)
+    assert found.delay_interval_s[0] < found.delay_s < found.delay_interval_s[1]
+    assert found.to_dict()["delay_s"] == pytest.approx(found.delay_s)

@@ -63,6 +63,18 @@ class SpatialResponse(ResultMixin):
     motion_end_s : time of the last pose [s]; the container rests afterwards
     height_mapping : ``"modal"`` (sum over the simulated modes, as in 1-D) or ``"planar"``
         (plus the quasi-static remainder of the modes not simulated: exact planar statics)
+    motion_name : label of the pose trajectory
+    elapsed_s : wall-clock time of the simulation [s]
+
+    Built by `sloshkit.sim.spatial.simulate_spatial`, not directly.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
+    >>> response = sk.simulate_spatial(model, sk.poses_from_law(sk.septic(0.1, 1.5)))
+    >>> sorted(response.to_dict())[:3]
+    ['duration_s', 'height_mapping', 'model']
     """
 
     model: SloshModel
@@ -229,11 +241,19 @@ class SpatialResponse(ResultMixin):
 
     @cached_property
     def free_amplitudes_rad(self) -> FloatArray:
-        """Per mode, the semi-major axis of the free oscillation left at the end [rad]."""
-        index = int(np.searchsorted(self.time_s, self.motion_end_s - 1e-12))
+        """Per mode, the semi-major axis of the free oscillation left at the end [rad].
+
+        Taken from the state at the first sample where the (smoothed) drive is at rest, a
+        differentiation half-window (at least 5 samples) after the last pose, relative to the
+        equilibrium of the container resting in its final pose (the drive of the last sample),
+        and scaled back to the end of the motion by exp(zeta omega lag) (exact when linear)."""
+        kinematics = self.drive.kinematics
+        step = float(kinematics.time_s[1] - kinematics.time_s[0])
+        settled = (max(kinematics.window // 2, 4) + 1) * step
+        index = int(np.searchsorted(self.time_s, self.motion_end_s + settled - 1e-12))
         index = min(index, self.time_s.size - 1)
         lag = float(self.time_s[index]) - self.motion_end_s
-        force = self.drive.specific_force_m_s2[:, index]
+        force = self.drive.specific_force_m_s2[:, -1]
         amplitudes = []
         for row, mode in enumerate(self.model.modes):
             if self.nonlinear:  # deflection from the unit vector along f
