@@ -58,7 +58,8 @@ __all__ = [
 
 PROBE_RADIUS_FRACTION = 0.98
 #: Open MPI options that keep a run on this host: shared memory between the ranks (vader),
-#: and loopback for the TCP transport and the out-of-band (runtime) channel.
+#: and loopback for the TCP transport and the out-of-band (runtime) channel; waiting ranks
+#: yield their core (no busy polling: the machine may be shared).
 MPI_LOCAL_OPTIONS = (
     "--mca",
     "btl",
@@ -69,6 +70,9 @@ MPI_LOCAL_OPTIONS = (
     "--mca",
     "oob_tcp_if_include",
     "lo",
+    "--mca",
+    "mpi_yield_when_idle",
+    "1",
 )
 
 
@@ -237,7 +241,7 @@ def fv_solution(spec: CaseSpec) -> str:
         "PIMPLE": {
             "momentumPredictor": "no",
             "nOuterCorrectors": 1,
-            "nCorrectors": 3,
+            "nCorrectors": spec.pressure_correctors,
             "nNonOrthogonalCorrectors": 0,
         },
         "relaxationFactors": {"equations": {'".*"': 1}},
@@ -366,6 +370,7 @@ def spec_summary(spec: CaseSpec) -> dict[str, Any]:
         "max_alpha_courant": spec.max_alpha_courant,
         "write_interval_s": spec.write_interval_s,
         "ddt_scheme": spec.ddt_scheme,
+        "pressure_correctors": spec.pressure_correctors,
         "processes": spec.processes,
         "probe_dz_m": dz,
         "probes_per_column": int(z.size),

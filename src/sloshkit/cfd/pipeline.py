@@ -31,20 +31,37 @@ from sloshkit.motion.laws import from_samples
 from sloshkit.sim.simulate import simulate
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).
-RECOMMENDED = {"cells_per_radius": 10, "delta_t_s": 5e-4, "ddt_scheme": "Euler", "end_time_s": 3.0}
+RECOMMENDED: dict[str, Any] = {
+    "cells_per_radius": 11,
+    "delta_t_s": 2e-3,
+    "max_courant": 0.5,
+    "max_alpha_courant": 0.5,
+    "ddt_scheme": "Euler",
+    "end_time_s": 3.0,
+    "pressure_correctors": 2,
+}
 
 
 def case_spec(
     model: SloshModel,
     excitation: Excitation,
-    cells_per_radius: int = RECOMMENDED["cells_per_radius"],  # type: ignore[assignment]
-    end_time_s: float = RECOMMENDED["end_time_s"],  # type: ignore[assignment]
-    delta_t_s: float = RECOMMENDED["delta_t_s"],  # type: ignore[assignment]
-    ddt_scheme: str = RECOMMENDED["ddt_scheme"],  # type: ignore[assignment]
+    cells_per_radius: int = RECOMMENDED["cells_per_radius"],
+    end_time_s: float = RECOMMENDED["end_time_s"],
+    delta_t_s: float = RECOMMENDED["delta_t_s"],
+    ddt_scheme: str = RECOMMENDED["ddt_scheme"],
     processes: int = 1,
     surface_tension: bool = False,
+    max_courant: float = RECOMMENDED["max_courant"],
+    max_alpha_courant: float = RECOMMENDED["max_alpha_courant"],
+    adjust_time_step: bool = True,
+    probe_angles: int = 0,
+    pressure_correctors: int = RECOMMENDED["pressure_correctors"],
 ) -> CaseSpec:
-    """A case for ``model``'s container, fill and liquid."""
+    """A case for ``model``'s container, fill and liquid.
+
+    With ``adjust_time_step`` the step follows the Courant limits and never exceeds
+    ``delta_t_s``; otherwise it is fixed at ``delta_t_s``.
+    """
     return CaseSpec(
         radius_m=model.radius_m,
         fill_height_m=model.fill_height_m,
@@ -57,6 +74,11 @@ def case_spec(
         ddt_scheme=ddt_scheme,
         processes=processes,
         surface_tension=surface_tension,
+        adjust_time_step=adjust_time_step,
+        max_courant=max_courant,
+        max_alpha_courant=max_alpha_courant,
+        probe_angles=probe_angles,
+        pressure_correctors=pressure_correctors,
     )
 
 

@@ -52,6 +52,7 @@ class CaseSpec:
     max_courant: float = 0.5
     max_alpha_courant: float = 0.5
     probe_angles: int = 0
+    pressure_correctors: int = 2
 
     def __post_init__(self) -> None:
         require_positive("radius", self.radius_m, "m")
@@ -63,6 +64,7 @@ class CaseSpec:
         require_in_range("np", self.processes, 1, 256)
         require_in_range("max_courant", self.max_courant, 0.01, 5.0)
         require_in_range("max_alpha_courant", self.max_alpha_courant, 0.01, 5.0)
+        require_in_range("pressure_correctors", self.pressure_correctors, 1, 5)
         if self.probe_angles:
             require_in_range("probe_angles", self.probe_angles, 4, 64)
         if self.height_m <= self.fill_height_m:

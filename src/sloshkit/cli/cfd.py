@@ -11,7 +11,14 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from sloshkit.cfd.pipeline import analyse, case_spec, describe, excitation_from_options, validate
+from sloshkit.cfd.pipeline import (
+    RECOMMENDED,
+    analyse,
+    case_spec,
+    describe,
+    excitation_from_options,
+    validate,
+)
 from sloshkit.cfd.pipeline import run as run_cfd
 from sloshkit.cfd.run import CfdError, CfdInterrupted
 from sloshkit.cli.app import app, stderr, stdout
@@ -68,10 +75,34 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
         "duration": (Duration, None),
         "cells_per_radius": (
             Annotated[int, typer.Option("--cells-per-radius", help="Mesh resolution.")],
-            10,
+            RECOMMENDED["cells_per_radius"],
         ),
         "end_time": (Annotated[str, typer.Option("--end-time", help="Simulated time.")], end_time),
-        "delta_t": (Annotated[str, typer.Option("--delta-t", help="Fixed time step.")], "0.5ms"),
+        "delta_t": (
+            Annotated[
+                str,
+                typer.Option(
+                    "--delta-t", help="Largest time step (the step itself with --fixed-step)."
+                ),
+            ],
+            f"{RECOMMENDED['delta_t_s'] * 1e3:g}ms",
+        ),
+        "max_courant": (
+            Annotated[
+                float,
+                typer.Option(
+                    "--max-courant",
+                    help="Courant and interface-Courant limit of the adaptive time step.",
+                ),
+            ],
+            RECOMMENDED["max_courant"],
+        ),
+        "fixed_step": (
+            Annotated[
+                bool, typer.Option("--fixed-step", help="A fixed step of --delta-t (no Courant).")
+            ],
+            False,
+        ),
         "ddt": (
             Annotated[str, typer.Option("--ddt", help="Euler, 'CrankNicolson 0.9' or backward.")],
             "Euler",
@@ -121,6 +152,9 @@ def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
         ddt_scheme=options["ddt"],
         processes=options["np_"] or 1,
         surface_tension=options["cfd_surface_tension"],
+        max_courant=options["max_courant"],
+        max_alpha_courant=options["max_courant"],
+        adjust_time_step=not options["fixed_step"],
     )
 
 
