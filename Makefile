@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 DEMO_OUT ?= demo-output
 
-.PHONY: demo test lint typecheck unit system-deps clean
+.PHONY: demo test lint typecheck unit docs system-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -48,8 +48,12 @@ typecheck: $(VENV)/.installed-test
 unit: $(VENV)/.installed-test system-deps
 	$(BIN)/python -m pytest
 
-## test: lint, types and the whole test suite.
-test: lint typecheck unit
+## docs: the API reference (Sphinx, warnings are errors), into docs/api/_build.
+docs: $(VENV)/.installed-test
+	$(BIN)/python -m sphinx -W -q -b html docs/api docs/api/_build
+
+## test: lint, types, the whole test suite (with the doctests of src/sloshkit) and the API docs.
+test: lint typecheck unit docs
 
 clean:
-	rm -rf $(VENV) $(DEMO_OUT) .pytest_cache .mypy_cache .ruff_cache .hypothesis
+	rm -rf $(VENV) $(DEMO_OUT) .pytest_cache .mypy_cache .ruff_cache .hypothesis docs/api/_build

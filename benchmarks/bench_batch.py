@@ -22,6 +22,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from sloshkit import UprightCylinder, equivalent_model, get_liquid
+from sloshkit.model.modal import model_family
 from sloshkit.motion import make_law
 from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
@@ -107,7 +108,8 @@ def main() -> None:
 
     # 2. A sweep: fill heights x laws x durations (velocity histories shared across heights).
     heights = np.linspace(0.010, 0.060, args.fill_heights)
-    result = run_sweep(container, water, heights, LAWS, DISTANCE, durations, damping_ratio=0.03)
+    family = model_family(container, water, damping_ratio=0.03)
+    result = run_sweep(family, LAWS, DISTANCE, durations, fill_heights_m=heights)
 
     # 3. Baseline: solve_ivp loop on a subset of the same cases.
     rng = np.random.default_rng(1)

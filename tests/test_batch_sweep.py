@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 
 import numpy as np
 import pytest
@@ -15,7 +16,7 @@ from typer.testing import CliRunner
 from sloshkit.cli import app
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
-from sloshkit.model.modal import equivalent_model
+from sloshkit.model.modal import equivalent_model, model_family
 from sloshkit.motion import make_law
 from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
@@ -96,15 +97,13 @@ def test_unit_duration_shape_preserves_the_law():
 
 def test_sweep_summary_agrees_with_per_case_metrics():
     result = run_sweep(
-        UprightCylinder(0.0205),
-        get_liquid("water-25C"),
-        [0.02, 0.039],
+        model_family(UprightCylinder(0.0205), get_liquid("water-25C"), damping_ratio=0.03),
         ["quintic", "septic"],
         0.5,
         np.linspace(1.0, 2.5, 16),
-        damping_ratio=0.03,
-        max_angle_deg=10.0,
-        max_residual_deg=1.0,
+        fill_heights_m=[0.02, 0.039],
+        max_angle_rad=math.radians(10.0),
+        max_residual_rad=math.radians(1.0),
         chunk_cases=5,
     )
     rows = result.rows()
@@ -130,12 +129,11 @@ def test_sweep_summary_agrees_with_per_case_metrics():
 
 def test_sweep_by_peak_acceleration():
     result = run_sweep(
-        UprightCylinder(0.0205),
-        get_liquid("water-25C"),
-        [0.039],
+        model_family(UprightCylinder(0.0205), get_liquid("water-25C")),
         ["trapezoidal", "quintic"],
         0.5,
         peak_accelerations_m_s2=[1.0, 2.0],
+        fill_heights_m=[0.039],
     )
     np.testing.assert_allclose(result.peak_acceleration_m_s2, [[1.0, 2.0], [1.0, 2.0]])
     assert result.durations_s[0, 0] == pytest.approx(1.5)  # trapezoid: a = 4.5 D / T^2

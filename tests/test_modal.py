@@ -13,10 +13,10 @@ from hypothesis import strategies as st
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import LIQUIDS, get_liquid
-from sloshkit.model.modal import (
+from sloshkit.model.modal import equivalent_model
+from sloshkit.model.theory import (
     bessel_roots,
     damping_ratio_correlation,
-    equivalent_model,
     natural_frequency,
     pendulum_length,
     slosh_mass_ratio,

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from sloshkit.report.build import build_report, paper_scenario
+from sloshkit.report import build_report, paper_scenario
 
 CHROMIUM = shutil.which("chromium")
 CHROMEDRIVER = shutil.which("chromedriver")

@@ -40,7 +40,7 @@ _API: dict[str, str] = {
     "SloshModel": "sloshkit.model.modal",
     "equivalent_model": "sloshkit.model.modal",
     # motion
-    "Motion": "sloshkit.motion.laws",
+    "Motion": "sloshkit.motion.profile",
     "LAW_NAMES": "sloshkit.motion.laws",
     "make_law": "sloshkit.motion.laws",
     "trapezoidal": "sloshkit.motion.laws",
@@ -49,7 +49,7 @@ _API: dict[str, str] = {
     "septic": "sloshkit.motion.laws",
     "minimum_jerk": "sloshkit.motion.laws",
     "s_curve": "sloshkit.motion.laws",
-    "from_samples": "sloshkit.motion.laws",
+    "from_samples": "sloshkit.motion.recorded",
     "Shaper": "sloshkit.motion.shaping",
     "zv": "sloshkit.motion.shaping",
     "zvd": "sloshkit.motion.shaping",
@@ -61,7 +61,7 @@ _API: dict[str, str] = {
     # sweeps, planning, calibration
     "run_sweep": "sloshkit.sweep",
     "SweepResult": "sloshkit.sweep",
-    "plan": "sloshkit.plan.planner",
+    "plan": "sloshkit",  # the callable package sloshkit.plan (see its docstring)
     "PlanResult": "sloshkit.plan.planner",
     "PlanProblem": "sloshkit.plan.problem",
     "MachineLimits": "sloshkit.plan.problem",
@@ -120,7 +120,10 @@ def __getattr__(name: str) -> Any:
     module = _API.get(name)
     if module is None:
         raise AttributeError(f"module 'sloshkit' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
+    if module == __name__:  # a callable subpackage
+        value = importlib.import_module(f"{__name__}.{name}")
+    else:
+        value = getattr(importlib.import_module(module), name)
     globals()[name] = value
     return value
 
@@ -138,9 +141,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.model.modal import SloshMode, SloshModel, equivalent_model
     from sloshkit.motion.laws import (
         LAW_NAMES,
-        Motion,
         cubic,
-        from_samples,
         make_law,
         minimum_jerk,
         quintic,
@@ -148,6 +149,8 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         septic,
         trapezoidal,
     )
+    from sloshkit.motion.profile import Motion
+    from sloshkit.motion.recorded import from_samples
     from sloshkit.motion.shaping import Shaper, ei, shape_motion, zv, zvd
     from sloshkit.plan.planner import PlanResult, plan
     from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits

@@ -22,9 +22,7 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError, require_positive
 from sloshkit.files import write_rows_csv
-from sloshkit.model.geometry import UprightCylinder
-from sloshkit.model.liquids import Liquid
-from sloshkit.model.modal import DampingLaw, equivalent_model
+from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES, make_law
 from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
@@ -39,10 +37,45 @@ SWEEP_LAWS: tuple[str, ...] = LAW_NAMES
 
 @dataclass(frozen=True, eq=False)
 class SweepResult(ResultMixin):
-    """Metrics over the grid; arrays indexed [law, fill height, duration].
+    """Metrics over the grid; arrays indexed [law, fill height, duration] (SI, radians).
 
-    ``durations_s`` and ``peak_acceleration_m_s2`` are (laws, durations): identical rows when
-    the sweep is over duration, per-law when it is over peak acceleration.
+    ``durations_s`` and ``peak_acceleration_m_s2`` are (laws, durations): identical rows when the
+    sweep is over duration, per-law when it is over peak acceleration. Follows the result protocol
+    (`sloshkit.results.ResultMixin`); ``to_csv`` writes one row per case (`rows`).
+
+    Parameters
+    ----------
+    laws : tuple of str
+        The laws swept.
+    fill_heights_m : numpy.ndarray
+        Fill heights [m].
+    durations_s : numpy.ndarray
+        Move durations [s], (laws, durations).
+    peak_acceleration_m_s2 : numpy.ndarray
+        Peak accelerations [m/s^2], (laws, durations).
+    omega_1_rad_s : numpy.ndarray
+        First-mode frequency per fill height [rad/s].
+    peak_angle_rad, residual_angle_rad : numpy.ndarray
+        Peak first-mode angle during the move and residual amplitude after it [rad].
+    peak_wall_elevation_m, residual_wall_elevation_m : numpy.ndarray
+        Peak wall elevation during the move and its residual bound after it [m].
+    distance_m : float
+        Travel distance [m].
+    axis : str
+        ``"duration"`` or ``"peak_acceleration"``.
+    max_angle_rad, max_residual_rad : float, optional
+        The limits that define `safe` [rad].
+    elapsed_s : float
+        Computing time [s].
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> result = sk.run_sweep(model, ["septic"], 0.1, [1.0, 2.0])
+    >>> result.cases, len(result.rows())
+    (2, 2)
     """
 
     laws: tuple[str, ...]
@@ -50,33 +83,54 @@ class SweepResult(ResultMixin):
     durations_s: FloatArray
     peak_acceleration_m_s2: FloatArray
     omega_1_rad_s: FloatArray
-    peak_angle_deg: FloatArray
-    residual_angle_deg: FloatArray
+    peak_angle_rad: FloatArray
+    residual_angle_rad: FloatArray
     peak_wall_elevation_m: FloatArray
     residual_wall_elevation_m: FloatArray
     distance_m: float
     axis: str = "duration"
-    max_angle_deg: float | None = None
-    max_residual_deg: float | None = None
+    max_angle_rad: float | None = None
+    max_residual_rad: float | None = None
     elapsed_s: float = 0.0
+
+    @property
+    def peak_angle_deg(self) -> FloatArray:
+        """`peak_angle_rad` in degrees (for tables and figures)."""
+        return np.degrees(self.peak_angle_rad)
+
+    @property
+    def residual_angle_deg(self) -> FloatArray:
+        """`residual_angle_rad` in degrees (for tables and figures)."""
+        return np.degrees(self.residual_angle_rad)
+
+    @property
+    def max_angle_deg(self) -> float | None:
+        """`max_angle_rad` in degrees."""
+        return None if self.max_angle_rad is None else math.degrees(self.max_angle_rad)
+
+    @property
+    def max_residual_deg(self) -> float | None:
+        """`max_residual_rad` in degrees."""
+        return None if self.max_residual_rad is None else math.degrees(self.max_residual_rad)
 
     @property
     def cases(self) -> int:
         """Number of simulated cases."""
-        return int(self.peak_angle_deg.size)
+        return int(self.peak_angle_rad.size)
 
     def safe(self) -> NDArray[np.bool_]:
         """Cases that meet the limits (peak angle during, residual amplitude after the move)."""
-        mask = np.ones(self.peak_angle_deg.shape, dtype=bool)
-        if self.max_angle_deg is not None:
-            mask &= self.peak_angle_deg <= self.max_angle_deg
-        if self.max_residual_deg is not None:
-            mask &= self.residual_angle_deg <= self.max_residual_deg
+        mask = np.ones(self.peak_angle_rad.shape, dtype=bool)
+        if self.max_angle_rad is not None:
+            mask &= self.peak_angle_rad <= self.max_angle_rad
+        if self.max_residual_rad is not None:
+            mask &= self.residual_angle_rad <= self.max_residual_rad
         return mask
 
     def rows(self) -> list[dict[str, object]]:
         """One dict per case with the CSV columns."""
         safe = self.safe()
+        peak_deg, residual_deg = self.peak_angle_deg, self.residual_angle_deg
         rows: list[dict[str, object]] = []
         for i, law in enumerate(self.laws):
             for j, height in enumerate(self.fill_heights_m):
@@ -87,8 +141,8 @@ class SweepResult(ResultMixin):
                             "fill_height_m": float(height),
                             "duration_s": float(self.durations_s[i, k]),
                             "omega_1_rad_s": float(self.omega_1_rad_s[j]),
-                            "peak_angle_deg": float(self.peak_angle_deg[i, j, k]),
-                            "residual_angle_deg": float(self.residual_angle_deg[i, j, k]),
+                            "peak_angle_deg": float(peak_deg[i, j, k]),
+                            "residual_angle_deg": float(residual_deg[i, j, k]),
                             "peak_wall_elevation_m": float(self.peak_wall_elevation_m[i, j, k]),
                             "residual_wall_elevation_m": float(
                                 self.residual_wall_elevation_m[i, j, k]
@@ -161,35 +215,94 @@ class SweepResult(ResultMixin):
 
 
 def run_sweep(
-    container: UprightCylinder,
-    liquid: Liquid,
-    fill_heights_m: Sequence[float] | FloatArray,
+    model: SloshModel | Callable[[float], SloshModel],
     laws: Sequence[str],
     distance_m: float,
     durations_s: Sequence[float] | FloatArray | None = None,
     peak_accelerations_m_s2: Sequence[float] | FloatArray | None = None,
     *,
-    n_modes: int = 3,
-    damping_law: DampingLaw = "seed",
-    damping_ratio: float | None = None,
-    surface_tension: bool = False,
+    fill_heights_m: Sequence[float] | FloatArray | None = None,
     s_curve_limits: tuple[float, float, float] | None = None,
     acceleration_fraction: float | None = None,
     sample_period_s: float = 1e-3,
-    max_angle_deg: float | None = None,
-    max_residual_deg: float | None = None,
+    max_angle_rad: float | None = None,
+    max_residual_rad: float | None = None,
     chunk_cases: int = 2048,
     progress: Callable[[int, int], None] | None = None,
 ) -> SweepResult:
     """Evaluate every (law, fill height, duration) case on the linear fast path.
 
-    Give either ``durations_s`` or ``peak_accelerations_m_s2``. ``progress(done, total)`` is called
-    after each block of cases. Memory is bounded by ``chunk_cases`` velocity histories.
+    Every law is time-scaled: a law of shape s_1(tau), tau = t/T, moved in time T (see the
+    module's docstring); the metrics are those of `sloshkit.sim.batch.batch_metrics`.
+
+    Parameters
+    ----------
+    model : SloshModel or callable
+        The model (a sweep at its own fill height), or a function of the fill height [m]
+        returning the model there (e.g. `sloshkit.model.modal.model_family`, or one that
+        returns a calibrated model), so calibrated models flow into the maps.
+    laws : sequence of str
+        Law names (`sloshkit.motion.laws.LAW_NAMES`).
+    distance_m : float
+        Travel distance [m].
+    durations_s : sequence of float, optional
+        Move durations [s]; give these or ``peak_accelerations_m_s2``.
+    peak_accelerations_m_s2 : sequence of float, optional
+        Peak accelerations [m/s^2]: each law gets T = sqrt(a_1 / a_peak).
+    fill_heights_m : sequence of float, optional
+        Fill heights [m]; required when ``model`` is a function, else the model's own.
+    s_curve_limits : tuple of float, optional
+        (vmax [m/s], amax [m/s^2], jmax [m/s^3]) that shape an ``s-curve``.
+    acceleration_fraction : float, optional
+        Acceleration fraction of the trapezoidal law.
+    sample_period_s : float
+        Sample period of the fast path [s].
+    max_angle_rad : float, optional
+        Limit on the peak first-mode angle during the move [rad] (for `SweepResult.safe`).
+    max_residual_rad : float, optional
+        Limit on the residual first-mode amplitude after the move [rad].
+    chunk_cases : int
+        Velocity histories held in memory at once.
+    progress : callable, optional
+        ``progress(done, total)`` after each block of cases.
+
+    Returns
+    -------
+    SweepResult
+        Metrics indexed [law, fill height, duration].
+
+    References
+    ----------
+    M. C. De Simone et al., Appl. Sci. 14 (2024) 4522, doi:10.3390/app14114522 (the laws).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> result = sk.run_sweep(model, ["quintic"], 0.1, [0.8, 1.6], max_angle_rad=0.1)
+    >>> # the short move exceeds 0.1 rad, the long one does not:
+    >>> result.peak_angle_rad.shape, result.safe().tolist()
+    ((1, 1, 2), [[[False, True]]])
     """
     started = time.perf_counter()
     distance = require_positive("distance", distance_m, "m")
     dt = require_positive("sample_period", sample_period_s, "s")
-    heights = np.asarray(fill_heights_m, dtype=float)
+    if isinstance(model, SloshModel):
+        if fill_heights_m is not None and not np.allclose(fill_heights_m, model.fill_height_m):
+            raise InputError(
+                "fill_heights",
+                fill_heights_m,
+                "give a function of the fill height to sweep other fill heights than the model's",
+            )
+        fixed = model
+        heights = np.array([model.fill_height_m])
+        factory: Callable[[float], SloshModel] = lambda _height: fixed  # noqa: E731
+    else:
+        if fill_heights_m is None:
+            raise InputError("fill_heights", None, "needed when the model is a function")
+        heights = np.asarray(fill_heights_m, dtype=float)
+        factory = model
     if heights.size == 0 or not laws:
         raise InputError("sweep", "empty", "needs at least one fill height and one law")
     if (durations_s is None) == (peak_accelerations_m_s2 is None):
@@ -229,18 +342,7 @@ def run_sweep(
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        models = [
-            equivalent_model(
-                container,
-                liquid,
-                float(h),
-                n_modes=n_modes,
-                damping_law=damping_law,
-                damping_ratio=damping_ratio,
-                surface_tension=surface_tension,
-            )
-            for h in heights
-        ]
+        models = [factory(float(h)) for h in heights]
     for message in sorted({str(w.message) for w in caught}):
         warnings.warn(message, caught[0].category, stacklevel=2)
 
@@ -271,14 +373,14 @@ def run_sweep(
         durations_s=durations,
         peak_acceleration_m_s2=peak_acceleration,
         omega_1_rad_s=np.array([model.modes[0].omega_rad_s for model in models]),
-        peak_angle_deg=np.degrees(results["peak"]),
-        residual_angle_deg=np.degrees(results["residual"]),
+        peak_angle_rad=results["peak"],
+        residual_angle_rad=results["residual"],
         peak_wall_elevation_m=results["wall"],
         residual_wall_elevation_m=results["wall_residual"],
         distance_m=distance,
         axis=axis,
-        max_angle_deg=max_angle_deg,
-        max_residual_deg=max_residual_deg,
+        max_angle_rad=max_angle_rad,
+        max_residual_rad=max_residual_rad,
         elapsed_s=time.perf_counter() - started,
     )
 

@@ -27,7 +27,7 @@ from sloshkit.cfd.run import (
 )
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import from_samples
+from sloshkit.motion.recorded import from_samples
 from sloshkit.sim.simulate import simulate
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).

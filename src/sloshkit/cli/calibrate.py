@@ -1,9 +1,10 @@
-"""``sloshkit calibrate``: frequency and damping from a measured free decay."""
+"""``sloshkit calibrate``: frequency and damping from a record (free decay or forced response)."""
 
 from __future__ import annotations
 
 import math
 import typing
+import warnings
 from pathlib import Path
 from typing import Annotated
 
@@ -11,14 +12,45 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from sloshkit.calibration import METHODS, calibrate
+from sloshkit.calibration import (
+    METHODS,
+    SIGNAL_KINDS,
+    AppliedMotion,
+    applied_from_poses,
+    calibrate,
+    identify_forced,
+)
+from sloshkit.calibration.applied import POSE_COLUMNS
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
-from sloshkit.errors import InputError
+from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.models import write_model_file
-from sloshkit.io.tables import column_name, read_table, select_column, unit_from_name
+from sloshkit.io.tables import (
+    column_name,
+    read_motion_file,
+    read_table,
+    select_column,
+    unit_from_name,
+)
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
+
+
+def _read_applied_motion(path: Path, axis: str | None) -> typing.Any:
+    """A pose file (t,x,y,z,qx,qy,qz,qw) or a motion file, in the file's clock."""
+    header, data = read_table(path)
+    lowered = [name.lower() for name in header]
+    if all(name in lowered for name in POSE_COLUMNS):
+        index = [lowered.index(name) for name in POSE_COLUMNS]
+        return applied_from_poses(
+            data[:, index[0]], data[:, index[1:4]], data[:, index[4:8]], axis, name=str(path)
+        )
+    if axis is not None:
+        raise InputError("motion_axis", axis, "applies to pose files (t,x,y,z,qx,qy,qz,qw) only")
+    time_index = next((lowered.index(n) for n in ("t", "t_s", "time", "time_s") if n in lowered), 0)
+    return AppliedMotion(
+        read_motion_file(path), float(data[0, time_index]), (f"motion file {path}",)
+    )
 
 
 @app.command("calibrate")
@@ -37,14 +69,39 @@ def calibrate_command(
         ),
     ] = None,
     start: Annotated[
-        str | None, typer.Option("--start", help="Window start (default: largest peak).")
+        str | None,
+        typer.Option("--start", help="Window start (default: found after the forcing)."),
     ] = None,
     end: Annotated[
         str | None, typer.Option("--end", help="Window end (default: last sample).")
     ] = None,
     method: Annotated[
-        str, typer.Option("--method", help="Reported estimator: fit, logdec, fft.")
-    ] = "fit",
+        str | None,
+        typer.Option(
+            "--method",
+            help="Reported estimator: fit, logdec, fft, logdec-2peak, backbone, forced "
+            "(default: forced with --motion-file, else fit).",
+        ),
+    ] = None,
+    motion_file: Annotated[
+        Path | None,
+        typer.Option(
+            "--motion-file",
+            help="The applied motion (motion or pose file, same clock as the record): "
+            "forced-response identification, and the decay window after its end.",
+        ),
+    ] = None,
+    motion_axis: Annotated[
+        str | None,
+        typer.Option("--motion-axis", help="Pose files: x, y or z (default: main direction)."),
+    ] = None,
+    signal_kind: Annotated[
+        str, typer.Option("--signal-kind", help="force, height or angle (for --motion-file).")
+    ] = "height",
+    settle: Annotated[
+        str | None,
+        typer.Option("--settle", help="Margin after the forcing (default: one period)."),
+    ] = None,
     detrend: Annotated[str, typer.Option("--detrend", help="mean, linear or none.")] = "linear",
     lowpass: Annotated[
         str | None, typer.Option("--lowpass", help="Zero-phase low-pass cut-off, e.g. 20Hz.")
@@ -56,41 +113,89 @@ def calibrate_command(
     plot: Annotated[
         Path | None, typer.Option("--plot", help="Figure like the paper's Fig. 5b.")
     ] = None,
+    backbone_plot: Annotated[
+        Path | None,
+        typer.Option("--backbone-plot", help="Figure of frequency and damping vs amplitude."),
+    ] = None,
     json_output: Json = False,
 ) -> None:
-    """Natural frequency and damping from a free-decay record (camera, sensor, CFD probe).
+    """Natural frequency and damping from a record (camera, force sensor, CFD probe).
 
-    The model options describe the container, for the comparison with theory and for the
-    calibrated model file.
+    Without window options the free decay is found after the forced motion. With
+    --motion-file the model is also fitted to the whole record (forced-response
+    identification, no free decay needed). The model options describe the container, for the
+    comparison with theory, the identification and the calibrated model file.
 
     Examples:
 
       sloshkit calibrate decay.csv --time-column t --signal-column eta --start 4s --plot fig.png
 
-      sloshkit calibrate probes.dat --signal-column 2 --method logdec --model-file-out vial.toml
-    """
+      sloshkit calibrate record.csv --time-column t --signal-column fy
 
-    if method not in METHODS:
-        raise InputError("method", method, "must be one of " + ", ".join(METHODS))
+      sloshkit calibrate record.csv --time-column t --signal-column fy --signal-kind force
+      --motion-file move.csv --radius 40mm --fill-height 60mm
+    """
+    methods = (*METHODS, "forced")
+    if method is None:
+        method = "forced" if motion_file is not None else "fit"
+    if method not in methods:
+        raise InputError("method", method, "must be one of " + ", ".join(methods))
+    if method == "forced" and motion_file is None:
+        raise InputError("method", method, "needs --motion-file (the applied motion)")
     if detrend not in ("mean", "linear", "none"):
         raise InputError("detrend", detrend, "must be mean, linear or none")
+    if signal_kind not in SIGNAL_KINDS:
+        raise InputError("signal_kind", signal_kind, "must be one of " + ", ".join(SIGNAL_KINDS))
     header, table = read_table(data)
     if time_unit is None:
         time_unit = unit_from_name(column_name(header, time_column)) or "s"
     time_scale = parse_quantity(f"1 {time_unit}", "time", "time_unit")
     time = select_column(header, table, time_column, "time_column") * time_scale
     values = select_column(header, table, signal_column, "signal_column")
-    result = calibrate(
-        time,
-        values,
-        method=typing.cast(typing.Any, method),
-        start_s=None if start is None else parse_quantity(start, "time", "start"),
-        end_s=None if end is None else parse_quantity(end, "time", "end"),
-        detrend=typing.cast(typing.Any, detrend),
-        lowpass_hz=None if lowpass is None else parse_quantity(lowpass, "frequency", "lowpass"),
-        source=str(data),
-    )
-    payload = result.to_dict()
+    lowpass_hz = None if lowpass is None else parse_quantity(lowpass, "frequency", "lowpass")
+    applied = None if motion_file is None else _read_applied_motion(motion_file, motion_axis)
+    forced = None
+    if applied is not None:
+        forced = identify_forced(
+            slosh_model,
+            applied,
+            time,
+            values,
+            signal_kind=typing.cast(typing.Any, signal_kind),
+            lowpass_hz=lowpass_hz,
+            require_constrained=method == "forced",
+            source=str(data),
+        )
+        for message in forced.warnings:
+            warnings.warn(message, ValidityWarning, stacklevel=1)
+    decay = None
+    decay_failure = None
+    try:
+        decay = calibrate(
+            time,
+            values,
+            method=typing.cast(typing.Any, "fit" if method == "forced" else method),
+            start_s=None if start is None else parse_quantity(start, "time", "start"),
+            end_s=None if end is None else parse_quantity(end, "time", "end"),
+            detrend=typing.cast(typing.Any, detrend),
+            lowpass_hz=lowpass_hz,
+            source=str(data),
+            forcing_end_s=None if applied is None else applied.end_s,
+            settle_s=None if settle is None else parse_quantity(settle, "time", "settle"),
+        )
+    except InputError as error:
+        if forced is None:
+            raise
+        decay_failure = str(error)
+    reported: typing.Any = forced if method == "forced" else decay
+    payload = reported.to_dict()
+    payload["signal_kind"] = signal_kind
+    if forced is not None:
+        payload["forced"] = forced.to_dict()
+        payload["motion_file"] = str(motion_file)
+    if method == "forced":
+        payload["decay"] = None if decay is None else decay.to_dict()
+        payload["decay_failure"] = decay_failure
     theory = slosh_model.modes[0]
     payload["theory"] = {
         "omega_n_rad_s": theory.omega_rad_s,
@@ -99,49 +204,83 @@ def calibrate_command(
         "damping_source": slosh_model.provenance.get("damping_ratio", ""),
     }
     if model_file_out is not None:
-        write_model_file(model_file_out, result.calibrated_model(slosh_model))
+        write_model_file(model_file_out, reported.calibrated_model(slosh_model))
         payload["model_file"] = str(model_file_out)
+        payload["model_file_provenance"] = reported.provenance()
     if plot is not None:
-        result.plot(plot)
+        reported.plot(plot)
+    if backbone_plot is not None:
+        if decay is None or decay.backbone is None:
+            raise InputError("backbone_plot", str(backbone_plot), "no backbone in this record")
+        decay.backbone.plot(backbone_plot)
     if json_output:
         print_json(payload)
         return
-    table_out = Table(
-        title=f"Calibration of {data} ({method}), window "
-        f"{payload['window_s'][0]:.3f}-{payload['window_s'][1]:.3f} s"
-    )
-    table_out.add_column("estimator")
-    for header_text in ("ω_n [rad/s]", "f_n [Hz]", "ζ [-]", "δ [-]"):
-        table_out.add_column(Text(header_text), justify="right")
+    _print_calibration(data, payload, decay, forced, theory)
+    if model_file_out is not None:
+        stdout.print(f"wrote {model_file_out}")
 
+
+def _print_calibration(
+    data: Path,
+    payload: dict[str, typing.Any],
+    decay: typing.Any,
+    forced: typing.Any,
+    theory: typing.Any,
+) -> None:
     def cell(value: float | None, fmt: str) -> str:
         return "n/a" if value is None else format(value, fmt)
 
-    for name, estimate in result.estimates.items():
-        omega = estimate.omega_n_rad_s
+    if decay is not None:
+        window = decay.signal.window_s
+        table_out = Table(title=f"Free decay of {data}, window {window[0]:.3f}-{window[1]:.3f} s")
+        table_out.add_column("estimator")
+        for header_text in ("ω_n [rad/s]", "f_n [Hz]", "ζ [-]", "δ [-]"):
+            table_out.add_column(Text(header_text), justify="right")
+        for name, estimate in decay.estimates.items():
+            omega = estimate.omega_n_rad_s
+            reported = name == payload["method"]
+            table_out.add_row(
+                name
+                + (" (reported)" if reported else "")
+                + (" failed" if estimate.failure else ""),
+                cell(omega, ".3f"),
+                cell(None if omega is None else omega / (2 * math.pi), ".4f"),
+                cell(estimate.damping_ratio, ".4f"),
+                cell(estimate.log_decrement, ".4f"),
+            )
         table_out.add_row(
-            name + (" (reported)" if name == method else ""),
-            cell(omega, ".3f"),
-            cell(None if omega is None else omega / (2 * math.pi), ".4f"),
-            cell(estimate.damping_ratio, ".4f"),
-            cell(estimate.log_decrement, ".4f"),
+            "theory (model)",
+            f"{theory.omega_rad_s:.3f}",
+            f"{theory.frequency_hz:.4f}",
+            f"{theory.damping_ratio:.4f}",
+            "",
         )
-    table_out.add_row(
-        "theory (model)",
-        f"{theory.omega_rad_s:.3f}",
-        f"{theory.frequency_hz:.4f}",
-        f"{theory.damping_ratio:.4f}",
-        "",
-    )
-    stdout.print(table_out)
-    fit = result.estimates["fit"]
-    if fit.omega_n_interval and fit.damping_ratio_interval:
+        stdout.print(table_out)
+        if decay.window is not None:
+            stdout.print(f"window: {decay.window.reason}")
+        fit = decay.estimates["fit"]
+        if fit.omega_n_interval and fit.damping_ratio_interval:
+            stdout.print(
+                f"fit 95 % intervals: ω_n {fit.omega_n_interval[0]:.3f}…"
+                f"{fit.omega_n_interval[1]:.3f} rad/s, ζ {fit.damping_ratio_interval[0]:.4f}…"
+                f"{fit.damping_ratio_interval[1]:.4f}; residual RMS {fit.residual_rms:.3g}"
+            )
+        for note in decay.signal.notes:
+            stdout.print(f"note: {note}")
+    if forced is not None:
         stdout.print(
-            f"fit 95 % intervals: ω_n {fit.omega_n_interval[0]:.3f}…{fit.omega_n_interval[1]:.3f} "
-            f"rad/s, ζ {fit.damping_ratio_interval[0]:.4f}…{fit.damping_ratio_interval[1]:.4f}; "
-            f"residual RMS {fit.residual_rms:.3g}"
+            f"forced-response identification ({forced.signal_kind})"
+            + (" (reported)" if payload["method"] == "forced" else "")
+            + f": ω_n {forced.omega_n_rad_s:.3f} rad/s ({forced.omega_n_interval[0]:.3f}…"
+            f"{forced.omega_n_interval[1]:.3f}), ζ {forced.damping_ratio:.4f} "
+            f"({forced.damping_ratio_interval[0]:.4f}…{forced.damping_ratio_interval[1]:.4f}), "
+            f"R² {forced.r2:.4f}, NRMSE {forced.nrmse:.3g}"
         )
-    for note in payload["notes"]:
-        stdout.print(f"note: {note}")
-    if model_file_out is not None:
-        stdout.print(f"wrote {model_file_out}")
+        if forced.slosh_mass_kg is not None:
+            stdout.print(
+                f"slosh mass {1e3 * forced.slosh_mass_kg:.2f} g, rigid mass "
+                f"{1e3 * forced.linear['rigid_mass_kg']:.1f} g"
+            )
+    if payload.get("decay_failure"):
+        stdout.print(f"note: no free-decay estimate: {payload['decay_failure']}")

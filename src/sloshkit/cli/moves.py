@@ -16,7 +16,8 @@ from sloshkit.errors import InputError
 from sloshkit.io.tables import read_motion_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion, comparison_s_curve_limits, make_law
+from sloshkit.motion.laws import comparison_s_curve_limits, make_law
+from sloshkit.motion.profile import Motion
 from sloshkit.sim.response import SloshResponse
 from sloshkit.sim.simulate import MODEL_KINDS, simulate
 

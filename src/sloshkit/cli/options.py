@@ -21,7 +21,8 @@ from sloshkit.io.models import read_model_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
-from sloshkit.model.modal import DAMPING_LAWS, DampingLaw, SloshModel, equivalent_model
+from sloshkit.model.modal import SloshModel, equivalent_model
+from sloshkit.model.theory import DAMPING_LAWS, DampingLaw
 
 Radius = Annotated[str, typer.Option("--radius", help="Inner radius, e.g. 20.5mm.")]
 

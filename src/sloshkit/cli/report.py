@@ -16,7 +16,8 @@ from sloshkit.cli.options import Json, print_json
 from sloshkit.errors import InputError
 from sloshkit.io.scenario import read_scenario
 from sloshkit.model.modal import SloshModel
-from sloshkit.report.build import build_report, paper_scenario
+from sloshkit.report.build import build_report
+from sloshkit.report.paper import paper_scenario
 
 
 def _run_report(

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import typing
 from pathlib import Path
 from typing import Annotated
@@ -32,6 +31,7 @@ from sloshkit.cli.options import (
 )
 from sloshkit.errors import InputError
 from sloshkit.io.units import parse_quantity, parse_range
+from sloshkit.model.modal import model_family
 from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
 
 MaxAngle = Annotated[
@@ -138,26 +138,28 @@ def sweep_command(
             bar.update(task, completed=done, total=total)
 
         result = run_sweep(
-            container,
-            build_liquid(liquid, density, viscosity, sigma),
-            heights,
+            model_family(
+                container,
+                build_liquid(liquid, density, viscosity, sigma),
+                n_modes=modes,
+                damping_law=check_damping_law(damping_law),
+                damping_ratio=damping_ratio,
+                surface_tension=surface_tension_correction,
+            ),
             names,
             request.distance_m,
             durations,
             accelerations,
-            n_modes=modes,
-            damping_law=check_damping_law(damping_law),
-            damping_ratio=damping_ratio,
-            surface_tension=surface_tension_correction,
+            fill_heights_m=heights,
             s_curve_limits=limits,
             acceleration_fraction=accel_fraction,
             sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
-            max_angle_deg=None
+            max_angle_rad=None
             if max_angle is None
-            else math.degrees(parse_quantity(max_angle, "angle", "max_angle")),
-            max_residual_deg=None
+            else parse_quantity(max_angle, "angle", "max_angle"),
+            max_residual_rad=None
             if max_residual is None
-            else math.degrees(parse_quantity(max_residual, "angle", "max_residual")),
+            else parse_quantity(max_residual, "angle", "max_residual"),
             progress=advance,
         )
     summary = result.summary()

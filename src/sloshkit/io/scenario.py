@@ -16,7 +16,8 @@ from sloshkit.errors import InputError
 from sloshkit.io.units import parse_quantity, parse_range
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid, get_liquid
-from sloshkit.model.modal import DAMPING_LAWS, DampingLaw, SloshModel, equivalent_model
+from sloshkit.model.modal import SloshModel, equivalent_model
+from sloshkit.model.theory import DAMPING_LAWS, DampingLaw
 
 ANALYSES: tuple[str, ...] = ("model", "calibrate", "compare", "sweep", "plan", "cfd")
 _SCHEMA: dict[str, set[str]] = {

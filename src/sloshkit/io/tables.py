@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
-from sloshkit.motion.laws import from_samples
+from sloshkit.motion.recorded import from_samples
 
 FloatArray = NDArray[np.float64]
 

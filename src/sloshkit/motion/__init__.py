@@ -2,9 +2,7 @@
 
 from sloshkit.motion.laws import (
     LAW_NAMES,
-    Motion,
     cubic,
-    from_samples,
     make_law,
     minimum_jerk,
     quintic,
@@ -12,6 +10,8 @@ from sloshkit.motion.laws import (
     septic,
     trapezoidal,
 )
+from sloshkit.motion.profile import Motion
+from sloshkit.motion.recorded import from_samples
 
 __all__ = [
     "LAW_NAMES",

@@ -27,18 +27,15 @@ Laws and sources
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import CubicSpline, PPoly, make_interp_spline
+from scipy.interpolate import PPoly
 
-from sloshkit.errors import InputError, require_in_range, require_increasing, require_positive
-from sloshkit.motion.sampling import sample_motion
-
-FloatArray = NDArray[np.float64]
+from sloshkit.errors import InputError, require_in_range, require_positive
+from sloshkit.motion.profile import Motion as Motion  # re-exported (v1 path)
+from sloshkit.motion.profile import _piecewise_constant_jerk as _piecewise_constant_jerk
+from sloshkit.motion.recorded import from_samples as from_samples  # re-exported (v1 path)
 
 LAW_NAMES: tuple[str, ...] = (
     "trapezoidal",
@@ -48,128 +45,6 @@ LAW_NAMES: tuple[str, ...] = (
     "minimum-jerk",
     "s-curve",
 )
-
-
-@dataclass(frozen=True, eq=False)
-class Motion:
-    """A rest-to-rest motion: position s(t) [m] as a piecewise polynomial on [0, T].
-
-    Build it with a law function (`trapezoidal`, `quintic`, `s_curve`, ...), not directly.
-    """
-
-    name: str
-    position_pp: PPoly
-
-    @property
-    def duration_s(self) -> float:
-        """Move duration T [s]."""
-        return float(self.position_pp.x[-1] - self.position_pp.x[0])
-
-    @property
-    def distance_m(self) -> float:
-        """Travel s(T) - s(0) [m]."""
-        return float(self.position_pp(self.position_pp.x[-1]) - self.position_pp(0.0))
-
-    @property
-    def breakpoints_s(self) -> FloatArray:
-        """Times where the polynomial pieces join [s]."""
-        return np.asarray(self.position_pp.x, dtype=float)
-
-    def derivative_pp(self, order: int) -> PPoly:
-        """The ``order``-th time derivative as a `PPoly` (0: position ... 3: jerk)."""
-        return self.position_pp if order == 0 else self.position_pp.derivative(order)
-
-    def evaluate(self, time_s: ArrayLike, order: int = 0) -> FloatArray:
-        """Position (0), velocity (1), acceleration (2) or jerk (3) at ``time_s`` [SI].
-
-        Outside [0, T] the container is at rest: position is held, derivatives are zero.
-        """
-        t = np.asarray(time_s, dtype=float)
-        end = self.duration_s
-        clipped = np.clip(t, 0.0, end)
-        values = np.asarray(self.derivative_pp(order)(clipped), dtype=float)
-        if order > 0:
-            values = np.where((t < 0.0) | (t > end), 0.0, values)
-        return values
-
-    def position(self, time_s: ArrayLike) -> FloatArray:
-        """Position s(t) [m]."""
-        return self.evaluate(time_s, 0)
-
-    def velocity(self, time_s: ArrayLike) -> FloatArray:
-        """Velocity s'(t) [m/s]."""
-        return self.evaluate(time_s, 1)
-
-    def acceleration(self, time_s: ArrayLike) -> FloatArray:
-        """Acceleration s''(t) [m/s^2]."""
-        return self.evaluate(time_s, 2)
-
-    def jerk(self, time_s: ArrayLike) -> FloatArray:
-        """Jerk s'''(t) [m/s^3] (piecewise; at a jump, the value of the piece on the right)."""
-        return self.evaluate(time_s, 3)
-
-    def peak(self, order: int) -> float:
-        """Peak |derivative| over the move, exact from the pieces (order 1..3) [SI]."""
-        return _peak_abs(self.derivative_pp(order))
-
-    @property
-    def peak_velocity_m_s(self) -> float:
-        """Peak |velocity| [m/s]."""
-        return self.peak(1)
-
-    @property
-    def peak_acceleration_m_s2(self) -> float:
-        """Peak |acceleration| [m/s^2]."""
-        return self.peak(2)
-
-    @property
-    def acceleration_jump_m_s2(self) -> float:
-        """Largest jump of the acceleration, including from and to rest at 0 and T [m/s^2]."""
-        acceleration = self.derivative_pp(2)
-        widths = np.diff(acceleration.x)
-        starts = acceleration.c[-1, :]  # value at the left end of each piece
-        ends = np.array([np.polyval(acceleration.c[:, i], widths[i]) for i in range(widths.size)])
-        left = np.concatenate(([0.0], ends))
-        right = np.concatenate((starts, [0.0]))
-        return float(np.max(np.abs(right - left)))
-
-    @property
-    def peak_jerk_m_s3(self) -> float:
-        """Peak |jerk| [m/s^3]; ``inf`` when the acceleration jumps (trapezoidal, cubic): the
-        jerk is then a Dirac impulse, which is what excites the slosh."""
-        scale = max(self.peak_acceleration_m_s2, 1e-300)
-        if self.acceleration_jump_m_s2 > 1e-9 * scale:
-            return math.inf
-        return self.peak(3)
-
-    @property
-    def peak_finite_jerk_m_s3(self) -> float:
-        """Peak |jerk| between acceleration jumps (ignoring the impulses) [m/s^3]."""
-        return self.peak(3)
-
-    def sample(self, sample_period_s: float) -> dict[str, FloatArray]:
-        """Samples at t = 0, dt, 2 dt, ..., with the last sample exactly at T.
-
-        Returns arrays ``t_s``, ``position_m``, ``velocity_m_s``, ``acceleration_m_s2``,
-        ``jerk_m_s3`` (see `sloshkit.motion.sampling.sample_motion`).
-        """
-        return sample_motion(self, sample_period_s)
-
-
-def _peak_abs(pp: PPoly) -> float:
-    """max |p(t)| over the breakpoints' span, from each piece's ends and interior extrema."""
-    coefficients = np.asarray(pp.c, dtype=float)  # shape (order + 1, pieces)
-    widths = np.diff(pp.x)
-    best = 0.0
-    for piece in range(coefficients.shape[1]):
-        poly = np.poly1d(coefficients[:, piece])
-        candidates = [0.0, float(widths[piece])]
-        if poly.order >= 2:
-            for root in np.roots(np.polyder(poly.coeffs)):
-                if abs(root.imag) < 1e-12 and 0.0 < root.real < widths[piece]:
-                    candidates.append(float(root.real))
-        best = max(best, float(np.max(np.abs(poly(np.asarray(candidates))))))
-    return best
 
 
 def _normalised_polynomial(
@@ -184,24 +59,123 @@ def _normalised_polynomial(
 
 
 def cubic(distance_m: float, duration_s: float) -> Motion:
-    """Cubic polynomial, zero end velocities (``cubicpolytraj``): s = D (3 tau^2 - 2 tau^3)."""
+    """Cubic polynomial, zero end velocities (``cubicpolytraj``): s = D (3 tau^2 - 2 tau^3).
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    duration_s : float
+        Move duration T [s].
+
+    Returns
+    -------
+    Motion
+        The law as an exact piecewise polynomial.
+
+    References
+    ----------
+    Biagiotti, L., C. Melchiorri, *Trajectory Planning for Automatic Machines and Robots*,
+    Springer (2008), §2.1, doi:10.1007/978-3-540-85629-0.
+
+    Examples
+    --------
+    >>> from sloshkit import cubic
+    >>> law = cubic(0.1, 1.0)
+    >>> round(law.peak_velocity_m_s, 4)
+    0.15
+    """
     return _normalised_polynomial("cubic", distance_m, duration_s, [0, 0, 3, -2])
 
 
 def quintic(distance_m: float, duration_s: float) -> Motion:
-    """Quintic, zero end velocity and acceleration: s = D (10 tau^3 - 15 tau^4 + 6 tau^5)."""
+    """Quintic, zero end velocity and acceleration: s = D (10 tau^3 - 15 tau^4 + 6 tau^5).
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    duration_s : float
+        Move duration T [s].
+
+    Returns
+    -------
+    Motion
+        The law as an exact piecewise polynomial.
+
+    References
+    ----------
+    Biagiotti, L., C. Melchiorri, *Trajectory Planning for Automatic Machines and Robots*,
+    Springer (2008), §2.1, doi:10.1007/978-3-540-85629-0.
+
+    Examples
+    --------
+    >>> from sloshkit import quintic
+    >>> law = quintic(0.1, 1.0)
+    >>> round(law.peak_velocity_m_s, 4)
+    0.1875
+    """
     return _normalised_polynomial("quintic", distance_m, duration_s, [0, 0, 0, 10, -15, 6])
 
 
 def septic(distance_m: float, duration_s: float) -> Motion:
     """Jerk-continuous 7th-degree polynomial, zero end velocity, acceleration and jerk:
-    s = D (35 tau^4 - 84 tau^5 + 70 tau^6 - 20 tau^7) (Biagiotti & Melchiorri 2008 §2.1.6)."""
+    s = D (35 tau^4 - 84 tau^5 + 70 tau^6 - 20 tau^7).
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    duration_s : float
+        Move duration T [s].
+
+    Returns
+    -------
+    Motion
+        The law as an exact piecewise polynomial.
+
+    References
+    ----------
+    Biagiotti, L., C. Melchiorri, *Trajectory Planning for Automatic Machines and Robots*,
+    Springer (2008), §2.1.6, doi:10.1007/978-3-540-85629-0.
+
+    Examples
+    --------
+    >>> from sloshkit import septic
+    >>> law = septic(0.1, 1.0)
+    >>> round(law.peak_velocity_m_s, 4)
+    0.2188
+    """
     return _normalised_polynomial("septic", distance_m, duration_s, [0, 0, 0, 0, 35, -84, 70, -20])
 
 
 def minimum_jerk(distance_m: float, duration_s: float) -> Motion:
-    """Minimum integral of squared jerk between rest states (Flash & Hogan 1985); equal to the
-    quintic rest-to-rest polynomial."""
+    """Minimum integral of squared jerk between rest states; equal to the quintic polynomial.
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    duration_s : float
+        Move duration T [s].
+
+    Returns
+    -------
+    Motion
+        The law as an exact piecewise polynomial.
+
+    References
+    ----------
+    Flash, T., N. Hogan, The coordination of arm movements, J. Neurosci. 5 (1985) 1688-1703,
+    doi:10.1523/JNEUROSCI.05-07-01688.1985.
+
+    Examples
+    --------
+    >>> from sloshkit import minimum_jerk
+    >>> law = minimum_jerk(0.1, 1.0)
+    >>> round(law.peak_velocity_m_s, 4)
+    0.1875
+    """
     return _normalised_polynomial("minimum-jerk", distance_m, duration_s, [0, 0, 0, 10, -15, 6])
 
 
@@ -214,9 +188,38 @@ def trapezoidal(
     """Trapezoidal velocity profile with MATLAB ``trapveltraj`` semantics.
 
     Give the peak velocity V, the duration T, or both. With one of them the acceleration (and
-    deceleration) phase lasts ``acceleration_fraction`` of T (default 1/3, as ``trapveltraj``),
-    so D = V T (1 - f): e.g. D = 0.5 m, V = 0.5 m/s gives T = 1.5 s and a = 1 m/s^2. With both,
-    the acceleration time is T - D/V and must lie in (0, T/2].
+    deceleration) phase lasts ``acceleration_fraction`` of T (default 1/3, as ``trapveltraj``), so
+    D = V T (1 - f): e.g. D = 0.5 m, V = 0.5 m/s gives T = 1.5 s and a = 1 m/s^2. With both, the
+    acceleration time is T - D/V and must lie in (0, T/2].
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance D [m].
+    peak_velocity_m_s : float, optional
+        Peak (cruise) velocity V [m/s].
+    duration_s : float, optional
+        Move duration T [s].
+    acceleration_fraction : float, optional
+        Fraction of T spent accelerating, in (0, 0.5].
+
+    Returns
+    -------
+    Motion
+        The law (a cubic `PPoly` with acceleration jumps).
+
+    References
+    ----------
+    Biagiotti, L., C. Melchiorri, *Trajectory Planning for Automatic Machines and Robots*,
+    Springer (2008), §3.2, doi:10.1007/978-3-540-85629-0; M. C. De Simone et al., Appl. Sci. 14
+    (2024) 4522, doi:10.3390/app14114522.
+
+    Examples
+    --------
+    >>> from sloshkit import trapezoidal
+    >>> law = trapezoidal(0.5, peak_velocity_m_s=0.5)
+    >>> round(law.duration_s, 9), round(law.peak_acceleration_m_s2, 6)
+    (1.5, 1.0)
     """
     distance = require_positive("distance", distance_m, "m")
     if peak_velocity_m_s is None and duration_s is None:
@@ -262,31 +265,6 @@ def trapezoidal(
     )
 
 
-def _piecewise_constant_jerk(
-    name: str,
-    durations: list[float],
-    jerks: list[float],
-    start_accelerations: list[float] | None = None,
-) -> Motion:
-    """Integrate segments of constant jerk (acceleration may jump between segments when
-    ``start_accelerations`` is given) from rest at 0 into an exact cubic `PPoly`."""
-    position = velocity = 0.0
-    acceleration = 0.0
-    breaks = [0.0]
-    columns = []
-    for index, (width, jerk) in enumerate(zip(durations, jerks, strict=True)):
-        if start_accelerations is not None:
-            acceleration = start_accelerations[index]
-        if width <= 0.0:
-            continue
-        columns.append([jerk / 6.0, acceleration / 2.0, velocity, position])
-        position += velocity * width + acceleration * width**2 / 2.0 + jerk * width**3 / 6.0
-        velocity += acceleration * width + jerk * width**2 / 2.0
-        acceleration += jerk * width
-        breaks.append(breaks[-1] + width)
-    return Motion(name, PPoly(np.asarray(columns, dtype=float).T, np.asarray(breaks)))
-
-
 def s_curve(
     distance_m: float, max_velocity_m_s: float, max_acceleration_m_s2: float, max_jerk_m_s3: float
 ) -> Motion:
@@ -294,6 +272,34 @@ def s_curve(
 
     The segment durations and jerks ruckig returns are integrated exactly, so the law is a cubic
     `PPoly` that matches ruckig's trajectory to rounding.
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance [m].
+    max_velocity_m_s : float
+        Velocity limit [m/s].
+    max_acceleration_m_s2 : float
+        Acceleration limit [m/s^2].
+    max_jerk_m_s3 : float
+        Jerk limit [m/s^3].
+
+    Returns
+    -------
+    Motion
+        The shortest move within the limits.
+
+    References
+    ----------
+    Berscheid, L., T. Kröger, Jerk-limited real-time trajectory generation with arbitrary target
+    states, Robotics: Science and Systems XVII (2021), doi:10.15607/RSS.2021.XVII.015.
+
+    Examples
+    --------
+    >>> from sloshkit import s_curve
+    >>> law = s_curve(0.1, 1.0, 2.0, 50.0)
+    >>> round(law.peak_acceleration_m_s2, 6), round(law.peak_jerk_m_s3, 6)
+    (2.0, 50.0)
     """
     from ruckig import InputParameter, Result, Ruckig, Trajectory
 
@@ -316,48 +322,6 @@ def s_curve(
     profile = trajectory.profiles[0][0]
     motion = _piecewise_constant_jerk("s-curve", list(profile.t), list(profile.j))
     return Motion("s-curve", motion.position_pp)
-
-
-def from_samples(
-    time_s: ArrayLike,
-    position_m: ArrayLike | None = None,
-    acceleration_m_s2: ArrayLike | None = None,
-    name: str = "user",
-) -> Motion:
-    """A user motion from samples of position or of acceleration (times strictly increasing).
-
-    - position: interpolating quintic spline with zero velocity and acceleration at both ends
-      (the move is rest to rest), differentiated analytically; give smooth, well-sampled data,
-      since differentiation amplifies noise.
-    - acceleration: interpolating cubic spline (not-a-knot), integrated analytically from rest;
-      the distance is what the integral gives.
-
-    Time is shifted to start at 0.
-    """
-    t = np.asarray(time_s, dtype=float)
-    if (position_m is None) == (acceleration_m_s2 is None):
-        raise InputError("motion samples", "both/none", "give either position or acceleration")
-    values = np.asarray(position_m if position_m is not None else acceleration_m_s2, dtype=float)
-    if t.ndim != 1 or values.shape != t.shape:
-        raise InputError("motion samples", f"{t.shape} vs {values.shape}", "need equal 1-D lengths")
-    minimum = 6 if position_m is not None else 4
-    if t.size < minimum:
-        raise InputError("motion samples", t.size, f"need at least {minimum} samples")
-    bad = ~np.isfinite(t) | ~np.isfinite(values)
-    if bad.any():
-        row = int(np.argmax(bad))
-        raise InputError("motion samples", f"row {row}", "time and values must be finite (NaN?)")
-    require_increasing("time", t)
-    t = t - t[0]
-    if position_m is not None:
-        spline = make_interp_spline(
-            t, values - values[0], k=5, bc_type=([(1, 0.0), (2, 0.0)], [(1, 0.0), (2, 0.0)])
-        )
-        pp = PPoly.from_spline(spline)
-    else:
-        pp = CubicSpline(t, values).antiderivative(2)
-    # Trim the spline's padding pieces to [0, T].
-    return Motion(name, PPoly(pp.c, pp.x, extrapolate=True))
 
 
 def comparison_s_curve_limits(
@@ -397,6 +361,36 @@ def make_law(
     Polynomial laws need a duration, or a peak velocity from which the duration is that of the
     trapezoidal law with the same peak velocity (the seed paper's comparison at equal time).
     ``s-curve`` needs the three machine limits; its duration follows from them.
+
+    Parameters
+    ----------
+    name : str
+        One of `LAW_NAMES`.
+    distance_m : float
+        Travel distance [m].
+    duration_s : float, optional
+        Move duration [s].
+    peak_velocity_m_s : float, optional
+        Peak velocity [m/s] (sets the duration through the trapezoidal law).
+    max_velocity_m_s, max_acceleration_m_s2, max_jerk_m_s3 : float, optional
+        Limits of an ``s-curve`` [m/s, m/s^2, m/s^3].
+    acceleration_fraction : float, optional
+        Acceleration fraction of the trapezoidal law.
+
+    Returns
+    -------
+    Motion
+        The law.
+
+    References
+    ----------
+    M. C. De Simone et al., Appl. Sci. 14 (2024) 4522, doi:10.3390/app14114522.
+
+    Examples
+    --------
+    >>> from sloshkit import make_law
+    >>> make_law("septic", 0.1, duration_s=2.0).duration_s
+    2.0
     """
     if name == "s-curve":
         missing = [

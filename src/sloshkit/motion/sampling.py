@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 from sloshkit.errors import require_positive
 
 if TYPE_CHECKING:
-    from sloshkit.motion.laws import Motion
+    from sloshkit.motion.profile import Motion
 
 FloatArray = NDArray[np.float64]
 

@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import PPoly
 
-from sloshkit.motion.laws import Motion
+from sloshkit.motion.profile import Motion
 
 FloatArray = NDArray[np.float64]
 

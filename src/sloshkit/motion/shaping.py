@@ -26,7 +26,7 @@ from scipy.interpolate import PPoly
 from scipy.optimize import least_squares
 
 from sloshkit.errors import InputError, require_in_range, require_positive
-from sloshkit.motion.laws import Motion
+from sloshkit.motion.profile import Motion
 
 FloatArray = NDArray[np.float64]
 SHAPER_NAMES: tuple[str, ...] = ("zv", "zvd", "ei")
@@ -34,7 +34,28 @@ SHAPER_NAMES: tuple[str, ...] = ("zv", "zvd", "ei")
 
 @dataclass(frozen=True)
 class Shaper:
-    """Impulse amplitudes (sum 1) and times [s] (first at 0)."""
+    """Impulse amplitudes (sum 1) and times [s] (first at 0).
+
+    Parameters
+    ----------
+    name : str
+        The shaper's name.
+    amplitudes : numpy.ndarray
+        Impulse amplitudes A_i (sum 1).
+    times_s : numpy.ndarray
+        Impulse times t_i [s], the first at 0.
+
+    References
+    ----------
+    Singer, N. C., W. P. Seering, Preshaping command inputs to reduce system vibration, J. Dyn.
+    Syst. Meas. Control 112 (1990) 76-82, doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    >>> from sloshkit import zv
+    >>> zv(10.0, 0.0).amplitudes.tolist()
+    [0.5, 0.5]
+    """
 
     name: str
     amplitudes: FloatArray
@@ -70,15 +91,64 @@ def _damped_half_period(omega_rad_s: float, damping_ratio: float) -> tuple[float
 
 
 def zv(omega_rad_s: float, damping_ratio: float) -> Shaper:
-    """Zero-vibration shaper: [1, K]/(1+K) at [0, T_d/2], K = exp(-zeta pi / sqrt(1-zeta^2))
-    (Singer & Seering 1990)."""
+    """Zero-vibration shaper: [1, K]/(1+K) at [0, T_d/2], K = exp(-zeta pi / sqrt(1-zeta^2)).
+
+    Parameters
+    ----------
+    omega_rad_s : float
+        Natural frequency of the mode to cancel [rad/s].
+    damping_ratio : float
+        Its damping ratio.
+
+    Returns
+    -------
+    Shaper
+        Two impulses.
+
+    References
+    ----------
+    Singer, N. C., W. P. Seering, Preshaping command inputs to reduce system vibration, J. Dyn.
+    Syst. Meas. Control 112 (1990) 76-82, doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit import zv
+    >>> shaper = zv(2 * math.pi, 0.0)
+    >>> shaper.times_s.tolist()
+    [0.0, 0.5]
+    """
     half, k = _damped_half_period(omega_rad_s, damping_ratio)
     return Shaper("zv", np.array([1.0, k]) / (1.0 + k), np.array([0.0, half]))
 
 
 def zvd(omega_rad_s: float, damping_ratio: float) -> Shaper:
-    """Zero-vibration-and-derivative shaper: [1, 2K, K^2]/(1+K)^2 at [0, T_d/2, T_d]
-    (Singer & Seering 1990)."""
+    """Zero-vibration-and-derivative shaper: [1, 2K, K^2]/(1+K)^2 at [0, T_d/2, T_d].
+
+    Parameters
+    ----------
+    omega_rad_s : float
+        Natural frequency of the mode to cancel [rad/s].
+    damping_ratio : float
+        Its damping ratio.
+
+    Returns
+    -------
+    Shaper
+        Three impulses.
+
+    References
+    ----------
+    Singer, N. C., W. P. Seering, Preshaping command inputs to reduce system vibration, J. Dyn.
+    Syst. Meas. Control 112 (1990) 76-82, doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit import zvd
+    >>> zvd(2 * math.pi, 0.0).amplitudes.tolist()
+    [0.25, 0.5, 0.25]
+    """
     half, k = _damped_half_period(omega_rad_s, damping_ratio)
     return Shaper(
         "zvd", np.array([1.0, 2.0 * k, k * k]) / (1.0 + k) ** 2, np.array([0.0, half, 2 * half])
@@ -86,14 +156,40 @@ def zvd(omega_rad_s: float, damping_ratio: float) -> Shaper:
 
 
 def ei(omega_rad_s: float, damping_ratio: float, tolerance: float = 0.05) -> Shaper:
-    """Extra-insensitive shaper (Singhose, Seering & Singer 1994): residual vibration equal to
-    ``tolerance`` (V) at the design frequency, with zero slope there (a hump), and zero at two
-    frequencies on either side, which widens the insensitive band.
+    """Extra-insensitive shaper: residual vibration ``tolerance`` (V) at the design frequency.
 
-    Undamped, the closed form is [(1+V)/4, (1-V)/2, (1+V)/4] at [0, T/2, T]. With damping the
-    three amplitudes, the two later impulse times and the two zero frequencies are solved
-    together (seven equations: unit sum, V and dV/domega at the design frequency, real and
-    imaginary parts of the vibration vector at each zero), started from the undamped solution.
+    The residual vibration has zero slope at the design frequency (a hump) and is zero at two
+    frequencies on either side, which widens the insensitive band. Undamped, the closed form is
+    [(1+V)/4, (1-V)/2, (1+V)/4] at [0, T/2, T]. With damping the three amplitudes, the two later
+    impulse times and the two zero frequencies are solved together (seven equations: unit sum, V
+    and dV/domega at the design frequency, real and imaginary parts of the vibration vector at
+    each zero), started from the undamped solution.
+
+    Parameters
+    ----------
+    omega_rad_s : float
+        Design frequency [rad/s].
+    damping_ratio : float
+        Damping ratio of the mode.
+    tolerance : float
+        Residual vibration V at the design frequency (1e-4 .. 0.5).
+
+    Returns
+    -------
+    Shaper
+        Three impulses.
+
+    References
+    ----------
+    Singhose, W., W. Seering, N. Singer, Residual vibration reduction using vector diagrams to
+    generate shaped inputs, J. Mech. Des. 116 (1994) 654-659, doi:10.1115/1.2919428.
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit import ei
+    >>> [round(float(a), 4) for a in ei(2 * math.pi, 0.0).amplitudes]
+    [0.2625, 0.475, 0.2625]
     """
     _, _ = _damped_half_period(omega_rad_s, damping_ratio)
     vtol = require_in_range("tolerance", tolerance, 1e-4, 0.5)
@@ -171,8 +267,33 @@ def residual_vibration(shaper: Shaper, omega_rad_s: ArrayLike, damping_ratio: fl
 def shape_motion(motion: Motion, shaper: Shaper) -> Motion:
     """sum_i A_i s(t - t_i) as an exact piecewise polynomial (duration T + t_N).
 
-    Each piece of the result is re-expanded from the pieces of the shifted components, chosen
-    by the piece's midpoint (robust to rounding at coinciding breakpoints).
+    Each piece of the result is re-expanded from the pieces of the shifted components, chosen by
+    the piece's midpoint (robust to rounding at coinciding breakpoints).
+
+    Parameters
+    ----------
+    motion : Motion
+        The unshaped move.
+    shaper : Shaper
+        The input shaper.
+
+    Returns
+    -------
+    Motion
+        The shaped move, longer by the shaper's duration.
+
+    References
+    ----------
+    Singer, N. C., W. P. Seering, Preshaping command inputs to reduce system vibration, J. Dyn.
+    Syst. Meas. Control 112 (1990) 76-82, doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit import quintic, shape_motion, zv
+    >>> shaped = shape_motion(quintic(0.1, 1.0), zv(2 * math.pi, 0.0))
+    >>> shaped.duration_s, round(shaped.distance_m, 12)
+    (1.5, 0.1)
     """
     pp = motion.position_pp
     end = motion.duration_s

@@ -5,4 +5,26 @@
 - `sloshkit.plan.searches`: the paper's laws and shaped S-curves.
 - `sloshkit.plan.optimal`: minimum-time control (casadi/IPOPT).
 - `sloshkit.plan.planner`: `plan` and `PlanResult`.
+
+The package itself is callable: ``sloshkit.plan(problem, ...)`` is
+`sloshkit.plan.planner.plan` (a package attribute of ``sloshkit`` cannot also be a function,
+so the package forwards the call).
 """
+
+import sys
+import types
+from typing import Any
+
+from sloshkit.plan.planner import PlanResult
+from sloshkit.plan.planner import plan as _plan
+
+
+class _CallablePackage(types.ModuleType):
+    """Module type of `sloshkit.plan`: calling it runs `sloshkit.plan.planner.plan`."""
+
+    def __call__(self, *args: Any, **kwargs: Any) -> PlanResult:
+        return _plan(*args, **kwargs)
+
+
+__wrapped__ = _plan  # inspect.signature and the API reference follow it
+sys.modules[__name__].__class__ = _CallablePackage

@@ -9,7 +9,6 @@ SIAM (2010) ch. 4, doi:10.1137/1.9780898718577).
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import replace
 from typing import Any
@@ -17,11 +16,18 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.motion.laws import Motion, _piecewise_constant_jerk, s_curve
+from sloshkit.motion.laws import s_curve
+from sloshkit.motion.profile import Motion, _piecewise_constant_jerk
 from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus
 from sloshkit.plan.searches import plan_shaped
 from sloshkit.plan.verification import _candidate, _only_slosh_violations
 from sloshkit.sim.discretisation import linear_mode_response
+from sloshkit.sim.equations import pendulum_angular_acceleration
+from sloshkit.sim.metrics import (
+    free_oscillation_components,
+    wall_elevation,
+    wall_elevation_factors,
+)
 
 FloatArray = NDArray[np.float64]
 
@@ -121,14 +127,9 @@ def _solve_ocp(
     acceleration = state_symbol[2]
     theta = state_symbol[3 : 3 + size]
     rate = state_symbol[3 + size :]
-    if nonlinear:
-        second = (
-            -2 * zeta * omega * rate
-            - omega**2 * ca.sin(theta)
-            - acceleration / length * ca.cos(theta)
-        )
-    else:
-        second = -2 * zeta * omega * rate - omega**2 * theta - acceleration / length
+    second = pendulum_angular_acceleration(
+        theta, rate, acceleration, omega, zeta, length, nonlinear=nonlinear, sin=ca.sin, cos=ca.cos
+    )
     derivative = ca.Function(
         "f",
         [state_symbol, jerk_symbol],
@@ -161,18 +162,18 @@ def _solve_ocp(
 
     for row in first_rows:
         mode = modes[row]
-        damped = mode.omega_rad_s * math.sqrt(1 - mode.damping_ratio**2)
-        theta_end = states[3 + row, count]
-        quadrature = (
-            states[3 + size + row, count] + mode.damping_ratio * mode.omega_rad_s * theta_end
-        ) / damped
+        theta_end, quadrature = free_oscillation_components(
+            states[3 + row, count],
+            states[3 + size + row, count],
+            mode.omega_rad_s,
+            mode.damping_ratio,
+        )
         add(theta_end**2 + quadrature**2, -np.inf, (slosh.max_residual_rad * tightening) ** 2)
     if slosh.max_wall_elevation_m is not None:
         limit = slosh.max_wall_elevation_m * tightening
         for index, model in enumerate(models):
-            factors = [mode.wall_elevation_factor_m for mode in model.modes]
-            wall = sum(f * states[3 + first_rows[index] + i, :] for i, f in enumerate(factors))
-            add(wall, -limit, limit)
+            angles = [states[3 + first_rows[index] + i, :] for i in range(len(model.modes))]
+            add(wall_elevation(wall_elevation_factors(model), angles), -limit, limit)
 
     # Bounds on the decision variables: start at rest, end at rest on the target, limits.
     state_low = np.full((width, count + 1), -np.inf)

@@ -45,7 +45,35 @@ METHODS: tuple[str, ...] = ("auto", "paper", *PAPER_LAWS, "fast", "shaped", "opt
 
 @dataclass(frozen=True, eq=False)
 class PlanResult(ResultMixin):
-    """The chosen motion and every candidate tried."""
+    """The chosen motion and every candidate tried.
+
+    Follows the result protocol (`sloshkit.results.ResultMixin`): ``to_csv`` writes the chosen
+    motion's controller samples, ``to_dict`` the plan command's JSON.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        The problem solved.
+    chosen : Candidate or None
+        The fastest verified candidate (or the fastest at all when none is feasible).
+    candidates : tuple of Candidate
+        Every method's result.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(
+    ...     0.1,
+    ...     sk.MachineLimits(1.0, 5.0, 200.0),
+    ...     sk.SloshLimits(max_angle_rad=0.1, max_residual_rad=0.01),
+    ...     model,
+    ... )
+    >>> result = sk.plan(problem, "quintic")
+    >>> result.feasible, result.chosen.method
+    (True, 'quintic')
+    """
 
     problem: PlanProblem
     chosen: Candidate | None
@@ -124,9 +152,46 @@ def plan(
 ) -> PlanResult:
     """Run the requested method(s) and return the fastest verified candidate.
 
-    ``method``: ``auto`` (everything), ``paper`` (the four laws), one law name, ``fast`` (a
-    ZV-shaped S-curve only), ``shaped`` (all shapers) or ``optimal`` (warm-started from the
-    shaped result).
+    Every candidate is verified from its sampled export (`sloshkit.plan.verification.verify`).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Distance, limits, model and controller period.
+    method : str
+        ``auto`` (everything), ``paper`` (the four laws), one law name, ``fast`` (a ZV-shaped
+        S-curve only), ``shaped`` (all shapers) or ``optimal`` (casadi/IPOPT, warm-started from
+        the shaped result).
+    nonlinear_optimal : bool
+        Optimise (and verify) with the large-angle pendulums.
+    progress : callable, optional
+        Called with a short message before each method.
+
+    Returns
+    -------
+    PlanResult
+        The chosen motion and every candidate.
+
+    References
+    ----------
+    Singer, N. C., W. P. Seering, J. Dyn. Syst. Meas. Control 112 (1990) 76-82,
+    doi:10.1115/1.2894142; Betts, J. T., *Practical Methods for Optimal Control and Estimation
+    Using Nonlinear Programming*, 2nd ed., SIAM (2010), ch. 4, doi:10.1137/1.9780898718577.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(
+    ...     0.1,
+    ...     sk.MachineLimits(1.0, 5.0, 200.0),
+    ...     sk.SloshLimits(max_angle_rad=0.1, max_residual_rad=0.01),
+    ...     model,
+    ... )
+    >>> result = sk.plan(problem, "paper")
+    >>> sorted(c.method for c in result.candidates)
+    ['cubic', 'quintic', 'septic', 'trapezoidal']
     """
     if method not in METHODS:
         raise InputError("method", method, "must be one of " + ", ".join(METHODS))

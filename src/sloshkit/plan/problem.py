@@ -9,7 +9,7 @@ from typing import Any
 
 from sloshkit.errors import require_in_range, require_positive
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion
+from sloshkit.motion.profile import Motion
 
 PAPER_LAWS: tuple[str, ...] = ("trapezoidal", "cubic", "quintic", "septic")
 
@@ -24,7 +24,23 @@ SEARCH_MARGIN = 0.01
 
 @dataclass(frozen=True)
 class MachineLimits:
-    """Machine limits (SI): velocity [m/s], acceleration [m/s^2], jerk [m/s^3]."""
+    """Machine limits (SI).
+
+    Parameters
+    ----------
+    max_velocity_m_s : float
+        Velocity limit [m/s].
+    max_acceleration_m_s2 : float
+        Acceleration limit [m/s^2].
+    max_jerk_m_s3 : float
+        Jerk limit [m/s^3].
+
+    Examples
+    --------
+    >>> from sloshkit import MachineLimits
+    >>> MachineLimits(1.0, 5.0, 200.0).max_jerk_m_s3
+    200.0
+    """
 
     max_velocity_m_s: float
     max_acceleration_m_s2: float
@@ -38,9 +54,26 @@ class MachineLimits:
 
 @dataclass(frozen=True)
 class SloshLimits:
-    """Slosh limits: first-mode angle during the move, its residual amplitude after it [rad],
-    optionally the wall elevation [m]; ``robustness`` is the relative frequency band (e.g. 0.1
-    for +-10 %) over which they must hold."""
+    """Slosh limits of a plan.
+
+    Parameters
+    ----------
+    max_angle_rad : float
+        Limit on the first-mode angle during the move [rad].
+    max_residual_rad : float
+        Limit on its residual amplitude after the move [rad].
+    max_wall_elevation_m : float, optional
+        Limit on the wall elevation during the move [m].
+    robustness : float
+        Relative frequency band (e.g. 0.1 for +-10 %) over which the limits must hold.
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit import SloshLimits
+    >>> SloshLimits(math.radians(5), math.radians(0.5), robustness=0.1).robustness
+    0.1
+    """
 
     max_angle_rad: float
     max_residual_rad: float
@@ -57,8 +90,39 @@ class SloshLimits:
 
 @dataclass(frozen=True)
 class PlanProblem:
-    """What to plan: distance [m], limits, the model, the controller sample period [s] and
-    optionally the longest acceptable duration [s]."""
+    """What to plan.
+
+    Parameters
+    ----------
+    distance_m : float
+        Travel distance [m].
+    machine : MachineLimits
+        Machine limits.
+    slosh : SloshLimits
+        Slosh limits.
+    model : SloshModel
+        The equivalent model.
+    sample_period_s : float
+        The controller's sample period [s] (the export and its verification).
+    max_duration_s : float, optional
+        Longest acceptable duration [s].
+    nonlinear : bool
+        Verify with the large-angle pendulums.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(
+    ...     0.1,
+    ...     sk.MachineLimits(1.0, 5.0, 200.0),
+    ...     sk.SloshLimits(max_angle_rad=0.1, max_residual_rad=0.01),
+    ...     model,
+    ... )
+    >>> [round(m.modes[0].frequency_hz, 3) for m in problem.models()]
+    [4.72]
+    """
 
     distance_m: float
     machine: MachineLimits

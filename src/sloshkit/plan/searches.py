@@ -13,7 +13,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion, make_law, s_curve
+from sloshkit.motion.laws import make_law, s_curve
+from sloshkit.motion.profile import Motion
 from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv

@@ -15,7 +15,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import ValidityWarning
-from sloshkit.motion.laws import Motion, from_samples
+from sloshkit.motion.profile import Motion
+from sloshkit.motion.recorded import from_samples
 from sloshkit.motion.sampling import export_samples
 from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus, Verification
 from sloshkit.sim.discretisation import linear_response

@@ -11,7 +11,7 @@ what a result object holds: it never simulates, plans or selects a pyplot backen
 - `sloshkit.plotting.cfd`: a CFD validation.
 """
 
-from sloshkit.plotting.calibration import plot_calibration
+from sloshkit.plotting.calibration import plot_calibration, plot_free_response
 from sloshkit.plotting.cfd import plot_cfd_validation
 from sloshkit.plotting.plan import plot_plan
 from sloshkit.plotting.response import plot_law_comparison, plot_response, plot_slosh_comparison
@@ -20,6 +20,7 @@ from sloshkit.plotting.sweep import plot_sweep_map
 __all__ = [
     "plot_calibration",
     "plot_cfd_validation",
+    "plot_free_response",
     "plot_law_comparison",
     "plot_plan",
     "plot_response",

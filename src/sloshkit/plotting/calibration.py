@@ -1,4 +1,5 @@
-"""Figure of a calibration: the signal, its peaks and the fitted decay (seed Fig. 5b)."""
+"""Figures of a calibration: the signal, its peaks and the fitted decay (seed Fig. 5b); the
+backbone (frequency and damping against amplitude); a forced-response identification."""
 
 from __future__ import annotations
 
@@ -7,10 +8,13 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
-from sloshkit.calibration import CalibrationResult
+from sloshkit.calibration import Backbone, CalibrationResult, ForcedIdentification
 from sloshkit.plotting.base import panels, save_figure
 from sloshkit.results import register_plot
+
+FloatArray = NDArray[np.float64]
 
 
 @register_plot(CalibrationResult)
@@ -49,9 +53,112 @@ def plot_calibration(
     chosen = result.chosen
     frequency = (chosen.omega_n_rad_s or math.nan) / (2 * math.pi)
     zeta = "n/a" if chosen.damping_ratio is None else f"{chosen.damping_ratio:.4f}"
-    axis.set_title(f"{result.method}: f_n = {frequency:.4g} Hz, ζ = {zeta}")
+    window = result.window
+    why = "" if window is None else f" (window: {window.source})"
+    axis.set_title(f"{result.method}: f_n = {frequency:.4g} Hz, ζ = {zeta}{why}")
     axis.set_xlabel("time [s]")
     axis.set_ylabel("signal (detrended)")
     axis.grid(alpha=0.3)
     axis.legend(loc="upper right")
+    return save_figure(figure, path)
+
+
+def plot_free_response(
+    time_s: FloatArray,
+    measured_m: FloatArray,
+    model_m: FloatArray,
+    model_label: str,
+    path: str | Path | None = None,
+    *,
+    ax: Any = None,
+) -> Any:
+    """A measured (or CFD) wall elevation and the pendulum's free response over it (seed Fig. 9).
+
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Sample times [s].
+    measured_m : numpy.ndarray
+        Measured wall elevation [m].
+    model_m : numpy.ndarray
+        The model's free response at the same times [m].
+    model_label : str
+        Legend of the model's curve.
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+    """
+    figure, axis = panels(ax, 1, figsize=(8, 4), layout="constrained")
+    axis.plot(time_s, 1e3 * measured_m, label="CFD (interFoam), wall elevation")
+    axis.plot(time_s, 1e3 * model_m, "--", label=model_label)
+    axis.set_xlabel("time [s]")
+    axis.set_ylabel("wall elevation [mm]")
+    axis.grid(alpha=0.3)
+    axis.legend()
+    return save_figure(figure, path)
+
+
+@register_plot(Backbone)
+def plot_backbone(backbone: Backbone, path: str | Path | None = None, *, ax: Any = None) -> Any:
+    """Frequency and damping against amplitude (sliding-window fits) with the regressions
+    whose intercepts are the small-amplitude (linear) calibration."""
+    figure, axes = panels(ax, 1, 2, figsize=(9, 3.8), layout="constrained")
+    amplitude = backbone.amplitude
+    line = np.linspace(0.0, float(amplitude.max()), 50)
+    omega_0 = backbone.small_amplitude_omega_n_rad_s
+    axes[0].plot(amplitude, backbone.omega_n_rad_s / (2 * math.pi), "o", markersize=4)
+    axes[0].plot(
+        line,
+        (omega_0 + backbone.omega_slope_rad_s_per_amplitude2 * line**2) / (2 * math.pi),
+        "--",
+        color="black",
+        label=f"f₀ = {omega_0 / (2 * math.pi):.4g} Hz",
+    )
+    axes[0].set_ylabel("natural frequency f_n [Hz]")
+    axes[1].plot(amplitude, backbone.damping_ratio, "o", markersize=4, color="tab:red")
+    axes[1].plot(
+        line,
+        backbone.small_amplitude_damping_ratio + backbone.zeta_slope_per_amplitude * line,
+        "--",
+        color="black",
+        label=f"ζ₀ = {backbone.small_amplitude_damping_ratio:.4g}",
+    )
+    axes[1].set_ylabel("damping ratio ζ [-]")
+    for axis in axes:
+        axis.set_xlabel("amplitude (signal units)")
+        axis.grid(alpha=0.3)
+        axis.legend(loc="best")
+    axes[0].set_title("backbone: frequency vs amplitude")
+    axes[1].set_title("damping vs amplitude")
+    return save_figure(figure, path)
+
+
+@register_plot(ForcedIdentification)
+def plot_forced_identification(
+    result: ForcedIdentification, path: str | Path | None = None, *, ax: Any = None
+) -> Any:
+    """Measured record and the identified model's simulation, with the motion's span."""
+    figure, axes = panels(ax, 2, figsize=(8, 5.5), sharex=True, layout="constrained")
+    axes[0].plot(result.time_s, result.measured, color="tab:blue", linewidth=1, label="measured")
+    axes[0].plot(
+        result.time_s, result.predicted, "--", color="black", linewidth=1, label="identified model"
+    )
+    axes[1].plot(result.time_s, result.measured - result.predicted, color="tab:red", linewidth=1)
+    axes[1].set_ylabel("residual")
+    axes[1].set_xlabel("time [s]")
+    for axis in axes:
+        for edge in result.motion_span_s:
+            axis.axvline(edge, color="grey", linestyle=":", linewidth=1)
+        axis.grid(alpha=0.3)
+    axes[0].legend(loc="upper right")
+    axes[0].set_title(
+        f"forced response ({result.signal_kind}): f_n = {result.omega_n_rad_s / (2 * math.pi):.4g}"
+        f" Hz, ζ = {result.damping_ratio:.4f}, R² = {result.r2:.4f}"
+    )
     return save_figure(figure, path)

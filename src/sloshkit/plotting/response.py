@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from sloshkit.motion.laws import Motion
+from sloshkit.motion.profile import Motion
 from sloshkit.plotting.base import panels, save_figure
 from sloshkit.results import register_plot
 from sloshkit.sim.response import SloshResponse

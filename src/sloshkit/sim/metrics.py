@@ -47,7 +47,7 @@ def free_oscillation_components(
 
     References
     ----------
-    L. Meirovitch, *Fundamentals of Vibrations*, McGraw-Hill (2001) §2.5.
+    Meirovitch, L., *Fundamentals of Vibrations*, McGraw-Hill (2001) §2.5.
 
     Examples
     --------
@@ -143,7 +143,7 @@ def wall_elevation(
 
     References
     ----------
-    R. A. Ibrahim, *Liquid Sloshing Dynamics* (2005) §1.3, doi:10.1017/CBO9780511536656.
+    Ibrahim, R. A., *Liquid Sloshing Dynamics* (2005) §1.3, doi:10.1017/CBO9780511536656.
 
     Examples
     --------
@@ -152,7 +152,7 @@ def wall_elevation(
     """
     total: Any = 0.0
     for factor, angle in zip(factors_m, angles_rad, strict=True):
-        total = total + factor * (sin(angle) if nonlinear else angle)
+        total = total + float(factor) * (sin(angle) if nonlinear else angle)
     return total
 
 

@@ -25,14 +25,42 @@ FloatArray = NDArray[np.float64]
 class SloshResponse(ResultMixin):
     """Slosh response to a container motion (arrays over time; modes on the first axis).
 
-    Attributes
+    Follows the result protocol (`sloshkit.results.ResultMixin`): `columns`, ``to_dict``,
+    ``to_pandas``, ``to_csv`` and ``plot``.
+
+    Parameters
     ----------
-    time_s : sample times [s], from 0, uniform step
-    position_m, velocity_m_s, acceleration_m_s2 : the container's motion
-    angle_rad, rate_rad_s : pendulum angle and angular rate, shape (modes, samples)
-    move_duration_s : the move's duration T [s]; after T the container rests
-    model : the `SloshModel` simulated; kind: ``"linear"`` or ``"nonlinear"``
-    residual_amplitude_rad : per mode, amplitude of the free oscillation left at T [rad]
+    time_s : numpy.ndarray
+        Sample times [s], from 0, uniform step.
+    position_m, velocity_m_s, acceleration_m_s2 : numpy.ndarray
+        The container's motion [m, m/s, m/s^2].
+    angle_rad, rate_rad_s : numpy.ndarray
+        Pendulum angle [rad] and angular rate [rad/s], shape (modes, samples).
+    move_duration_s : float
+        The move's duration T [s]; after T the container rests.
+    model : SloshModel
+        The model simulated.
+    kind : str
+        ``"linear"`` or ``"nonlinear"``.
+    residual_amplitude_rad : numpy.ndarray
+        Per mode, amplitude of the free oscillation left at T [rad].
+    motion_name : str
+        Name of the motion.
+    peak_jerk_m_s3 : float
+        The motion's peak jerk [m/s^3] (inf with acceleration jumps).
+    settle_tolerance_rad : float
+        Tolerance on abs(theta_1) for `settling_time_s` [rad].
+    extra : dict
+        Additional data of the simulation.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> response = sk.simulate(model, sk.quintic(0.1, 1.0), sample_period_s=2e-3)
+    >>> sorted(response.columns())[:3]
+    ['acceleration_m_s2', 'angle_1_rad', 'angle_2_rad']
     """
 
     time_s: FloatArray
@@ -98,7 +126,7 @@ class SloshResponse(ResultMixin):
 
     @property
     def peak_angle_rad(self) -> float:
-        """Peak |theta_1| during the move [rad]."""
+        """Peak abs(theta_1) during the move [rad]."""
         return float(np.max(np.abs(self.angle_rad[0, self._during_move()])))
 
     @property
@@ -118,7 +146,7 @@ class SloshResponse(ResultMixin):
 
     @property
     def settling_time_s(self) -> float:
-        """Time from the start until |theta_1| stays below the tolerance [s].
+        """Time from the start until abs(theta_1) stays below the tolerance [s].
 
         After the move the first mode decays as A_T exp(-zeta omega (t - T)); if A_T is above
         the tolerance the settling time is T + ln(A_T / tol) / (zeta omega) (inf without

@@ -20,7 +20,7 @@ from scipy.integrate import solve_ivp
 
 from sloshkit.errors import InputError, require_positive, warn_validity
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import Motion
+from sloshkit.motion.profile import Motion
 from sloshkit.sim.discretisation import linear_response
 from sloshkit.sim.equations import pendulum_angular_acceleration
 from sloshkit.sim.metrics import (
@@ -65,7 +65,7 @@ def simulate(
     settle_time_s : float, optional
         Time simulated after the move [s] (default `sloshkit.sim.metrics.default_settle_time`).
     settle_tolerance_rad : float
-        Tolerance on |theta_1| for the settling time [rad].
+        Tolerance on abs(theta_1) for the settling time [rad].
 
     Returns
     -------

@@ -1,0 +1,345 @@
+"""Independent estimators of frequency and damping from a free decay.
+
+- ``fit``: nonlinear least squares of y = exp(-zeta omega_n t) (a cos omega_d t + b sin omega_d t)
+  + c + d t, started from the spectrum alone (spectral peak for omega_d, a grid over zeta with
+  the amplitudes solved linearly), never from another estimator; 95 % intervals from the
+  covariance (Student t).
+- ``logdec``: weighted robust regression of ln(swing) on the peak times over every peak above
+  the noise, slope -zeta omega_n (Inman, *Engineering Vibration*, 4th ed. (2014) §1.6, written
+  as a regression like Ewins, *Modal Testing*, 2nd ed. (2000) §4.3), with a 95 % interval. Each
+  swing's weight is its inverse variance in the logarithm (swing / noise)^2, and a soft-L1 loss
+  (`scipy.optimize.least_squares`) limits the pull of a single noise spike.
+- ``logdec-2peak``: the seed paper's form over the first and last usable peak,
+  delta = ln(Y_0 / Y_k) / k (seed paper eqs. 11-12), kept for comparison.
+- ``fft``: spectral peak with Gaussian interpolation; half-power bandwidth damping only when it
+  is resolved (several bins, several decay times).
+
+zeta = delta / sqrt(4 pi^2 + delta^2) is the exact conversion of the logarithmic decrement.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import signal as sps
+from scipy import stats
+from scipy.optimize import curve_fit, least_squares
+
+from sloshkit.calibration.signals import PreparedSignal, noise_level, spectral_peak, usable_peaks
+from sloshkit.errors import InputError
+
+FloatArray = NDArray[np.float64]
+
+
+def zeta_from_log_decrement(delta: float) -> float:
+    """Exact damping ratio from the logarithmic decrement: delta / sqrt(4 pi^2 + delta^2).
+
+    Examples
+    --------
+    >>> round(zeta_from_log_decrement(0.163), 4)
+    0.0259
+    """
+    return delta / math.sqrt(4.0 * math.pi**2 + delta**2)
+
+
+def log_decrement_from_zeta(zeta: float) -> float:
+    """Logarithmic decrement of a damping ratio: 2 pi zeta / sqrt(1 - zeta^2).
+
+    Examples
+    --------
+    >>> round(log_decrement_from_zeta(0.02594), 3)
+    0.163
+    """
+    return 2.0 * math.pi * zeta / math.sqrt(1.0 - zeta**2)
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """One estimator's result (SI); ``None`` where the estimator cannot say.
+
+    ``failure`` holds the reason when the estimator could not produce a result; ``fitted`` the
+    fit's curve over the window (with its offset and drift), for the fit only.
+    """
+
+    method: str
+    omega_n_rad_s: float | None
+    damping_ratio: float | None
+    damped_omega_rad_s: float | None
+    log_decrement: float | None = None
+    n_peaks: int = 0
+    residual_rms: float | None = None
+    omega_n_interval: tuple[float, float] | None = None
+    damping_ratio_interval: tuple[float, float] | None = None
+    amplitude: float | None = None
+    offset: float | None = None
+    note: str = ""
+    failure: str = ""
+    fitted: FloatArray | None = field(default=None, compare=False, repr=False)
+
+    @classmethod
+    def failed(cls, method: str, error: InputError) -> Estimate:
+        """An estimator that could not answer, with the reason."""
+        return cls(method, None, None, None, failure=str(error))
+
+
+def _decay_model(
+    t: FloatArray, a: float, b: float, zeta: float, omega: float, c: float, d: float
+) -> FloatArray:
+    damped = omega * np.sqrt(max(1e-12, 1.0 - zeta**2))
+    oscillation = np.exp(-zeta * omega * t) * (a * np.cos(damped * t) + b * np.sin(damped * t))
+    return np.asarray(oscillation + c + d * t, dtype=float)
+
+
+def spectral_guess(t: FloatArray, y: FloatArray) -> tuple[float, float]:
+    """(omega_n, zeta) first guess from the spectrum alone: the spectral peak gives omega_d;
+    zeta is the best of a logarithmic grid 3e-4...0.45 with the amplitude, offset and drift
+    solved by linear least squares for each value."""
+    frequency, _, _ = spectral_peak(t, sps.detrend(y))
+    if not frequency > 0.0:
+        raise InputError("signal", "no spectral peak", "has no oscillation in the window")
+    damped = 2.0 * math.pi * frequency
+    tau = t - t[0]
+    best = (math.inf, 0.01)
+    for zeta in np.geomspace(3e-4, 0.45, 36):
+        omega = damped / math.sqrt(1.0 - zeta**2)
+        envelope = np.exp(-zeta * omega * tau)
+        design = np.column_stack(
+            (envelope * np.cos(damped * tau), envelope * np.sin(damped * tau), np.ones_like(t), tau)
+        )
+        _, residual, *_ = np.linalg.lstsq(design, y, rcond=None)
+        cost = float(residual[0]) if residual.size else math.inf
+        if cost < best[0]:
+            best = (cost, float(zeta))
+    zeta = best[1]
+    return damped / math.sqrt(1.0 - zeta**2), zeta
+
+
+def estimate_fit(prepared: PreparedSignal) -> Estimate:
+    """Least-squares damped sinusoid plus offset and drift (fitted together, not detrended
+    first: removing a line fitted to a decaying oscillation biases zeta), started from
+    `spectral_guess`, with 95 % confidence intervals."""
+    t = prepared.time_s - prepared.time_s[0]
+    y = prepared.undetrended
+    omega_guess, zeta_guess = spectral_guess(t, y)
+    damped = omega_guess * math.sqrt(1.0 - zeta_guess**2)
+    envelope = np.exp(-zeta_guess * omega_guess * t)
+    design = np.column_stack(
+        (envelope * np.cos(damped * t), envelope * np.sin(damped * t), np.ones_like(t), t)
+    )
+    (a0, b0, c0, d0), *_ = np.linalg.lstsq(design, y, rcond=None)
+    scale = float(np.max(np.abs(prepared.values))) or 1.0
+    span = float(t[-1]) or 1.0
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            parameters, covariance = curve_fit(
+                _decay_model,
+                t,
+                y,
+                p0=[a0, b0, zeta_guess, omega_guess, c0, d0],
+                bounds=(
+                    [-np.inf, -np.inf, 0.0, 0.5 * omega_guess, -np.inf, -np.inf],
+                    [np.inf, np.inf, 0.9, 2.0 * omega_guess, np.inf, np.inf],
+                ),
+                x_scale=[scale, scale, 0.01, omega_guess, scale, scale / span],
+                max_nfev=20000,
+            )
+    except RuntimeError as error:
+        raise InputError(
+            "signal", "fit", f"the damped-sinusoid fit did not converge ({error})"
+        ) from None
+    residual = y - _decay_model(t, *parameters)
+    rms = float(np.sqrt(np.mean(residual**2)))
+    explained = 1.0 - float(np.var(residual) / np.var(prepared.values))
+    if explained < 0.5:
+        raise InputError(
+            "signal",
+            f"fit explains {100 * explained:.0f} % of the variance",
+            "no damped oscillation found (pure noise or forced motion?)",
+        )
+    a, b, zeta, omega, c, _ = (float(p) for p in parameters)
+    if zeta <= 1e-6:
+        raise InputError(
+            "signal",
+            "damping ratio 0",
+            "the amplitude grows or stays constant over the window: not a free decay",
+        )
+    if zeta >= 0.5:
+        raise InputError(
+            "signal",
+            f"damping ratio {zeta:.2f}",
+            "too heavily damped to measure: fewer than 2 peaks above the noise",
+        )
+    dof = max(1, t.size - parameters.size)
+    factor = float(stats.t.ppf(0.975, dof))
+    errors = np.sqrt(np.clip(np.diag(covariance), 0.0, np.inf))
+    return Estimate(
+        method="fit",
+        omega_n_rad_s=omega,
+        damping_ratio=zeta,
+        damped_omega_rad_s=omega * math.sqrt(1.0 - zeta**2),
+        log_decrement=log_decrement_from_zeta(zeta),
+        residual_rms=rms,
+        omega_n_interval=(omega - factor * errors[3], omega + factor * errors[3]),
+        damping_ratio_interval=(max(0.0, zeta - factor * errors[2]), zeta + factor * errors[2]),
+        amplitude=math.hypot(a, b),
+        offset=c,
+        fitted=y - residual,
+    )
+
+
+def _checked_peaks(
+    prepared: PreparedSignal, period_guess_s: float
+) -> tuple[FloatArray, FloatArray, float]:
+    t, y = prepared.time_s, prepared.values
+    noise = noise_level(y, period_guess_s / (t[1] - t[0]))
+    times, heights = usable_peaks(t, y, period_guess_s, noise)
+    if times.size < 3:
+        raise InputError(
+            "signal",
+            f"{times.size} peak(s) above the noise",
+            "needs at least 3 positive peaks in the window for a logarithmic decrement "
+            "(longer record, lower noise or less filtering)",
+        )
+    spacing = np.diff(times)
+    if np.std(spacing) > 0.2 * np.mean(spacing):
+        raise InputError(
+            "signal",
+            "irregular peaks",
+            f"peak spacing varies by {100 * np.std(spacing) / np.mean(spacing):.0f} %: not a "
+            "single free oscillation (noise, beating or forcing); low-pass or move --start",
+        )
+    return times, heights, noise
+
+
+def _from_decrement(
+    method: str, delta: float, damped: float, times: FloatArray, heights: FloatArray
+) -> Estimate:
+    if delta <= 0.0:
+        raise InputError(
+            "signal",
+            f"log decrement {delta:.3g}",
+            "the amplitude grows over the window: not a free decay",
+        )
+    zeta = zeta_from_log_decrement(delta)
+    return Estimate(
+        method=method,
+        omega_n_rad_s=damped / math.sqrt(1.0 - zeta**2),
+        damping_ratio=zeta,
+        damped_omega_rad_s=damped,
+        log_decrement=delta,
+        n_peaks=int(times.size),
+        amplitude=float(heights[0]),
+    )
+
+
+def estimate_logdec_2peak(prepared: PreparedSignal, period_guess_s: float) -> Estimate:
+    """The seed paper's form: delta = ln(Y_0 / Y_k) / k over the first and last usable peak;
+    the damped period is the mean peak spacing."""
+    times, heights, _ = _checked_peaks(prepared, period_guess_s)
+    cycles = np.round((times[-1] - times[0]) / float(np.median(np.diff(times))))
+    delta = math.log(heights[0] / heights[-1]) / max(1.0, float(cycles))
+    damped = 2.0 * math.pi * cycles / float(times[-1] - times[0])
+    return _from_decrement("logdec-2peak", delta, damped, times, heights)
+
+
+def estimate_logdec(prepared: PreparedSignal, period_guess_s: float) -> Estimate:
+    """Regression of ln(swing) over all usable peaks (module docstring), with 95 % intervals
+    on zeta (from the decay rate) and omega_n (from the regression of peak time on cycle)."""
+    times, heights, noise = _checked_peaks(prepared, period_guess_s)
+    cycles = np.round((times - times[0]) / float(np.median(np.diff(times))))
+    design = np.column_stack((np.ones_like(cycles), cycles))
+    (_, period), period_residual, *_ = np.linalg.lstsq(design, times, rcond=None)
+    n = times.size
+    dof = max(1, n - 2)
+    factor = float(stats.t.ppf(0.975, dof))
+    cycle_spread = float(np.sum((cycles - cycles.mean()) ** 2))
+    period_rss = float(period_residual[0]) if period_residual.size else 0.0
+    period_se = math.sqrt(period_rss / dof / cycle_spread) if cycle_spread > 0 else 0.0
+    # Standard deviation of ln(swing) for each peak: noise of a swing over the swing.
+    step = prepared.time_s[1] - prepared.time_s[0]
+    points = max(3, 2 * int(0.1 * period / step) + 1)
+    sigma_log = np.maximum(noise * math.sqrt(1.0 / points), 1e-12 * heights.max()) / heights
+    tau = times - times[0]
+
+    def residuals(p: FloatArray) -> FloatArray:
+        return np.asarray((np.log(heights) - (p[0] - p[1] * tau)) / sigma_log, dtype=float)
+
+    slope0 = -np.polyfit(tau, np.log(heights), 1, w=1.0 / sigma_log)[0]
+    solution = least_squares(residuals, [math.log(heights[0]), slope0], loss="soft_l1", f_scale=2.0)
+    rate = float(solution.x[1])
+    jac = solution.jac
+    rss = float(np.sum(solution.fun**2))
+    try:
+        covariance = np.linalg.inv(jac.T @ jac) * rss / dof
+        rate_se = math.sqrt(max(0.0, float(covariance[1, 1])))
+    except np.linalg.LinAlgError:
+        rate_se = math.inf
+    delta = rate * float(period)
+    estimate = _from_decrement("logdec", delta, 2.0 * math.pi / float(period), times, heights)
+    zeta = float(estimate.damping_ratio or 0.0)
+    omega = float(estimate.omega_n_rad_s or 0.0)
+    low_rate, high_rate = rate - factor * rate_se, rate + factor * rate_se
+    zeta_interval = (
+        zeta_from_log_decrement(max(0.0, low_rate * float(period))),
+        zeta_from_log_decrement(high_rate * float(period)),
+    )
+    relative = factor * period_se / float(period)
+    return Estimate(
+        method="logdec",
+        omega_n_rad_s=omega,
+        damping_ratio=zeta,
+        damped_omega_rad_s=estimate.damped_omega_rad_s,
+        log_decrement=delta,
+        n_peaks=n,
+        omega_n_interval=(omega * (1.0 - relative), omega * (1.0 + relative)),
+        damping_ratio_interval=zeta_interval,
+        amplitude=float(heights[0]),
+        residual_rms=float(np.sqrt(np.mean((solution.fun * sigma_log) ** 2))),
+    )
+
+
+def estimate_fft(prepared: PreparedSignal) -> Estimate:
+    """Spectral peak frequency; bandwidth damping only when it is resolved."""
+    t, y = prepared.time_s, prepared.values
+    frequency, resolution, _ = spectral_peak(t, y)
+    if not frequency > 0.0:
+        raise InputError("signal", "no spectral peak", "has no oscillation in the window")
+    duration = t[-1] - t[0]
+    n = y.size
+    padded = 8 * int(2 ** math.ceil(math.log2(n)))
+    spectrum = np.abs(np.fft.rfft(y, padded)) ** 2  # rectangular window: Lorentzian line
+    frequencies = np.fft.rfftfreq(padded, t[1] - t[0])
+    k = int(np.argmin(np.abs(frequencies - frequency)))
+    half = spectrum[k] / 2.0
+    low = k
+    while low > 0 and spectrum[low] > half:
+        low -= 1
+    high = k
+    while high < spectrum.size - 1 and spectrum[high] > half:
+        high += 1
+    bandwidth = float(frequencies[high] - frequencies[low])
+    zeta: float | None = bandwidth / (2.0 * frequency)
+    note = ""
+    decay_times = duration * 2 * math.pi * frequency * (zeta or 0.0)
+    if zeta is None or zeta >= 0.5 or bandwidth < 4.0 * resolution or decay_times < 3.0:
+        note = (
+            f"half-power bandwidth {bandwidth:.3g} Hz is not resolved by a {duration:.3g} s "
+            f"record (resolution {resolution:.3g} Hz, {decay_times:.2g} decay times): no "
+            "damping from the spectrum; use fit or logdec"
+        )
+        zeta = None
+    damped = 2.0 * math.pi * frequency
+    omega = damped / math.sqrt(1.0 - zeta**2) if zeta is not None else damped
+    return Estimate(
+        method="fft",
+        omega_n_rad_s=omega,
+        damping_ratio=zeta,
+        damped_omega_rad_s=damped,
+        log_decrement=None if zeta is None else log_decrement_from_zeta(zeta),
+        note=note,
+    )

@@ -1,0 +1,203 @@
+"""The free-decay calibration result: every estimator, the window, warnings, the backbone."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.calibration.estimators import Estimate
+from sloshkit.calibration.signals import PreparedSignal
+from sloshkit.calibration.window import DecayWindow
+from sloshkit.model.modal import SloshModel
+from sloshkit.results import ResultMixin
+
+if TYPE_CHECKING:
+    from sloshkit.calibration.backbone import Backbone
+
+FloatArray = NDArray[np.float64]
+
+#: Estimators disagree when omega_n differs by more than this fraction ...
+OMEGA_DISAGREEMENT = 0.01
+#: ... or zeta by more than this fraction, beyond both 95 % intervals.
+ZETA_DISAGREEMENT = 0.15
+
+
+def _estimate_dict(estimate: Estimate) -> dict[str, Any]:
+    omega = estimate.omega_n_rad_s
+    return {
+        "omega_n_rad_s": omega,
+        "frequency_hz": None if omega is None else omega / (2 * math.pi),
+        "damping_ratio": estimate.damping_ratio,
+        "log_decrement": estimate.log_decrement,
+        "omega_n_interval_rad_s": None
+        if estimate.omega_n_interval is None
+        else list(estimate.omega_n_interval),
+        "damping_ratio_interval": None
+        if estimate.damping_ratio_interval is None
+        else list(estimate.damping_ratio_interval),
+        "n_peaks": estimate.n_peaks,
+        "failure": estimate.failure or None,
+    }
+
+
+@dataclass(frozen=True, eq=False)
+class CalibrationResult(ResultMixin):
+    """Calibrated frequency and damping, with every estimator's answer for comparison.
+
+    ``method`` is the estimator reported (and written to a model file); ``requested_method``
+    the one asked for (they differ when it failed and another answered, with a warning).
+    """
+
+    method: str
+    chosen: Estimate
+    estimates: dict[str, Estimate]
+    signal: PreparedSignal
+    source: str = ""
+    peak_times_s: FloatArray = field(default_factory=lambda: np.zeros(0))
+    peak_values: FloatArray = field(default_factory=lambda: np.zeros(0))
+    window: DecayWindow | None = None
+    warnings: tuple[str, ...] = ()
+    noise_rms: float | None = None
+    backbone: Backbone | None = None
+    requested_method: str = ""
+
+    @property
+    def omega_n_rad_s(self) -> float:
+        """Calibrated natural circular frequency [rad/s]."""
+        return float(self.chosen.omega_n_rad_s or math.nan)
+
+    @property
+    def damping_ratio(self) -> float | None:
+        """Calibrated damping ratio [-] (None when the chosen method cannot tell)."""
+        return self.chosen.damping_ratio
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready result with the calibrate command's keys."""
+        chosen = self.chosen
+        damped = chosen.damped_omega_rad_s
+        payload: dict[str, Any] = {
+            "omega_n_rad_s": chosen.omega_n_rad_s,
+            "frequency_hz": None
+            if chosen.omega_n_rad_s is None
+            else chosen.omega_n_rad_s / (2 * math.pi),
+            "damped_frequency_hz": None if damped is None else damped / (2 * math.pi),
+            "damping_ratio": chosen.damping_ratio,
+            "log_decrement": chosen.log_decrement,
+            "method": self.method,
+            "requested_method": self.requested_method or self.method,
+            "window_s": list(self.signal.window_s),
+            "window": None if self.window is None else self.window.to_dict(),
+            "n_peaks": int(self.peak_times_s.size),
+            "noise_rms": self.noise_rms,
+            "residual_rms": chosen.residual_rms,
+            "omega_n_interval_rad_s": None
+            if chosen.omega_n_interval is None
+            else list(chosen.omega_n_interval),
+            "damping_ratio_interval": None
+            if chosen.damping_ratio_interval is None
+            else list(chosen.damping_ratio_interval),
+            "source": self.source,
+            "notes": list(self.signal.notes) + [e.note for e in self.estimates.values() if e.note],
+            "warnings": list(self.warnings),
+            "estimates": {name: _estimate_dict(e) for name, e in self.estimates.items()},
+            "backbone": None if self.backbone is None else self.backbone.to_dict(),
+        }
+        payload["disagreement"] = relative_spread(self.estimates)
+        return payload
+
+    def columns(self) -> dict[str, FloatArray]:
+        """The analysed window: time, detrended signal, the signal as recorded, and the fit's
+        curve over the recorded signal (NaN when the fit failed); signal units are the
+        record's."""
+        signal = self.signal
+        fit = self.estimates.get("fit")
+        curve = np.full_like(signal.time_s, np.nan)
+        if fit is not None and not fit.failure and fit.fitted is not None:
+            curve = fit.fitted
+        return {
+            "time_s": signal.time_s,
+            "signal": signal.values,
+            "signal_recorded": signal.undetrended,
+            "fit": curve,
+        }
+
+    def estimate_table(self) -> Any:
+        """One row per estimator as a pandas DataFrame (pandas imported lazily)."""
+        from sloshkit.results import require_pandas
+
+        rows = [{"estimator": name, **_estimate_dict(e)} for name, e in self.estimates.items()]
+        return require_pandas().DataFrame(rows).set_index("estimator")
+
+    def provenance(self) -> str:
+        """Which estimator and window produced the calibration (for model files)."""
+        window = self.signal.window_s
+        why = "" if self.window is None else f", window from {self.window.source}"
+        return (
+            f"calibration: {self.method} of {self.source or 'signal'} "
+            f"[{window[0]:.4g}, {window[1]:.4g}] s{why}"
+        )
+
+    def calibrated_model(self, model: SloshModel) -> SloshModel:
+        """``model`` with mode 1's frequency and every mode's damping ratio replaced.
+
+        The damping applies to all modes, as the correlations do; higher-mode frequencies stay
+        theoretical. Provenance records the estimator, the data file and the window.
+        """
+        source = self.provenance()
+        calibrated = model.with_mode(1, omega_rad_s=self.omega_n_rad_s, source=source)
+        if self.damping_ratio is not None:
+            for mode in calibrated.modes:
+                calibrated = calibrated.with_mode(
+                    mode.n, damping_ratio=self.damping_ratio, source=source
+                )
+        return calibrated
+
+
+def relative_spread(estimates: dict[str, Estimate]) -> dict[str, float | None]:
+    """(max - min) / mean of omega_n and of zeta over the estimators that answered."""
+    omegas = [e.omega_n_rad_s for e in estimates.values() if e.omega_n_rad_s is not None]
+    zetas = [e.damping_ratio for e in estimates.values() if e.damping_ratio is not None]
+
+    def spread(values: list[float]) -> float | None:
+        return (max(values) - min(values)) / float(np.mean(values)) if len(values) > 1 else None
+
+    return {
+        "omega_n_relative_spread": spread(omegas),
+        "damping_ratio_relative_spread": spread(zetas),
+    }
+
+
+def disagreements(estimates: dict[str, Estimate]) -> list[str]:
+    """Messages for a clear disagreement between ``fit`` and ``logdec``: relative differences
+    beyond `OMEGA_DISAGREEMENT` / `ZETA_DISAGREEMENT` whose 95 % intervals do not overlap."""
+    fit, logdec = estimates.get("fit"), estimates.get("logdec")
+    if fit is None or logdec is None or fit.failure or logdec.failure:
+        return []
+    messages = []
+    pairs = (
+        ("omega_n", fit.omega_n_rad_s, logdec.omega_n_rad_s, OMEGA_DISAGREEMENT,
+         fit.omega_n_interval, logdec.omega_n_interval),
+        ("zeta", fit.damping_ratio, logdec.damping_ratio, ZETA_DISAGREEMENT,
+         fit.damping_ratio_interval, logdec.damping_ratio_interval),
+    )  # fmt: skip
+    for name, a, b, limit, interval_a, interval_b in pairs:
+        if a is None or b is None or a == 0.0:
+            continue
+        difference = abs(b - a) / abs(a)
+        overlap = (
+            interval_a is not None
+            and interval_b is not None
+            and interval_a[0] <= interval_b[1]
+            and interval_b[0] <= interval_a[1]
+        )
+        if difference > limit and not overlap:
+            messages.append(
+                f"estimators disagree on {name}: fit {a:.4g}, logdec {b:.4g} "
+                f"({100 * difference:.1f} %, 95 % intervals do not overlap): check the window, "
+                "the noise or an amplitude-dependent (nonlinear) decay (see the backbone)"
+            )
+    return messages

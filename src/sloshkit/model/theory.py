@@ -1,0 +1,161 @@
+"""Linear potential-flow theory of lateral sloshing in an upright circular cylinder, formula by
+formula: Bessel roots, natural frequencies, slosh masses, pendulum lengths and heights, the wall
+elevation per mode, the Bond-number correction and the damping correlations.
+
+References
+----------
+- Abramson, H. N. (ed.), *The Dynamic Behavior of Liquids in Moving Containers*, NASA SP-106
+  (1966), ch. 2 and 6.
+- Dodge, F. T., *The New "Dynamic Behavior of Liquids in Moving Containers"*, SwRI (2000), §3.
+- Ibrahim, R. A., *Liquid Sloshing Dynamics*, Cambridge UP (2005), §2 and §6,
+  doi:10.1017/CBO9780511536656.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal, get_args
+
+import numpy as np
+from scipy.special import jnp_zeros
+
+from sloshkit.errors import InputError, require_in_range
+
+#: Gravitational acceleration used by the seed paper and our defaults [m/s^2].
+GRAVITY_M_S2 = 9.81
+
+
+DampingLaw = Literal["seed", "sp106", "stephens"]
+
+
+DAMPING_LAWS: tuple[str, ...] = get_args(DampingLaw)
+
+
+MAX_MODES = 50
+
+
+def bessel_roots(n_modes: int) -> np.ndarray:
+    """First ``n_modes`` roots xi_n of J1'(x) = 0 (1.841184, 5.331443, 8.536316, ...) [-].
+
+    Computed with `scipy.special.jnp_zeros`; source: Abramson (1966) eq. 2.13.
+    """
+    count = int(require_in_range("modes", n_modes, 1, MAX_MODES))
+    return np.asarray(jnp_zeros(1, count), dtype=float)
+
+
+def natural_frequency(
+    radius_m: float,
+    fill_height_m: float,
+    xi: np.ndarray | float,
+    gravity_m_s2: float = GRAVITY_M_S2,
+) -> np.ndarray:
+    """Natural circular frequency omega_n = sqrt(g xi_n / R tanh(xi_n h / R)) [rad/s].
+
+    Source: Abramson (1966) eq. 2.14; De Simone et al. (2024) eq. 1.
+    """
+    xi = np.asarray(xi, dtype=float)
+    return np.sqrt(gravity_m_s2 * xi / radius_m * np.tanh(xi * fill_height_m / radius_m))
+
+
+def slosh_mass_ratio(radius_m: float, fill_height_m: float, xi: np.ndarray | float) -> np.ndarray:
+    """Slosh mass over liquid mass, m_n / m_F = d tanh(2 xi_n h/d) / (xi_n (xi_n^2 - 1) h) [-].
+
+    Source: Abramson (1966) §6.2; Dodge (2000) §3; De Simone et al. (2024) eq. 8 (d = 2R).
+    """
+    xi = np.asarray(xi, dtype=float)
+    d = 2.0 * radius_m
+    return d * np.tanh(2.0 * xi * fill_height_m / d) / (xi * (xi**2 - 1.0) * fill_height_m)
+
+
+def pendulum_length(radius_m: float, fill_height_m: float, xi: np.ndarray | float) -> np.ndarray:
+    """Pendulum length L_n = d / (2 xi_n tanh(2 xi_n h / d)) = g / omega_n^2 [m].
+
+    Source: Abramson (1966) §6.2; De Simone et al. (2024) eq. 9 (d = 2R).
+    """
+    xi = np.asarray(xi, dtype=float)
+    d = 2.0 * radius_m
+    return d / (2.0 * xi * np.tanh(2.0 * xi * fill_height_m / d))
+
+
+def bob_offset_from_cg(radius_m: float, fill_height_m: float, xi: np.ndarray | float) -> np.ndarray:
+    """Height of the slosh mass above the liquid's centre of gravity (z up) [m].
+
+    H_n = h/2 - (d/xi_n) tanh(xi_n h / d), the spring-mass location of Dodge (2000) §3. The seed
+    paper's Table 3 prints this value (-0.0015 m) as its "pendulum hinge location"; the pivot is
+    in fact L_n above the bob (Dodge (2000) §3: the hinge of the equivalent pendulum).
+    """
+    xi = np.asarray(xi, dtype=float)
+    d = 2.0 * radius_m
+    return fill_height_m / 2.0 - (d / xi) * np.tanh(xi * fill_height_m / d)
+
+
+def wall_elevation_factor(radius_m: float, xi: np.ndarray | float) -> np.ndarray:
+    """Linear wall elevation per unit sin(angle), eta_n / sin(theta_n) = 2R / (xi_n^2 - 1) [m].
+
+    Mapping between the pendulum angle and the free-surface elevation at the wall in the plane of
+    motion, from matching the pendulum's moment to the linear mode shape J1(xi_n r/R) cos(phi)
+    (Dodge 2000 §3; Ibrahim 2005 §6.2). Independent of h. The planar-surface mapping
+    eta = R tan(theta) gives larger values for the same angle.
+    """
+    xi = np.asarray(xi, dtype=float)
+    return 2.0 * radius_m / (xi**2 - 1.0)
+
+
+def bond_number(
+    density_kg_m3: float,
+    radius_m: float,
+    surface_tension_n_m: float,
+    gravity_m_s2: float = GRAVITY_M_S2,
+) -> float:
+    """Bond number Bo = rho g R^2 / sigma [-] (gravity over capillary forces)."""
+    return density_kg_m3 * gravity_m_s2 * radius_m**2 / surface_tension_n_m
+
+
+def surface_tension_factor(xi: np.ndarray | float, bond: float) -> np.ndarray:
+    """Frequency factor omega_sigma / omega = sqrt(1 + xi_n^2 / Bo) [-].
+
+    Capillary correction for a free contact line with a flat static meniscus; source:
+    Abramson (1966) ch. 11; Ibrahim (2005) §8.2.
+    """
+    xi = np.asarray(xi, dtype=float)
+    return np.sqrt(1.0 + xi**2 / bond)
+
+
+def damping_ratio_correlation(
+    radius_m: float,
+    fill_height_m: float,
+    kinematic_viscosity_m2_s: float,
+    law: DampingLaw = "seed",
+    gravity_m_s2: float = GRAVITY_M_S2,
+) -> float:
+    """First-mode viscous damping ratio zeta_1 from an empirical correlation [-].
+
+    All three use the inverse Galilei-type number Ga = nu / sqrt(g R^3):
+
+    - ``"seed"``: zeta = (2.89/pi) sqrt(Ga) B, with
+      B = 1 + 0.318/sinh(1.84 h/R) (1 + (1 - h/R)/cosh(1.84 h/R)); the seed paper's eq. 2 as
+      given by Ibrahim (2005) §2.8.
+    - ``"sp106"``: Mikishev & Dorozhkin (1961) in NASA SP-106 (1966) ch. 4: log decrement
+      4.98 sqrt(Ga) B, i.e. zeta = (4.98/(2 pi)) sqrt(Ga) B.
+    - ``"stephens"``: Stephens, Leonard & Perry, NASA TN D-1367 (1962), as quoted by Dodge
+      (2000) §3.2: zeta = 0.83 sqrt(Ga) tanh(1.84 h/R) (1 + 2 (1 - h/R)/cosh(3.68 h/R)).
+
+    These are fitted to tanks of decimetre size with clean walls; measured damping in small vials
+    is often higher (contact-line and meniscus losses), so calibrate from data when you can.
+    """
+    if law not in DAMPING_LAWS:
+        raise InputError("damping_law", law, "must be one of " + ", ".join(DAMPING_LAWS))
+    ga = kinematic_viscosity_m2_s / math.sqrt(gravity_m_s2 * radius_m**3)
+    ratio = fill_height_m / radius_m
+    if law == "stephens":
+        return (
+            0.83
+            * math.sqrt(ga)
+            * math.tanh(1.84 * ratio)
+            * (1.0 + 2.0 * (1.0 - ratio) / math.cosh(3.68 * ratio))
+        )
+    bracket = 1.0 + 0.318 / math.sinh(1.84 * ratio) * (
+        1.0 + (1.0 - ratio) / math.cosh(1.84 * ratio)
+    )
+    prefactor = 2.89 / math.pi if law == "seed" else 4.98 / (2.0 * math.pi)
+    return prefactor * math.sqrt(ga) * bracket

@@ -1,0 +1,176 @@
+"""The motion object: a rest-to-rest position profile as an exact piecewise polynomial, with its
+derivatives and exact peaks; and the integration of constant-jerk segments into one."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import PPoly
+
+from sloshkit.motion.sampling import sample_motion
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """A rest-to-rest motion: position s(t) [m] as a piecewise polynomial on [0, T].
+
+    Build it with a law function (`trapezoidal`, `quintic`, `s_curve`, ...), not directly.
+
+    Parameters
+    ----------
+    name : str
+        The law's name.
+    position_pp : scipy.interpolate.PPoly
+        Position s(t) [m], t from 0 to T [s].
+
+    Examples
+    --------
+    >>> from sloshkit import quintic
+    >>> law = quintic(0.1, 1.0)
+    >>> law.duration_s, round(law.distance_m, 12), round(law.peak_acceleration_m_s2, 4)
+    (1.0, 0.1, 0.5774)
+    """
+
+    name: str
+    position_pp: PPoly
+
+    @property
+    def duration_s(self) -> float:
+        """Move duration T [s]."""
+        return float(self.position_pp.x[-1] - self.position_pp.x[0])
+
+    @property
+    def distance_m(self) -> float:
+        """Travel s(T) - s(0) [m]."""
+        return float(self.position_pp(self.position_pp.x[-1]) - self.position_pp(0.0))
+
+    @property
+    def breakpoints_s(self) -> FloatArray:
+        """Times where the polynomial pieces join [s]."""
+        return np.asarray(self.position_pp.x, dtype=float)
+
+    def derivative_pp(self, order: int) -> PPoly:
+        """The ``order``-th time derivative as a `PPoly` (0: position ... 3: jerk)."""
+        return self.position_pp if order == 0 else self.position_pp.derivative(order)
+
+    def evaluate(self, time_s: ArrayLike, order: int = 0) -> FloatArray:
+        """Position (0), velocity (1), acceleration (2) or jerk (3) at ``time_s`` [SI].
+
+        Outside [0, T] the container is at rest: position is held, derivatives are zero.
+        """
+        t = np.asarray(time_s, dtype=float)
+        end = self.duration_s
+        clipped = np.clip(t, 0.0, end)
+        values = np.asarray(self.derivative_pp(order)(clipped), dtype=float)
+        if order > 0:
+            values = np.where((t < 0.0) | (t > end), 0.0, values)
+        return values
+
+    def position(self, time_s: ArrayLike) -> FloatArray:
+        """Position s(t) [m]."""
+        return self.evaluate(time_s, 0)
+
+    def velocity(self, time_s: ArrayLike) -> FloatArray:
+        """Velocity s'(t) [m/s]."""
+        return self.evaluate(time_s, 1)
+
+    def acceleration(self, time_s: ArrayLike) -> FloatArray:
+        """Acceleration s''(t) [m/s^2]."""
+        return self.evaluate(time_s, 2)
+
+    def jerk(self, time_s: ArrayLike) -> FloatArray:
+        """Jerk s'''(t) [m/s^3] (piecewise; at a jump, the value of the piece on the right)."""
+        return self.evaluate(time_s, 3)
+
+    def peak(self, order: int) -> float:
+        """Peak |derivative| over the move, exact from the pieces (order 1..3) [SI]."""
+        return _peak_abs(self.derivative_pp(order))
+
+    @property
+    def peak_velocity_m_s(self) -> float:
+        """Peak |velocity| [m/s]."""
+        return self.peak(1)
+
+    @property
+    def peak_acceleration_m_s2(self) -> float:
+        """Peak |acceleration| [m/s^2]."""
+        return self.peak(2)
+
+    @property
+    def acceleration_jump_m_s2(self) -> float:
+        """Largest jump of the acceleration, including from and to rest at 0 and T [m/s^2]."""
+        acceleration = self.derivative_pp(2)
+        widths = np.diff(acceleration.x)
+        starts = acceleration.c[-1, :]  # value at the left end of each piece
+        ends = np.array([np.polyval(acceleration.c[:, i], widths[i]) for i in range(widths.size)])
+        left = np.concatenate(([0.0], ends))
+        right = np.concatenate((starts, [0.0]))
+        return float(np.max(np.abs(right - left)))
+
+    @property
+    def peak_jerk_m_s3(self) -> float:
+        """Peak |jerk| [m/s^3]; ``inf`` when the acceleration jumps (trapezoidal, cubic): the
+        jerk is then a Dirac impulse, which is what excites the slosh."""
+        scale = max(self.peak_acceleration_m_s2, 1e-300)
+        if self.acceleration_jump_m_s2 > 1e-9 * scale:
+            return math.inf
+        return self.peak(3)
+
+    @property
+    def peak_finite_jerk_m_s3(self) -> float:
+        """Peak |jerk| between acceleration jumps (ignoring the impulses) [m/s^3]."""
+        return self.peak(3)
+
+    def sample(self, sample_period_s: float) -> dict[str, FloatArray]:
+        """Samples at t = 0, dt, 2 dt, ..., with the last sample exactly at T.
+
+        Returns arrays ``t_s``, ``position_m``, ``velocity_m_s``, ``acceleration_m_s2``,
+        ``jerk_m_s3`` (see `sloshkit.motion.sampling.sample_motion`).
+        """
+        return sample_motion(self, sample_period_s)
+
+
+def _peak_abs(pp: PPoly) -> float:
+    """max |p(t)| over the breakpoints' span, from each piece's ends and interior extrema."""
+    coefficients = np.asarray(pp.c, dtype=float)  # shape (order + 1, pieces)
+    widths = np.diff(pp.x)
+    best = 0.0
+    for piece in range(coefficients.shape[1]):
+        poly = np.poly1d(coefficients[:, piece])
+        candidates = [0.0, float(widths[piece])]
+        if poly.order >= 2:
+            for root in np.roots(np.polyder(poly.coeffs)):
+                if abs(root.imag) < 1e-12 and 0.0 < root.real < widths[piece]:
+                    candidates.append(float(root.real))
+        best = max(best, float(np.max(np.abs(poly(np.asarray(candidates))))))
+    return best
+
+
+def _piecewise_constant_jerk(
+    name: str,
+    durations: list[float],
+    jerks: list[float],
+    start_accelerations: list[float] | None = None,
+) -> Motion:
+    """Integrate segments of constant jerk (acceleration may jump between segments when
+    ``start_accelerations`` is given) from rest at 0 into an exact cubic `PPoly`."""
+    position = velocity = 0.0
+    acceleration = 0.0
+    breaks = [0.0]
+    columns = []
+    for index, (width, jerk) in enumerate(zip(durations, jerks, strict=True)):
+        if start_accelerations is not None:
+            acceleration = start_accelerations[index]
+        if width <= 0.0:
+            continue
+        columns.append([jerk / 6.0, acceleration / 2.0, velocity, position])
+        position += velocity * width + acceleration * width**2 / 2.0 + jerk * width**3 / 6.0
+        velocity += acceleration * width + jerk * width**2 / 2.0
+        acceleration += jerk * width
+        breaks.append(breaks[-1] + width)
+    return Motion(name, PPoly(np.asarray(columns, dtype=float).T, np.asarray(breaks)))
