@@ -55,9 +55,13 @@ _API: dict[str, str] = {
     "zvd": "sloshkit.motion.shaping",
     "ei": "sloshkit.motion.shaping",
     "shape_motion": "sloshkit.motion.shaping",
+    "PoseTrajectory": "sloshkit.motion.poses",
+    "poses_from_law": "sloshkit.motion.poses",
     # simulation
     "simulate": "sloshkit.sim.simulate",
     "SloshResponse": "sloshkit.sim.response",
+    "simulate_spatial": "sloshkit.sim.spatial",
+    "SpatialResponse": "sloshkit.sim.spatial_response",
     # sweeps, planning, calibration
     "run_sweep": "sloshkit.sweep",
     "SweepResult": "sloshkit.sweep",
@@ -71,6 +75,7 @@ _API: dict[str, str] = {
     # files
     "read_model_file": "sloshkit.io.models",
     "write_model_file": "sloshkit.io.models",
+    "read_pose_file": "sloshkit.io.poses",
 }
 
 __all__ = [
@@ -83,11 +88,13 @@ __all__ = [
     "Motion",
     "PlanProblem",
     "PlanResult",
+    "PoseTrajectory",
     "Shaper",
     "SloshLimits",
     "SloshMode",
     "SloshModel",
     "SloshResponse",
+    "SpatialResponse",
     "SweepResult",
     "UprightCylinder",
     "ValidityWarning",
@@ -101,13 +108,16 @@ __all__ = [
     "make_law",
     "minimum_jerk",
     "plan",
+    "poses_from_law",
     "quintic",
     "read_model_file",
+    "read_pose_file",
     "run_sweep",
     "s_curve",
     "septic",
     "shape_motion",
     "simulate",
+    "simulate_spatial",
     "trapezoidal",
     "write_model_file",
     "zv",
@@ -136,6 +146,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.calibration import CalibrationResult, calibrate
     from sloshkit.errors import InputError, ValidityWarning
     from sloshkit.io.models import read_model_file, write_model_file
+    from sloshkit.io.poses import read_pose_file
     from sloshkit.model.geometry import UprightCylinder
     from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
     from sloshkit.model.modal import SloshMode, SloshModel, equivalent_model
@@ -149,6 +160,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         septic,
         trapezoidal,
     )
+    from sloshkit.motion.poses import PoseTrajectory, poses_from_law
     from sloshkit.motion.profile import Motion
     from sloshkit.motion.recorded import from_samples
     from sloshkit.motion.shaping import Shaper, ei, shape_motion, zv, zvd
@@ -156,4 +168,6 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
     from sloshkit.sim.response import SloshResponse
     from sloshkit.sim.simulate import simulate
+    from sloshkit.sim.spatial import simulate_spatial
+    from sloshkit.sim.spatial_response import SpatialResponse
     from sloshkit.sweep import SweepResult, run_sweep

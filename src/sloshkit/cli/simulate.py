@@ -11,6 +11,7 @@ from rich.text import Text
 
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.moves import (
+    SIMULATION_OPTIONS,
     MoveRequest,
     _format_metric,
     _simulate,
@@ -19,6 +20,13 @@ from sloshkit.cli.moves import (
     with_simulation_options,
 )
 from sloshkit.cli.options import Json, print_json, with_model_options
+from sloshkit.cli.spatial import (
+    HeightMappingOpt,
+    PoseFile,
+    ToolOffset,
+    report_poses,
+    simulate_poses,
+)
 from sloshkit.errors import InputError
 from sloshkit.files import write_json, write_rows_csv
 from sloshkit.model.modal import SloshModel
@@ -42,8 +50,11 @@ def simulate_command(
         Path | None, typer.Option("--plot", help="Write a figure (PNG/SVG/PDF).")
     ] = None,
     json_output: Json = False,
+    pose_file: PoseFile = None,
+    tool_offset: ToolOffset = None,
+    height_mapping: HeightMappingOpt = "modal",
 ) -> None:
-    """Slosh response of the container to one motion law.
+    """Slosh response of the container to one motion law, or to a 3-D pose trajectory.
 
     Examples:
 
@@ -52,7 +63,23 @@ def simulate_command(
       sloshkit simulate --law s-curve --distance 0.5m --vmax 1m/s --amax 5m/s^2 --jmax 50m/s^3
 
       sloshkit simulate --law file:move.csv --model nonlinear --plot slosh.png
+
+      sloshkit simulate --pose-file move.csv --radius 49mm --fill-height 80mm --json
     """
+    if pose_file is not None:
+        response_3d, messages = simulate_poses(
+            slosh_model,
+            pose_file,
+            simulation,
+            tool_offset=tool_offset,
+            height_mapping=height_mapping,
+            sample_period_explicit=simulation["sample_period"]
+            != SIMULATION_OPTIONS["sample_period"][1],
+        )
+        report_poses(response_3d, messages, csv=csv, plot=plot, json_output=json_output)
+        return
+    if tool_offset is not None:
+        raise InputError("tool_offset", tool_offset, "needs --pose-file")
     motion = request.law(law)
     response = _simulate(motion, slosh_model, **simulation)
     model_kind = simulation["model_kind"]

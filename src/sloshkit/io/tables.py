@@ -17,7 +17,8 @@ FloatArray = NDArray[np.float64]
 
 
 def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
-    """Read a numeric table: CSV or whitespace-separated, ``#`` comment lines skipped.
+    """Read a numeric table: CSV (comma or semicolon) or whitespace-separated, ``#`` comments
+    skipped; with semicolons, decimal commas are accepted.
 
     The first non-comment line is a header when it is not numeric; otherwise columns are named
     by their index (``"0"``, ``"1"``, ...). OpenFOAM function-object files (``# Time ...``
@@ -41,7 +42,8 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
         lines.append(stripped.replace("(", " ").replace(")", " "))
     if not lines:
         raise InputError("file", str(source), "has no data rows")
-    delimiter = "," if "," in lines[0] else None
+    # semicolon CSV (spreadsheet exports; decimal commas allowed), comma CSV, or whitespace
+    delimiter = ";" if ";" in lines[0] else ("," if "," in lines[0] else None)
     first = _split(lines[0], delimiter)
     header: list[str] | None = None
     if not _is_numeric(first):
@@ -126,6 +128,8 @@ def read_motion_file(path: str | Path, name: str | None = None) -> Any:
 
 
 def _split(line: str, delimiter: str | None) -> list[str]:
+    if delimiter == ";":
+        return [cell.replace(",", ".") for cell in line.split(";")]
     return line.split(delimiter) if delimiter else line.split()
 
 

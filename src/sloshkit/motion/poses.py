@@ -1,0 +1,449 @@
+"""Rigid-body pose trajectories of a container: time, position and orientation.
+
+A `PoseTrajectory` holds sampled poses of the container's **bottom centre** in a world frame
+with z up (gravity along -z): positions [m] and unit quaternions rotating container
+coordinates into world coordinates, scalar last (the ``x, y, z, w`` order of
+`scipy.spatial.transform.Rotation.from_quat`). The container axis is its local z axis.
+
+The container is assumed at rest before the first and after the last pose (rest-to-rest, as
+for every 1-D law). Kinematics (velocity, accelerations, angular velocity and acceleration)
+come from `PoseTrajectory.kinematics`, see `sloshkit.motion.pose_kinematics`.
+
+References
+----------
+- J. Diebel, "Representing attitude: Euler angles, unit quaternions, and rotation vectors",
+  Stanford University (2006), §5-6 (quaternion conventions and kinematics).
+- B. Siciliano et al., *Robotics: Modelling, Planning and Control*, Springer (2009), §2.4
+  (roll-pitch-yaw angles), §3.6 (tool frames).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import make_interp_spline
+from scipy.spatial.transform import Rotation, RotationSpline
+
+from sloshkit.errors import InputError, require_increasing, require_positive
+from sloshkit.motion.laws import Motion
+from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.sampling import sample_times
+
+if TYPE_CHECKING:
+    from sloshkit.motion.pose_kinematics import PoseKinematics
+
+FloatArray = NDArray[np.float64]
+
+#: Quaternions whose norm differs from 1 by more than this are rejected (not renormalised).
+QUATERNION_NORM_TOLERANCE = 1e-3
+
+
+@dataclass(frozen=True, eq=False)
+class PoseTrajectory:
+    """Sampled poses of a container's bottom centre (world frame, z up).
+
+    Parameters
+    ----------
+    time_s : sample times, shape (N,), strictly increasing [s]
+    position_m : bottom-centre positions in the world frame, shape (N, 3) [m]
+    quaternion_xyzw : orientation, container -> world, scalar last, shape (N, 4). Normalised
+        on construction (norms must be within 1e-3 of 1) and made sign-continuous
+        (q and -q are the same rotation; neighbours are flipped so that q_k . q_{k+1} >= 0).
+    name : a label for reports
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> poses = PoseTrajectory(np.array([0.0, 1.0]), np.zeros((2, 3)),
+    ...                        np.array([[0, 0, 0, 1.0], [0, 0, 0, -1.0]]))
+    >>> poses.quaternion_xyzw[1].tolist()
+    [-0.0, -0.0, -0.0, 1.0]
+    """
+
+    time_s: FloatArray
+    position_m: FloatArray
+    quaternion_xyzw: FloatArray
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        time = np.asarray(self.time_s, dtype=float).reshape(-1)
+        position = np.asarray(self.position_m, dtype=float)
+        quaternion = np.asarray(self.quaternion_xyzw, dtype=float)
+        count = time.size
+        if count < 2:
+            raise InputError("poses", count, "need at least 2 samples")
+        if position.shape != (count, 3):
+            raise InputError("position", position.shape, f"must have shape ({count}, 3)")
+        if quaternion.shape != (count, 4):
+            raise InputError("quaternion", quaternion.shape, f"must have shape ({count}, 4)")
+        for label, values in (("time", time), ("position", position), ("quaternion", quaternion)):
+            if not np.all(np.isfinite(values)):
+                row = int(np.argmax(~np.isfinite(values.reshape(count, -1)).any(axis=1)))
+                raise InputError(label, f"non-finite value at sample {row}", "must be finite")
+        require_increasing("time", time)
+        norm = np.linalg.norm(quaternion, axis=1)
+        bad = np.abs(norm - 1.0) > QUATERNION_NORM_TOLERANCE
+        if np.any(bad):
+            row = int(np.argmax(bad))
+            raise InputError(
+                "quaternion",
+                f"norm {norm[row]:.6g} at sample {row}",
+                f"must be a unit quaternion (|q| within {QUATERNION_NORM_TOLERANCE:g} of 1)",
+            )
+        quaternion = sign_continuous(quaternion / norm[:, None])
+        object.__setattr__(self, "time_s", time)
+        object.__setattr__(self, "position_m", position)
+        object.__setattr__(self, "quaternion_xyzw", quaternion)
+
+    # -- basic properties -------------------------------------------------------------------
+
+    @property
+    def start_s(self) -> float:
+        """Time of the first pose [s]."""
+        return float(self.time_s[0])
+
+    @property
+    def end_s(self) -> float:
+        """Time of the last pose [s]."""
+        return float(self.time_s[-1])
+
+    @property
+    def duration_s(self) -> float:
+        """Time from the first to the last pose [s]."""
+        return self.end_s - self.start_s
+
+    @cached_property
+    def sample_period_s(self) -> float:
+        """Median step between poses [s]."""
+        return float(np.median(np.diff(self.time_s)))
+
+    @cached_property
+    def is_uniform(self) -> bool:
+        """True when every step equals the median step within 1e-6 relative."""
+        steps = np.diff(self.time_s)
+        return bool(np.all(np.abs(steps - self.sample_period_s) <= 1e-6 * self.sample_period_s))
+
+    @property
+    def rotation(self) -> Rotation:
+        """Orientations as one `scipy.spatial.transform.Rotation` (container -> world)."""
+        return Rotation.from_quat(self.quaternion_xyzw)
+
+    @property
+    def axis_world(self) -> FloatArray:
+        """Container axis (local z) in world coordinates, shape (N, 3)."""
+        return np.asarray(self.rotation.apply([0.0, 0.0, 1.0]), dtype=float)
+
+    @property
+    def tilt_rad(self) -> FloatArray:
+        """Angle between the container axis and the world vertical, shape (N,) [rad]."""
+        return np.arccos(np.clip(self.axis_world[:, 2], -1.0, 1.0))
+
+    # -- transformations --------------------------------------------------------------------
+
+    def with_tool_offset(self, offset_m: ArrayLike) -> PoseTrajectory:
+        """Poses of the point at ``offset_m`` in the pose's own frame (same orientation).
+
+        Use it when a file gives the flange or another tool point: ``offset_m`` is the
+        container's bottom centre in that frame, so p_bottom = p + R(q) offset (Siciliano et
+        al. 2009 §3.6). The container axis must be the frame's z axis.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> q = Rotation.from_euler("x", 90, degrees=True).as_quat()
+        >>> poses = PoseTrajectory(np.array([0.0, 1.0]), np.zeros((2, 3)), np.tile(q, (2, 1)))
+        >>> np.round(poses.with_tool_offset([0, 0, 0.1]).position_m[0], 6).tolist()
+        [0.0, -0.1, 0.0]
+        """
+        offset = np.asarray(offset_m, dtype=float).reshape(-1)
+        if offset.shape != (3,) or not np.all(np.isfinite(offset)):
+            raise InputError("tool_offset", offset_m, "must be three finite numbers X,Y,Z [m]")
+        position = self.position_m + self.rotation.apply(offset)
+        return PoseTrajectory(self.time_s, position, self.quaternion_xyzw, self.name)
+
+    def in_world_frame(self, rotation: Rotation, translation_m: ArrayLike = (0.0, 0.0, 0.0)) -> Any:
+        """The same motion written in another world frame: p' = Q p + t, q' = Q q.
+
+        ``rotation`` must keep z up (a rotation about the vertical) for the physics to be the
+        same; used to check frame invariance.
+        """
+        shift = np.asarray(translation_m, dtype=float).reshape(3)
+        position = rotation.apply(self.position_m) + shift
+        quaternion = (rotation * self.rotation).as_quat()
+        return PoseTrajectory(self.time_s, position, quaternion, self.name)
+
+    def resample(self, sample_period_s: float, end_s: float | None = None) -> PoseTrajectory:
+        """Poses on the uniform grid t_0 + k dt, up to ``end_s`` (default: the last pose).
+
+        Positions by a cubic interpolating spline (not-a-knot), orientations by
+        `scipy.spatial.transform.RotationSpline` (C2 cubic in rotation vectors; Diebel 2006
+        §6). Beyond the last pose the final pose is held (rest).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> poses = poses_from_law(__import__("sloshkit.motion.laws").motion.laws.quintic(
+        ...     0.2, 1.0), sample_period_s=0.01)
+        >>> poses.resample(0.05).time_s.size
+        21
+        """
+        dt = require_positive("sample_period", sample_period_s, "s")
+        stop = self.end_s if end_s is None else float(end_s)
+        count = math.floor((stop - self.start_s) / dt + 1e-9) + 1
+        times = self.start_s + np.arange(count, dtype=float) * dt
+        return PoseTrajectory(times, *self.sample(times), name=self.name)
+
+    def sample(self, time_s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """Interpolated (position (M, 3), quaternion (M, 4)) at ``time_s``; held outside."""
+        times = np.asarray(time_s, dtype=float).reshape(-1)
+        clipped = np.clip(times, self.start_s, self.end_s)
+        if self.time_s.size >= 4:
+            spline = make_interp_spline(self.time_s, self.position_m, k=3, axis=0)
+            position = np.asarray(spline(clipped), dtype=float)
+        else:
+            position = np.column_stack(
+                [np.interp(clipped, self.time_s, self.position_m[:, i]) for i in range(3)]
+            )
+        rotation_spline = RotationSpline(self.time_s, self.rotation)
+        quaternion = np.asarray(rotation_spline(clipped).as_quat(), dtype=float)
+        return position, sign_continuous(quaternion)
+
+    def extended(self, settle_time_s: float, sample_period_s: float | None = None) -> Any:
+        """Copy with the final pose held for ``settle_time_s`` more (the container rests)."""
+        settle = float(settle_time_s)
+        if settle <= 0.0:
+            return self
+        dt = self.sample_period_s if sample_period_s is None else float(sample_period_s)
+        extra = self.end_s + np.arange(1, math.ceil(settle / dt - 1e-9) + 1) * dt
+        times = np.concatenate((self.time_s, extra))
+        position = np.vstack((self.position_m, np.repeat(self.position_m[-1:], extra.size, 0)))
+        quaternion = np.vstack(
+            (self.quaternion_xyzw, np.repeat(self.quaternion_xyzw[-1:], extra.size, 0))
+        )
+        return PoseTrajectory(times, position, quaternion, self.name)
+
+    def kinematics(
+        self, sample_period_s: float | None = None, *, cutoff_hz: float | None = None
+    ) -> PoseKinematics:
+        """Velocity, accelerations, angular velocity and acceleration on a uniform grid.
+
+        See `sloshkit.motion.pose_kinematics.pose_kinematics` (Savitzky-Golay smoothing with
+        the stated cut-off).
+        """
+        from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, pose_kinematics
+
+        return pose_kinematics(
+            self,
+            sample_period_s,
+            cutoff_hz=DEFAULT_CUTOFF_HZ if cutoff_hz is None else cutoff_hz,
+        )
+
+
+# ---------------------------------------------------------------------------------------------
+# Constructors
+# ---------------------------------------------------------------------------------------------
+
+
+def poses_from_rpy(
+    time_s: ArrayLike,
+    position_m: ArrayLike,
+    roll_rad: ArrayLike,
+    pitch_rad: ArrayLike,
+    yaw_rad: ArrayLike,
+    name: str = "",
+) -> PoseTrajectory:
+    """Poses from roll, pitch and yaw angles: R = Rz(yaw) Ry(pitch) Rx(roll).
+
+    Fixed-axis (extrinsic x, then y, then z) roll-pitch-yaw as in Siciliano et al. (2009)
+    §2.4.4; scipy's ``Rotation.from_euler("xyz", ...)`` with lower-case (extrinsic) axes.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> poses = poses_from_rpy([0.0, 1.0], np.zeros((2, 3)), [0.0, 0.1], [0.0, 0.0], [0.0, 0.0])
+    >>> round(float(poses.tilt_rad[1]), 6)
+    0.1
+    """
+    angles = np.column_stack(
+        [np.asarray(a, dtype=float).reshape(-1) for a in (roll_rad, pitch_rad, yaw_rad)]
+    )
+    quaternion = Rotation.from_euler("xyz", angles).as_quat()
+    return PoseTrajectory(np.asarray(time_s, dtype=float), np.asarray(position_m), quaternion, name)
+
+
+def _unit(vector: ArrayLike, parameter: str) -> FloatArray:
+    value = np.asarray(vector, dtype=float).reshape(-1)
+    norm = float(np.linalg.norm(value)) if value.shape == (3,) else 0.0
+    if norm == 0.0 or not math.isfinite(norm):
+        raise InputError(parameter, vector, "must be a non-zero 3-vector")
+    return value / norm
+
+
+def poses_from_law(
+    motion: Motion,
+    direction: ArrayLike = (1.0, 0.0, 0.0),
+    *,
+    sample_period_s: float = 1e-3,
+    start_m: ArrayLike = (0.0, 0.0, 0.0),
+    orientation: Rotation | None = None,
+) -> PoseTrajectory:
+    """A 1-D law s(t) along a straight line: p(t) = start + s(t) d, constant orientation.
+
+    Parameters
+    ----------
+    motion : the rest-to-rest 1-D law (`sloshkit.motion.laws`)
+    direction : the line's direction in the world frame (normalised) [-]
+    sample_period_s : pose sample period [s]; the last sample is exactly at T
+    start_m : start position [m]
+    orientation : constant container orientation (default upright)
+
+    Examples
+    --------
+    >>> from sloshkit.motion.laws import quintic
+    >>> poses = poses_from_law(quintic(0.5, 1.0), (0, 1, 0), sample_period_s=0.01)
+    >>> poses.position_m[-1].round(9).tolist()
+    [0.0, 0.5, 0.0]
+    """
+    unit = _unit(direction, "direction")
+    time = sample_times(motion.duration_s, require_positive("sample_period", sample_period_s, "s"))
+    position = (
+        np.asarray(start_m, dtype=float).reshape(1, 3) + motion.position(time)[:, None] * unit
+    )
+    rotation = orientation if orientation is not None else Rotation.identity()
+    quaternion = np.tile(rotation.as_quat(), (time.size, 1))
+    return PoseTrajectory(time, position, quaternion, motion.name)
+
+
+def poses_from_path(
+    path: Callable[[FloatArray], ArrayLike] | ArrayLike,
+    motion: Motion,
+    *,
+    sample_period_s: float = 1e-3,
+    orientation: Callable[[FloatArray], Rotation] | Rotation | None = None,
+) -> PoseTrajectory:
+    """A path timed by a 1-D law: p(t) = path(u(t)), u = s(t) / s(T) in [0, 1].
+
+    Parameters
+    ----------
+    path : a vectorised function u -> (M, 3) positions for u in [0, 1], or waypoints (K, 3)
+        joined by a cubic spline in chord-length parameter (not exactly arc length)
+    motion : the timing law; only its normalised progress s(t)/s(T) is used
+    sample_period_s : pose sample period [s]
+    orientation : constant `Rotation`, or a function u -> `Rotation` (default upright)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.motion.laws import quintic
+    >>> circle = lambda u: np.column_stack((0.3 * np.sin(2 * np.pi * u),
+    ...                                     0.3 * np.cos(2 * np.pi * u) - 0.3, 0 * u))
+    >>> poses = poses_from_path(circle, quintic(1.0, 2.0), sample_period_s=0.01)
+    >>> bool(np.allclose(poses.position_m[[0, -1]], 0.0, atol=1e-9))
+    True
+    """
+    time = sample_times(motion.duration_s, require_positive("sample_period", sample_period_s, "s"))
+    distance = motion.distance_m
+    if distance == 0.0:
+        raise InputError("motion", motion.name, "must have a non-zero travel to time a path")
+    progress = motion.position(time) / distance
+    if callable(path):
+        position = np.asarray(path(progress), dtype=float)
+    else:
+        points = np.asarray(path, dtype=float)
+        if points.ndim != 2 or points.shape[1] != 3 or points.shape[0] < 2:
+            raise InputError("path", points.shape, "waypoints must have shape (K >= 2, 3)")
+        chord = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))))
+        require_increasing("path", chord)
+        spline = make_interp_spline(chord / chord[-1], points, k=min(3, points.shape[0] - 1))
+        position = np.asarray(spline(progress), dtype=float)
+    if position.shape != (time.size, 3):
+        raise InputError("path", position.shape, f"must return shape ({time.size}, 3)")
+    if orientation is None:
+        quaternion = np.tile([0.0, 0.0, 0.0, 1.0], (time.size, 1))
+    elif isinstance(orientation, Rotation):
+        quaternion = np.tile(orientation.as_quat(), (time.size, 1))
+    else:
+        quaternion = np.asarray(orientation(progress).as_quat(), dtype=float)
+    return PoseTrajectory(time, position, quaternion, motion.name)
+
+
+def poses_from_rotation(
+    motion: Motion,
+    axis: ArrayLike = (1.0, 0.0, 0.0),
+    *,
+    sample_period_s: float = 1e-3,
+    pivot_m: ArrayLike = (0.0, 0.0, 0.0),
+    initial: Rotation | None = None,
+) -> PoseTrajectory:
+    """Rotation by an angle law psi(t) = s(t) [rad] about a fixed world axis through a pivot.
+
+    A horizontal ``axis`` gives a tilt profile, the vertical axis (0, 0, 1) with the pivot on
+    the container axis a spin about the container's own axis. The bottom centre moves on a
+    circle about the pivot: p(t) = pivot + Q(t) (p_0 - pivot), q(t) = Q(t) q_0 with
+    Q(t) = Rot(axis, psi(t)).
+
+    Parameters
+    ----------
+    motion : the angle law; its "distance" is the total angle [rad]
+    axis : rotation axis in the world frame [-]
+    sample_period_s : pose sample period [s]
+    pivot_m : a point on the rotation axis, world frame [m]; the bottom centre starts at the
+        origin
+    initial : the orientation at psi = 0 (default upright)
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit.motion.laws import septic
+    >>> poses = poses_from_rotation(septic(math.radians(20), 1.0), sample_period_s=0.01)
+    >>> round(math.degrees(float(poses.tilt_rad[-1])), 6)
+    20.0
+    """
+    unit = _unit(axis, "axis")
+    time = sample_times(motion.duration_s, require_positive("sample_period", sample_period_s, "s"))
+    angle = motion.position(time)
+    turn = Rotation.from_rotvec(angle[:, None] * unit)
+    pivot = np.asarray(pivot_m, dtype=float).reshape(3)
+    position = pivot + turn.apply(-pivot)
+    start = initial if initial is not None else Rotation.identity()
+    quaternion = (turn * start).as_quat()
+    return PoseTrajectory(time, position, quaternion, motion.name)
+
+
+def concatenate(parts: Sequence[PoseTrajectory], name: str = "") -> PoseTrajectory:
+    """Several trajectories one after the other, chained rigidly.
+
+    Each part is shifted in time to start when the previous one ends, and moved as a rigid
+    body (D = R_prev_end R_start^-1, p' = p_prev_end + D (p - p_start), R' = D R) so that its
+    first pose coincides with the previous part's last pose; that first sample is dropped.
+
+    Examples
+    --------
+    >>> from sloshkit.motion.laws import septic
+    >>> a = poses_from_law(septic(0.1, 1.0), (1, 0, 0), sample_period_s=0.01)
+    >>> b = poses_from_law(septic(0.1, 1.0), (0, 1, 0), sample_period_s=0.01)
+    >>> concatenate([a, b]).position_m[-1].round(9).tolist()
+    [0.1, 0.1, 0.0]
+    """
+    if not parts:
+        raise InputError("parts", 0, "need at least one trajectory")
+    first = parts[0]
+    times, positions, rotations = [first.time_s], [first.position_m], [first.rotation]
+    end_time, end_position, end_rotation = first.end_s, first.position_m[-1], first.rotation[-1]
+    for part in parts[1:]:
+        shift = end_rotation * part.rotation[0].inv()
+        moved = end_position + shift.apply(part.position_m - part.position_m[0])
+        turned = shift * part.rotation
+        times.append((part.time_s - part.start_s + end_time)[1:])
+        positions.append(moved[1:])
+        rotations.append(turned[1:])
+        end_time, end_position, end_rotation = float(times[-1][-1]), moved[-1], turned[-1]
+    quaternion = np.vstack([rotation.as_quat() for rotation in rotations])
+    return PoseTrajectory(np.concatenate(times), np.vstack(positions), quaternion, name)
