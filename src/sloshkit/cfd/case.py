@@ -32,6 +32,7 @@ from sloshkit.cfd.excitation import (
     FreeDecay,
     Harmonic,
     MotionExcitation,
+    PoseExcitation,
     frame_motion,
 )
 from sloshkit.cfd.fields import initial_fields, set_fields_dict, transport_properties
@@ -46,6 +47,7 @@ __all__ = [
     "FreeDecay",
     "Harmonic",
     "MotionExcitation",
+    "PoseExcitation",
     "acceleration_table",
     "block_mesh_dict",
     "case_files",
@@ -334,7 +336,25 @@ def case_files(spec: CaseSpec) -> dict[str, str]:
         ),
     }
     files.update(initial_fields())
+    if isinstance(spec.excitation, PoseExcitation):
+        files[POSE_FILE] = pose_table(spec.excitation)
     return files
+
+
+POSE_FILE = "sloshkit-poses.csv"
+
+
+def pose_table(excitation: PoseExcitation) -> str:
+    """The pose trajectory that drives the case, as a pose file (`sloshkit.io.poses`), so the
+    case can be compared with the 3-D model later without the original file."""
+    poses = excitation.poses
+    rows = ["t [s],x [m],y [m],z [m],qx,qy,qz,qw"]
+    for time, position, quaternion in zip(
+        poses.time_s, poses.position_m, poses.quaternion_xyzw, strict=True
+    ):
+        values = [time, *position, *quaternion]
+        rows.append(",".join(repr(float(v)) for v in values))
+    return "\n".join(rows) + "\n"
 
 
 def spec_summary(spec: CaseSpec) -> dict[str, Any]:
@@ -350,6 +370,13 @@ def spec_summary(spec: CaseSpec) -> dict[str, Any]:
             amplitude_m=excitation.amplitude_m,
             frequency_hz=excitation.frequency_hz,
             duration_s=excitation.duration_s,
+        )
+    elif isinstance(excitation, PoseExcitation):
+        description.update(
+            name=excitation.name,
+            duration_s=excitation.duration_s,
+            pose_file=POSE_FILE,
+            cutoff_hz=excitation.cutoff_hz,
         )
     else:
         description.update(name=excitation.name, duration_s=excitation.duration_s)

@@ -14,7 +14,14 @@ import numpy as np
 from scipy.special import j1
 
 from sloshkit.calibration import CalibrationResult, calibrate
-from sloshkit.cfd.case import CaseSpec, Excitation, FreeDecay, Harmonic, MotionExcitation
+from sloshkit.cfd.case import (
+    CaseSpec,
+    Excitation,
+    FreeDecay,
+    Harmonic,
+    MotionExcitation,
+    PoseExcitation,
+)
 from sloshkit.cfd.results import CfdSignals, read_signals
 from sloshkit.cfd.run import (
     RunResult,
@@ -123,7 +130,7 @@ def excitation_end(summary: dict[str, Any]) -> float:
     excitation = summary["excitation"]
     if excitation["type"] == "Harmonic":
         return float(excitation["duration_s"])
-    if excitation["type"] == "MotionExcitation":
+    if excitation["type"] in ("MotionExcitation", "PoseExcitation"):
         return float(excitation.get("duration_s", 0.0))
     return 0.0
 
@@ -279,8 +286,13 @@ def excitation_from_options(
     frequency_hz: float,
     excite_time_s: float,
     motion: Any = None,
+    poses: Any = None,
 ) -> Excitation:
     """Build the excitation named on the command line."""
+    if kind == "poses":
+        if poses is None:
+            raise InputError("excitation", kind, "needs --pose-file")
+        return PoseExcitation(poses)
     if kind == "free-decay":
         return FreeDecay(tilt_rad)
     if kind == "harmonic":
@@ -289,7 +301,7 @@ def excitation_from_options(
         if motion is None:
             raise InputError("excitation", kind, "needs --law and the move options")
         return MotionExcitation(motion.name, motion.acceleration, motion.duration_s)
-    raise InputError("excitation", kind, "must be free-decay, harmonic or law")
+    raise InputError("excitation", kind, "must be free-decay, harmonic, law or poses")
 
 
 def describe(record: dict[str, Any]) -> str:

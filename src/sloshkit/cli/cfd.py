@@ -27,6 +27,7 @@ from sloshkit.cli.options import Json, print_json, with_model_options, with_opti
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
 from sloshkit.io.models import write_model_file
+from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 from sloshkit.plotting import plot_cfd_validation
@@ -47,7 +48,10 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
         "excitation": (
             Annotated[
                 str,
-                typer.Option("--excitation", help="free-decay (tilted surface), harmonic or law."),
+                typer.Option(
+                    "--excitation",
+                    help="free-decay (tilted surface), harmonic, law, or poses (--pose-file).",
+                ),
             ],
             excitation,
         ),
@@ -73,6 +77,27 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
         ),
         "distance": (Distance, "0.1m"),
         "duration": (Duration, None),
+        "pose_file": (
+            Annotated[
+                Path | None,
+                typer.Option(
+                    "--pose-file",
+                    help="Pose trajectory for --excitation poses (t, x, y, z and qx, qy, qz, qw "
+                    "or roll, pitch, yaw; units in the header).",
+                ),
+            ],
+            None,
+        ),
+        "probe_angles": (
+            Annotated[
+                int | None,
+                typer.Option(
+                    "--probe-angles",
+                    help="Probe columns around the wall (default 2 on the x axis; 12 for poses).",
+                ),
+            ],
+            None,
+        ),
         "cells_per_radius": (
             Annotated[int, typer.Option("--cells-per-radius", help="Mesh resolution.")],
             RECOMMENDED["cells_per_radius"],
@@ -129,7 +154,11 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
 
 def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
 
-    motion = None
+    motion = poses = None
+    if options["excitation"] == "poses":
+        if options["pose_file"] is None:
+            raise InputError("pose-file", None, "is needed with --excitation poses")
+        poses = read_pose_file(options["pose_file"])
     if options["excitation"] == "law":
         request = MoveRequest.parse(
             options["distance"], options["duration"], None, None, None, None, None
@@ -142,7 +171,11 @@ def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
         parse_quantity(options["frequency"], "frequency", "frequency"),
         parse_quantity(options["excite_time"], "time", "excite_time"),
         motion,
+        poses,
     )
+    angles = options["probe_angles"]
+    if angles is None:
+        angles = 12 if poses is not None else 0
     return case_spec(
         slosh_model,
         chosen,
@@ -155,6 +188,7 @@ def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
         max_courant=options["max_courant"],
         max_alpha_courant=options["max_courant"],
         adjust_time_step=not options["fixed_step"],
+        probe_angles=angles,
     )
 
 
@@ -343,6 +377,18 @@ def cfd_analyse_command(
     _print_analysis(analysis, json_output, None, plot, None)
 
 
+def _validate(case: Path, slosh_model: SloshModel) -> dict[str, Any]:
+    """The 1-D comparison, or the 3-D one for a case driven by a pose trajectory."""
+    summary_path = case / "sloshkit-case.json"
+    if summary_path.is_file():
+        summary = json.loads(summary_path.read_text(encoding="utf-8"))
+        if summary.get("excitation", {}).get("type") == "PoseExcitation":
+            from sloshkit.cfd.spatial import validate_poses
+
+            return validate_poses(case, slosh_model)
+    return validate(case, slosh_model)
+
+
 @cfd_app.command("validate")
 @with_model_options
 @with_options(cfd_options("harmonic", "4s"), "case_options", dict)
@@ -360,17 +406,20 @@ def cfd_validate_command(
     json_output: Json = False,
 ) -> None:
     """Run the CFD and the pendulum model on the same motion and report how far apart they
-    are (frequency, damping, peak and residual wall elevation).
+    are (frequency, damping, peak and residual wall elevation; for a pose trajectory, the peak
+    and residual slosh height against the 3-D model).
 
     Example:
 
       sloshkit cfd validate --case vial-harmonic --excitation harmonic --np 2 --plot fig9.png
+
+      sloshkit cfd validate --case vial-3d --excitation poses --pose-file move.csv --np 2
     """
 
     if not reuse:
         spec = _cfd_spec(slosh_model, case_options)
         _run_with_progress(spec, case, False, overwrite)
-    result = validate(case, slosh_model)
+    result = _validate(case, slosh_model)
     if plot is not None:
         plot_cfd_validation(result, plot)
     summary = {
@@ -393,4 +442,11 @@ def cfd_validate_command(
             else f"{100 * row['relative_difference']:+.1f} %",
         )
     stdout.print(table)
-    stdout.print(f"correlation of the wall-elevation signals: {summary['correlation']:.4f}")
+    if summary["correlation"] is not None:
+        what = "slosh-height" if summary.get("kind") == "poses" else "wall-elevation"
+        stdout.print(f"correlation of the {what} signals: {summary['correlation']:.4f}")
+    if summary.get("wall_correlation") is not None:
+        stdout.print(
+            "correlation of the wall elevations of every probe column: "
+            f"{summary['wall_correlation']:.4f}"
+        )
