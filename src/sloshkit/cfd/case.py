@@ -37,7 +37,13 @@ from sloshkit.cfd.excitation import (
 )
 from sloshkit.cfd.fields import initial_fields, set_fields_dict, transport_properties
 from sloshkit.cfd.foam import Raw, foam_file, format_number
-from sloshkit.cfd.mesh import block_mesh_dict, mesh_layout, probe_angles_rad, probe_columns
+from sloshkit.cfd.mesh import (
+    block_mesh_dict,
+    mesh_layout,
+    probe_angles_rad,
+    probe_columns,
+    wall_cell_size_m,
+)
 from sloshkit.cfd.spec import SCALE, CaseSpec
 
 __all__ = [
@@ -398,6 +404,9 @@ def spec_summary(spec: CaseSpec) -> dict[str, Any]:
         "write_interval_s": spec.write_interval_s,
         "ddt_scheme": spec.ddt_scheme,
         "pressure_correctors": spec.pressure_correctors,
+        "wall_grading": spec.wall_grading,
+        "radial_cells": mesh_layout(spec).radial,
+        "wall_cell_m": wall_cell_size_m(spec),
         "processes": spec.processes,
         "probe_dz_m": dz,
         "probes_per_column": int(z.size),
