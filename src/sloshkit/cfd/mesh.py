@@ -84,7 +84,7 @@ def wall_cell_size_m(spec: CaseSpec) -> float:
         return length / count
     q = ratio ** (1.0 / (count - 1))
     first = length * (q - 1.0) / (q**count - 1.0)
-    return first * ratio
+    return float(first * ratio)
 
 
 def block_mesh_dict(spec: CaseSpec) -> str:

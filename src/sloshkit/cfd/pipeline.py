@@ -45,7 +45,7 @@ RECOMMENDED: dict[str, Any] = {
     "max_alpha_courant": 0.5,
     "ddt_scheme": "Euler",
     "end_time_s": 3.0,
-    "pressure_correctors": 2,
+    "pressure_correctors": 3,
 }
 
 

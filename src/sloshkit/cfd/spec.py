@@ -56,7 +56,7 @@ class CaseSpec:
     max_courant: float = 0.5
     max_alpha_courant: float = 0.5
     probe_angles: int = 0
-    pressure_correctors: int = 2
+    pressure_correctors: int = 3
     wall_grading: float = 1.0
     radial_cells: int | None = None
 

@@ -13,6 +13,7 @@ from sloshkit.cli import calibrate as calibrate
 from sloshkit.cli import plan as plan
 from sloshkit.cli import report as report
 from sloshkit.cli import cfd as cfd
+from sloshkit.cli import cfd_sweep as cfd_sweep
 from sloshkit.cli.app import app, main
 
 __all__ = ["app", "main"]
