@@ -188,7 +188,7 @@ def figure(rows: list[dict[str, Any]], series: list[dict[str, Any]], path: Path)
             for row in rows
             if row["name"] == item["name"] and row["variant"] in ("linear", "nonlinear")
         ]
-        keep = item["measured_t_s"] <= item["end_s"] + 3.0
+        keep = (item["measured_t_s"] >= -0.5) & (item["measured_t_s"] <= item["end_s"] + 3.0)
         panels.append(
             {
                 "name": item["name"],

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 from conftest import run_entry_point, seed_vial_table3
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
 
@@ -53,6 +53,9 @@ def test_desimone2024_log_decrement_from_a_signal():
     uneven=st.booleans(),
     seed=st.integers(0, 2**16),
 )
+# A decay that starts just after a peak: noise made a false 'peak' at the record's edge.
+@example(frequency=2.87890625, zeta=0.07252290286703324, noise=0.01953125, offset=0.0,
+         drift=0.0, uneven=True, seed=57)  # fmt: skip
 def test_fit_recovers_frequency_and_damping(frequency, zeta, noise, offset, drift, uneven, seed):
     """Tolerances: omega within 0.3 %, zeta within 5 % + 0.001 absolute, for noise up to 2 %
     of the initial amplitude, any offset, a linear drift, and jittered time steps."""

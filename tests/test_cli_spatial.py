@@ -120,5 +120,5 @@ def test_bad_pose_input_exits_2(tmp_path: Path) -> None:
     proc = run_entry_point("simulate", "--pose-file", str(path), "--tool-offset", "1,2")
     assert proc.returncode == 2
     assert "tool_offset" in proc.stderr and "Traceback" not in proc.stderr
-    proc = run_entry_point("simulate", "--pose-file", str(tmp_path / "missing.csv"))
-    assert proc.returncode == 2
+    result = runner.invoke(app, ["simulate", "--pose-file", str(tmp_path / "missing.csv")])
+    assert isinstance(result.exception, InputError)

@@ -183,7 +183,9 @@ def test_cart_pendulum_reduces_to_acceleration_driven_model(seed_model_table3):
     def force(t):
         return 0.2 * math.sin(2 * math.pi * 1.0 * t) if t < 1.0 else 0.0
 
-    cart = simulate_cart_pendulum(force, model, cart_mass, duration_s=2.0, sample_period_s=1e-3)
+    cart = simulate_cart_pendulum(
+        model, force, cart_mass_kg=cart_mass, duration_s=2.0, sample_period_s=1e-3
+    )
     velocity = cart.velocity_m_s
     from sloshkit.sim.discretisation import linear_mode_response
 

@@ -72,7 +72,8 @@ _API: dict[str, str] = {
     "SloshLimits": "sloshkit.plan.problem",
     "calibrate": "sloshkit.calibration",
     "CalibrationResult": "sloshkit.calibration",
-    # files
+    # files and controller export
+    "export_plan": "sloshkit.export.exporter",
     "read_model_file": "sloshkit.io.models",
     "write_model_file": "sloshkit.io.models",
     "read_pose_file": "sloshkit.io.poses",
@@ -103,6 +104,7 @@ __all__ = [
     "cubic",
     "ei",
     "equivalent_model",
+    "export_plan",
     "from_samples",
     "get_liquid",
     "make_law",
@@ -145,6 +147,7 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.calibration import CalibrationResult, calibrate
     from sloshkit.errors import InputError, ValidityWarning
+    from sloshkit.export.exporter import export_plan
     from sloshkit.io.models import read_model_file, write_model_file
     from sloshkit.io.poses import read_pose_file
     from sloshkit.model.geometry import UprightCylinder

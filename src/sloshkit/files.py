@@ -28,7 +28,31 @@ FloatArray = NDArray[np.float64]
 def atomic_open(
     path: str | Path, mode: str = "w", encoding: str | None = "utf-8"
 ) -> Iterator[IO[Any]]:
-    """Open a temporary file beside ``path``; rename it onto ``path`` only if the block succeeds."""
+    """Open a temporary file beside ``path``; rename it onto ``path`` only if the block succeeds.
+
+    Parameters
+    ----------
+    path : str or Path
+        Target file (its folder is created).
+    mode : str
+        File mode (``"w"``, ``"wb"``).
+    encoding : str, optional
+        Text encoding (ignored in binary mode).
+
+    Yields
+    ------
+    file object
+        The temporary file.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> target = pathlib.Path(tempfile.mkdtemp()) / "out.txt"
+    >>> with atomic_open(target) as stream:
+    ...     _ = stream.write("done")
+    >>> target.read_text()
+    'done'
+    """
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent)
@@ -49,7 +73,27 @@ def atomic_open(
 def write_columns_csv(
     path: str | Path, columns: Mapping[str, Sequence[float] | FloatArray]
 ) -> Path:
-    """Write equal-length named columns as CSV with a header row (full float precision)."""
+    """Write equal-length named columns as CSV with a header row (full float precision).
+
+    Parameters
+    ----------
+    path : str or Path
+        Target file (written atomically).
+    columns : mapping of str to array
+        Named columns.
+
+    Returns
+    -------
+    Path
+        The file.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = write_columns_csv(pathlib.Path(tempfile.mkdtemp()) / "a.csv", {"t_s": [0, 0.5]})
+    >>> path.read_text().splitlines()
+    ['t_s', '0', '0.5']
+    """
     names = list(columns)
     arrays = [np.asarray(columns[name], dtype=float) for name in names]
     with atomic_open(path, "w") as stream:
@@ -59,7 +103,27 @@ def write_columns_csv(
 
 
 def write_rows_csv(path: str | Path, rows: Sequence[Mapping[str, object]]) -> Path:
-    """Write a list of dicts as CSV (columns in the first row's key order)."""
+    """Write a list of dicts as CSV (columns in the first row's key order), atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+        Target file.
+    rows : sequence of mapping
+        The rows.
+
+    Returns
+    -------
+    Path
+        The file.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = write_rows_csv(pathlib.Path(tempfile.mkdtemp()) / "r.csv", [{"law": "cubic"}])
+    >>> path.read_text().splitlines()
+    ['law', 'cubic']
+    """
     if not rows:
         raise InputError("rows", 0, "nothing to write")
     buffer = io.StringIO()
@@ -72,7 +136,23 @@ def write_rows_csv(path: str | Path, rows: Sequence[Mapping[str, object]]) -> Pa
 
 
 def json_safe(payload: Any) -> Any:
-    """``payload`` with non-finite floats (an unbounded jerk, say) as None: JSON has no inf."""
+    """``payload`` with non-finite floats (an unbounded jerk, say) as None: JSON has no inf.
+
+    Parameters
+    ----------
+    payload : object
+        Nested dicts, lists, tuples, numbers, paths.
+
+    Returns
+    -------
+    object
+        The same structure with numpy scalars as Python numbers and inf/nan as None.
+
+    Examples
+    --------
+    >>> json_safe({"jerk_m_s3": float("inf"), "values": (1.0, 2)})
+    {'jerk_m_s3': None, 'values': [1.0, 2]}
+    """
     if isinstance(payload, float):
         return payload if np.isfinite(payload) else None
     if isinstance(payload, np.floating):
@@ -89,7 +169,27 @@ def json_safe(payload: Any) -> Any:
 
 
 def write_json(path: str | Path, payload: object) -> Path:
-    """Write ``payload`` as indented, strict JSON (non-finite numbers as null), atomically."""
+    """Write ``payload`` as indented, strict JSON (non-finite numbers as null), atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+        Target file.
+    payload : object
+        JSON-able data (see `json_safe`).
+
+    Returns
+    -------
+    Path
+        The file.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = write_json(pathlib.Path(tempfile.mkdtemp()) / "a.json", {"x_m": float("nan")})
+    >>> path.read_text().split()
+    ['{', '"x_m":', 'null', '}']
+    """
     with atomic_open(path, "w") as stream:
         json.dump(json_safe(payload), stream, indent=2, allow_nan=False)
         stream.write("\n")

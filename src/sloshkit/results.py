@@ -107,13 +107,19 @@ def plotter_for(result_type: type) -> PlotFunction:
 
     Returns
     -------
-    Callable
+    callable
         The registered function; `sloshkit.plotting` is imported first if nothing is registered.
 
     Raises
     ------
     TypeError
         When no function is registered for the type.
+
+    Examples
+    --------
+    >>> from sloshkit.sim.response import SloshResponse
+    >>> plotter_for(SloshResponse).__name__
+    'plot_response'
     """
     for klass in result_type.__mro__:
         if klass in _PLOTTERS:
@@ -132,6 +138,11 @@ def require_pandas() -> Any:
     -------
     module
         The ``pandas`` module.
+
+    Examples
+    --------
+    >>> require_pandas().__name__
+    'pandas'
     """
     try:
         import pandas
@@ -143,7 +154,17 @@ def require_pandas() -> Any:
 
 
 class ResultMixin:
-    """Default implementation of the result protocol from the `columns` hook."""
+    """Default implementation of the result protocol from the `columns` hook.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> class Trace(ResultMixin):
+    ...     def columns(self):
+    ...         return {"t_s": np.array([0.0, 1.0])}
+    >>> Trace().to_dict()
+    {'t_s': [0.0, 1.0]}
+    """
 
     def columns(self) -> Mapping[str, ArrayLike]:
         """Named, equal-length 1-D arrays (SI units in the names); implemented by each result."""

@@ -4,7 +4,8 @@
   (`find_free_decay`), analysed by independent estimators (fit, logdec regression, fft, the
   paper's two-peak logdec) and by the amplitude-dependent `backbone`.
 - `identify_forced`: omega, zeta (and a force signal's slosh mass) fitted by simulating the
-  model against a record of the applied motion's response, free decay or not.
+  model against a record of the applied motion's response, free decay or not;
+  `identify_simulated` does the same with any simulator (e.g. 3-D poses) and a clock offset.
 """
 
 from sloshkit.calibration.applied import AppliedMotion, applied_from_poses
@@ -35,6 +36,7 @@ from sloshkit.calibration.signals import (
     uniform_signal,
     usable_peaks,
 )
+from sloshkit.calibration.simulated import Simulator, identify_simulated
 from sloshkit.calibration.window import DecayWindow, find_free_decay, prepare_signal
 
 __all__ = [
@@ -50,6 +52,7 @@ __all__ = [
     "Method",
     "PreparedSignal",
     "SignalKind",
+    "Simulator",
     "applied_from_poses",
     "backbone",
     "calibrate",
@@ -60,6 +63,7 @@ __all__ = [
     "estimate_logdec_2peak",
     "find_free_decay",
     "identify_forced",
+    "identify_simulated",
     "interpolated_peaks",
     "log_decrement_from_zeta",
     "noise_level",

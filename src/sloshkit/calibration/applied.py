@@ -9,7 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from sloshkit.errors import InputError
-from sloshkit.motion.laws import Motion, from_samples
+from sloshkit.motion.profile import Motion
+from sloshkit.motion.recorded import from_samples
 
 POSE_COLUMNS: tuple[str, ...] = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
 AXES: dict[str, tuple[float, float, float]] = {

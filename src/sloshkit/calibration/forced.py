@@ -26,6 +26,7 @@ misses dynamics). A parameter whose interval is wider than `UNCONSTRAINED_OMEGA`
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -73,6 +74,8 @@ class ForcedIdentification(ResultMixin):
     source: str = ""
     notes: tuple[str, ...] = ()
     warnings: tuple[str, ...] = field(default=())
+    delay_s: float | None = None
+    delay_interval_s: tuple[float, float] | None = None
 
     @property
     def slosh_mass_kg(self) -> float | None:
@@ -95,6 +98,10 @@ class ForcedIdentification(ResultMixin):
             "constrained": dict(self.constrained),
             **{key: value for key, value in self.linear.items()},
             **{f"{key}_interval": list(value) for key, value in self.linear_intervals.items()},
+            "delay_s": self.delay_s,
+            "delay_interval_s": None
+            if self.delay_interval_s is None
+            else list(self.delay_interval_s),
             "record_s": [float(self.time_s[0]), float(self.time_s[-1])],
             "motion_s": list(self.motion_span_s),
             "source": self.source,
@@ -127,6 +134,89 @@ class ForcedIdentification(ResultMixin):
                 mode.n, damping_ratio=self.damping_ratio, source=source
             )
         return calibrated
+
+
+@dataclass(frozen=True, eq=False)
+class FitStatistics:
+    """Linear coefficients, prediction, 95 % half-widths (nonlinear parameters first, then the
+    linear ones) and the fit quality of a separable least-squares solution."""
+
+    coefficients: FloatArray
+    predicted: FloatArray
+    half_width: FloatArray
+    r2: float
+    nrmse: float
+    slosh_r2: float
+
+
+def fit_statistics(
+    y: FloatArray, design_at: Callable[[FloatArray], FloatArray], nonlinear: FloatArray
+) -> FitStatistics:
+    """Statistics of y ~ design(p) c at the solution p = ``nonlinear``.
+
+    The Jacobian of the full model in every parameter (nonlinear ones by central differences,
+    linear ones exact) gives the Gauss-Newton covariance s^2 (J^T J)^-1 with s^2 the residual
+    variance, and Student-t 95 % half-widths (Ljung, *System Identification* (1999) §9.3).
+    ``slosh_r2`` is the fraction of what the nuisance terms (all columns but the first) leave
+    that the first column (the slosh response) explains.
+    """
+    design = design_at(nonlinear)
+    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
+    predicted = design @ coefficients
+    columns = []
+    for index, value in enumerate(nonlinear):
+        step = 1e-6 * max(abs(float(value)), 1e-3)
+        up, down = nonlinear.astype(float), nonlinear.astype(float)
+        up[index] += step
+        down[index] -= step
+        columns.append((design_at(up) @ coefficients - design_at(down) @ coefficients) / (2 * step))
+    jacobian = np.column_stack((*columns, design))
+    rest = y - predicted
+    dof = max(1, y.size - jacobian.shape[1])
+    covariance = np.linalg.pinv(jacobian.T @ jacobian) * float(rest @ rest) / dof
+    half = float(stats.t.ppf(0.975, dof)) * np.sqrt(np.clip(np.diag(covariance), 0.0, None))
+    target = coefficients[0] * design[:, 0] + rest
+    return FitStatistics(
+        coefficients=np.asarray(coefficients, dtype=float),
+        predicted=np.asarray(predicted, dtype=float),
+        half_width=np.asarray(half, dtype=float),
+        r2=1.0 - float(rest @ rest) / float(np.sum((y - y.mean()) ** 2)),
+        nrmse=math.sqrt(float(np.mean(rest**2))) / float(np.ptp(y)),
+        slosh_r2=1.0
+        - float(rest @ rest) / max(1e-300, float(np.sum((target - target.mean()) ** 2))),
+    )
+
+
+def constraint_flags(
+    omega: float,
+    zeta: float,
+    omega_half: float,
+    zeta_half: float,
+    scale_name: str,
+    scale: float,
+    scale_half: float,
+    require_constrained: bool,
+) -> tuple[dict[str, bool], str]:
+    """Which parameters the record constrains (`UNCONSTRAINED_OMEGA`,
+    `UNCONSTRAINED_RELATIVE`) and the warning; raises `InputError` when omega_n or zeta is
+    loose and ``require_constrained``."""
+    constrained = {
+        "omega_n": bool(omega_half <= UNCONSTRAINED_OMEGA * omega),
+        "damping_ratio": bool(zeta_half <= UNCONSTRAINED_RELATIVE * zeta and zeta > 1.1e-4),
+        scale_name: bool(scale_half <= UNCONSTRAINED_RELATIVE * abs(scale)),
+    }
+    loose = [name for name, ok in constrained.items() if not ok]
+    if not loose:
+        return constrained, ""
+    message = (
+        f"the record does not constrain {', '.join(loose)} (95 % intervals: omega_n "
+        f"{omega - omega_half:.4g}-{omega + omega_half:.4g} rad/s, zeta {zeta - zeta_half:.3g}-"
+        f"{zeta + zeta_half:.3g}): the motion barely excites the mode (too slow, or the "
+        "record is too short or too noisy)"
+    )
+    if require_constrained and ("omega_n" in loose or "damping_ratio" in loose):
+        raise InputError("record", "unconstrained", message)
+    return constrained, message
 
 
 def _slosh_columns(
@@ -218,10 +308,10 @@ def identify_forced(
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion import quintic
     >>> from sloshkit.sim.simulate import simulate
-    >>> model = equivalent_model(UprightCylinder(0.04), get_liquid("water-25C"), 0.06,
+    >>> model = equivalent_model(UprightCylinder(0.04), get_liquid("water-25C"), 0.06, 1,
     ...                          damping_ratio=0.02)
     >>> move = quintic(0.05, 0.5)
-    >>> response = simulate(model, move, sample_period_s=0.002, settle_time_s=0.0)
+    >>> response = simulate(model, move, sample_period_s=0.004, settle_time_s=0.0)
     >>> guess = model.with_mode(1, omega_rad_s=19.0).with_mode(1, damping_ratio=0.05)
     >>> found = identify_forced(guess, AppliedMotion(move), response.time_s,
     ...                         response.wall_elevation_m)
@@ -276,32 +366,12 @@ def identify_forced(
         diff_step=1e-6,
     )
     omega, zeta = (float(v) for v in solution.x)
-    design = _design(model, kind, t, velocity, acceleration, omega, zeta)
-    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
-    predicted = design @ coefficients
-    # Jacobian of the full model in every parameter: nonlinear by differences, linear exact.
-    columns = []
-    for index, value in enumerate((omega, zeta)):
-        h = 1e-6 * max(abs(value), 1e-3)
-        shifted = [omega, zeta]
-        shifted[index] = value + h
-        up = _design(model, kind, t, velocity, acceleration, *shifted) @ coefficients
-        shifted[index] = value - h
-        down = _design(model, kind, t, velocity, acceleration, *shifted) @ coefficients
-        columns.append((up - down) / (2 * h))
-    jacobian = np.column_stack((*columns, design))
-    rest = y - predicted
-    dof = max(1, t.size - jacobian.shape[1])
-    variance = float(rest @ rest) / dof
-    covariance = np.linalg.pinv(jacobian.T @ jacobian) * variance
-    errors = np.sqrt(np.clip(np.diag(covariance), 0.0, None))
-    factor = float(stats.t.ppf(0.975, dof))
-    half = factor * errors
-    r2 = 1.0 - float(rest @ rest) / float(np.sum((y - y.mean()) ** 2))
-    nrmse = math.sqrt(float(np.mean(rest**2))) / float(np.ptp(y))
-    slosh_part = coefficients[0] * design[:, 0]
-    target = slosh_part + rest
-    slosh_r2 = 1.0 - float(rest @ rest) / max(1e-300, float(np.sum((target - target.mean()) ** 2)))
+
+    def design_at(parameters: FloatArray) -> FloatArray:
+        return _design(model, kind, t, velocity, acceleration, parameters[0], parameters[1])
+
+    fit = fit_statistics(y, design_at, np.array([omega, zeta]))
+    coefficients, predicted, half = fit.coefficients, fit.predicted, fit.half_width
     names = ["gain" if kind != "force" else "slosh_mass_kg"]
     if kind == "force":
         names.append("rigid_force_per_acceleration_kg")
@@ -325,26 +395,12 @@ def identify_forced(
             warnings_out.append(
                 "the slosh term has the sign of the rigid inertia: check the force axis"
             )
-    constrained = {
-        "omega_n": bool(half[0] <= UNCONSTRAINED_OMEGA * omega),
-        "damping_ratio": bool(half[1] <= UNCONSTRAINED_RELATIVE * zeta and zeta > 1.1e-4),
-    }
-    if kind == "force":
-        constrained["slosh_mass"] = bool(
-            half[2] <= UNCONSTRAINED_RELATIVE * abs(linear["slosh_mass_kg"])
-        )
-    else:
-        constrained["gain"] = bool(half[2] <= UNCONSTRAINED_RELATIVE * abs(linear["gain"]))
-    loose = [name for name, ok in constrained.items() if not ok]
-    if loose:
-        message = (
-            f"the record does not constrain {', '.join(loose)} (95 % intervals: omega_n "
-            f"{omega - half[0]:.4g}-{omega + half[0]:.4g} rad/s, zeta {zeta - half[1]:.3g}-"
-            f"{zeta + half[1]:.3g}): the motion barely excites the mode (too slow, or the "
-            "record is too short or too noisy)"
-        )
-        if require_constrained and ("omega_n" in loose or "damping_ratio" in loose):
-            raise InputError("record", "unconstrained", message)
+    scale_name = "slosh_mass" if kind == "force" else "gain"
+    scale = linear["slosh_mass_kg"] if kind == "force" else linear["gain"]
+    constrained, message = constraint_flags(
+        omega, zeta, half[0], half[1], scale_name, scale, half[2], require_constrained
+    )
+    if message:
         warnings_out.append(message)
     return ForcedIdentification(
         signal_kind=kind,
@@ -352,9 +408,9 @@ def identify_forced(
         damping_ratio=zeta,
         omega_n_interval=(omega - half[0], omega + half[0]),
         damping_ratio_interval=(max(0.0, zeta - half[1]), zeta + half[1]),
-        r2=r2,
-        nrmse=nrmse,
-        slosh_r2=slosh_r2,
+        r2=fit.r2,
+        nrmse=fit.nrmse,
+        slosh_r2=fit.slosh_r2,
         constrained=constrained,
         linear=linear,
         linear_intervals=linear_intervals,

@@ -48,8 +48,42 @@ def _estimate_dict(estimate: Estimate) -> dict[str, Any]:
 class CalibrationResult(ResultMixin):
     """Calibrated frequency and damping, with every estimator's answer for comparison.
 
-    ``method`` is the estimator reported (and written to a model file); ``requested_method``
-    the one asked for (they differ when it failed and another answered, with a warning).
+    Built by `sloshkit.calibration.calibrate`; follows the result protocol (``to_dict``,
+    ``to_pandas``, ``to_csv`` of the analysed window, ``plot``).
+
+    Parameters
+    ----------
+    method : str
+        The estimator reported and written to a model file.
+    chosen : Estimate
+        Its answer.
+    estimates : dict of str to Estimate
+        Every estimator's answer (fit, logdec, fft, logdec-2peak, backbone), failures included.
+    signal : PreparedSignal
+        The record as analysed: resampled, filtered, windowed and detrended.
+    source : str
+        Where the record came from (provenance).
+    peak_times_s, peak_values : numpy.ndarray
+        The usable peaks [s] and their swings (signal units).
+    window : DecayWindow, optional
+        The window and why it was chosen.
+    warnings : tuple of str
+        The `ValidityWarning` messages (fallback, disagreement, amplitude dependence).
+    noise_rms : float, optional
+        Noise standard deviation of the decay (signal units).
+    backbone : Backbone, optional
+        Frequency and damping against amplitude.
+    requested_method : str
+        The estimator asked for (differs from ``method`` when it failed).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration import calibrate
+    >>> t = np.arange(0, 6, 0.002)
+    >>> result = calibrate(t, np.exp(-0.58 * t) * np.cos(29 * t), start_s=0.0)
+    >>> result.method, sorted(result.to_dict()["window"])[:2]
+    ('fit', ['end_s', 'forcing_end_s'])
     """
 
     method: str

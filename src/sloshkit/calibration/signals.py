@@ -173,14 +173,21 @@ def noise_level(y: FloatArray, samples_per_period: float) -> float:
 
 
 def interpolated_peaks(
-    t: FloatArray, y: FloatArray, distance: int, half_width: int = 1
+    t: FloatArray, y: FloatArray, distance: int, half_width: int = 1, guard: int = 0
 ) -> tuple[FloatArray, FloatArray]:
     """Positive peaks refined by a least-squares parabola over +-``half_width`` samples
-    (3-point interpolation for 1); a wider parabola averages out noise on the peak."""
+    (3-point interpolation for 1); a wider parabola averages out noise on the peak.
+
+    A peak must be the largest sample within +-``guard`` samples, all inside the record: at
+    the record's edges a decaying signal has a local maximum made by noise, not a peak."""
     indices, _ = sps.find_peaks(y, distance=max(1, distance))
-    half = max(1, half_width)
+    half = max(1, half_width, guard)
     indices = indices[(indices >= half) & (indices < y.size - half)]
     indices = indices[y[indices] > 0]
+    if guard > 0:
+        indices = np.asarray(
+            [i for i in indices if y[i] >= np.max(y[i - guard : i + guard + 1])], dtype=int
+        )
     times, heights = [], []
     for i in indices:
         window_t = t[i - half : i + half + 1] - t[i]
@@ -217,8 +224,9 @@ def usable_peaks(
     distance = int(0.6 * period_s / step)
     # A parabola over +-1/10 period fits a cosine peak to 1e-3 and averages the noise.
     half_width = max(1, int(0.1 * period_s / step))
-    times, heights = interpolated_peaks(t, y, distance, half_width)
-    trough_times, trough_depths = interpolated_peaks(t, -y, distance, half_width)
+    guard = int(0.25 * period_s / step)
+    times, heights = interpolated_peaks(t, y, distance, half_width, guard)
+    trough_times, trough_depths = interpolated_peaks(t, -y, distance, half_width, guard)
     swings_t, swings = [], []
     for time_value, height in zip(times, heights, strict=True):
         following = np.nonzero(trough_times > time_value)[0]

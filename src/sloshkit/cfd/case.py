@@ -84,11 +84,11 @@ MPI_LOCAL_OPTIONS = (
 )
 
 
-def acceleration_table(spec: CaseSpec, step_s: float = 1e-3) -> str:
+def acceleration_table(spec: CaseSpec, sample_period_s: float = 1e-3) -> str:
     """``constant/acceleration.dat``: (t ((ax ay az) (wx wy wz) (dwx dwy dwz))), lengths in mm,
     covering [0, endTime + 0.1 s] (a time outside the table is fatal)."""
     end = spec.end_time_s + 0.1
-    t = np.arange(0.0, end + step_s, step_s)
+    t = np.arange(0.0, end + sample_period_s, sample_period_s)
     linear, omega, alpha = frame_motion(spec.excitation, t)
     linear = linear * SCALE
 

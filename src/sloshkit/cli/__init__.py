@@ -11,6 +11,7 @@ from sloshkit.cli import simulate as simulate
 from sloshkit.cli import sweep as sweep
 from sloshkit.cli import calibrate as calibrate
 from sloshkit.cli import plan as plan
+from sloshkit.cli import export as export
 from sloshkit.cli import report as report
 from sloshkit.cli import cfd as cfd
 from sloshkit.cli import cfd_sweep as cfd_sweep

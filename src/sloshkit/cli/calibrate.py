@@ -5,9 +5,11 @@ from __future__ import annotations
 import math
 import typing
 import warnings
+from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
 
+import numpy as np
 import typer
 from rich.table import Table
 from rich.text import Text
@@ -19,6 +21,7 @@ from sloshkit.calibration import (
     applied_from_poses,
     calibrate,
     identify_forced,
+    identify_simulated,
 )
 from sloshkit.calibration.applied import POSE_COLUMNS
 from sloshkit.cli.app import app, stdout
@@ -34,22 +37,122 @@ from sloshkit.io.tables import (
 )
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.sim.simulate import simulate
+from sloshkit.sim.spatial import simulate_spatial
 
 
-def _read_applied_motion(path: Path, axis: str | None) -> typing.Any:
-    """A pose file (t,x,y,z,qx,qy,qz,qw) or a motion file, in the file's clock."""
+def _read_applied_motion(
+    path: Path, axis: str | None, offset_s: float
+) -> tuple[AppliedMotion, PoseTrajectory | None]:
+    """A pose file (t,x,y,z,qx,qy,qz,qw) or a motion file, shifted by the clock offset; the
+    poses too when the file has them."""
     header, data = read_table(path)
     lowered = [name.lower() for name in header]
     if all(name in lowered for name in POSE_COLUMNS):
         index = [lowered.index(name) for name in POSE_COLUMNS]
-        return applied_from_poses(
-            data[:, index[0]], data[:, index[1:4]], data[:, index[4:8]], axis, name=str(path)
-        )
+        time, position, quaternion = data[:, index[0]], data[:, index[1:4]], data[:, index[4:8]]
+        applied = applied_from_poses(time, position, quaternion, axis, name=str(path))
+        poses = PoseTrajectory(time, position, quaternion, name=str(path))
+        return replace(applied, start_s=applied.start_s + offset_s), poses
     if axis is not None:
         raise InputError("motion_axis", axis, "applies to pose files (t,x,y,z,qx,qy,qz,qw) only")
     time_index = next((lowered.index(n) for n in ("t", "t_s", "time", "time_s") if n in lowered), 0)
-    return AppliedMotion(
-        read_motion_file(path), float(data[0, time_index]), (f"motion file {path}",)
+    start = float(data[0, time_index]) + offset_s
+    return AppliedMotion(read_motion_file(path), start, (f"motion file {path}",)), None
+
+
+def _identify_spatial(
+    model: SloshModel,
+    poses: PoseTrajectory,
+    time: typing.Any,
+    values: typing.Any,
+    *,
+    offset_s: float,
+    fit_offset: bool,
+    require_constrained: bool,
+    source: str,
+) -> typing.Any:
+    """The 3-D model along the poses against a slosh-height record (`identify_simulated`)."""
+    step = float(np.median(np.diff(time)))
+    sample_period = min(0.008, max(0.002, 0.5 * step))
+    settle = max(0.0, float(time[-1]) - offset_s - poses.end_s + 0.5)
+
+    def simulate_height(omega: float, zeta: float) -> tuple[typing.Any, typing.Any]:
+        trial = model.with_mode(1, omega_rad_s=omega)
+        for mode in trial.modes:
+            trial = trial.with_mode(mode.n, damping_ratio=zeta)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            response = simulate_spatial(
+                trial, poses, settle_time_s=settle, sample_period_s=sample_period
+            )
+        return response.time_s, response.slosh_height_m
+
+    theory = model.modes[0]
+    return identify_simulated(
+        simulate_height,
+        time,
+        values,
+        omega_guess_rad_s=theory.omega_rad_s,
+        zeta_guess=max(theory.damping_ratio, 1e-3),
+        delay_s=offset_s,
+        fit_delay=fit_offset,
+        omega_range=(0.7, 1.4),
+        signal_kind="height",
+        motion_span_s=(poses.start_s, poses.end_s),
+        require_constrained=require_constrained,
+        source=source,
+        notes=(f"3-D slosh model along the poses of {poses.name}; slosh height = the largest "
+               "wall elevation over the circumference",),
+    )  # fmt: skip
+
+
+def _identify_line_with_offset(
+    model: SloshModel,
+    applied: AppliedMotion,
+    time: typing.Any,
+    values: typing.Any,
+    *,
+    offset_s: float,
+    signal_kind: str,
+    require_constrained: bool,
+    source: str,
+) -> typing.Any:
+    """The 1-D model along the motion, with the clock offset (record time minus motion-file
+    time) fitted around ``offset_s`` (`identify_simulated`)."""
+    file_start = applied.start_s - offset_s
+    step = float(np.median(np.diff(time)))
+    sample_period = min(0.004, max(0.001, 0.5 * step))
+    settle = max(0.0, float(time[-1]) - applied.end_s + 0.5)
+
+    def simulate_line(omega: float, zeta: float) -> tuple[typing.Any, typing.Any]:
+        trial = model.with_mode(1, omega_rad_s=omega)
+        for mode in trial.modes:
+            trial = trial.with_mode(mode.n, damping_ratio=zeta)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            response = simulate(
+                trial, applied.motion, sample_period_s=sample_period, settle_time_s=settle
+            )
+        signal = response.wall_elevation_m if signal_kind == "height" else response.angle_rad[0]
+        return response.time_s + file_start, signal
+
+    theory = model.modes[0]
+    return identify_simulated(
+        simulate_line,
+        time,
+        values,
+        omega_guess_rad_s=theory.omega_rad_s,
+        zeta_guess=max(theory.damping_ratio, 1e-3),
+        delay_s=offset_s,
+        fit_delay=True,
+        omega_range=(0.7, 1.4),
+        signal_kind=signal_kind,
+        motion_span_s=(file_start, file_start + applied.motion.duration_s),
+        require_constrained=require_constrained,
+        source=source,
+        notes=applied.notes,
     )
 
 
@@ -98,6 +201,16 @@ def calibrate_command(
     signal_kind: Annotated[
         str, typer.Option("--signal-kind", help="force, height or angle (for --motion-file).")
     ] = "height",
+    clock_offset: Annotated[
+        str,
+        typer.Option("--clock-offset", help="Record time minus motion-file time, e.g. 8.1s."),
+    ] = "0s",
+    fit_clock_offset: Annotated[
+        bool,
+        typer.Option(
+            "--fit-clock-offset", help="Fit the clock offset within 0.5 s (height, angle)."
+        ),
+    ] = False,
     settle: Annotated[
         str | None,
         typer.Option("--settle", help="Margin after the forcing (default: one period)."),
@@ -123,8 +236,9 @@ def calibrate_command(
 
     Without window options the free decay is found after the forced motion. With
     --motion-file the model is also fitted to the whole record (forced-response
-    identification, no free decay needed). The model options describe the container, for the
-    comparison with theory, the identification and the calibrated model file.
+    identification, no free decay needed); a pose file with a height signal drives the 3-D
+    model (slosh height), --motion-axis the 1-D one. The model options describe the container,
+    for the comparison with theory, the identification and the calibrated model file.
 
     Examples:
 
@@ -134,6 +248,10 @@ def calibrate_command(
 
       sloshkit calibrate record.csv --time-column t --signal-column fy --signal-kind force
       --motion-file move.csv --radius 40mm --fill-height 60mm
+
+      sloshkit calibrate heights.csv --time-column t_s --signal-column slosh_height_m
+      --motion-file poses.csv --clock-offset 9.36s --fit-clock-offset --radius 49mm
+      --fill-height 80mm
     """
     methods = (*METHODS, "forced")
     if method is None:
@@ -153,9 +271,41 @@ def calibrate_command(
     time = select_column(header, table, time_column, "time_column") * time_scale
     values = select_column(header, table, signal_column, "signal_column")
     lowpass_hz = None if lowpass is None else parse_quantity(lowpass, "frequency", "lowpass")
-    applied = None if motion_file is None else _read_applied_motion(motion_file, motion_axis)
+    offset = parse_quantity(clock_offset, "time", "clock_offset")
+    applied, poses = (
+        (None, None)
+        if motion_file is None
+        else _read_applied_motion(motion_file, motion_axis, offset)
+    )
+    spatial = poses is not None and motion_axis is None and signal_kind == "height"
+    if fit_clock_offset and (applied is None or signal_kind == "force"):
+        raise InputError(
+            "fit_clock_offset", True, "needs --motion-file and a height or angle signal"
+        )
     forced = None
-    if applied is not None:
+    if fit_clock_offset and not spatial and applied is not None:
+        forced = _identify_line_with_offset(
+            slosh_model,
+            applied,
+            time,
+            values,
+            offset_s=offset,
+            signal_kind=signal_kind,
+            require_constrained=method == "forced",
+            source=str(data),
+        )
+    elif spatial and poses is not None:
+        forced = _identify_spatial(
+            slosh_model,
+            poses,
+            time,
+            values,
+            offset_s=offset,
+            fit_offset=fit_clock_offset,
+            require_constrained=method == "forced",
+            source=str(data),
+        )
+    elif applied is not None:
         forced = identify_forced(
             slosh_model,
             applied,
@@ -166,6 +316,7 @@ def calibrate_command(
             require_constrained=method == "forced",
             source=str(data),
         )
+    if forced is not None:
         for message in forced.warnings:
             warnings.warn(message, ValidityWarning, stacklevel=1)
     decay = None
@@ -277,6 +428,9 @@ def _print_calibration(
             f"({forced.damping_ratio_interval[0]:.4f}…{forced.damping_ratio_interval[1]:.4f}), "
             f"R² {forced.r2:.4f}, NRMSE {forced.nrmse:.3g}"
         )
+        if forced.delay_s is not None and forced.delay_interval_s is not None:
+            low, high = forced.delay_interval_s
+            stdout.print(f"clock offset {forced.delay_s:.3f} s ({low:.3f}…{high:.3f})")
         if forced.slosh_mass_kg is not None:
             stdout.print(
                 f"slosh mass {1e3 * forced.slosh_mass_kg:.2f} g, rigid mass "

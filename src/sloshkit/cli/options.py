@@ -15,14 +15,19 @@ from typing import Annotated, Any
 
 import typer
 
-from sloshkit.errors import InputError
 from sloshkit.files import json_safe
 from sloshkit.io.models import read_model_file
-from sloshkit.io.units import parse_quantity
+from sloshkit.io.requests import (
+    container_request,
+    damping_law_request,
+    fill_height_request,
+    liquid_request,
+    model_request,
+)
 from sloshkit.model.geometry import UprightCylinder
-from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
-from sloshkit.model.modal import SloshModel, equivalent_model
-from sloshkit.model.theory import DAMPING_LAWS, DampingLaw
+from sloshkit.model.liquids import LIQUIDS, Liquid
+from sloshkit.model.modal import SloshModel
+from sloshkit.model.theory import DampingLaw
 
 Radius = Annotated[str, typer.Option("--radius", help="Inner radius, e.g. 20.5mm.")]
 
@@ -102,39 +107,19 @@ Json = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI un
 
 def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
     """The container from the model options."""
-    return UprightCylinder(
-        parse_quantity(radius, "length", "radius"),
-        None if wall_height is None else parse_quantity(wall_height, "length", "wall_height"),
-    )
+    return container_request(radius, wall_height)
 
 
 def build_liquid(
     liquid: str, density: str | None, viscosity: str | None, sigma: str | None
 ) -> Liquid:
     """A preset liquid, with any of its properties overridden."""
-    base = get_liquid(liquid)
-    if (density, viscosity, sigma) == (None, None, None):
-        return base
-    return Liquid(
-        name=base.name + "*",
-        density_kg_m3=base.density_kg_m3
-        if density is None
-        else parse_quantity(density, "density", "density"),
-        viscosity_pa_s=base.viscosity_pa_s
-        if viscosity is None
-        else parse_quantity(viscosity, "viscosity", "viscosity"),
-        surface_tension_n_m=base.surface_tension_n_m
-        if sigma is None
-        else parse_quantity(sigma, "surface_tension", "sigma"),
-        source=base.source + " (overridden)",
-    )
+    return liquid_request(liquid, density, viscosity, sigma, surface_tension_parameter="sigma")
 
 
 def check_damping_law(damping_law: str) -> DampingLaw:
     """The damping-law name, or `InputError`."""
-    if damping_law not in DAMPING_LAWS:
-        raise InputError("damping_law", damping_law, "must be one of " + ", ".join(DAMPING_LAWS))
-    return typing.cast(DampingLaw, damping_law)
+    return damping_law_request(damping_law)
 
 
 def build_model(
@@ -153,22 +138,14 @@ def build_model(
 ) -> SloshModel:
     """Turn the model options (text with units) into a `SloshModel`."""
     container = build_container(radius, wall_height)
-    if fill_height is not None and fill_volume is not None:
-        raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
-    if fill_volume is not None:
-        height = container.fill_height_for_volume(
-            parse_quantity(fill_volume, "volume", "fill_volume")
-        )
-    else:
-        height = parse_quantity(fill_height or "39mm", "length", "fill_height")
-    return equivalent_model(
+    return model_request(
         container,
         build_liquid(liquid, density, viscosity, sigma),
-        height,
-        n_modes=modes,
-        damping_law=check_damping_law(damping_law),
+        fill_height_request(container, fill_height, fill_volume),
+        modes=modes,
+        damping_law=damping_law,
         damping_ratio=damping_ratio,
-        surface_tension=surface_tension_correction,
+        surface_tension_correction=surface_tension_correction,
     )
 
 

@@ -11,10 +11,17 @@ from rich.table import Table
 from rich.text import Text
 
 from sloshkit.cli.app import app, stderr, stdout
+from sloshkit.cli.export import (
+    ExportSettings,
+    run_export,
+    show_export,
+    with_export_options,
+)
 from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.io.requests import fraction_request
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.planner import plan
@@ -23,8 +30,10 @@ from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 
 @app.command("plan")
 @with_model_options
+@with_export_options
 def plan_command(
     slosh_model: SloshModel,
+    export_settings: ExportSettings,
     distance: Distance = "0.5m",
     max_angle: MaxAngle = None,
     max_residual: MaxResidual = None,
@@ -59,6 +68,14 @@ def plan_command(
         Path | None, typer.Option("--out", help="Trajectory CSV at the sample period.")
     ] = None,
     plot: Annotated[Path | None, typer.Option("--plot", help="Figure of the candidates.")] = None,
+    export: Annotated[
+        str | None,
+        typer.Option(
+            "--export",
+            help="Also write the chosen move for a controller (see 'sloshkit export'): "
+            "pose-csv, joint-csv, ros2, urscript or cam-table.",
+        ),
+    ] = None,
     json_output: Json = False,
 ) -> None:
     """The fastest move that keeps the slosh within limits, verified by simulation.
@@ -85,11 +102,7 @@ def plan_command(
     ]
     if missing:
         raise InputError("plan", "incomplete", "needs " + ", ".join(missing))
-    band_text = robust.strip()
-    try:
-        band = float(band_text.rstrip("%")) / (100.0 if band_text.endswith("%") else 1.0)
-    except ValueError:
-        raise InputError("robust", robust, "must be a fraction or a percentage, e.g. 10%") from None
+    band = fraction_request(robust, "robust")
     problem = PlanProblem(
         distance_m=parse_quantity(distance, "length", "distance"),
         machine=MachineLimits(
@@ -119,6 +132,10 @@ def plan_command(
         if plot is not None:
             result.plot(plot)
     payload = result.to_dict()
+    exported = None
+    if result.feasible and export is not None:
+        exported = _export_chosen(result, problem, export, out, export_settings, slosh_model)
+        payload["export"] = exported.to_dict()
     if json_output:
         print_json(payload)
     else:
@@ -165,7 +182,36 @@ def plan_command(
                 )
                 + (f"; wrote {out}" if out is not None else "")
             )
+    if exported is not None and not json_output:
+        show_export(exported)
+    if exported is not None and not exported.passed:
+        raise typer.Exit(1)
     if not result.feasible:
         messages = "; ".join(f"{c.method}: {c.message}" for c in result.candidates)
         stderr.print(f"[red]error:[/red] no method meets the limits ({messages})", highlight=False)
         raise typer.Exit(1)
+
+
+def _export_chosen(
+    result: typing.Any,
+    problem: typing.Any,
+    fmt: str,
+    out: Path | None,
+    settings: ExportSettings,
+    model: SloshModel,
+) -> typing.Any:
+    """Export the chosen move beside ``--out`` (or as ``plan<suffix>``), with its limits."""
+    from sloshkit.export.exporter import SUFFIXES
+    from sloshkit.export.plans import LinePlan
+
+    samples = result.samples()
+    base = out if out is not None else Path("plan.csv")
+    line = LinePlan(
+        samples["t_s"],
+        samples["position_m"],
+        samples["velocity_m_s"],
+        samples["acceleration_m_s2"],
+        source=base.name,
+    )
+    target = base.with_name(base.stem + SUFFIXES.get(fmt, ""))
+    return run_export(line, fmt, target, settings, model, problem.slosh, None)

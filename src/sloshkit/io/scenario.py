@@ -13,11 +13,15 @@ from pathlib import Path
 from typing import Any
 
 from sloshkit.errors import InputError
+from sloshkit.io.requests import (
+    container_request,
+    fill_height_request,
+    fraction_request,
+    liquid_request,
+    model_request,
+)
 from sloshkit.io.units import parse_quantity, parse_range
-from sloshkit.model.geometry import UprightCylinder
-from sloshkit.model.liquids import Liquid, get_liquid
-from sloshkit.model.modal import SloshModel, equivalent_model
-from sloshkit.model.theory import DAMPING_LAWS, DampingLaw
+from sloshkit.model.modal import SloshModel
 
 ANALYSES: tuple[str, ...] = ("model", "calibrate", "compare", "sweep", "plan", "cfd")
 _SCHEMA: dict[str, set[str]] = {
@@ -92,57 +96,33 @@ def parse_scenario(
     container_table = document.get("container", {})
     if "radius" not in container_table:
         raise InputError("scenario", "[container] radius", "is required")
-    container = UprightCylinder(
-        parse_quantity(container_table["radius"], "length", "radius"),
-        None
-        if "wall_height" not in container_table
-        else parse_quantity(container_table["wall_height"], "length", "wall_height"),
-    )
+    container = container_request(container_table["radius"], container_table.get("wall_height"))
     liquid_table = document.get("liquid", {})
-    base_liquid = get_liquid(str(liquid_table.get("preset", "water-25C")))
-    overrides = {
-        k: liquid_table[k] for k in ("density", "viscosity", "surface_tension") if k in liquid_table
-    }
-    liquid = base_liquid
-    if overrides:
-        liquid = Liquid(
-            name=base_liquid.name + "*",
-            density_kg_m3=parse_quantity(
-                overrides.get("density", base_liquid.density_kg_m3), "density", "density"
-            ),
-            viscosity_pa_s=parse_quantity(
-                overrides.get("viscosity", base_liquid.viscosity_pa_s), "viscosity", "viscosity"
-            ),
-            surface_tension_n_m=parse_quantity(
-                overrides.get("surface_tension", base_liquid.surface_tension_n_m),
-                "surface_tension",
-                "surface_tension",
-            ),
-            source=base_liquid.source + " (overridden in the scenario)",
-        )
+    liquid = liquid_request(
+        str(liquid_table.get("preset", "water-25C")),
+        liquid_table.get("density"),
+        liquid_table.get("viscosity"),
+        liquid_table.get("surface_tension"),
+        note="overridden in the scenario",
+    )
     fill = document.get("fill", {})
-    if ("height" in fill) == ("volume" in fill):
-        raise InputError("scenario", "[fill]", "give exactly one of height or volume")
-    height = (
-        parse_quantity(fill["height"], "length", "fill height")
-        if "height" in fill
-        else container.fill_height_for_volume(
-            parse_quantity(fill["volume"], "volume", "fill volume")
-        )
+    height = fill_height_request(
+        container,
+        fill.get("height"),
+        fill.get("volume"),
+        default=None,
+        height_parameter="fill height",
+        volume_parameter="fill volume",
     )
     model_table = document.get("model", {})
-    law = str(model_table.get("damping_law", "seed"))
-    if law not in DAMPING_LAWS:
-        raise InputError("damping_law", law, "must be one of " + ", ".join(DAMPING_LAWS))
-    damping_law: DampingLaw = law  # type: ignore[assignment]
-    model = equivalent_model(
+    model = model_request(
         container,
         liquid,
         height,
-        n_modes=int(model_table.get("modes", 3)),
-        damping_law=damping_law,
+        modes=int(model_table.get("modes", 3)),
+        damping_law=str(model_table.get("damping_law", "seed")),
         damping_ratio=model_table.get("damping_ratio"),
-        surface_tension=bool(model_table.get("surface_tension_correction", False)),
+        surface_tension_correction=bool(model_table.get("surface_tension_correction", False)),
     )
     move = document.get("move", {})
 
@@ -168,8 +148,7 @@ def parse_scenario(
         plan_limits["sample_period"] = parse_quantity(
             limits.get("sample_period", "4ms"), "time", "sample_period"
         )
-        robust = str(limits.get("robust", "0%")).strip()
-        plan_limits["robust"] = float(robust.rstrip("%")) / (100.0 if robust.endswith("%") else 1.0)
+        plan_limits["robust"] = fraction_request(limits.get("robust", "0%"), "robust")
         plan_limits["method"] = str(limits.get("method", "auto"))
         plan_limits["max_wall_elevation"] = optional(limits, "max_wall_elevation", "length")
     sweep: dict[str, Any] = {}

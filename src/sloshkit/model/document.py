@@ -19,7 +19,27 @@ MODEL_FILE_VERSION = 1
 
 
 def model_to_document(model: SloshModel) -> dict[str, Any]:
-    """A `SloshModel` as a nested dict for a model file (SI, unit-suffixed keys)."""
+    """A `SloshModel` as a versioned, nested document (SI, unit-suffixed keys).
+
+    Parameters
+    ----------
+    model : SloshModel
+        The model.
+
+    Returns
+    -------
+    dict
+        The document (``sloshkit_model_version``, container, liquid, fill, settings, modes,
+        provenance).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> model_to_document(model)["sloshkit_model_version"]
+    1
+    """
     container = model.container
     document: dict[str, Any] = {
         "sloshkit_model_version": MODEL_FILE_VERSION,

@@ -23,7 +23,7 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -32,11 +32,9 @@ from scipy.spatial.transform import Rotation, RotationSpline
 
 from sloshkit.errors import InputError, require_increasing, require_positive
 from sloshkit.motion.laws import Motion
+from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, PoseKinematics, pose_kinematics
 from sloshkit.motion.quaternions import sign_continuous
 from sloshkit.motion.sampling import sample_times
-
-if TYPE_CHECKING:
-    from sloshkit.motion.pose_kinematics import PoseKinematics
 
 FloatArray = NDArray[np.float64]
 
@@ -142,7 +140,8 @@ class PoseTrajectory:
     @property
     def tilt_rad(self) -> FloatArray:
         """Angle between the container axis and the world vertical, shape (N,) [rad]."""
-        return np.arccos(np.clip(self.axis_world[:, 2], -1.0, 1.0))
+        x, y = self.quaternion_xyzw[:, 0], self.quaternion_xyzw[:, 1]
+        return np.arccos(np.clip(1.0 - 2.0 * (x * x + y * y), -1.0, 1.0))  # R_zz
 
     # -- transformations --------------------------------------------------------------------
 
@@ -188,9 +187,8 @@ class PoseTrajectory:
 
         Examples
         --------
-        >>> import numpy as np
-        >>> poses = poses_from_law(__import__("sloshkit.motion.laws").motion.laws.quintic(
-        ...     0.2, 1.0), sample_period_s=0.01)
+        >>> from sloshkit.motion.laws import quintic
+        >>> poses = poses_from_law(quintic(0.2, 1.0), sample_period_s=0.01)
         >>> poses.resample(0.05).time_s.size
         21
         """
@@ -230,20 +228,17 @@ class PoseTrajectory:
         return PoseTrajectory(times, position, quaternion, self.name)
 
     def kinematics(
-        self, sample_period_s: float | None = None, *, cutoff_hz: float | None = None
+        self,
+        sample_period_s: float | None = None,
+        *,
+        cutoff_hz: float | None = DEFAULT_CUTOFF_HZ,
     ) -> PoseKinematics:
         """Velocity, accelerations, angular velocity and acceleration on a uniform grid.
 
-        See `sloshkit.motion.pose_kinematics.pose_kinematics` (Savitzky-Golay smoothing with
-        the stated cut-off).
+        See `sloshkit.motion.pose_kinematics.pose_kinematics`: Savitzky-Golay differentiation
+        with the stated cut-off [Hz], or an interpolating spline with ``cutoff_hz=None``.
         """
-        from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, pose_kinematics
-
-        return pose_kinematics(
-            self,
-            sample_period_s,
-            cutoff_hz=DEFAULT_CUTOFF_HZ if cutoff_hz is None else cutoff_hz,
-        )
+        return pose_kinematics(self, sample_period_s, cutoff_hz=cutoff_hz)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -108,9 +108,16 @@ def quaternion_rates(
     """
 
     def vec_conj_product(a: FloatArray, b: FloatArray) -> FloatArray:
-        av, aw = a[:, :3], a[:, 3:4]
-        bv, bw = b[:, :3], b[:, 3:4]
-        return np.asarray(aw * bv - bw * av - np.cross(av, bv), dtype=float)
+        """vec(conj(a) b) = a_w b_v - b_w a_v - a_v x b_v, component by component."""
+        ax, ay, az, aw = a[:, 0], a[:, 1], a[:, 2], a[:, 3]
+        bx, by, bz, bw = b[:, 0], b[:, 1], b[:, 2], b[:, 3]
+        return np.column_stack(
+            (
+                aw * bx - bw * ax - (ay * bz - az * by),
+                aw * by - bw * ay - (az * bx - ax * bz),
+                aw * bz - bw * az - (ax * by - ay * bx),
+            )
+        )
 
     scale = 2.0 / np.einsum("ij,ij->i", q, q)[:, None]
     return scale * vec_conj_product(q, q_dot), scale * vec_conj_product(q, q_ddot)

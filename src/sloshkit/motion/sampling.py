@@ -45,7 +45,25 @@ def steps_to_reach(duration_s: float, sample_period_s: float) -> int:
 
 
 def sample_times(duration_s: float, sample_period_s: float) -> FloatArray:
-    """0, dt, 2 dt, ... up to and including ``duration_s`` (the last step may be shorter)."""
+    """0, Ts, 2 Ts, ... up to and including ``duration_s`` (the last step may be shorter).
+
+    Parameters
+    ----------
+    duration_s : float
+        Duration T [s].
+    sample_period_s : float
+        Step Ts [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The times [s], the last exactly T.
+
+    Examples
+    --------
+    >>> sample_times(0.25, 0.1).tolist()
+    [0.0, 0.1, 0.2, 0.25]
+    """
     count = steps_to_reach(duration_s, sample_period_s)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     t[-1] = duration_s
@@ -53,10 +71,26 @@ def sample_times(duration_s: float, sample_period_s: float) -> FloatArray:
 
 
 def sample_motion(motion: Motion, sample_period_s: float) -> dict[str, FloatArray]:
-    """Samples at t = 0, dt, 2 dt, ..., with the last sample exactly at T.
+    """Samples of a motion at t = 0, Ts, 2 Ts, ..., with the last sample exactly at T.
 
-    Returns arrays ``t_s``, ``position_m``, ``velocity_m_s``, ``acceleration_m_s2``,
-    ``jerk_m_s3``.
+    Parameters
+    ----------
+    motion : Motion
+        The motion.
+    sample_period_s : float
+        Step Ts [s].
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``t_s``, ``position_m``, ``velocity_m_s``, ``acceleration_m_s2``, ``jerk_m_s3``.
+
+    Examples
+    --------
+    >>> from sloshkit import quintic
+    >>> samples = sample_motion(quintic(0.1, 1.0), 0.25)
+    >>> [round(float(x), 6) for x in samples["position_m"]]
+    [0.0, 0.010352, 0.05, 0.089648, 0.1]
     """
     dt = require_positive("sample_period", sample_period_s, "s")
     t = sample_times(motion.duration_s, dt)
@@ -70,8 +104,27 @@ def sample_motion(motion: Motion, sample_period_s: float) -> dict[str, FloatArra
 
 
 def export_samples(motion: Motion, sample_period_s: float) -> dict[str, FloatArray]:
-    """Samples at t = k Ts from 0 until the first sample at or after T, at rest on the target
-    from T on (columns ``t_s, position_m, velocity_m_s, acceleration_m_s2, jerk_m_s3``)."""
+    """Controller samples: t = k Ts from 0 until the first sample at or after T, at rest on the
+    target from T on.
+
+    Parameters
+    ----------
+    motion : Motion
+        The motion.
+    sample_period_s : float
+        Controller period Ts [s].
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``t_s``, ``position_m``, ``velocity_m_s``, ``acceleration_m_s2``, ``jerk_m_s3``.
+
+    Examples
+    --------
+    >>> from sloshkit import quintic
+    >>> export_samples(quintic(0.1, 1.0), 0.3)["t_s"].tolist()
+    [0.0, 0.3, 0.6, 0.8999999999999999, 1.2]
+    """
     count = steps_to_reach(motion.duration_s, sample_period_s)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     jerk = motion.jerk(t)
@@ -86,5 +139,23 @@ def export_samples(motion: Motion, sample_period_s: float) -> dict[str, FloatArr
 
 
 def steps_for(max_duration_s: float, sample_period_s: float) -> int:
-    """Samples on the grid k dt needed to reach the first sample t >= T of the longest move."""
+    """Samples on the grid k Ts that reach the first sample t >= T of the longest move.
+
+    Parameters
+    ----------
+    max_duration_s : float
+        Longest move duration [s].
+    sample_period_s : float
+        Step Ts [s].
+
+    Returns
+    -------
+    int
+        `steps_to_reach` + 2.
+
+    Examples
+    --------
+    >>> steps_for(1.0, 0.1)
+    12
+    """
     return steps_to_reach(max_duration_s, sample_period_s) + 2

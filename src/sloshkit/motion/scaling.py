@@ -54,9 +54,33 @@ def scaled_velocity_samples(
 ) -> FloatArray:
     """Velocity samples (steps, cases) of a law time-scaled to each duration.
 
-    A rest-to-rest law of shape s_1(tau) on [0, 1] moved in time T has v_T(t) = v_1(t/T) / T;
-    ``unit_law_velocity`` is v_1 as a `scipy.interpolate.PPoly` on [0, 1], zero outside it.
+    A rest-to-rest law of shape s_1(tau) on [0, 1] moved in time T has v_T(t) = v_1(t/T) / T.
     Compiled with numba when available (same values as evaluating the `PPoly`).
+
+    Parameters
+    ----------
+    unit_law_velocity : scipy.interpolate.PPoly
+        v_1 on [0, 1], zero outside it.
+    durations_s : numpy.ndarray
+        Durations T, one per case [s].
+    sample_period_s : float
+        Step Ts [s].
+    steps : int
+        Number of samples.
+
+    Returns
+    -------
+    numpy.ndarray
+        Velocities [m/s], shape (steps, cases).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit import quintic
+    >>> unit = unit_duration_shape(quintic(0.1, 2.0)).derivative_pp(1)
+    >>> v = scaled_velocity_samples(unit, np.array([1.0, 2.0]), 0.5, 5)
+    >>> [round(float(x), 6) for x in v[1]]
+    [0.1875, 0.052734]
     """
     global _SAMPLER
     durations = np.asarray(durations_s, dtype=float)
@@ -82,7 +106,24 @@ def scaled_velocity_samples(
 
 
 def unit_duration_shape(motion: Motion) -> Motion:
-    """The same law stretched in time to T = 1 s (same distance): s_1(tau) = s(tau T)."""
+    """The same law stretched in time to T = 1 s (same distance): s_1(tau) = s(tau T).
+
+    Parameters
+    ----------
+    motion : Motion
+        A rest-to-rest law.
+
+    Returns
+    -------
+    Motion
+        Its shape on [0, 1] s.
+
+    Examples
+    --------
+    >>> from sloshkit import septic
+    >>> unit_duration_shape(septic(0.1, 3.0)).duration_s
+    1.0
+    """
     pp = motion.position_pp
     scale = motion.duration_s
     order = pp.c.shape[0] - 1

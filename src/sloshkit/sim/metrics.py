@@ -107,7 +107,15 @@ def wall_elevation_factors(model: SloshModel) -> FloatArray:
     Returns
     -------
     numpy.ndarray
-        One factor per mode (see `sloshkit.model.modal.wall_elevation_factor`).
+        One factor per mode (see `sloshkit.model.theory.wall_elevation_factor`).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> wall_elevation_factors(model).shape
+    (3,)
     """
     return np.array([mode.wall_elevation_factor_m for mode in model.modes])
 
@@ -157,14 +165,53 @@ def wall_elevation(
 
 
 def default_settle_time(model: SloshModel) -> float:
-    """Time simulated after the move for plots: 5 first-mode periods, at least 1 s [s]."""
+    """Time simulated after the move for plots: 5 first-mode periods, at least 1 s [s].
+
+    Parameters
+    ----------
+    model : SloshModel
+        The equivalent model.
+
+    Returns
+    -------
+    float
+        The settle time [s].
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> round(default_settle_time(model), 3)
+    1.059
+    """
     return max(1.0, 5.0 * 2.0 * math.pi / model.modes[0].omega_rad_s)
 
 
 def simulation_grid(
     move_duration_s: float, sample_period_s: float, settle_time_s: float
 ) -> FloatArray:
-    """Uniform times k dt from 0 to at least T + settle time [s] (shared by all paths)."""
+    """Uniform times k Ts from 0 to at least T + settle time [s] (shared by all paths).
+
+    Parameters
+    ----------
+    move_duration_s : float
+        Move duration T [s].
+    sample_period_s : float
+        Step Ts [s].
+    settle_time_s : float
+        Time after the move [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The grid; its step count is `sloshkit.motion.sampling.steps_to_reach`.
+
+    Examples
+    --------
+    >>> simulation_grid(0.3, 0.1, 0.0).tolist()
+    [0.0, 0.1, 0.2, 0.30000000000000004]
+    """
     count = steps_to_reach(move_duration_s + settle_time_s, sample_period_s) + 1
     return np.arange(count, dtype=float) * sample_period_s
 
@@ -176,8 +223,37 @@ def residual_from_state(
     move_duration_s: float,
     model: SloshModel,
 ) -> FloatArray:
-    """Per-mode free-oscillation amplitude at T, from the state at the first sample t_k >= T
-    scaled back by exp(zeta omega (t_k - T)) (exact for the linear model)."""
+    """Per-mode free-oscillation amplitude at T from the state at the first sample t_k >= T.
+
+    The amplitude there is scaled back by exp(zeta omega (t_k - T)), which is exact for the linear
+    model (`free_amplitude`).
+
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Sample times [s].
+    angle_rad, rate_rad_s : numpy.ndarray
+        Angles [rad] and rates [rad/s], shape (modes, samples).
+    move_duration_s : float
+        Move duration T [s].
+    model : SloshModel
+        The model (frequencies and damping of the modes).
+
+    Returns
+    -------
+    numpy.ndarray
+        Residual amplitude per mode [rad].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> t = np.arange(3) * 0.1
+    >>> residual_from_state(t, np.zeros((3, 3)), np.zeros((3, 3)), 0.1, model).tolist()
+    [0.0, 0.0, 0.0]
+    """
     index = int(np.searchsorted(time_s, move_duration_s - 1e-12))
     index = min(index, time_s.size - 1)
     lag = time_s[index] - move_duration_s

@@ -209,7 +209,24 @@ class SloshResponse(ResultMixin):
 class CartPendulumResponse:
     """Response of the cart-pendulum system to a force on the cart.
 
-    ``position_m``, ``velocity_m_s``: the cart; ``angle_rad``, ``rate_rad_s``: (modes, samples).
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Sample times [s].
+    position_m, velocity_m_s, acceleration_m_s2 : numpy.ndarray
+        The cart's motion [m, m/s, m/s^2].
+    angle_rad, rate_rad_s : numpy.ndarray
+        Pendulum angles [rad] and rates [rad/s], shape (modes, samples).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> cart = sk.sim.simulate.simulate_cart_pendulum(
+    ...     model, lambda t: 1.0, cart_mass_kg=1.0, duration_s=0.01)
+    >>> cart.angle_rad.shape[0]
+    3
     """
 
     time_s: FloatArray

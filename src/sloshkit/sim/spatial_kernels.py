@@ -40,30 +40,86 @@ def _compile() -> dict[str, Any]:
     from numba import njit
 
     @njit(cache=True)  # type: ignore[untyped-decorator]
-    def oscillator_step(x0, v0, u0, u1, k, c, h):  # type: ignore[no-untyped-def]
-        """x'' + c x' + k x = u0 + (u1 - u0) tau / h over one step h (k > 0)."""
+    def transition(k, c, h):  # type: ignore[no-untyped-def]
+        """cos- and sin-like terms of x'' + c x' + k x = 0 over one step h."""
+        s2 = k - 0.25 * c * c
+        if s2 > 1e-12 * k:
+            s = np.sqrt(s2)
+            return np.cos(s * h), np.sin(s * h) / s
+        if s2 < -1e-12 * k:
+            s = np.sqrt(-s2)
+            return np.cosh(s * h), np.sinh(s * h) / s
+        return 1.0, h
+
+    @njit(cache=True)  # type: ignore[untyped-decorator]
+    def oscillator_step(x0, v0, u0, u1, k, c, h, cos_term, sin_term, decay):  # type: ignore[no-untyped-def]
+        """x'' + c x' + k x = u0 + (u1 - u0) tau / h over one step h (k > 0); the transition
+        terms come from `transition`, decay = exp(-c h / 2)."""
         slope = (u1 - u0) / h
         xp0 = u0 / k - c * slope / (k * k)
         xp1 = u1 / k - c * slope / (k * k)
         vp = slope / k
         y0 = x0 - xp0
         w0 = v0 - vp
-        s2 = k - 0.25 * c * c
-        if s2 > 1e-12 * k:
-            s = np.sqrt(s2)
-            cos_term = np.cos(s * h)
-            sin_term = np.sin(s * h) / s
-        elif s2 < -1e-12 * k:
-            s = np.sqrt(-s2)
-            cos_term = np.cosh(s * h)
-            sin_term = np.sinh(s * h) / s
-        else:
-            cos_term = 1.0
-            sin_term = h
-        decay = np.exp(-0.5 * c * h)
         y1 = decay * (y0 * (cos_term + 0.5 * c * sin_term) + w0 * sin_term)
         w1 = decay * (w0 * (cos_term - 0.5 * c * sin_term) - y0 * k * sin_term)
         return y1 + xp1, w1 + vp
+
+    @njit(cache=True)  # type: ignore[untyped-decorator]
+    def linear_step(tx, ty, vx, vy, fa, fb, ra, rb, aa, ab, inv_l, c, floor, h):  # type: ignore[no-untyped-def]
+        """One step of the 2-D linear pendulum: coefficients at the midpoint, forcing FOH."""
+        km = 0.5 * (max(-fa[2] * inv_l, floor) + max(-fb[2] * inv_l, floor))
+        pm = 0.5 * (ra[0] + rb[0])
+        qm = 0.5 * (ra[1] + rb[1])
+        spin = np.sqrt(pm * pm + qm * qm)
+        if spin > 1e-12:
+            e1x = pm / spin
+            e1y = qm / spin
+        else:
+            e1x = 1.0
+            e1y = 0.0
+        e2x = -e1y
+        e2y = e1x
+        uax = fa[0] * inv_l + aa[1]
+        uay = fa[1] * inv_l - aa[0]
+        ubx = fb[0] * inv_l + ab[1]
+        uby = fb[1] * inv_l - ab[0]
+        decay = np.exp(-0.5 * c * h)
+        cos2, sin2 = transition(km, c, h)
+        if spin > 1e-12:
+            cos1, sin1 = transition(km + spin * spin, c, h)
+        else:
+            cos1, sin1 = cos2, sin2
+        x1, w1 = oscillator_step(
+            tx * e1x + ty * e1y,
+            vx * e1x + vy * e1y,
+            uax * e1x + uay * e1y,
+            ubx * e1x + uby * e1y,
+            km + spin * spin,
+            c,
+            h,
+            cos1,
+            sin1,
+            decay,
+        )
+        x2, w2 = oscillator_step(
+            tx * e2x + ty * e2y,
+            vx * e2x + vy * e2y,
+            uax * e2x + uay * e2y,
+            ubx * e2x + uby * e2y,
+            km,
+            c,
+            h,
+            cos2,
+            sin2,
+            decay,
+        )
+        return (
+            x1 * e1x + x2 * e2x,
+            x1 * e1y + x2 * e2y,
+            w1 * e1x + w2 * e2x,
+            w1 * e1y + w2 * e2y,
+        )
 
     @njit(cache=True)  # type: ignore[untyped-decorator]
     def linear(force, rest_force, tilt_rate, tilt_accel, length, omega, zeta, k_floor, h):  # type: ignore[no-untyped-def]
@@ -82,51 +138,95 @@ def _compile() -> dict[str, Any]:
             angle[m, 0, 0] = tx
             angle[m, 0, 1] = ty
             for j in range(steps - 1):
-                ka = max(-force[m, j, 2] * inv_l, k_floor[m])
-                kb = max(-force[m, j + 1, 2] * inv_l, k_floor[m])
-                km = 0.5 * (ka + kb)
-                pm = 0.5 * (tilt_rate[j, 0] + tilt_rate[j + 1, 0])
-                qm = 0.5 * (tilt_rate[j, 1] + tilt_rate[j + 1, 1])
-                spin = np.sqrt(pm * pm + qm * qm)
-                if spin > 1e-12:
-                    e1x = pm / spin
-                    e1y = qm / spin
-                else:
-                    e1x = 1.0
-                    e1y = 0.0
-                e2x = -e1y
-                e2y = e1x
-                uax = force[m, j, 0] * inv_l + tilt_accel[j, 1]
-                uay = force[m, j, 1] * inv_l - tilt_accel[j, 0]
-                ubx = force[m, j + 1, 0] * inv_l + tilt_accel[j + 1, 1]
-                uby = force[m, j + 1, 1] * inv_l - tilt_accel[j + 1, 0]
-                x1, w1 = oscillator_step(
-                    tx * e1x + ty * e1y,
-                    vx * e1x + vy * e1y,
-                    uax * e1x + uay * e1y,
-                    ubx * e1x + uby * e1y,
-                    km + spin * spin,
+                tx, ty, vx, vy = linear_step(
+                    tx,
+                    ty,
+                    vx,
+                    vy,
+                    force[m, j],
+                    force[m, j + 1],
+                    tilt_rate[j],
+                    tilt_rate[j + 1],
+                    tilt_accel[j],
+                    tilt_accel[j + 1],
+                    inv_l,
                     c,
+                    k_floor[m],
                     h,
                 )
-                x2, w2 = oscillator_step(
-                    tx * e2x + ty * e2y,
-                    vx * e2x + vy * e2y,
-                    uax * e2x + uay * e2y,
-                    ubx * e2x + uby * e2y,
-                    km,
-                    c,
-                    h,
-                )
-                tx = x1 * e1x + x2 * e2x
-                ty = x1 * e1y + x2 * e2y
-                vx = w1 * e1x + w2 * e2x
-                vy = w1 * e1y + w2 * e2y
                 angle[m, j + 1, 0] = tx
                 angle[m, j + 1, 1] = ty
                 rate[m, j + 1, 0] = vx
                 rate[m, j + 1, 1] = vy
         return angle, rate
+
+    @njit(cache=True)  # type: ignore[untyped-decorator]
+    def linear_batch(  # type: ignore[no-untyped-def]
+        force,
+        rest_force,
+        tilt_rate,
+        tilt_accel,
+        length,
+        omega,
+        zeta,
+        k_floor,  # type: ignore[no-untyped-def]
+        factor,
+        remainder,
+        h,
+        end_index,
+        last_index,
+    ):
+        """Metrics only: peak slosh height and first-mode angle up to each case's last
+        sample, and the state at each case's end index (cases first, time-major inside)."""
+        cases = force.shape[0]
+        modes = length.size
+        peak_height = np.zeros(cases)
+        peak_angle = np.zeros(cases)
+        end_state = np.zeros((cases, modes, 4))
+        state = np.zeros((modes, 4))
+        for case in range(cases):
+            for m in range(modes):
+                inv_l = 1.0 / length[m]
+                k0 = max(-rest_force[case, m, 2] * inv_l, k_floor[m])
+                state[m, 0] = rest_force[case, m, 0] * inv_l / k0
+                state[m, 1] = rest_force[case, m, 1] * inv_l / k0
+                state[m, 2] = 0.0
+                state[m, 3] = 0.0
+            for j in range(last_index[case] + 1):
+                quasi = force[case, modes, j]
+                axial = max(-quasi[2], 1e-9)
+                ex = remainder * quasi[0] / axial
+                ey = remainder * quasi[1] / axial
+                for m in range(modes):
+                    ex += factor[m] * state[m, 0]
+                    ey += factor[m] * state[m, 1]
+                    if j == end_index[case]:
+                        for k in range(4):
+                            end_state[case, m, k] = state[m, k]
+                peak_height[case] = max(peak_height[case], np.sqrt(ex * ex + ey * ey))
+                peak_angle[case] = max(
+                    peak_angle[case], np.sqrt(state[0, 0] ** 2 + state[0, 1] ** 2)
+                )
+                if j == last_index[case]:
+                    break
+                for m in range(modes):
+                    state[m, 0], state[m, 1], state[m, 2], state[m, 3] = linear_step(
+                        state[m, 0],
+                        state[m, 1],
+                        state[m, 2],
+                        state[m, 3],
+                        force[case, m, j],
+                        force[case, m, j + 1],
+                        tilt_rate[case, j],
+                        tilt_rate[case, j + 1],
+                        tilt_accel[case, j],
+                        tilt_accel[case, j + 1],
+                        1.0 / length[m],
+                        2.0 * zeta[m] * omega[m],
+                        k_floor[m],
+                        h,
+                    )
+        return peak_height, peak_angle, end_state
 
     @njit(cache=True)  # type: ignore[untyped-decorator]
     def pendulum_rhs(u, v, f, p, q, dp, dq, length, c):  # type: ignore[no-untyped-def]
@@ -240,7 +340,12 @@ def _compile() -> dict[str, Any]:
                 velocity[m, j + 1] = v
         return unit, velocity
 
-    return {"linear": linear, "nonlinear": nonlinear, "step": oscillator_step}
+    return {
+        "linear": linear,
+        "linear_batch": linear_batch,
+        "nonlinear": nonlinear,
+        "step": oscillator_step,
+    }
 
 
 def kernels() -> dict[str, Any]:

@@ -1,0 +1,407 @@
+"""Export a plan to a controller format and check the round trip (the ``export`` command's core).
+
+Frames: the plan's poses are the container's bottom centre in the *path* frame; ``Mounting``
+places the path in the robot's base frame (``T_base_path``) and the container in the flange
+frame (``T_flange_container``), so the flange must follow
+``T_base_flange = T_base_path T_path_container inv(T_flange_container)``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.errors import InputError
+from sloshkit.export.frames import Mounting, invert, matrices_to_poses, poses_to_matrices
+from sloshkit.export.ik import JointPath, joint_limit_violations, solve_joint_path
+from sloshkit.export.kinematics import Arm
+from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
+from sloshkit.export.roundtrip import (
+    RoundTrip,
+    compare_line,
+    compare_spatial,
+    container_poses_in_path,
+)
+from sloshkit.model.modal import SloshModel
+from sloshkit.plan.problem import SloshLimits
+
+FloatArray = NDArray[np.float64]
+
+FORMATS = ("pose-csv", "joint-csv", "ros2", "urscript", "cam-table")
+JOINT_FORMATS = ("joint-csv", "ros2", "urscript")
+SUFFIXES = {
+    "pose-csv": ".poses.csv",
+    "joint-csv": ".joints.csv",
+    "ros2": ".ros2.yaml",
+    "urscript": ".script",
+    "cam-table": ".cam.csv",
+}
+
+
+@dataclass(frozen=True)
+class ExportResult:
+    """What was exported, and the round trip when checked.
+
+    Attributes
+    ----------
+    format : one of `FORMATS`; path : the written file
+    samples : number of samples written; sample_period_s : their period [s]
+    joints : the joint path for joint formats (else None)
+    round_trip : the check (None when not run)
+    notes : remarks (e.g. why a check was not possible)
+    """
+
+    format: str
+    path: Path
+    samples: int
+    sample_period_s: float
+    joints: JointPath | None = None
+    round_trip: RoundTrip | None = None
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+    @property
+    def passed(self) -> bool:
+        """False only when a round trip ran and failed."""
+        return self.round_trip is None or self.round_trip.passed
+
+    def to_dict(self) -> dict[str, Any]:
+        """The export command's JSON (unit-suffixed keys)."""
+        return {
+            "format": self.format,
+            "path": str(self.path),
+            "samples": self.samples,
+            "sample_period_s": self.sample_period_s,
+            "joints": None if self.joints is None else self.joints.to_dict(),
+            "round_trip": None if self.round_trip is None else self.round_trip.to_dict(),
+            "passed": self.passed,
+            "notes": list(self.notes),
+        }
+
+
+def model_summary(model: SloshModel) -> str:
+    """One-line description of a slosh model for file headers (SI)."""
+    first = model.modes[0]
+    return json.dumps(
+        {
+            "radius_m": model.radius_m,
+            "fill_height_m": model.fill_height_m,
+            "liquid": model.liquid.name,
+            "modes": len(model.modes),
+            "first_mode_frequency_hz": round(first.frequency_hz, 9),
+            "first_mode_damping_ratio": round(first.damping_ratio, 9),
+        }
+    )
+
+
+def limits_summary(limits: SloshLimits) -> str:
+    """One-line description of slosh limits for file headers (degrees and metres, as named)."""
+    return json.dumps(
+        {
+            "max_angle_deg": round(math.degrees(limits.max_angle_rad), 9),
+            "max_residual_deg": round(math.degrees(limits.max_residual_rad), 9),
+            "max_wall_elevation_m": limits.max_wall_elevation_m,
+        }
+    )
+
+
+def export_plan(
+    plan: LinePlan | PoseStream | str | Path,
+    fmt: str,
+    out: str | Path,
+    *,
+    arm: Arm | None = None,
+    mounting: Mounting = Mounting(),  # noqa: B008 - frozen dataclass
+    axis: tuple[float, float, float] = (1.0, 0.0, 0.0),
+    sample_period_s: float | None = None,
+    model: SloshModel | None = None,
+    limits: SloshLimits | None = None,
+    check: bool = True,
+    lookahead_time_s: float = 0.05,
+    gain: float = 500.0,
+) -> ExportResult:
+    """Write ``plan`` in format ``fmt`` to ``out`` and, with ``check``, verify the round trip.
+
+    Parameters
+    ----------
+    plan : a `LinePlan`, a `PoseStream`, or a CSV file of either (`read_plan`)
+    fmt : one of `FORMATS`
+    out : output file
+    arm : the arm, for joint formats (`sloshkit.export.kinematics.load_arm`)
+    mounting : container in the flange and path in the base (`Mounting`)
+    axis : direction of a 1-D plan in the path frame
+    sample_period_s : output sample period [s] (default the plan's; ``urscript`` is always
+        0.002 s)
+    model : slosh model for the round trip (required by ``check``)
+    limits : slosh limits the plan was made for (checked on the export; written to headers)
+    check : parse the file back, rebuild the motion and compare the slosh (`RoundTrip`)
+    lookahead_time_s, gain : ``servoj`` parameters for ``urscript``
+
+    Returns
+    -------
+    ExportResult
+
+    References
+    ----------
+    See `sloshkit.export.roundtrip` and the format modules in `sloshkit.export.formats`.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(101) * 0.004
+    >>> s = t / t[-1]
+    >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
+    >>> plan = LinePlan(t, x, np.gradient(x, t), np.gradient(np.gradient(x, t), t))
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "move.cam.csv"
+    >>> export_plan(plan, "cam-table", out, model=model).passed
+    True
+    """
+    if fmt not in FORMATS:
+        raise InputError("format", fmt, "must be one of " + ", ".join(FORMATS))
+    source = read_plan(plan) if isinstance(plan, str | Path) else plan
+    stream = (
+        line_to_poses(source, np.asarray(axis, dtype=float))
+        if isinstance(source, LinePlan)
+        else source
+    )
+    if check and model is None:
+        raise InputError("model", None, "the round-trip check needs a slosh model")
+    period = _output_period(fmt, stream, sample_period_s)
+    planned = stream
+    stream = stream.resample(period)
+    metadata = _metadata(fmt, stream, period, model, limits, mounting, arm)
+    base_to_path = mounting.base_to_path
+    container = base_to_path[None] @ poses_to_matrices(stream.position_m, stream.quaternion_xyzw)
+    joints: JointPath | None = None
+    path = Path(out)
+    from sloshkit.export.formats import cam_table, joint_csv, pose_csv, ros2, urscript
+
+    if fmt == "pose-csv":
+        position, quaternion = matrices_to_poses(container)
+        placed = PoseStream(stream.time_s, position, quaternion, stream.source, stream.metadata)
+        pose_csv.write_pose_csv(path, placed, metadata)
+    elif fmt == "cam-table":
+        if stream.line is None:
+            raise InputError("format", fmt, "a cam table needs a 1-D plan (t_s, position_m)")
+        cam_table.write_cam_table(path, stream.line, metadata)
+    else:
+        if arm is None:
+            raise InputError("robot", None, f"format {fmt} needs an arm (--robot or --urdf)")
+        flange = container @ invert(mounting.flange_to_container)[None]
+        joints = solve_joint_path(arm, flange, stream.time_s)
+        if fmt == "joint-csv":
+            joint_csv.write_joint_csv(path, joints, metadata)
+        elif fmt == "ros2":
+            ros2.write_ros2_yaml(path, joints, arm.base_link, metadata)
+        else:
+            urscript.write_urscript(path, joints, metadata, lookahead_time_s, gain)
+    notes: list[str] = []
+    trip = None
+    if check and model is not None:
+        trip, note = check_round_trip(
+            fmt, path, planned, model, arm=arm, mounting=mounting, limits=limits
+        )
+        notes += [note] if note else []
+    return ExportResult(fmt, path, int(stream.time_s.size), period, joints, trip, tuple(notes))
+
+
+def check_round_trip(
+    fmt: str,
+    path: str | Path,
+    plan: PoseStream,
+    model: SloshModel,
+    *,
+    arm: Arm | None = None,
+    mounting: Mounting = Mounting(),  # noqa: B008 - frozen dataclass
+    limits: SloshLimits | None = None,
+) -> tuple[RoundTrip | None, str]:
+    """Parse an exported file back, rebuild the container motion and compare its slosh with
+    the plan's (`sloshkit.export.roundtrip`); joint files are also checked against the arm's
+    joint position and velocity limits and for jumps (`joint_limit_violations`).
+
+    Parameters
+    ----------
+    fmt : the file's format (one of `FORMATS`)
+    path : the exported file
+    plan : the pose stream it was exported from (at the plan's own sample period)
+    model : the slosh model
+    arm, mounting : as given to `export_plan`
+    limits : slosh limits to check, if known
+
+    Returns
+    -------
+    tuple
+        The `RoundTrip` (1-D model for a 1-D plan, 3-D model for a pose stream) and a note
+        ("" when there is nothing to add).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(101) * 0.004
+    >>> s = t / t[-1]
+    >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
+    >>> plan = LinePlan(t, x, np.gradient(x, t), np.gradient(np.gradient(x, t), t))
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "move.cam.csv"
+    >>> _ = export_plan(plan, "cam-table", out, check=False)
+    >>> trip, _ = check_round_trip("cam-table", out, line_to_poses(plan, np.ones(3)), model)
+    >>> trip.passed
+    True
+    """
+    axis = (1.0, 0.0, 0.0) if plan.axis is None else tuple(float(v) for v in plan.axis)
+    time, rebuilt = rebuild_container_poses(fmt, path, arm, mounting, axis)  # type: ignore[arg-type]
+    in_path = container_poses_in_path(rebuilt, mounting.base_to_path)
+    if plan.line is None:
+        trip = compare_spatial(model, plan, time, in_path, limits)
+    else:
+        trip = compare_line(model, plan, time, in_path, limits)
+    if fmt in JOINT_FORMATS and arm is not None:
+        joint_time, position = read_joint_samples(fmt, path)
+        extra = joint_limit_violations(arm, joint_time, position)
+        trip = dataclasses.replace(trip, violations=trip.violations + tuple(extra))
+    return trip, ""
+
+
+def rebuild_container_poses(
+    fmt: str,
+    path: str | Path,
+    arm: Arm | None,
+    mounting: Mounting,
+    axis: tuple[float, float, float] = (1.0, 0.0, 0.0),
+) -> tuple[FloatArray, FloatArray]:
+    """Times [s] and container poses in the base frame (N, 4, 4) parsed back from a file
+    (forward kinematics and the mounting for joint formats; a cam table is put on ``axis``
+    of the path frame from the path origin, upright).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> t = np.arange(4) * 0.1
+    >>> stream = PoseStream(t, np.ones((4, 3)), np.tile([0, 0, 0, 1.0], (4, 1)))
+    >>> from sloshkit.export.formats.pose_csv import write_pose_csv
+    >>> out = write_pose_csv(pathlib.Path(tempfile.mkdtemp()) / "p.csv", stream, {})
+    >>> rebuild_container_poses("pose-csv", out, None, Mounting())[1][3, :3, 3]
+    array([1., 1., 1.])
+    """
+    from sloshkit.export.formats import cam_table, pose_csv
+
+    if fmt == "pose-csv":
+        stream = pose_csv.read_pose_csv(path)
+        return stream.time_s, poses_to_matrices(stream.position_m, stream.quaternion_xyzw)
+    if fmt == "cam-table":
+        line = cam_table.read_cam_table(path)
+        poses = np.broadcast_to(np.eye(4), (line.time_s.size, 4, 4)).copy()
+        direction = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+        poses[:, :3, 3] = np.outer(line.position_m - line.position_m[0], direction)
+        return line.time_s, mounting.base_to_path[None] @ poses
+    if arm is None:
+        raise InputError("robot", None, f"format {fmt} needs an arm (--robot or --urdf)")
+    time, position = read_joint_samples(fmt, path)
+    if position.shape[1] != arm.dof:
+        raise InputError("file", str(path), f"has {position.shape[1]} joints, the arm {arm.dof}")
+    flange = arm.forward(position)
+    return time, flange @ mounting.flange_to_container[None]
+
+
+def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArray]:
+    """Times [s] and joint positions (samples, joints) [rad] of a joint-format file.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit.export.formats.joint_csv import write_joint_csv
+    >>> t = np.arange(3) * 0.1
+    >>> path = JointPath(t, t[:, None], 0 * t[:, None], 0 * t[:, None], ("j1",))
+    >>> out = write_joint_csv(pathlib.Path(tempfile.mkdtemp()) / "j.csv", path, {})
+    >>> read_joint_samples("joint-csv", out)[1][:, 0]
+    array([0. , 0.1, 0.2])
+    """
+    from sloshkit.export.formats import joint_csv, ros2, urscript
+
+    if fmt == "joint-csv":
+        joints = joint_csv.read_joint_csv(path)
+        return joints.time_s, joints.position_rad
+    if fmt == "ros2":
+        joints, _ = ros2.read_ros2_yaml(path)
+        return joints.time_s, joints.position_rad
+    if fmt == "urscript":
+        return urscript.read_urscript(path)
+    raise InputError("format", fmt, "is not a joint format: " + ", ".join(JOINT_FORMATS))
+
+
+def _output_period(fmt: str, stream: PoseStream, requested: float | None) -> float:
+    from sloshkit.export.formats.urscript import UR_SAMPLE_PERIOD_S
+
+    if fmt == "urscript":
+        if requested is not None and abs(requested - UR_SAMPLE_PERIOD_S) > 1e-12:
+            raise InputError("sample_period", requested, "urscript streams at 0.002 s (2ms)")
+        return UR_SAMPLE_PERIOD_S
+    return stream.sample_period_s if requested is None else float(requested)
+
+
+def _metadata(
+    fmt: str,
+    stream: PoseStream,
+    period: float,
+    model: SloshModel | None,
+    limits: SloshLimits | None,
+    mounting: Mounting,
+    arm: Arm | None,
+) -> dict[str, object]:
+    from sloshkit import __version__
+
+    metadata: dict[str, object] = {
+        "format": f"sloshkit {fmt}",
+        "sloshkit_version": __version__,
+        "sample_period_s": format(period, ".12g"),
+        "source": Path(stream.source).name if stream.source else "python",
+    }
+    if stream.line is not None and stream.axis is not None:
+        metadata["plan"] = (
+            "1-D move along "
+            + json.dumps([round(float(value), 12) for value in stream.axis])
+            + " of the path frame"
+        )
+    if fmt == "pose-csv":
+        metadata["units"] = "t [s]; x, y, z [m]; qx, qy, qz, qw [-] (unit quaternion, scalar last)"
+        metadata["frame"] = (
+            "container bottom centre in the robot base frame (the path frame placed by "
+            "base_pose); quaternion rotates container axes into that frame; z up"
+        )
+    elif fmt == "cam-table":
+        metadata["units"] = "t_s [s], position_m [m], velocity_m_s [m/s], acceleration_m_s2 [m/s^2]"
+        metadata["frame"] = "slide axis, from the start position"
+    else:
+        if arm is not None:
+            metadata["robot"] = arm.name
+            metadata["base_link"] = arm.base_link
+            metadata["tip_link"] = arm.tip_link
+            metadata["joints"] = ",".join(arm.joint_names)
+        metadata["units"] = (
+            "joint positions [rad]; servoj t and lookahead_time [s]"
+            if fmt == "urscript"
+            else "time [s]; joint positions [rad], velocities [rad/s], accelerations [rad/s^2]"
+        )
+    if fmt != "cam-table":
+        metadata["mounting"] = json.dumps(
+            {key: [round(v, 12) for v in value] for key, value in mounting.to_dict().items()}
+        )
+    carried = stream.metadata
+    if model is not None:
+        metadata["model"] = model_summary(model)
+    elif "model" in carried:
+        metadata["model"] = carried["model"]
+    if limits is not None:
+        metadata["limits"] = limits_summary(limits)
+    elif "limits" in carried:
+        metadata["limits"] = carried["limits"]
+    return metadata

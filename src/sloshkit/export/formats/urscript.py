@@ -1,0 +1,130 @@
+"""``urscript``: a URScript program that streams joint samples with ``servoj`` every 2 ms.
+
+The file is one ``def ... end`` block (what the controller's primary and secondary interfaces
+run when it is sent to them; in a Polyscope Script node, call the function after loading it),
+with the metadata as comments inside it. The program moves to the first sample with
+``movej`` (slowly), then calls
+``servoj(q, a, v, t, lookahead_time, gain)`` once per sample, ``t`` = 0.002 s (the e-Series
+controller period; ``servoj`` blocks for ``t``), and ends with ``stopj``. ``a`` and ``v`` are
+not used by the controller (written as 0). Signature and ranges from the URScript manual
+(Universal Robots, *The URScript Programming Language*, e-Series SW 5.x, ``servoj``):
+``lookahead_time`` in [0.03, 0.2] s, ``gain`` in [100, 2000].
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.errors import InputError, require_in_range
+from sloshkit.export.formats.common import header_lines, number
+from sloshkit.export.ik import JointPath
+from sloshkit.files import atomic_open
+
+#: The UR e-Series controller period [s] (500 Hz).
+UR_SAMPLE_PERIOD_S = 0.002
+#: Approach to the first sample: joint acceleration [rad/s^2] and speed [rad/s] of ``movej``.
+APPROACH_ACCELERATION_RAD_S2 = 0.5
+APPROACH_SPEED_RAD_S = 0.25
+_SERVOJ = re.compile(
+    r"^\s*servoj\(\[([^\]]*)\],\s*([^,]+),\s*([^,]+),\s*([^,]+),\s*([^,]+),\s*([^)]+)\)"
+)
+
+
+def write_urscript(
+    path: str | Path,
+    joints: JointPath,
+    metadata: Mapping[str, object],
+    lookahead_time_s: float = 0.05,
+    gain: float = 500.0,
+    name: str = "sloshkit_move",
+) -> Path:
+    """Write a URScript program that plays ``joints`` with one ``servoj`` per sample.
+
+    Parameters
+    ----------
+    path : output ``.script`` file
+    joints : joint samples on the 2 ms grid (6 joints, base to wrist 3)
+    metadata : written as ``#`` comment lines at the top of the function body
+    lookahead_time_s : servoj ``lookahead_time`` [s], 0.03..0.2
+    gain : servoj ``gain``, 100..2000
+    name : the program's function name
+
+    Returns
+    -------
+    pathlib.Path
+
+    References
+    ----------
+    Universal Robots, *The URScript Programming Language*, e-Series, ``servoj``, ``movej``,
+    ``stopj``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> t = np.arange(3) * 0.002
+    >>> path = JointPath(t, np.zeros((3, 6)), np.zeros((3, 6)), np.zeros((3, 6)), tuple("abcdef"))
+    >>> out = write_urscript(pathlib.Path(tempfile.mkdtemp()) / "m.script", path, {})
+    >>> out.read_text().count("servoj(")
+    3
+    """
+    lookahead = require_in_range("lookahead_time", lookahead_time_s, 0.03, 0.2, "s")
+    gain = require_in_range("gain", gain, 100.0, 2000.0)
+    period = joints.sample_period_s
+    if abs(period - UR_SAMPLE_PERIOD_S) > 1e-12 or joints.position_rad.shape[1] != 6:
+        raise InputError(
+            "joints",
+            f"{joints.position_rad.shape[1]} joints every {period:g} s",
+            "URScript needs 6 joints sampled every 0.002 s",
+        )
+    if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name):
+        raise InputError("name", name, "must be a URScript identifier")
+
+    def q(row: NDArray[np.float64]) -> str:
+        return "[" + ", ".join(number(value) for value in row) + "]"
+
+    lines = [
+        f"def {name}():\n",
+        header_lines(metadata, prefix="  # "),
+        f"  # approach the first sample, then stream {joints.time_s.size} samples every "
+        f"{number(period)} s\n",
+        f"  movej({q(joints.position_rad[0])}, a={number(APPROACH_ACCELERATION_RAD_S2)}, "
+        f"v={number(APPROACH_SPEED_RAD_S)})\n",
+    ]
+    tail = f", 0, 0, {number(period)}, {number(lookahead)}, {number(gain)})\n"
+    lines += [f"  servoj({q(row)}{tail}" for row in joints.position_rad]
+    lines += ["  stopj(2.0)\n", "end\n"]
+    with atomic_open(path) as handle:
+        handle.write("".join(lines))
+    return Path(path)
+
+
+def read_urscript(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Times [s] and joint positions [rad] of the ``servoj`` calls of a program, in order.
+
+    Each ``servoj`` holds its target for its own ``t``; sample k is at the sum of the earlier
+    ``t``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> t = np.arange(3) * 0.002
+    >>> path = JointPath(t, np.zeros((3, 6)), np.zeros((3, 6)), np.zeros((3, 6)), tuple("abcdef"))
+    >>> out = write_urscript(pathlib.Path(tempfile.mkdtemp()) / "m.script", path, {})
+    >>> read_urscript(out)[0]
+    array([0.   , 0.002, 0.004])
+    """
+    rows, holds = [], []
+    for line in Path(path).read_text(encoding="utf-8").splitlines():
+        match = _SERVOJ.match(line)
+        if match:
+            rows.append([float(cell) for cell in match.group(1).split(",")])
+            holds.append(float(match.group(4)))
+    if not rows:
+        raise InputError("file", str(path), "has no servoj calls")
+    times = np.concatenate([[0.0], np.cumsum(holds[:-1])])
+    return times, np.asarray(rows, dtype=float)

@@ -1,0 +1,321 @@
+"""The plans export reads: 1-D slide moves and 3-D container pose streams, and their resampling.
+
+- A 1-D plan is the CSV ``sloshkit plan --out`` writes: ``t_s, position_m, velocity_m_s,
+  acceleration_m_s2[, jerk_m_s3]`` on a uniform grid. Between samples it is the quintic Hermite
+  polynomial matching position, velocity and acceleration at both ends (exact for the
+  polynomial laws, C2 for all), so resampling keeps the samples' own derivatives.
+- A pose stream is the container's bottom-centre pose: CSV ``t,x,y,z,qx,qy,qz,qw`` (SI, world
+  z up, quaternion container-to-world with the scalar last), optionally preceded by ``# key:
+  value`` metadata lines. Resampling interpolates the positions with a quintic spline at rest at
+  both ends (as `sloshkit.motion.laws.from_samples`) and the orientations with scipy's
+  ``RotationSpline`` (C2 in angular rate).
+
+A 1-D plan becomes a pose stream along ``axis`` (a unit vector of the path frame) with the
+container upright.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.interpolate import BPoly, make_interp_spline
+from scipy.spatial.transform import Rotation, RotationSpline
+
+from sloshkit.errors import InputError, require_positive
+from sloshkit.export.frames import continuous_quaternions
+
+FloatArray = NDArray[np.float64]
+
+LINE_COLUMNS = ("t_s", "position_m", "velocity_m_s", "acceleration_m_s2")
+POSE_COLUMNS = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
+
+
+@dataclass(frozen=True, eq=False)
+class LinePlan:
+    """A 1-D move sampled on a uniform grid (SI).
+
+    Attributes
+    ----------
+    time_s, position_m, velocity_m_s, acceleration_m_s2 : samples [s, m, m/s, m/s^2]
+    source : where the plan came from (file name or description)
+    metadata : ``key: value`` pairs carried to the exported files
+    """
+
+    time_s: FloatArray
+    position_m: FloatArray
+    velocity_m_s: FloatArray
+    acceleration_m_s2: FloatArray
+    source: str = ""
+    metadata: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def sample_period_s(self) -> float:
+        """The sample period [s]."""
+        return float(self.time_s[1] - self.time_s[0])
+
+    @property
+    def duration_s(self) -> float:
+        """Time of the last sample [s]."""
+        return float(self.time_s[-1])
+
+    def resample(self, sample_period_s: float) -> LinePlan:
+        """The plan at t = k Ts up to the first sample at or after the end (at rest after it),
+        interpolated by quintic Hermite polynomials (position, velocity and acceleration of the
+        samples at both ends of every interval; scipy ``BPoly.from_derivatives``).
+
+        Parameters
+        ----------
+        sample_period_s : new sample period [s]
+
+        Returns
+        -------
+        LinePlan
+
+        References
+        ----------
+        C. de Boor, *A Practical Guide to Splines*, Springer (2001), ch. II (Hermite
+        interpolation).
+
+        Examples
+        --------
+        >>> t = np.arange(5) * 0.25
+        >>> plan = LinePlan(t, t**2, 2 * t, 2 + 0 * t)
+        >>> plan.resample(0.1).position_m[:3].round(6)
+        array([0.  , 0.01, 0.04])
+        """
+        period = require_positive("sample_period", sample_period_s, "s")
+        count = math.ceil(self.duration_s / period - 1e-9)
+        times = np.arange(count + 1, dtype=float) * period
+        position, velocity, acceleration = self.evaluate(times)
+        return LinePlan(times, position, velocity, acceleration, self.source, dict(self.metadata))
+
+    def evaluate(self, time_s: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Position [m], velocity [m/s] and acceleration [m/s^2] at any times (the quintic
+        Hermite interpolant of `resample`; after the last sample the last values hold, with
+        the position extrapolated by nothing: the plan ends at rest)."""
+        derivatives = np.column_stack([self.position_m, self.velocity_m_s, self.acceleration_m_s2])
+        curve = BPoly.from_derivatives(self.time_s, derivatives[:, :, None].tolist())
+        times = np.asarray(time_s, dtype=float)
+        inside = np.clip(times, self.time_s[0], self.duration_s)
+        position = np.asarray(curve(inside), dtype=float).ravel()
+        velocity = np.asarray(curve.derivative(1)(inside), dtype=float).ravel()
+        acceleration = np.asarray(curve.derivative(2)(inside), dtype=float).ravel()
+        after = times > self.duration_s
+        velocity[after] = self.velocity_m_s[-1]
+        acceleration[after] = self.acceleration_m_s2[-1]
+        return position, velocity, acceleration
+
+
+@dataclass(frozen=True, eq=False)
+class PoseStream:
+    """Container poses on a uniform grid: bottom centre [m] and orientation (scalar last).
+
+    Attributes
+    ----------
+    time_s : (N,) sample times [s]
+    position_m : (N, 3) container bottom centre [m]
+    quaternion_xyzw : (N, 4) container-to-world rotation, scalar last, sign-continuous
+    source : where the stream came from
+    metadata : ``key: value`` pairs carried to the exported files
+    line : the 1-D plan the stream was made from, if any
+    axis : unit vector of the 1-D plan's direction in the path frame, if any
+    """
+
+    time_s: FloatArray
+    position_m: FloatArray
+    quaternion_xyzw: FloatArray
+    source: str = ""
+    metadata: dict[str, str] = field(default_factory=dict)
+    line: LinePlan | None = None
+    axis: FloatArray | None = None
+
+    @property
+    def sample_period_s(self) -> float:
+        """The sample period [s]."""
+        return float(self.time_s[1] - self.time_s[0])
+
+    def resample(self, sample_period_s: float) -> PoseStream:
+        """The stream at t = k Ts up to the first sample at or after its end (see the module).
+
+        Parameters
+        ----------
+        sample_period_s : new sample period [s]
+
+        Returns
+        -------
+        PoseStream
+
+        References
+        ----------
+        scipy ``RotationSpline`` (cubic spline in rotation vectors, continuous angular
+        acceleration); quintic position spline as `sloshkit.motion.laws.from_samples`.
+
+        Examples
+        --------
+        >>> t = np.arange(8) * 0.1
+        >>> stream = PoseStream(t, np.zeros((8, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (8, 1)))
+        >>> stream.resample(0.05).time_s.size
+        15
+        """
+        period = require_positive("sample_period", sample_period_s, "s")
+        if self.line is not None and self.axis is not None:
+            return line_to_poses(
+                self.line.resample(period), self.axis, self.position_m[0], self.metadata
+            )
+        end = float(self.time_s[-1])
+        count = math.ceil(end / period - 1e-9)
+        times = np.arange(count + 1, dtype=float) * period
+        inside = np.minimum(times, end)
+        if times.shape == self.time_s.shape and np.allclose(times, self.time_s, atol=1e-12):
+            return self
+        rest = ([(1, np.zeros(3)), (2, np.zeros(3))], [(1, np.zeros(3)), (2, np.zeros(3))])
+        spline = make_interp_spline(self.time_s, self.position_m, k=5, bc_type=rest)
+        rotations = RotationSpline(self.time_s, Rotation.from_quat(self.quaternion_xyzw))
+        return PoseStream(
+            times,
+            np.asarray(spline(inside), dtype=float),
+            continuous_quaternions(rotations(inside).as_quat()),
+            self.source,
+            dict(self.metadata),
+        )
+
+
+def line_to_poses(
+    line: LinePlan,
+    axis: FloatArray,
+    start_m: FloatArray | None = None,
+    metadata: dict[str, str] | None = None,
+) -> PoseStream:
+    """The container upright, moving along ``axis`` from ``start_m`` by the 1-D plan.
+
+    Parameters
+    ----------
+    line : the 1-D plan
+    axis : direction of the move in the path frame (normalised here)
+    start_m : start position in the path frame [m] (default the origin)
+    metadata : metadata of the stream (default the plan's)
+
+    Returns
+    -------
+    PoseStream
+
+    Examples
+    --------
+    >>> t = np.arange(5) * 0.25
+    >>> line = LinePlan(t, t**2, 2 * t, 2 + 0 * t)
+    >>> line_to_poses(line, np.array([0.0, 1.0, 0.0])).position_m[-1]
+    array([0., 1., 0.])
+    """
+    direction = np.asarray(axis, dtype=float)
+    norm = float(np.linalg.norm(direction))
+    if direction.shape != (3,) or not norm > 0.0:
+        raise InputError("axis", direction.tolist(), "must be a non-zero 3-vector")
+    direction = direction / norm
+    start = np.zeros(3) if start_m is None else np.asarray(start_m, dtype=float)
+    count = line.time_s.size
+    return PoseStream(
+        time_s=line.time_s,
+        position_m=start + np.outer(line.position_m - line.position_m[0], direction),
+        quaternion_xyzw=np.tile([0.0, 0.0, 0.0, 1.0], (count, 1)),
+        source=line.source,
+        metadata=dict(line.metadata if metadata is None else metadata),
+        line=line,
+        axis=direction,
+    )
+
+
+def read_metadata(path: str | Path) -> dict[str, str]:
+    """``# key: value`` comment lines at the top of a sloshkit file, as a dict."""
+    metadata: dict[str, str] = {}
+    for raw in Path(path).read_text(encoding="utf-8", errors="replace").splitlines():
+        line = raw.strip()
+        if not line:
+            continue
+        if not line.startswith("#"):
+            break
+        key, colon, value = line.lstrip("#").partition(":")
+        if colon and key.strip() and " " not in key.strip():
+            metadata[key.strip()] = value.strip()
+    return metadata
+
+
+def read_plan(path: str | Path) -> LinePlan | PoseStream:
+    """A 1-D plan CSV or a pose-stream CSV (see the module), told apart by the header.
+
+    Parameters
+    ----------
+    path : the CSV file
+
+    Returns
+    -------
+    LinePlan or PoseStream
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> rows = "\\n".join(f"{0.1 * k},{0.01 * k},0,0,0,0,0,1" for k in range(4))
+    >>> _ = (folder / "p.csv").write_text("t,x,y,z,qx,qy,qz,qw\\n" + rows + "\\n")
+    >>> type(read_plan(folder / "p.csv")).__name__
+    'PoseStream'
+    """
+    from sloshkit.export.tables import read_csv_table
+
+    header, data = read_csv_table(path)
+    metadata = read_metadata(path)
+    names = [name.strip().lower() for name in header]
+    if all(column in names for column in POSE_COLUMNS):
+        columns = [data[:, names.index(column)] for column in POSE_COLUMNS]
+        time = _uniform_time(columns[0], path)
+        quaternion = np.column_stack(columns[4:])
+        norms = np.linalg.norm(quaternion, axis=1)
+        if np.any(np.abs(norms - 1.0) > 1e-6):
+            row = int(np.argmax(np.abs(norms - 1.0)))
+            raise InputError(
+                "quaternion", f"row {row + 1}", f"is not a unit quaternion ({norms[row]:.6g})"
+            )
+        return PoseStream(
+            time,
+            np.column_stack(columns[1:4]),
+            continuous_quaternions(quaternion / norms[:, None]),
+            source=str(path),
+            metadata=metadata,
+        )
+    if "t_s" in names and "position_m" in names:
+        time = _uniform_time(data[:, names.index("t_s")], path)
+        position = data[:, names.index("position_m")]
+        if "velocity_m_s" in names and "acceleration_m_s2" in names:
+            velocity = data[:, names.index("velocity_m_s")]
+            acceleration = data[:, names.index("acceleration_m_s2")]
+        else:
+            from sloshkit.motion.laws import from_samples
+
+            motion = from_samples(time, position_m=position)
+            velocity, acceleration = motion.velocity(time), motion.acceleration(time)
+        return LinePlan(time, position, velocity, acceleration, str(path), metadata)
+    raise InputError(
+        "plan",
+        str(path),
+        "needs columns t_s, position_m[, velocity_m_s, acceleration_m_s2] (a 1-D plan) or "
+        + ",".join(POSE_COLUMNS)
+        + " (a pose stream); found "
+        + ", ".join(header),
+    )
+
+
+def _uniform_time(time: FloatArray, path: str | Path) -> FloatArray:
+    from sloshkit.errors import require_increasing
+
+    if time.size < 3:
+        raise InputError("plan", str(path), "needs at least 3 samples")
+    require_increasing("time", time)
+    steps = np.diff(time)
+    if not np.allclose(steps, steps[0], rtol=1e-6, atol=1e-9):
+        raise InputError("plan", str(path), "the time step must be uniform (a controller grid)")
+    # Rebuild the grid from the step: printed times carry rounding.
+    period = float(np.round((time[-1] - time[0]) / (time.size - 1), 12))
+    return np.asarray(time[0] + np.arange(time.size) * period - time[0], dtype=float)
