@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -20,7 +22,7 @@ from sloshkit.cfd.pipeline import (
     validate,
 )
 from sloshkit.cfd.pipeline import run as run_cfd
-from sloshkit.cfd.run import CfdError, CfdInterrupted
+from sloshkit.cfd.run import CfdError, CfdInterrupted, interruptible
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
@@ -239,6 +241,24 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
             raise typer.Exit(128 + int(stop.signum)) from None
 
 
+@contextlib.contextmanager
+def _clean_interruption(case: Path) -> Iterator[None]:
+    """SIGINT, SIGTERM or SIGHUP anywhere in a cfd command (not only while OpenFOAM runs):
+    the tools are stopped, one line says how to continue, exit 128 + the signal number."""
+    try:
+        with interruptible([], [0.0]):
+            yield
+    except CfdInterrupted as stop:
+        stderr.print(
+            Text(
+                f"interrupted (signal {int(stop.signum)}); continue with: "
+                f"sloshkit cfd run --case {case} --resume"
+            ),
+            highlight=False,
+        )
+        raise typer.Exit(128 + int(stop.signum)) from None
+
+
 def _print_analysis(
     analysis: Any,
     json_output: bool,
@@ -324,30 +344,31 @@ def cfd_run_command(
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
     """
 
-    spec = _cfd_spec(slosh_model, case_options)
-    if resume:
-        spec = _resumed_spec(spec, case, case_options["np_"])
-    result = _run_with_progress(spec, case, resume, overwrite)
-    try:
-        analysis = analyse(case)
-    except InputError as error:
-        # The run itself succeeded; a record too short to calibrate is not a failed run.
-        if json_output:
-            print_json(
-                {
-                    "case": str(case),
-                    "simulated_s": result.simulated_s,
-                    "wall_clock_s": result.wall_clock_s,
-                    "processes": result.processes,
-                    "cells": result.cells,
-                    "calibration_error": str(error),
-                }
-            )
-        else:
-            stdout.print(Text(f"{result.simulated_s:g} s simulated in {case}"))
-        stderr.print(Text(f"warning: no calibration: {error}", style="yellow"), highlight=False)
-        return
-    _print_analysis(analysis, json_output, model_file_out, plot, slosh_model)
+    with _clean_interruption(case):
+        spec = _cfd_spec(slosh_model, case_options)
+        if resume:
+            spec = _resumed_spec(spec, case, case_options["np_"])
+        result = _run_with_progress(spec, case, resume, overwrite)
+        try:
+            analysis = analyse(case)
+        except InputError as error:
+            # The run itself succeeded; a record too short to calibrate is not a failed run.
+            if json_output:
+                print_json(
+                    {
+                        "case": str(case),
+                        "simulated_s": result.simulated_s,
+                        "wall_clock_s": result.wall_clock_s,
+                        "processes": result.processes,
+                        "cells": result.cells,
+                        "calibration_error": str(error),
+                    }
+                )
+            else:
+                stdout.print(Text(f"{result.simulated_s:g} s simulated in {case}"))
+            stderr.print(Text(f"warning: no calibration: {error}", style="yellow"), highlight=False)
+            return
+        _print_analysis(analysis, json_output, model_file_out, plot, slosh_model)
 
 
 @cfd_app.command("analyse")
@@ -416,37 +437,38 @@ def cfd_validate_command(
       sloshkit cfd validate --case vial-3d --excitation poses --pose-file move.csv --np 2
     """
 
-    if not reuse:
-        spec = _cfd_spec(slosh_model, case_options)
-        _run_with_progress(spec, case, False, overwrite)
-    result = _validate(case, slosh_model)
-    if plot is not None:
-        plot_cfd_validation(result, plot)
-    summary = {
-        k: v
-        for k, v in result.items()
-        if k not in ("time_s", "cfd_elevation_m", "model_elevation_m")
-    }
-    if json_output:
-        print_json(summary)
-        return
-    table = Table(title=f"CFD against the pendulum model: {case}")
-    for header_text in ("quantity", "CFD", "model", "difference"):
-        table.add_column(Text(header_text), justify="right")
-    for key, row in summary["comparison"].items():
-        table.add_row(
-            key,
-            *("-" if row[k] is None else f"{row[k]:.4g}" for k in ("cfd", "model")),
-            "-"
-            if row["relative_difference"] is None
-            else f"{100 * row['relative_difference']:+.1f} %",
-        )
-    stdout.print(table)
-    if summary["correlation"] is not None:
-        what = "slosh-height" if summary.get("kind") == "poses" else "wall-elevation"
-        stdout.print(f"correlation of the {what} signals: {summary['correlation']:.4f}")
-    if summary.get("wall_correlation") is not None:
-        stdout.print(
-            "correlation of the wall elevations of every probe column: "
-            f"{summary['wall_correlation']:.4f}"
-        )
+    with _clean_interruption(case):
+        if not reuse:
+            spec = _cfd_spec(slosh_model, case_options)
+            _run_with_progress(spec, case, False, overwrite)
+        result = _validate(case, slosh_model)
+        if plot is not None:
+            plot_cfd_validation(result, plot)
+        summary = {
+            k: v
+            for k, v in result.items()
+            if k not in ("time_s", "cfd_elevation_m", "model_elevation_m")
+        }
+        if json_output:
+            print_json(summary)
+            return
+        table = Table(title=f"CFD against the pendulum model: {case}")
+        for header_text in ("quantity", "CFD", "model", "difference"):
+            table.add_column(Text(header_text), justify="right")
+        for key, row in summary["comparison"].items():
+            table.add_row(
+                key,
+                *("-" if row[k] is None else f"{row[k]:.4g}" for k in ("cfd", "model")),
+                "-"
+                if row["relative_difference"] is None
+                else f"{100 * row['relative_difference']:+.1f} %",
+            )
+        stdout.print(table)
+        if summary["correlation"] is not None:
+            what = "slosh-height" if summary.get("kind") == "poses" else "wall-elevation"
+            stdout.print(f"correlation of the {what} signals: {summary['correlation']:.4f}")
+        if summary.get("wall_correlation") is not None:
+            stdout.print(
+                "correlation of the wall elevations of every probe column: "
+                f"{summary['wall_correlation']:.4f}"
+            )
