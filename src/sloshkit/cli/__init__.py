@@ -59,7 +59,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "Run a scenario file's analyses (model, calibrate, compare, sweep, plan) into a report.",
     ),
     "cfd": (
-        "sloshkit.cli.cfd",
+        # cfd_sweep imports cli.cfd (run, analyse, validate) and adds ``cfd sweep`` to it.
+        "sloshkit.cli.cfd_sweep",
         "The volume-of-fluid step with OpenFOAM (interFoam): generate, run, analyse, validate.",
     ),
 }
