@@ -61,11 +61,12 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):  #
     stderr.print(f"[yellow]{prefix}:[/yellow] {message}", highlight=False)
 
 
-def main() -> None:
-    """Entry point: run the app; user mistakes become one line on stderr and exit code 2."""
+def main(application: typer.Typer | None = None) -> None:
+    """Run ``application`` (default `app`); user mistakes become one line on stderr and exit
+    code 2. `sloshkit.cli.main` is the entry point: it imports the command being run first."""
     warnings.showwarning = _show_warning
     try:
-        app()
+        (application or app)()
     except InputError as error:
         stderr.print(f"[red]error:[/red] {error}", highlight=False)
         raise SystemExit(2) from None
