@@ -28,6 +28,7 @@ from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.models import write_model_file
+from sloshkit.io.outputs import check_file
 from sloshkit.io.tables import (
     column_name,
     read_motion_file,
@@ -204,6 +205,8 @@ def calibrate_command(
       --motion-file poses.csv --clock-offset 9.36s --fit-clock-offset --radius 49mm
       --fill-height 80mm
     """
+    check_file(model_file_out, "model_file_out", "model")
+    check_file(plot, "plot", "figure")
     methods = (*METHODS, "forced")
     if method is None:
         method = "forced" if motion_file is not None else "fit"

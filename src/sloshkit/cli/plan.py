@@ -17,10 +17,12 @@ from sloshkit.cli.export import (
     show_export,
     with_export_options,
 )
+from sloshkit.cli.messages import error
 from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.io.outputs import check_file
 from sloshkit.io.requests import fraction_request
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
@@ -89,6 +91,8 @@ def plan_command(
       --amax 20m/s^2 --jmax 500m/s^3 --damping-ratio 0.03 --out traj.csv --plot plan.png
     """
 
+    check_file(out, "out")
+    check_file(plot, "plot", "figure")
     missing = [
         name
         for name, value in (
@@ -188,7 +192,7 @@ def plan_command(
         raise typer.Exit(1)
     if not result.feasible:
         messages = "; ".join(f"{c.method}: {c.message}" for c in result.candidates)
-        stderr.print(f"[red]error:[/red] no method meets the limits ({messages})", highlight=False)
+        error(stderr, f"no method meets the limits ({messages})")
         raise typer.Exit(1)
 
 

@@ -14,6 +14,7 @@ from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.cfd import _run_with_progress
 from sloshkit.cli.options import Json, print_json
 from sloshkit.errors import InputError
+from sloshkit.io.outputs import check_folder, mark_folder
 from sloshkit.io.scenario import read_scenario
 from sloshkit.model.modal import SloshModel
 from sloshkit.report.build import build_report
@@ -40,6 +41,7 @@ def _run_report(
             cfd_calibration=cfd_calibration,
             command="sloshkit " + " ".join(sys.argv[1:]),
         )
+    mark_folder(out)
     if json_output:
         print_json(
             {
@@ -69,6 +71,9 @@ def reproduce_command(
         Path | None,
         typer.Option("--cfd-case", help="Reuse a finished OpenFOAM case for the calibration."),
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """Rebuild the seed paper end to end on the analytic model and write a report.
@@ -81,6 +86,7 @@ def reproduce_command(
       sloshkit reproduce --out report/
     """
 
+    check_folder(out, "out", overwrite)
     scenario = paper_scenario()
     calibration = None
     if cfd or cfd_case is not None:
@@ -115,6 +121,9 @@ def run_command(
     out: Annotated[
         Path | None, typer.Option("--out", help="Report folder (default: beside the file).")
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """Run a scenario file's analyses (model, calibrate, compare, sweep, plan) into a report.
@@ -124,6 +133,8 @@ def run_command(
       sloshkit run examples/vial-2ml.toml --out vial-2ml-report/
     """
 
+    target = out or scenario_file.with_suffix("")
+    check_folder(target, "out", overwrite)
     scenario = read_scenario(scenario_file)
     calibration = None
     if "cfd" in scenario.analyses:
@@ -132,4 +143,4 @@ def run_command(
             scenario.model,
             scenario_file.parent / str(case or scenario_file.stem + "-cfd-free-decay"),
         )
-    _run_report(scenario, out or scenario_file.with_suffix(""), calibration, json_output)
+    _run_report(scenario, target, calibration, json_output)

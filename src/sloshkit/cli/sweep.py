@@ -30,6 +30,7 @@ from sloshkit.cli.options import (
     print_json,
 )
 from sloshkit.errors import InputError
+from sloshkit.io.outputs import check_folder, staged_folder
 from sloshkit.io.units import parse_quantity, parse_range
 from sloshkit.model.modal import model_family
 from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
@@ -87,6 +88,9 @@ def sweep_command(
     out: Annotated[
         Path | None, typer.Option("--out", help="Folder for sweep.csv and maps.")
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """Slosh maps over fill height x move duration x law (linear fast path).
@@ -102,6 +106,7 @@ def sweep_command(
     """
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
+    check_folder(out, "out", overwrite)
     container = build_container(radius, wall_height)
     if fill_height is not None and fill_volume is not None:
         raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
@@ -164,10 +169,11 @@ def sweep_command(
         )
     summary = result.summary()
     if out is not None:
-        csv_path = result.to_csv(out / "sweep.csv")
-        maps = result.plot_maps(out)
-        summary["csv"] = str(csv_path)
-        summary["maps"] = [str(path) for path in maps]
+        with staged_folder(out) as staging:
+            result.to_csv(staging / "sweep.csv")
+            maps = result.plot_maps(staging)
+        summary["csv"] = str(out / "sweep.csv")
+        summary["maps"] = [str(out / path.name) for path in maps]
     if json_output:
         print_json(summary)
         return
