@@ -10,6 +10,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.export import (
     ExportSettings,
@@ -128,8 +129,13 @@ def plan_command(
         if max_duration is None
         else parse_quantity(max_duration, "time", "max_duration"),
     )
-    with stderr.status("planning") as status:
-        result = plan(problem, method, nonlinear_optimal, progress=lambda text: status.update(text))
+
+    def progress(text: str) -> None:
+        status.update(text)
+        signals.check()  # between candidates: compiled kernels never see the signal
+
+    with stderr.status("planning") as status, signals.deferred():
+        result = plan(problem, method, nonlinear_optimal, progress=progress)
     if result.feasible:
         if out is not None:
             result.to_csv(out)

@@ -10,6 +10,7 @@ import typer
 
 from sloshkit.cfd.case import FreeDecay
 from sloshkit.cfd.pipeline import analyse, case_spec
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.cfd import _run_with_progress
 from sloshkit.cli.options import Json, print_json
@@ -26,18 +27,26 @@ def _run_report(
 ) -> None:
     from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
-    with Progress(
-        SpinnerColumn(),
-        TextColumn("{task.description}"),
-        TimeElapsedColumn(),
-        console=stderr,
-        transient=True,
-    ) as bar:
+    with (
+        Progress(
+            SpinnerColumn(),
+            TextColumn("{task.description}"),
+            TimeElapsedColumn(),
+            console=stderr,
+            transient=True,
+        ) as bar,
+        signals.deferred(),
+    ):
         task = bar.add_task("starting", total=None)
+
+        def progress(text: str) -> None:
+            bar.update(task, description=text)
+            signals.check()  # between sections: compiled kernels never see the signal
+
         path = build_report(
             scenario,
             out,
-            progress=lambda text: bar.update(task, description=text),
+            progress=progress,
             cfd_calibration=cfd_calibration,
             command="sloshkit " + " ".join(sys.argv[1:]),
         )

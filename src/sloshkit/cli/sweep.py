@@ -10,6 +10,7 @@ import numpy as np
 import typer
 from rich.table import Table
 
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
 from sloshkit.cli.options import (
@@ -141,32 +142,34 @@ def sweep_command(
 
         def advance(done: int, total: int) -> None:
             bar.update(task, completed=done, total=total)
+            signals.check()  # between chunks: the numba kernel never sees the signal
 
-        result = run_sweep(
-            model_family(
-                container,
-                build_liquid(liquid, density, viscosity, sigma),
-                n_modes=modes,
-                damping_law=check_damping_law(damping_law),
-                damping_ratio=damping_ratio,
-                surface_tension=surface_tension_correction,
-            ),
-            names,
-            request.distance_m,
-            durations,
-            accelerations,
-            fill_heights_m=heights,
-            s_curve_limits=limits,
-            acceleration_fraction=accel_fraction,
-            sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
-            max_angle_rad=None
-            if max_angle is None
-            else parse_quantity(max_angle, "angle", "max_angle"),
-            max_residual_rad=None
-            if max_residual is None
-            else parse_quantity(max_residual, "angle", "max_residual"),
-            progress=advance,
-        )
+        with signals.deferred():
+            result = run_sweep(
+                model_family(
+                    container,
+                    build_liquid(liquid, density, viscosity, sigma),
+                    n_modes=modes,
+                    damping_law=check_damping_law(damping_law),
+                    damping_ratio=damping_ratio,
+                    surface_tension=surface_tension_correction,
+                ),
+                names,
+                request.distance_m,
+                durations,
+                accelerations,
+                fill_heights_m=heights,
+                s_curve_limits=limits,
+                acceleration_fraction=accel_fraction,
+                sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+                max_angle_rad=None
+                if max_angle is None
+                else parse_quantity(max_angle, "angle", "max_angle"),
+                max_residual_rad=None
+                if max_residual is None
+                else parse_quantity(max_residual, "angle", "max_residual"),
+                progress=advance,
+            )
     summary = result.summary()
     if out is not None:
         with staged_folder(out) as staging:

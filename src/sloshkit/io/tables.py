@@ -29,7 +29,11 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
     source = Path(path)
     if not source.is_file():
         raise InputError("file", str(source), "does not exist or is not a file")
-    text = source.read_text(encoding="utf-8", errors="replace")
+    from sloshkit.budget import require_memory
+
+    # Parsed rows are Python lists of floats: about 60 bytes per byte of text, at worst.
+    require_memory("file", str(source), 60.0 * source.stat().st_size, "table parsed in memory")
+    text = source.read_text(encoding="utf-8", errors="replace").removeprefix("\ufeff")
     last_comment = ""
     lines: list[str] = []
     for raw in text.splitlines():
@@ -119,12 +123,50 @@ def read_motion_file(path: str | Path, name: str | None = None) -> Any:
     ):
         found = next((lowered.index(n) for n in names if n in lowered), None)
         if found is not None:
-            return from_samples(
+            motion = from_samples(
                 data[:, time_index], name=name or f"file:{path}", **{keyword: data[:, found]}
             )
+            positions = data[:, found] if keyword == "position_m" else None
+            return _warn_unless_at_rest(motion, data[:, time_index], path, positions)
     if data.shape[1] < 2:
         raise InputError("file", str(path), "needs a time column and a position column")
-    return from_samples(data[:, time_index], position_m=data[:, 1], name=name or f"file:{path}")
+    motion = from_samples(data[:, time_index], position_m=data[:, 1], name=name or f"file:{path}")
+    if lowered[1] not in ("a", "acceleration", "acceleration_m_s2", "a_m_s2"):
+        _warn_unless_at_rest(motion, data[:, time_index], path, data[:, 1])
+    return motion
+
+
+#: Velocity at either end of a motion file, relative to its peak, above which it is not at rest.
+REST_TOLERANCE = 0.02
+
+
+def _warn_unless_at_rest(
+    motion: Any, time_s: FloatArray, path: str | Path, position_m: FloatArray | None = None
+) -> Any:
+    """Warn (`ValidityWarning`) when a motion file does not start and end at rest.
+
+    For positions the end velocity is the last difference quotient of the samples (the spline
+    then forces a stop that is not in the data); for accelerations it is the integrated
+    velocity at the last sample (the container would keep moving).
+    """
+    from sloshkit.errors import warn_validity
+
+    t = np.asarray(time_s, dtype=float) - float(time_s[0])
+    if position_m is not None:
+        velocity = np.diff(position_m) / np.diff(t)
+        ends = {"start": velocity[0], "end": velocity[-1]}
+    else:
+        velocity = motion.velocity(t)
+        ends = {"end": velocity[-1]}
+    peak = float(np.max(np.abs(velocity))) if velocity.size else 0.0
+    for where, value in ends.items():
+        if peak > 0.0 and abs(float(value)) > REST_TOLERANCE * peak:
+            warn_validity(
+                f"motion file {path} does not {where} at rest (velocity {float(value):.3g} m/s "
+                f"at its {where}, {100 * abs(float(value)) / peak:.0f} % of the peak); the "
+                "result assumes a rest-to-rest move"
+            )
+    return motion
 
 
 def _split(line: str, delimiter: str | None) -> list[str]:
