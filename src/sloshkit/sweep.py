@@ -392,9 +392,14 @@ def _check_sweep_size(
     """Refuse a sweep whose result maps or per-chunk velocity block exceed the memory limit."""
     from sloshkit.budget import require_samples
 
-    cases = laws * heights * durations.shape[1]
+    counts = {"laws": laws, "fill_height": heights, "duration": durations.shape[1]}
+    largest = max(counts, key=lambda name: counts[name])
     require_samples(
-        "cases", f"{laws} laws x {heights} fills x {durations.shape[1]}", cases, 8, "cases"
+        largest,
+        f"{laws} laws x {heights} fill heights x {durations.shape[1]} durations",
+        laws * heights * durations.shape[1],
+        8,
+        "cases",
     )
     longest = float(durations.max())
     steps = longest / dt + 3.0
