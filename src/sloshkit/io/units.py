@@ -120,8 +120,10 @@ _EXAMPLES: dict[str, str] = {
 #: Longest text accepted for one quantity (a guard against pasted files, not a real limit).
 MAX_TEXT_LENGTH = 64
 
-_QUANTITY = re.compile(
-    r"(?P<number>[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(?P<unit>[^\d\s+-][^\s]*(?:\s+[^\s]+)?)?"
+_QUANTITY = re.compile(  # ASCII digits only: no full-width or other-script digits
+    r"(?P<number>[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
+    r"\s*(?P<unit>[^0-9\s+-]\S*(?:\s+\S+)?)?",
+    re.ASCII,
 )
 _SUPERSCRIPTS = str.maketrans({"²": "^2", "³": "^3", "µ": "u", "μ": "u", "·": "*", "⋅": "*"})
 
@@ -288,5 +290,6 @@ def parse_range(text: str, kind: str, parameter: str) -> tuple[float, float, int
         raise InputError(parameter, text, "COUNT in START:STOP:COUNT must be >= 1")
     from sloshkit.budget import require_samples
 
-    require_samples(parameter, text, count, 1, "range values")
+    # Each value of a range becomes a row of the result maps (about 8 float64 columns).
+    require_samples(parameter, text, count, 8, "range values")
     return start, stop, count
