@@ -78,7 +78,7 @@ UNITS: dict[str, dict[str, float]] = {
         "°": math.pi / 180.0,
         "arcmin": math.pi / 10800.0,
     },
-    "frequency": {"Hz": 1.0, "mHz": 1e-3, "kHz": 1e3, "1/s": 1.0, "rpm": 1.0 / 60.0},
+    "frequency": {"Hz": 1.0, "mHz": 1e-3, "kHz": 1e3, "rpm": 1.0 / 60.0},
     "density": {
         "kg/m^3": 1.0,
         "g/cm^3": 1e3,
