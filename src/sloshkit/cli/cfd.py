@@ -20,6 +20,7 @@ from sloshkit.cli.options import Json, print_json, with_model_options, with_opti
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
 from sloshkit.io.models import write_model_file
+from sloshkit.io.outputs import check_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 from sloshkit.plotting import plot_cfd_validation
@@ -255,7 +256,8 @@ def cfd_run_command(
 
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
     """
-
+    check_file(model_file_out, "model_file_out", "model")
+    check_file(plot, "plot", "figure")
     spec = _cfd_spec(slosh_model, case_options)
     if resume:
         spec = _resumed_spec(spec, case, case_options["np_"])
@@ -298,6 +300,8 @@ def cfd_analyse_command(
 
       sloshkit cfd analyse vial-decay --json
     """
+    check_file(plot, "plot", "figure")
+    check_file(csv, "csv")
 
     if not (case / "sloshkit-case.json").is_file():
         raise InputError("case", str(case), "is not a sloshkit CFD case")
@@ -332,6 +336,7 @@ def cfd_validate_command(
 
       sloshkit cfd validate --case vial-harmonic --excitation harmonic --np 2 --plot fig9.png
     """
+    check_file(plot, "plot", "figure")
 
     if not reuse:
         spec = _cfd_spec(slosh_model, case_options)

@@ -1,6 +1,6 @@
 """SIGINT/SIGTERM for the CLI: stop cleanly, exit 130/143, leave no partial output.
 
-The handler raises `Interrupted` (a `BaseException`, so no ``except Exception`` swallows it);
+The handler raises `Interrupted` (a `KeyboardInterrupt`, so no ``except Exception`` swallows it);
 ``finally`` blocks and the atomic writers then remove temporary files and staging folders.
 Inside `deferred` blocks (compiled numba kernels, which must not see an exception raised in the
 middle of a call) the signal is only recorded, and `check` raises it between chunks.
@@ -17,8 +17,12 @@ from typing import Any
 HANDLED = (signal.SIGINT, signal.SIGTERM)
 
 
-class Interrupted(BaseException):
-    """The process received SIGINT or SIGTERM; the exit code is 128 + signal number."""
+class Interrupted(KeyboardInterrupt):
+    """The process received SIGINT or SIGTERM; the exit code is 128 + signal number.
+
+    A `KeyboardInterrupt`, so code that cleans up on Ctrl-C (the CFD runner stops its MPI
+    processes and reports how to ``--resume``) does the same on SIGTERM.
+    """
 
     def __init__(self, signum: int) -> None:
         self.signum = signum
