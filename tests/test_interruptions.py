@@ -3,6 +3,7 @@ traceback (no SystemError out of the numba kernel), and no partial output or sta
 
 from __future__ import annotations
 
+import importlib
 import os
 import signal
 import subprocess
@@ -79,3 +80,60 @@ def test_sigterm_during_plan_writes_no_trajectory(tmp_path: Path) -> None:
     ]  # fmt: skip
     code, stderr = _interrupt(args, tmp_path, signal.SIGTERM, 1.0)
     _assert_clean(tmp_path, code, 143, stderr)
+
+
+def test_a_command_that_reports_its_own_interruption_gets_no_second_line(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The CFD runner's pattern: catch the interrupt, stop its tools, print how to resume, exit
+    128 + N; the entry point must not add a second line (in-process, a real SIGINT)."""
+    import typer
+
+    app_module = importlib.import_module("sloshkit.cli.app")
+    from sloshkit.cli import signals
+
+    tiny = typer.Typer()
+
+    @tiny.command()
+    def work() -> None:
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(5.0)
+        except KeyboardInterrupt:
+            signals.reported()
+            print("interrupted at t = 0.1 s; continue with --resume", file=sys.stderr)
+            raise typer.Exit(130) from None
+
+    @tiny.callback()
+    def root() -> None:
+        """Two commands' worth of group so 'work' is a subcommand."""
+
+    monkeypatch.setattr(app_module, "app", tiny)
+    assert app_module.run(["work"]) == 130
+    lines = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert lines == ["interrupted at t = 0.1 s; continue with --resume"]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_an_unreported_interruption_is_one_error_line(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import typer
+
+    app_module = importlib.import_module("sloshkit.cli.app")
+
+    tiny = typer.Typer()
+
+    @tiny.command()
+    def work() -> None:
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(5.0)
+
+    @tiny.callback()
+    def root() -> None:
+        """Group."""
+
+    monkeypatch.setattr(app_module, "app", tiny)
+    assert app_module.run(["work"]) == 143
+    lines = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert lines == ["error: interrupted (exit 143); no partial output was written"]

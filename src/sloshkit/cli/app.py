@@ -75,7 +75,7 @@ def run(argv: Sequence[str] | None = None) -> int:
         with signals.installed():
             try:
                 code = app(args=list(argv) if argv is not None else None, standalone_mode=False)
-                if signals.received() is not None:
+                if signals.received() is not None and not signals.was_reported():
                     raise signals.Interrupted(signals.received() or 2)
                 return code if isinstance(code, int) else 0
             except BaseException as failure:  # the one place that reports

@@ -14,6 +14,7 @@ from rich.text import Text
 from sloshkit.cfd.pipeline import analyse, case_spec, describe, excitation_from_options, validate
 from sloshkit.cfd.pipeline import run as run_cfd
 from sloshkit.cfd.run import CfdError, CfdInterrupted
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
@@ -162,6 +163,7 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
             raise typer.Exit(1) from None
         except CfdInterrupted as stop:
             bar.stop()
+            signals.reported()  # the resume hint below is the one line
             stderr.print(
                 Text(
                     f"interrupted at t = {stop.simulated_s:.4g} s of {spec.end_time_s:g} s; "

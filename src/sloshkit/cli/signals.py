@@ -34,7 +34,7 @@ class Interrupted(KeyboardInterrupt):
         return 128 + self.signum
 
 
-_state: dict[str, Any] = {"received": None, "depth": 0}
+_state: dict[str, Any] = {"received": None, "depth": 0, "reported": False}
 
 
 def _handler(signum: int, frame: FrameType | None) -> None:
@@ -47,6 +47,17 @@ def _handler(signum: int, frame: FrameType | None) -> None:
 def received() -> int | None:
     """The first signal received since `install`, or None."""
     return _state["received"]  # type: ignore[no-any-return]
+
+
+def reported() -> None:
+    """Say that the command has told the user about the interruption itself (e.g. how to
+    ``--resume``), so the entry point adds no second line."""
+    _state["reported"] = True
+
+
+def was_reported() -> bool:
+    """True when the command reported the interruption itself (see `reported`)."""
+    return bool(_state["reported"])
 
 
 def check() -> None:
@@ -75,7 +86,7 @@ def installed() -> Iterator[None]:
         yield
         return
     previous = {sig: signal.getsignal(sig) for sig in HANDLED}
-    _state.update(received=None, depth=0)
+    _state.update(received=None, depth=0, reported=False)
     for sig in HANDLED:
         signal.signal(sig, _handler)
     try:
