@@ -234,6 +234,7 @@ def test_hostile_input(
     assert "Traceback" not in captured.err + captured.out
     assert captured.out == ""
     assert _snapshot(fixture_folder) == before
+    assert stat.S_ISCHR(os.stat("/dev/null").st_mode)  # never replaced by a regular file
 
 
 def test_markup_and_emoji_in_values_are_printed_literally(

@@ -54,6 +54,8 @@ def atomic_open(
     'done'
     """
     target = Path(path)
+    if target.exists() and not target.is_file():  # never rename over /dev/null, a FIFO, ...
+        raise InputError("path", str(target), "exists and is not a regular file")
     target.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent)
     os.close(handle)

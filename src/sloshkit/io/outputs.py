@@ -89,6 +89,8 @@ def check_file(path: Path | str | None, parameter: str, kind: str = "file") -> P
         raise InputError(parameter, str(path), "must name a file")
     if target.is_dir():
         raise InputError(parameter, str(path), "is a folder; give a file name")
+    if target.exists() and not target.is_file():
+        raise InputError(parameter, str(path), "is not a regular file (a device or a pipe)")
     suffixes = {"figure": FIGURE_SUFFIXES, "model": MODEL_SUFFIXES}.get(kind)
     if suffixes is not None and target.suffix.lower() not in suffixes:
         raise InputError(

@@ -31,8 +31,8 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
         raise InputError("file", str(source), "does not exist or is not a file")
     from sloshkit.budget import require_memory
 
-    # Parsed rows are Python lists of floats: about 60 bytes per byte of text, at worst.
-    require_memory("file", str(source), 60.0 * source.stat().st_size, "table parsed in memory")
+    # Text, lines and rows of Python floats: about 20 bytes per byte of text.
+    require_memory("file", str(source), 20.0 * source.stat().st_size, "table parsed in memory")
     text = source.read_text(encoding="utf-8", errors="replace").removeprefix("\ufeff")
     last_comment = ""
     lines: list[str] = []
