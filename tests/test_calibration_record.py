@@ -226,3 +226,38 @@ def test_readme_example_runs_as_written(tmp_path, monkeypatch):
     calibrated = read_model_file(tmp_path / "vial.toml")
     assert calibrated.modes[0].omega_rad_s == pytest.approx(mode.omega_rad_s, rel=OMEGA_TOLERANCE)
     assert calibrated.modes[0].damping_ratio == pytest.approx(0.02, rel=ZETA_TOLERANCE)
+
+
+def _harmonic_then_decay(decay_s, omega=29.0, zeta=0.03):
+    """A harmonic excitation at 0.9 omega for 3 s (inside the slosh band), then the free decay
+    from the state it leaves (a CFD 'harmonic' case)."""
+    t = np.arange(0, 3.0 + decay_s, 0.001)
+    end, drive = 3.0, 0.9 * omega
+    forced = 0.002 * np.sin(drive * t) * np.minimum(t, 1.0)
+    angle, rate = 0.002 * np.sin(drive * end), 0.002 * drive * np.cos(drive * end)
+    damped, tau = omega * math.sqrt(1 - zeta**2), t - end
+    free = np.exp(-zeta * omega * tau) * (
+        angle * np.cos(damped * tau) + (rate + zeta * omega * angle) / damped * np.sin(damped * tau)
+    )
+    y = np.where(t <= end, forced, free) + np.random.default_rng(0).normal(0, 2e-5, t.size)
+    return t, y, end
+
+
+def test_harmonic_forcing_inside_the_band_is_found_by_its_frequency():
+    t, y, end = _harmonic_then_decay(2.0)
+    result = _quiet_calibrate(t, y)
+    assert result.window.source == "signal"
+    assert result.window.start_s > end
+    assert result.omega_n_rad_s == pytest.approx(29.0, rel=OMEGA_TOLERANCE)
+    assert result.damping_ratio == pytest.approx(0.03, rel=ZETA_TOLERANCE)
+
+
+def test_a_poor_window_still_gives_a_calibration():
+    """Under two cycles after the excitation (what a short CFD run leaves): logdec cannot
+    answer, the fit still does, so a finished run is not thrown away."""
+    t, y, end = _harmonic_then_decay(0.4)
+    result = _quiet_calibrate(t, y, start_s=end)
+    assert result.estimates["logdec"].failure
+    assert result.method == "fit"
+    assert result.omega_n_rad_s == pytest.approx(29.0, rel=OMEGA_TOLERANCE)
+    assert result.damping_ratio == pytest.approx(0.03, rel=ZETA_TOLERANCE)

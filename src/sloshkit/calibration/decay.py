@@ -146,7 +146,7 @@ def calibrate(
     if estimates[method].failure:
         answered = [name for name in FALLBACKS if not estimates[name].failure]
         if not answered:
-            raise errors.get(method, errors.get("fit")) or errors[next(iter(errors))]
+            raise errors[method] if method in FALLBACKS else errors["fit"]
         chosen_name = answered[0]
         messages.append(
             f"{method} failed ({estimates[method].failure}); reporting {chosen_name} instead"

@@ -13,7 +13,9 @@ oscillation at the damped slosh frequency remains, and its envelope only decreas
 2. splits the signal with a zero-phase band-pass around f_d (0.6-1.6 f_d) into the slosh band
    and the rest, and measures both over one-period sliding windows,
 3. calls "forcing" every time the out-of-band part exceeds both 4 times its level at the end of
-   the record (noise) and 30 % of the slosh-band amplitude there,
+   the record (noise) and 30 % of the slosh-band amplitude there, or the slosh band's local
+   frequency (phase rate of its analytic signal, over two periods) differs from f_d by more
+   than 6 % where the slosh is well above the noise (a harmonic forcing inside the band),
 4. starts the decay at the largest slosh-band envelope after the forcing, plus a settling margin
    (one damped period by default) when forcing was found.
 
@@ -40,6 +42,9 @@ Detrend = Literal["mean", "linear", "none"]
 
 #: Settling margin after the end of the forcing, in damped periods.
 SETTLE_PERIODS = 1.0
+#: A local frequency this far (relative) from the decay's is forcing (a softening mode drifts
+#: less: 4 % at a 0.8 rad pendulum amplitude).
+FREQUENCY_CHANGE = 0.06
 
 
 @dataclass(frozen=True)
@@ -99,15 +104,23 @@ def _detect(
     width = max(3, round(1.0 / (frequency_hz * (t[1] - t[0]))))
     outside = _moving_std(rest, width)
     envelope = math.sqrt(2.0) * np.sqrt(uniform_filter1d(band**2, width, mode="nearest"))
-    analytic = np.abs(sps.hilbert(band))
+    signal = sps.hilbert(band)
+    analytic = np.abs(signal)
     detected = forcing_end_s
     if detected is None:
         tail = t >= t[0] + 0.7 * (t[-1] - t[0])
         reference = float(np.median(outside[tail]))
         forcing = (outside > 4.0 * reference) & (outside > 0.3 * envelope)
-        # The edges of the filters and of the sliding window are not forcing.
-        forcing[:width] = False
-        forcing[-width:] = False
+        # A harmonic forcing inside the slosh band shows as a local frequency (phase rate of
+        # the analytic signal over two periods) away from the decay's, where the slosh is
+        # well above the noise.
+        rate = np.gradient(np.unwrap(np.angle(signal)), t) / (2.0 * math.pi)
+        local = uniform_filter1d(rate, 2 * width, mode="nearest")
+        strong = (envelope > 10.0 * reference) & (envelope > 1e-3 * float(envelope.max()))
+        forcing |= strong & (np.abs(local / frequency_hz - 1.0) > FREQUENCY_CHANGE)
+        # The edges of the filters and of the sliding windows are not forcing.
+        forcing[: 2 * width] = False
+        forcing[-2 * width :] = False
         hits = np.nonzero(forcing)[0]
         detected = float(t[hits[-1]]) if hits.size else None
     after = t >= (t[0] if detected is None else detected)

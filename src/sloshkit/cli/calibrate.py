@@ -39,6 +39,7 @@ from sloshkit.io.tables import (
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.sim.simulate import simulate
 from sloshkit.sim.spatial import simulate_spatial
 
 
@@ -108,6 +109,54 @@ def _identify_spatial(
     )  # fmt: skip
 
 
+def _identify_line_with_offset(
+    model: SloshModel,
+    applied: AppliedMotion,
+    time: typing.Any,
+    values: typing.Any,
+    *,
+    offset_s: float,
+    signal_kind: str,
+    require_constrained: bool,
+    source: str,
+) -> typing.Any:
+    """The 1-D model along the motion, with the clock offset (record time minus motion-file
+    time) fitted around ``offset_s`` (`identify_simulated`)."""
+    file_start = applied.start_s - offset_s
+    step = float(np.median(np.diff(time)))
+    sample_period = min(0.004, max(0.001, 0.5 * step))
+    settle = max(0.0, float(time[-1]) - applied.end_s + 0.5)
+
+    def simulate_line(omega: float, zeta: float) -> tuple[typing.Any, typing.Any]:
+        trial = model.with_mode(1, omega_rad_s=omega)
+        for mode in trial.modes:
+            trial = trial.with_mode(mode.n, damping_ratio=zeta)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            response = simulate(
+                trial, applied.motion, sample_period_s=sample_period, settle_time_s=settle
+            )
+        signal = response.wall_elevation_m if signal_kind == "height" else response.angle_rad[0]
+        return response.time_s + file_start, signal
+
+    theory = model.modes[0]
+    return identify_simulated(
+        simulate_line,
+        time,
+        values,
+        omega_guess_rad_s=theory.omega_rad_s,
+        zeta_guess=max(theory.damping_ratio, 1e-3),
+        delay_s=offset_s,
+        fit_delay=True,
+        omega_range=(0.7, 1.4),
+        signal_kind=signal_kind,
+        motion_span_s=(file_start, file_start + applied.motion.duration_s),
+        require_constrained=require_constrained,
+        source=source,
+        notes=applied.notes,
+    )
+
+
 @app.command("calibrate")
 @with_model_options
 def calibrate_command(
@@ -160,7 +209,7 @@ def calibrate_command(
     fit_clock_offset: Annotated[
         bool,
         typer.Option(
-            "--fit-clock-offset", help="Fit the clock offset within 0.5 s (pose files, height)."
+            "--fit-clock-offset", help="Fit the clock offset within 0.5 s (height, angle)."
         ),
     ] = False,
     settle: Annotated[
@@ -234,12 +283,23 @@ def calibrate_command(
         else _read_applied_motion(motion_file, motion_axis, offset)
     )
     spatial = poses is not None and motion_axis is None and signal_kind == "height"
-    if fit_clock_offset and not spatial:
+    if fit_clock_offset and (applied is None or signal_kind == "force"):
         raise InputError(
-            "fit_clock_offset", True, "needs a pose file and --signal-kind height (3-D model)"
+            "fit_clock_offset", True, "needs --motion-file and a height or angle signal"
         )
     forced = None
-    if spatial and poses is not None:
+    if fit_clock_offset and not spatial and applied is not None:
+        forced = _identify_line_with_offset(
+            slosh_model,
+            applied,
+            time,
+            values,
+            offset_s=offset,
+            signal_kind=signal_kind,
+            require_constrained=method == "forced",
+            source=str(data),
+        )
+    elif spatial and poses is not None:
         forced = _identify_spatial(
             slosh_model,
             poses,
