@@ -80,6 +80,51 @@ def plan_command(
         ),
     ] = None,
     json_output: Json = False,
+    path: Annotated[
+        Path | None,
+        typer.Option(
+            "--path", help="3-D: waypoints (CSV x,y,z[,yaw] with units in the header, or TOML)."
+        ),
+    ] = None,
+    path_from_poses: Annotated[
+        Path | None,
+        typer.Option("--path-from-poses", help="3-D: re-time the path of a pose file."),
+    ] = None,
+    blend_radius: Annotated[
+        str, typer.Option("--blend-radius", help="3-D: corner blend radius, e.g. 50mm.")
+    ] = "50mm",
+    max_slosh_height: Annotated[
+        str | None, typer.Option("--max-slosh-height", help="3-D: peak slosh height, e.g. 15mm.")
+    ] = None,
+    max_residual_height: Annotated[
+        str | None,
+        typer.Option("--max-residual-height", help="3-D: residual slosh height, e.g. 2mm."),
+    ] = None,
+    max_surface_angle: Annotated[
+        str | None,
+        typer.Option("--max-surface-angle", help="3-D: peak first-mode surface angle, e.g. 20deg."),
+    ] = None,
+    max_angular_velocity: Annotated[
+        str | None,
+        typer.Option("--max-angular-velocity", help="3-D: container angular speed, e.g. 180deg/s."),
+    ] = None,
+    max_angular_acceleration: Annotated[
+        str | None,
+        typer.Option(
+            "--max-angular-acceleration", help="3-D: angular acceleration, e.g. 1000deg/s^2."
+        ),
+    ] = None,
+    tilt_compensation: Annotated[
+        bool,
+        typer.Option("--tilt-compensation", help="3-D: let auto tilt the container."),
+    ] = False,
+    max_tilt: Annotated[
+        str, typer.Option("--max-tilt", help="3-D: largest tilt from vertical, e.g. 30deg.")
+    ] = "30deg",
+    tilt_centre: Annotated[
+        str,
+        typer.Option("--tilt-centre", help="3-D: rotation centre above the container bottom."),
+    ] = "0mm",
 ) -> None:
     """The fastest move that keeps the slosh within limits, verified by simulation.
 
@@ -90,7 +135,42 @@ def plan_command(
 
       sloshkit plan --distance 0.5m --max-angle 5deg --max-residual 0.25deg --vmax 1.5m/s
       --amax 20m/s^2 --jmax 500m/s^3 --damping-ratio 0.03 --out traj.csv --plot plan.png
+
+    With --path or --path-from-poses the timing (and, with --tilt-compensation, the tilt) of a
+    3-D path is planned instead (methods auto, retime, shaped, tilt; limits --max-slosh-height,
+    --max-residual-height); the export is a pose file (t,x,y,z,qx,qy,qz,qw).
     """
+    if path is not None or path_from_poses is not None:
+        from sloshkit.cli.plan_path import run_path_plan
+
+        if export is not None:
+            raise InputError(
+                "export", export, "not available with --path yet; --out writes the pose CSV"
+            )
+        run_path_plan(
+            slosh_model,
+            path_file=path,
+            poses_file=path_from_poses,
+            blend_radius=blend_radius,
+            max_slosh_height=max_slosh_height,
+            max_residual_height=max_residual_height,
+            max_surface_angle=max_surface_angle,
+            vmax=vmax,
+            amax=amax,
+            jmax=jmax,
+            max_angular_velocity=max_angular_velocity,
+            max_angular_acceleration=max_angular_acceleration,
+            tilt_compensation=tilt_compensation,
+            max_tilt=max_tilt,
+            tilt_centre=tilt_centre,
+            method=method,
+            band=fraction_request(robust, "robust"),
+            sample_period=sample_period,
+            out=out,
+            plot=plot,
+            json_output=json_output,
+        )
+        return
 
     check_file(out, "out")
     check_file(plot, "plot", "figure")
