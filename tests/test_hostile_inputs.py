@@ -208,7 +208,7 @@ def test_the_table_is_large_and_unique() -> None:
         case["args"][0] if not case["args"][0].startswith("-") else case["args"][2]
         for case in CASES
     }
-    assert {"model", "simulate", "compare", "sweep", "calibrate", "plan", "reproduce", "run"} <= (
+    assert {"model", "simulate", "compare", "sweep", "calibrate", "plan", "export", "run"} <= (
         commands
     )
 

@@ -140,6 +140,8 @@ def plan_command(
     3-D path is planned instead (methods auto, retime, shaped, tilt; limits --max-slosh-height,
     --max-residual-height); the export is a pose file (t,x,y,z,qx,qy,qz,qw).
     """
+    check_file(out, "out")
+    check_file(plot, "plot", "figure")
     if path is not None or path_from_poses is not None:
         from sloshkit.cli.plan_path import run_path_plan
 
@@ -172,8 +174,6 @@ def plan_command(
         )
         return
 
-    check_file(out, "out")
-    check_file(plot, "plot", "figure")
     missing = [
         name
         for name, value in (
