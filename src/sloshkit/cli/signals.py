@@ -94,3 +94,4 @@ def installed() -> Iterator[None]:
     finally:
         for sig, handler in previous.items():
             signal.signal(sig, handler)
+        _state.update(received=None, depth=0, reported=False)  # nothing leaks to a next run
