@@ -131,12 +131,36 @@ def test_shaped_plan_meets_limits_and_beats_the_paper_laws(band):
 def test_optimal_plan_is_verified_and_fastest():
     problem = _problem()
     shaped = plan_shaped(problem, ("zv",))
-    optimal = plan_optimal(problem, shaped.motion, intervals=100)
+    optimal = plan_optimal(problem, shaped.motion)
     assert optimal.feasible, optimal.message
+    assert optimal.detail["variant"] == "time-optimal"
     _independent_check(optimal.motion, problem)
     assert optimal.duration_s <= shaped.duration_s
     # The quasi-static bound: |a| <= g tan(5 deg) on average gives T >= 2 sqrt(D / (g tan 5)).
     assert optimal.duration_s > 2 * math.sqrt(0.5 / (9.81 * math.tan(math.radians(5.0)))) * 0.9
+    # Minimum time: 0.25 % faster (one sample period less) violates a slosh limit whatever
+    # the move: the slack of the best move with one step less is positive.
+    from sloshkit.plan.optimal import exact_grid_for
+
+    steps = optimal.detail["steps"]
+    grid = exact_grid_for(problem, steps + 8)
+    assert grid.solve(steps - 1, "time").slack > 0.0
+
+
+def test_smooth_variant_costs_its_stated_price_and_has_a_gentler_jerk():
+    from sloshkit.plan.optimal import SMOOTH_PRICE
+
+    problem = _problem(distance_m=0.2)
+    fastest = plan_optimal(problem)
+    smooth = plan_optimal(problem, smooth=True)
+    assert fastest.feasible and smooth.feasible, smooth.message
+    assert smooth.method == "optimal-smooth" and smooth.detail["variant"] == "smooth"
+    _independent_check(smooth.motion, problem)
+    assert smooth.duration_s == pytest.approx(fastest.duration_s * (1 + SMOOTH_PRICE), rel=1e-9)
+    t = np.arange(0.0, fastest.duration_s, 4e-3)
+    rate_fast = np.abs(np.diff(fastest.motion.jerk(t))).sum()
+    rate_smooth = np.abs(np.diff(smooth.motion.jerk(t * smooth.duration_s / fastest.duration_s)))
+    assert rate_smooth.sum() < 0.5 * rate_fast
 
 
 def test_plan_cli_csv_json_and_independent_resimulation(tmp_path):
@@ -248,3 +272,17 @@ def test_nonlinear_verification_uses_the_large_angle_pendulum():
     assert linear.feasible
     assert nonlinear.peak_angle_rad > linear.peak_angle_rad
     assert nonlinear.peak_angle_rad == pytest.approx(linear.peak_angle_rad, rel=0.05)
+
+
+def test_optimal_plan_with_a_wall_limit_keeps_every_mode():
+    problem = _problem(
+        distance_m=0.2,
+        slosh=SloshLimits(
+            math.radians(5.0), math.radians(0.25), max_wall_elevation_m=0.0015, robustness=0.05
+        ),
+    )
+    optimal = plan_optimal(problem)
+    assert optimal.feasible, optimal.message
+    check = optimal.verification
+    # The wall limit is the active one (5 deg alone would allow a higher wall).
+    assert check.peak_wall_elevation_m == pytest.approx(0.0015, rel=1e-4)

@@ -21,13 +21,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError, require_positive
-from sloshkit.files import write_rows_csv
+from sloshkit.files import atomic_open
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES, make_law
-from sloshkit.motion.sampling import steps_for
-from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
+from sloshkit.motion.scaling import unit_duration_shape
 from sloshkit.results import ResultMixin, require_pandas
-from sloshkit.sim.batch import batch_metrics
+from sloshkit.sim.batch_kernel import law_metrics
 
 FloatArray = NDArray[np.float64]
 
@@ -153,9 +152,35 @@ class SweepResult(ResultMixin):
                     )
         return rows
 
+    def columns(self) -> dict[str, NDArray[Any]]:
+        """The CSV columns as flat arrays, one entry per case (the order of `rows`)."""
+        laws, heights, durations = self.peak_angle_deg.shape
+        law_index = np.repeat(np.arange(laws), heights * durations)
+        height_index = np.tile(np.repeat(np.arange(heights), durations), laws)
+        return {
+            "law": np.asarray(self.laws, dtype=object)[law_index],
+            "fill_height_m": self.fill_heights_m[height_index],
+            "duration_s": np.repeat(self.durations_s, heights, axis=0).ravel(),
+            "omega_1_rad_s": self.omega_1_rad_s[height_index],
+            "peak_angle_deg": self.peak_angle_deg.ravel(),
+            "residual_angle_deg": self.residual_angle_deg.ravel(),
+            "peak_wall_elevation_m": self.peak_wall_elevation_m.ravel(),
+            "residual_wall_elevation_m": self.residual_wall_elevation_m.ravel(),
+            "peak_acceleration_m_s2": np.repeat(
+                self.peak_acceleration_m_s2, heights, axis=0
+            ).ravel(),
+            "safe": self.safe().ravel(),
+        }
+
     def to_csv(self, path: str | Path) -> Path:
-        """Write `rows` as CSV, atomically."""
-        return write_rows_csv(path, self.rows())
+        """Write the cases as CSV (the columns of `rows`), atomically, from the arrays:
+        numbers in their shortest round-trip form, as `rows` would write them."""
+        columns = self.columns()
+        text = [column.astype(str) for column in columns.values()]
+        lines = [",".join(columns), *map(",".join, zip(*text, strict=True))]
+        with atomic_open(path, "w") as stream:
+            stream.write("\n".join(lines) + "\n")
+        return Path(path)
 
     def to_pandas(self) -> Any:
         """`rows` as a pandas DataFrame (one row per case; pandas is optional)."""
@@ -233,7 +258,8 @@ def run_sweep(
     """Evaluate every (law, fill height, duration) case on the linear fast path.
 
     Every law is time-scaled: a law of shape s_1(tau), tau = t/T, moved in time T (see the
-    module's docstring); the metrics are those of `sloshkit.sim.batch.batch_metrics`.
+    module's docstring); the metrics are those of `sloshkit.sim.batch.batch_metrics`, computed by
+    `sloshkit.sim.batch_kernel.law_metrics` with the velocity sampled inside the kernel.
 
     Parameters
     ----------
@@ -262,9 +288,9 @@ def run_sweep(
     max_residual_rad : float, optional
         Limit on the residual first-mode amplitude after the move [rad].
     chunk_cases : int
-        Velocity histories held in memory at once.
+        Cases per call of the kernel.
     progress : callable, optional
-        ``progress(done, total)`` after each block of cases.
+        ``progress(done, total)`` after each (law, fill height).
 
     Returns
     -------
@@ -349,25 +375,19 @@ def run_sweep(
 
     shape = (len(laws), heights.size, grid.size)
     results = {key: np.zeros(shape) for key in ("peak", "residual", "wall", "wall_residual")}
-    per_chunk = max(1, min(grid.size, chunk_cases))
     total = len(laws) * heights.size * grid.size
     done = 0
     for i, law_shape in enumerate(shapes):
         velocity_pp = law_shape.derivative_pp(1)
-        for start in range(0, grid.size, per_chunk):
-            block = durations[i, start : start + per_chunk]
-            steps = steps_for(float(block.max()), dt)
-            velocity = scaled_velocity_samples(velocity_pp, block, dt, steps)
-            for j, model in enumerate(models):
-                metrics = batch_metrics(model, velocity, block, dt)
-                stop = start + block.size
-                results["peak"][i, j, start:stop] = metrics.peak_angle_rad
-                results["residual"][i, j, start:stop] = metrics.residual_angle_rad
-                results["wall"][i, j, start:stop] = metrics.peak_wall_elevation_m
-                results["wall_residual"][i, j, start:stop] = metrics.residual_wall_elevation_m
-                done += block.size
-                if progress is not None:
-                    progress(done, total)
+        for j, model in enumerate(models):
+            metrics = law_metrics(model, velocity_pp, durations[i], dt, chunk_cases)
+            results["peak"][i, j] = metrics.peak_angle_rad
+            results["residual"][i, j] = metrics.residual_angle_rad
+            results["wall"][i, j] = metrics.peak_wall_elevation_m
+            results["wall_residual"][i, j] = metrics.residual_wall_elevation_m
+            done += grid.size
+            if progress is not None:
+                progress(done, total)
     return SweepResult(
         laws=tuple(laws),
         fill_heights_m=heights,

@@ -60,8 +60,9 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):  #
     messages.warning(stderr, message, prefix)
 
 
-def run(argv: Sequence[str] | None = None) -> int:
-    """Run the command line on ``argv`` (default: ``sys.argv[1:]``) and return the exit code.
+def run(argv: Sequence[str] | None = None, application: typer.Typer | None = None) -> int:
+    """Run ``application`` (default `app`) on ``argv`` (default: ``sys.argv[1:]``) and return
+    the exit code.
 
     Every failure ends in one line on stderr (see the module docstring for the codes); nothing
     raises out of here except on ``SLOSHKIT_DEBUG=1``.
@@ -74,7 +75,9 @@ def run(argv: Sequence[str] | None = None) -> int:
     try:
         with signals.installed():
             try:
-                code = app(args=list(argv) if argv is not None else None, standalone_mode=False)
+                code = (application or app)(
+                    args=list(argv) if argv is not None else None, standalone_mode=False
+                )
                 if signals.received() is not None and not signals.was_reported():
                     raise signals.Interrupted(signals.received() or 2)
                 return code if isinstance(code, int) else 0
@@ -137,6 +140,9 @@ def _report(failure: BaseException) -> int:
     return 3
 
 
-def main(argv: Sequence[str] | None = None) -> None:
-    """Entry point: run the app and exit with its code (see `run`)."""
-    sys.exit(run(argv))
+def main(application: typer.Typer | None = None, argv: Sequence[str] | None = None) -> None:
+    """Run ``application`` (default `app`) and exit with its code (see `run`).
+
+    `sloshkit.cli.main` is the entry point: it imports the command being run first.
+    """
+    sys.exit(run(argv, application))

@@ -13,13 +13,12 @@ import typer
 
 from sloshkit.cli.options import json_number, with_options
 from sloshkit.errors import InputError
-from sloshkit.io.tables import read_motion_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.laws import comparison_s_curve_limits, make_law
-from sloshkit.motion.profile import Motion
-from sloshkit.sim.response import SloshResponse
-from sloshkit.sim.simulate import MODEL_KINDS, simulate
+
+if typing.TYPE_CHECKING:  # imported where used: the simulation stack is not start-up's
+    from sloshkit.motion.profile import Motion
+    from sloshkit.sim.response import SloshResponse
 
 Distance = Annotated[str, typer.Option("--distance", help="Travel distance, e.g. 0.5m.")]
 
@@ -109,8 +108,11 @@ class MoveRequest:
 
     def law(self, name: str) -> Motion:
         """The motion law called ``name`` (or ``file:PATH``) for this move."""
+        from sloshkit.io.tables import read_motion_file
+        from sloshkit.motion.laws import comparison_s_curve_limits, make_law
+
         if name.startswith("file:"):
-            return typing.cast(Motion, read_motion_file(name.removeprefix("file:"), name))
+            return typing.cast("Motion", read_motion_file(name.removeprefix("file:"), name))
         vmax, amax, jmax = self.vmax, self.amax, self.jmax
         if name == "s-curve" and self.peak_velocity_m_s is not None:
             vmax, amax, jmax = comparison_s_curve_limits(
@@ -136,6 +138,8 @@ def _simulate(
     settle_time: str | None,
     settle_tol: str,
 ) -> SloshResponse:
+    from sloshkit.sim.simulate import MODEL_KINDS, simulate
+
     if model_kind not in MODEL_KINDS:
         raise InputError("model", model_kind, "must be one of " + ", ".join(MODEL_KINDS))
     return simulate(

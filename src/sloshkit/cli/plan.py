@@ -64,6 +64,14 @@ def plan_command(
         bool,
         typer.Option("--nonlinear-optimal", help="Optimal control with nonlinear pendulums."),
     ] = False,
+    smooth: Annotated[
+        bool,
+        typer.Option(
+            "--smooth",
+            help="Optimal method: the smooth variant (2 % longer, least jerk rate) instead of "
+            "the time-optimal move.",
+        ),
+    ] = False,
     max_duration: Annotated[
         str | None, typer.Option("--max-duration", help="Longest acceptable move, e.g. 2s.")
     ] = None,
@@ -215,7 +223,7 @@ def plan_command(
         signals.check()  # between candidates: compiled kernels never see the signal
 
     with stderr.status("planning") as status, signals.deferred():
-        result = plan(problem, method, nonlinear_optimal, progress=progress)
+        result = plan(problem, method, nonlinear_optimal, progress=progress, smooth=smooth)
     if result.feasible:
         if out is not None:
             result.to_csv(out)
@@ -263,7 +271,9 @@ def plan_command(
         stdout.print(table)
         if result.feasible:
             stdout.print(
-                f"chosen: {payload['method']}, {payload['duration_s']:.4f} s"
+                f"chosen: {payload['method']}"
+                + (f" ({payload['variant']})" if payload["variant"] else "")
+                + f", {payload['duration_s']:.4f} s"
                 + (
                     f", {payload['speed_up_over_best_paper_law']:.2f}x faster than the best "
                     "paper law"

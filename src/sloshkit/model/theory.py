@@ -17,7 +17,6 @@ import math
 from typing import Literal, get_args
 
 import numpy as np
-from scipy.special import jnp_zeros
 
 from sloshkit.errors import InputError, require_in_range
 
@@ -37,10 +36,32 @@ MAX_MODES = 50
 def bessel_roots(n_modes: int) -> np.ndarray:
     """First ``n_modes`` roots xi_n of J1'(x) = 0 (1.841184, 5.331443, 8.536316, ...) [-].
 
-    Computed with `scipy.special.jnp_zeros`; source: Abramson (1966) eq. 2.13.
+    The first ten are the tabulated constants (Abramowitz & Stegun, *Handbook of Mathematical
+    Functions* (1964) Table 9.5, to 16 digits as `scipy.special.jnp_zeros` gives them, which the
+    tests check): importing scipy.special would double the start-up of every command. More
+    modes are computed with `scipy.special.jnp_zeros`. Source: Abramson (1966) eq. 2.13.
     """
     count = int(require_in_range("modes", n_modes, 1, MAX_MODES))
+    if count <= len(_J1_PRIME_ZEROS):
+        return np.array(_J1_PRIME_ZEROS[:count])
+    from scipy.special import jnp_zeros
+
     return np.asarray(jnp_zeros(1, count), dtype=float)
+
+
+#: Zeros of J1'(x) (Abramowitz & Stegun Table 9.5).
+_J1_PRIME_ZEROS = (
+    1.8411837813406595,
+    5.3314427735250325,
+    8.536316366346286,
+    11.706004902592063,
+    14.863588633909034,
+    18.015527862681804,
+    21.164369859188792,
+    24.311326857210776,
+    27.457050571059245,
+    30.601922972669094,
+)
 
 
 def natural_frequency(

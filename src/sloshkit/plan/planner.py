@@ -7,12 +7,12 @@ Methods (all verified the same way, see `verify`):
 - ``shaped``: a time-optimal jerk-limited S-curve (ruckig) convolved with an input shaper (ZV,
   ZVD, EI on the first mode, or ZV on modes 1 and 2), whose acceleration and jerk limits are
   searched so that the shaped move meets every limit (a vectorised grid, then a bisection);
-- ``optimal``: minimum-time control by direct multiple shooting in casadi/IPOPT (jerk as the
-  control, piecewise constant; states position, velocity, acceleration and every mode's angle
-  and rate, for each frequency of the robustness band), with the slosh limits as path
-  constraints and the residual amplitude as a terminal constraint, warm-started from the best
-  fast method; linear or nonlinear pendulums (Betts, *Practical Methods for Optimal Control*,
-  2nd ed., SIAM (2010) ch. 4);
+- ``optimal``: minimum-time control in casadi/IPOPT, transcribed on the controller's export
+  grid (piecewise-constant jerk per sample period, the pendulums' exact discretisation, the
+  slosh limits at every exported sample, for each frequency of the robustness band), or its
+  smooth variant (``smooth=True``: 2 % longer, least squared jerk rate); large-angle
+  pendulums by multiple shooting (Betts, *Practical Methods for Optimal Control*, 2nd ed.,
+  SIAM (2010) ch. 4);
 - ``auto``: all of the above, the fastest that passes verification.
 
 Verification never trusts a planner's internal model: the motion is sampled at the controller's
@@ -135,8 +135,11 @@ class PlanResult(ResultMixin):
         )
         paper = [c for c in self.candidates if c.method in PAPER_LAWS and c.feasible]
         best_paper = min((c.duration_s for c in paper), default=None)
+        variant = None if self.chosen is None else self.chosen.detail.get("variant")
         return {
             **chosen,
+            # "time-optimal" or "smooth" when the optimal method was chosen, else null.
+            "variant": variant,
             "sample_period_s": self.problem.sample_period_s,
             "speed_up_over_best_paper_law": None
             if best_paper is None or self.chosen is None or not self.chosen.feasible
@@ -150,6 +153,7 @@ def plan(
     method: str = "auto",
     nonlinear_optimal: bool = False,
     progress: Callable[[str], None] | None = None,
+    smooth: bool = False,
 ) -> PlanResult:
     """Run the requested method(s) and return the fastest verified candidate.
 
@@ -167,6 +171,10 @@ def plan(
         Optimise (and verify) with the large-angle pendulums.
     progress : callable, optional
         Called with a short message before each method.
+    smooth : bool
+        The optimal method returns its smooth variant (`sloshkit.plan.optimal.SMOOTH_PRICE`
+        longer than the minimum time, least squared jerk rate) instead of the time-optimal
+        move; ``PlanResult.to_dict()["variant"]`` says which.
 
     Returns
     -------
@@ -218,7 +226,12 @@ def plan(
         say("solving the time-optimal control problem (IPOPT)")
         warm = _fastest(candidates + ([shaped] if shaped else []))
         candidates.append(
-            plan_optimal(problem, warm.motion if warm else None, nonlinear=nonlinear_optimal)
+            plan_optimal(
+                problem,
+                warm.motion if warm else None,
+                nonlinear=nonlinear_optimal,
+                smooth=smooth and not nonlinear_optimal,
+            )
         )
     chosen = _fastest(candidates)
     if chosen is None:

@@ -1,0 +1,93 @@
+"""The fused kernel (law sampled inside) against the array kernel and the scalar
+discretisation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from sloshkit import UprightCylinder, equivalent_model, get_liquid
+from sloshkit.motion import make_law
+from sloshkit.motion.sampling import steps_for
+from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
+from sloshkit.sim.batch import batch_metrics
+from sloshkit.sim.batch_kernel import kernel_rows, law_metrics
+from sloshkit.sim.discretisation import velocity_driven_discretisation
+
+
+@pytest.mark.parametrize("sample_period", [1e-3, 4e-3, 0.05, 0.3])
+def test_vectorised_discretisation_equals_scipy_expm(sample_period):
+    """The numpy scaling-and-squaring exponential against scipy.linalg.expm of the augmented
+    matrix (first-order hold, Franklin, Powell & Workman §6.3.2)."""
+    from scipy.linalg import expm
+
+    model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039, n_modes=5)
+    rows = kernel_rows(model, sample_period)
+    for row, mode in zip(rows, model.modes, strict=True):
+        w, z, length = mode.omega_rad_s, mode.damping_ratio, mode.length_m
+        augmented = np.zeros((4, 4))
+        augmented[:2, :2] = [[0.0, 1.0], [-(w**2), -2.0 * z * w]]
+        augmented[:2, 2] = [-1.0 / length, 2.0 * z * w / length]
+        augmented[2, 3] = 1.0
+        exponential = expm(augmented * sample_period)
+        phi = exponential[:2, :2]
+        ramp = exponential[:2, 3] / sample_period
+        gamma = phi @ ramp + exponential[:2, 2] - ramp
+        expected = np.concatenate((phi.ravel(), gamma, ramp))
+        np.testing.assert_allclose(row[:8], expected, rtol=0, atol=1e-13 * np.abs(expected).max())
+        scalar = velocity_driven_discretisation(w, z, length, sample_period)
+        np.testing.assert_array_equal(np.concatenate([a.ravel() for a in scalar]), row[:8])
+
+
+@pytest.mark.parametrize("law", ["trapezoidal", "septic", "s-curve"])
+@pytest.mark.parametrize("modes", [1, 3, 4])
+def test_fused_kernel_equals_sampling_then_array_kernel(law, modes):
+    model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039, n_modes=modes)
+    motion = make_law(
+        law,
+        0.3,
+        duration_s=1.0,
+        max_velocity_m_s=1.0,
+        max_acceleration_m_s2=4.0,
+        max_jerk_m_s3=60.0,
+    )
+    shape = unit_duration_shape(motion).derivative_pp(1)
+    rng = np.random.default_rng(3)
+    # unsorted durations, some on the grid (T = k dt), more cases than one block
+    durations = np.concatenate(([0.5, 0.7, 0.7005], rng.uniform(0.4, 0.9, 150)))
+    dt = 1e-3
+    velocity = scaled_velocity_samples(shape, durations, dt, steps_for(durations.max(), dt))
+    expected = batch_metrics(model, velocity, durations, dt)
+    fused = law_metrics(model, shape, durations, dt, chunk_cases=64)
+    for name in (
+        "peak_angle_rad",
+        "residual_angle_rad",
+        "peak_wall_elevation_m",
+        "residual_wall_elevation_m",
+    ):
+        np.testing.assert_allclose(
+            getattr(fused, name), getattr(expected, name), rtol=1e-9, atol=1e-15, err_msg=name
+        )
+
+
+def test_sweep_csv_from_arrays_equals_the_rows(tmp_path):
+    import csv
+
+    import sloshkit as sk
+    from sloshkit.model.modal import model_family
+
+    result = sk.run_sweep(
+        model_family(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C")),
+        ["quintic", "septic"],
+        0.1,
+        [0.6, 0.9, 1.4],
+        fill_heights_m=[0.02, 0.03],
+        max_angle_rad=0.1,
+    )
+    path = result.to_csv(tmp_path / "sweep.csv")
+    with path.open() as stream:
+        written = list(csv.DictReader(stream))
+    rows = result.rows()
+    assert len(written) == len(rows) == 12
+    for got, want in zip(written, rows, strict=True):
+        assert got == {key: str(value) for key, value in want.items()}
