@@ -29,6 +29,7 @@ from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.models import write_model_file
+from sloshkit.io.outputs import check_file
 from sloshkit.io.tables import (
     TIME_NAMES,
     check_plausible_record,
@@ -261,6 +262,9 @@ def calibrate_command(
       --motion-file poses.csv --clock-offset 9.36s --fit-clock-offset --radius 49mm
       --fill-height 80mm
     """
+    check_file(model_file_out, "model_file_out", "model")
+    check_file(plot, "plot", "figure")
+    check_file(backbone_plot, "backbone_plot", "figure")
     methods = (*METHODS, "forced")
     if method is None:
         method = "forced" if motion_file is not None else "fit"
@@ -273,6 +277,7 @@ def calibrate_command(
     if signal_kind not in SIGNAL_KINDS:
         raise InputError("signal_kind", signal_kind, "must be one of " + ", ".join(SIGNAL_KINDS))
     header, table = read_table(data)
+    select_column(header, table, time_column, "time_column")  # a missing column first
     if time_unit is None:
         time_unit = unit_from_name(column_name(header, time_column)) or "s"
     time_scale = parse_quantity(f"1 {time_unit}", "time", "time_unit")

@@ -23,13 +23,14 @@ from sloshkit.cfd.pipeline import (
 )
 from sloshkit.cfd.pipeline import run as run_cfd
 from sloshkit.cfd.run import CfdError, CfdInterrupted, interruptible
-from sloshkit.cli import display
+from sloshkit.cli import display, signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
 from sloshkit.io.models import write_model_file
+from sloshkit.io.outputs import check_file
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
@@ -232,6 +233,7 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
             raise typer.Exit(1) from None
         except CfdInterrupted as stop:
             bar.stop()
+            signals.reported()  # the resume hint below is the one line
             stderr.print(
                 Text(
                     f"interrupted at t = {stop.simulated_s:.4g} s of {spec.end_time_s:g} s; "
@@ -250,6 +252,7 @@ def _clean_interruption(case: Path) -> Iterator[None]:
         with interruptible([], [0.0]):
             yield
     except CfdInterrupted as stop:
+        signals.reported()  # the resume hint below is the one line
         stderr.print(
             Text(
                 f"interrupted (signal {int(stop.signum)}); continue with: "
@@ -344,7 +347,8 @@ def cfd_run_command(
 
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
     """
-
+    check_file(model_file_out, "model_file_out", "model")
+    check_file(plot, "plot", "figure")
     with _clean_interruption(case):
         spec = _cfd_spec(slosh_model, case_options)
         if resume:
@@ -388,6 +392,8 @@ def cfd_analyse_command(
 
       sloshkit cfd analyse vial-decay --json
     """
+    check_file(plot, "plot", "figure")
+    check_file(csv, "csv")
 
     if not (case / "sloshkit-case.json").is_file():
         raise InputError("case", str(case), "is not a sloshkit CFD case")
@@ -437,6 +443,7 @@ def cfd_validate_command(
 
       sloshkit cfd validate --case vial-3d --excitation poses --pose-file move.csv --np 2
     """
+    check_file(plot, "plot", "figure")
 
     with _clean_interruption(case):
         if not reuse:

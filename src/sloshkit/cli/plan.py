@@ -11,6 +11,7 @@ from rich import box
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.export import (
     ExportSettings,
@@ -18,10 +19,12 @@ from sloshkit.cli.export import (
     show_export,
     with_export_options,
 )
+from sloshkit.cli.messages import error
 from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.io.outputs import check_file
 from sloshkit.io.requests import fraction_request
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
@@ -146,6 +149,8 @@ def plan_command(
     3-D path is planned instead (methods auto, retime, shaped, tilt; limits --max-slosh-height,
     --max-residual-height); the export is a pose file (t,x,y,z,qx,qy,qz,qw).
     """
+    check_file(out, "out")
+    check_file(plot, "plot", "figure")
     if path is not None or path_from_poses is not None:
         from sloshkit.cli.plan_path import run_path_plan
 
@@ -213,14 +218,13 @@ def plan_command(
         if max_duration is None
         else parse_quantity(max_duration, "time", "max_duration"),
     )
-    with stderr.status("planning") as status:
-        result = plan(
-            problem,
-            method,
-            nonlinear_optimal,
-            progress=lambda text: status.update(text),
-            smooth=smooth,
-        )
+
+    def progress(text: str) -> None:
+        status.update(text)
+        signals.check()  # between candidates: compiled kernels never see the signal
+
+    with stderr.status("planning") as status, signals.deferred():
+        result = plan(problem, method, nonlinear_optimal, progress=progress, smooth=smooth)
     if result.feasible:
         if out is not None:
             result.to_csv(out)
@@ -292,7 +296,7 @@ def plan_command(
         raise typer.Exit(1)
     if not result.feasible:
         messages = "; ".join(f"{c.method}: {c.message}" for c in result.candidates)
-        stderr.print(f"[red]error:[/red] no method meets the limits ({messages})", highlight=False)
+        error(stderr, f"no method meets the limits ({messages})")
         raise typer.Exit(1)
 
 

@@ -29,6 +29,7 @@ from sloshkit.cli.spatial import (
 )
 from sloshkit.errors import InputError
 from sloshkit.files import write_json, write_rows_csv
+from sloshkit.io.outputs import check_file, check_folder, staged_folder
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES
 from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison
@@ -66,6 +67,8 @@ def simulate_command(
 
       sloshkit simulate --pose-file move.csv --radius 49mm --fill-height 80mm --json
     """
+    check_file(csv, "csv")
+    check_file(plot, "plot", "figure")
     if pose_file is not None:
         response_3d, messages = simulate_poses(
             slosh_model,
@@ -115,6 +118,9 @@ def compare_command(
     out: Annotated[
         Path | None, typer.Option("--out", help="Folder for compare.csv, compare.json, figures.")
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """All laws on the same move, side by side (the seed paper's Figs. 7-9).
@@ -127,6 +133,7 @@ def compare_command(
 
       sloshkit compare --distance 0.5m --peak-velocity 0.5m/s --out compare/
     """
+    check_folder(out, "out", overwrite)
     names = [name.strip() for name in laws.split(",") if name.strip()]
     if not names:
         raise InputError("laws", laws, "give at least one law name")
@@ -139,12 +146,13 @@ def compare_command(
     ]
     payload = {"distance_m": request.distance_m, "model": model_kind, "laws": rows}
     if out is not None:
-        write_rows_csv(out / "compare.csv", rows)
-        write_json(out / "compare.json", payload)
-        plot_law_comparison(motions, out / "fig7_laws.png")
-        plot_slosh_comparison(responses, out / "fig8_slosh.png")
+        with staged_folder(out) as staging:
+            write_rows_csv(staging / "compare.csv", rows)
+            write_json(staging / "compare.json", payload)
+            plot_law_comparison(motions, staging / "fig7_laws.png")
+            plot_slosh_comparison(responses, staging / "fig8_slosh.png")
     if json_output:
-        print_json({"distance_m": request.distance_m, "model": model_kind, "laws": rows})
+        print_json(payload)
         return
     table = Table(
         title=f"Motion laws compared: {1e3 * request.distance_m:.0f} mm move, {model_kind} model"

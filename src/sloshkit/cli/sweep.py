@@ -12,6 +12,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
 from sloshkit.cli.options import (
@@ -32,6 +33,7 @@ from sloshkit.cli.options import (
     print_json,
 )
 from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.io.outputs import check_folder, staged_folder
 from sloshkit.io.units import parse_quantity, parse_range
 from sloshkit.model.modal import model_family
 from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
@@ -89,6 +91,9 @@ def sweep_command(
     out: Annotated[
         Path | None, typer.Option("--out", help="Folder for sweep.csv and maps.")
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """Slosh maps over fill height x move duration x law (linear fast path).
@@ -104,6 +109,7 @@ def sweep_command(
     """
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
+    check_folder(out, "out", overwrite)
     container = build_container(radius, wall_height)
     if fill_height is not None and fill_volume is not None:
         raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
@@ -138,32 +144,34 @@ def sweep_command(
 
         def advance(done: int, total: int) -> None:
             bar.update(task, completed=done, total=total)
+            signals.check()  # between chunks: the numba kernel never sees the signal
 
-        result = run_sweep(
-            model_family(
-                container,
-                build_liquid(liquid, density, viscosity, sigma),
-                n_modes=modes,
-                damping_law=check_damping_law(damping_law),
-                damping_ratio=damping_ratio,
-                surface_tension=surface_tension_correction,
-            ),
-            names,
-            request.distance_m,
-            durations,
-            accelerations,
-            fill_heights_m=heights,
-            s_curve_limits=limits,
-            acceleration_fraction=accel_fraction,
-            sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
-            max_angle_rad=None
-            if max_angle is None
-            else parse_quantity(max_angle, "angle", "max_angle"),
-            max_residual_rad=None
-            if max_residual is None
-            else parse_quantity(max_residual, "angle", "max_residual"),
-            progress=advance,
-        )
+        with signals.deferred():
+            result = run_sweep(
+                model_family(
+                    container,
+                    build_liquid(liquid, density, viscosity, sigma),
+                    n_modes=modes,
+                    damping_law=check_damping_law(damping_law),
+                    damping_ratio=damping_ratio,
+                    surface_tension=surface_tension_correction,
+                ),
+                names,
+                request.distance_m,
+                durations,
+                accelerations,
+                fill_heights_m=heights,
+                s_curve_limits=limits,
+                acceleration_fraction=accel_fraction,
+                sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+                max_angle_rad=None
+                if max_angle is None
+                else parse_quantity(max_angle, "angle", "max_angle"),
+                max_residual_rad=None
+                if max_residual is None
+                else parse_quantity(max_residual, "angle", "max_residual"),
+                progress=advance,
+            )
     no_limits = max_angle is None and max_residual is None
     if no_limits:
         warnings.warn(
@@ -174,10 +182,11 @@ def sweep_command(
         )
     summary = result.summary()
     if out is not None:
-        csv_path = result.to_csv(out / "sweep.csv")
-        maps = result.plot_maps(out)
-        summary["csv"] = str(csv_path)
-        summary["maps"] = [str(path) for path in maps]
+        with staged_folder(out) as staging:
+            result.to_csv(staging / "sweep.csv")
+            maps = result.plot_maps(staging)
+        summary["csv"] = str(out / "sweep.csv")
+        summary["maps"] = [str(out / path.name) for path in maps]
     if json_output:
         print_json(summary)
         return

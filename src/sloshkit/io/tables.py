@@ -29,7 +29,11 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
     source = Path(path)
     if not source.is_file():
         raise InputError("file", str(source), "does not exist or is not a file")
-    text = source.read_text(encoding="utf-8", errors="replace")
+    from sloshkit.budget import require_memory
+
+    # Text, lines and rows of Python floats: about 20 bytes per byte of text.
+    require_memory("file", str(source), 20.0 * source.stat().st_size, "table parsed in memory")
+    text = source.read_text(encoding="utf-8", errors="replace").removeprefix("\ufeff")
     last_comment = ""
     lines: list[str] = []
     for raw in text.splitlines():
@@ -286,14 +290,17 @@ def read_motion_file(path: str | Path, name: str | None = None) -> Any:
     if position is not None:
         values = column_si(header, data, position, "length")
         motion = from_samples(time_s, position_m=values, name=label)
+        _warn_unless_at_rest(motion, time_s, path, values)
     elif acceleration is not None:
         values = column_si(header, data, acceleration, "acceleration")
         motion = from_samples(time_s, acceleration_m_s2=values, name=label)
+        _warn_unless_at_rest(motion, time_s, path)
     else:
         if data.shape[1] < 2:
             raise InputError("file", str(path), "needs a time column and a position column")
         values = column_si(header, data, 1, "length")
         motion = from_samples(time_s, position_m=values, name=label)
+        _warn_unless_at_rest(motion, time_s, path, values)
     check_plausible_move(motion, str(path))
     return motion
 
@@ -379,6 +386,39 @@ def check_plausible_record(time_s: FloatArray, source: str) -> list[str]:
     )
     warn_validity(message)
     return [message]
+
+
+#: Velocity at either end of a motion file, relative to its peak, above which it is not at rest.
+REST_TOLERANCE = 0.02
+
+
+def _warn_unless_at_rest(
+    motion: Any, time_s: FloatArray, path: str | Path, position_m: FloatArray | None = None
+) -> Any:
+    """Warn (`ValidityWarning`) when a motion file does not start and end at rest.
+
+    For positions the end velocity is the last difference quotient of the samples (the spline
+    then forces a stop that is not in the data); for accelerations it is the integrated
+    velocity at the last sample (the container would keep moving).
+    """
+    from sloshkit.errors import warn_validity
+
+    t = np.asarray(time_s, dtype=float) - float(time_s[0])
+    if position_m is not None:
+        velocity = np.diff(position_m) / np.diff(t)
+        ends = {"start": velocity[0], "end": velocity[-1]}
+    else:
+        velocity = motion.velocity(t)
+        ends = {"end": velocity[-1]}
+    peak = float(np.max(np.abs(velocity))) if velocity.size else 0.0
+    for where, value in ends.items():
+        if peak > 0.0 and abs(float(value)) > REST_TOLERANCE * peak:
+            warn_validity(
+                f"motion file {path} does not {where} at rest (velocity {float(value):.3g} m/s "
+                f"at its {where}, {100 * abs(float(value)) / peak:.0f} % of the peak); the "
+                "result assumes a rest-to-rest move"
+            )
+    return motion
 
 
 def _split(line: str, delimiter: str | None) -> list[str]:
