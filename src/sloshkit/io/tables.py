@@ -274,8 +274,8 @@ def read_motion_file(path: str | Path, name: str | None = None) -> Any:
     --------
     >>> import tempfile, pathlib
     >>> folder = pathlib.Path(tempfile.mkdtemp())
-    >>> rows = "\n".join(f"{t},{20 * (3 * (t / 2000) ** 2 - 2 * (t / 2000) ** 3)}"
-    ...                  for t in range(0, 2001, 100))
+    >>> u = [t / 2000 for t in range(0, 2001, 100)]
+    >>> rows = "\n".join(f"{2000 * v},{20 * (10 * v**3 - 15 * v**4 + 6 * v**5)}" for v in u)
     >>> _ = (folder / "move.csv").write_text("t [ms],x [mm]\n" + rows + "\n")
     >>> motion = read_motion_file(folder / "move.csv")
     >>> round(motion.duration_s, 3), round(motion.distance_m, 3)
