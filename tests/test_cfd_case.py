@@ -210,3 +210,9 @@ def test_read_signals_from_synthetic_output(tmp_path):
     np.testing.assert_allclose(signals.elevation_m, elevation, atol=1e-12)
     assert signals.tilt_rad[0] == pytest.approx(math.atan(0.01))
     np.testing.assert_allclose(signals.force_x_n, [1.0, 1.5, 2.0])
+
+
+def test_a_row_cut_by_a_killed_run_is_dropped():
+    text = "# Time alpha\n0.001 0.5 0.25\n0.002 0.5 0.25\n0.003 0.5"
+    assert parse_table(text).shape == (2, 3)
+    assert parse_table(text + " 5e-\n").shape == (2, 3)

@@ -171,7 +171,7 @@ def test_run_killed_at_an_arbitrary_moment_resumes_to_the_same_result(
         assert len(lines) == 1, context
         # Nothing of the run is left running.
         assert _processes_working_in(case) == [], context
-        if (case / "sloshkit-case.json").is_file():
+        if (case / "sloshkit-case.json").is_file() and _simulated(case) < 0.3 - 1e-6:
             unfinished = run_entry_point("cfd", "analyse", str(case))
             one_line_error(unfinished, "is unfinished")
     resumed = run_entry_point("cfd", "run", "--case", str(case), "--resume", "--json")
@@ -190,6 +190,14 @@ def test_run_killed_at_an_arbitrary_moment_resumes_to_the_same_result(
     # Fields (and grad(alpha.water)) are written at write times only.
     times = sorted(p.name for p in (case / "processor0").iterdir() if p.name[0].isdigit())
     assert len(times) <= 10, times
+
+
+def _simulated(case: Path) -> float:
+    """How far the solver got, from its probe output (0 without any) [s]."""
+    try:
+        return float(read_signals(case).time_s[-1])
+    except InputError:
+        return 0.0
 
 
 def _processes_working_in(folder: Path) -> list[int]:

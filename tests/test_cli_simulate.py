@@ -122,7 +122,11 @@ def test_compare_writes_table_and_figures(tmp_path):
         ],
     )
     assert result.exit_code == 0, result.output
-    rows = json.loads(result.stdout)
+    payload = json.loads(result.stdout)
+    assert payload["model"] == "linear" and payload["distance_m"] == pytest.approx(0.5)
+    assert isinstance(payload["warnings"], list)
+    rows = payload["laws"]
+    assert json.loads((tmp_path / "compare.json").read_text())["laws"] == rows
     assert [row["law"] for row in rows] == ["trapezoidal", "cubic", "quintic", "septic", "s-curve"]
     for row in rows:
         assert SIMULATE_KEYS <= set(row)

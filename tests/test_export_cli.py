@@ -48,6 +48,7 @@ def test_export_joint_csv_json_contract(tmp_path: Path) -> None:
         "round_trip",
         "passed",
         "notes",
+        "warnings",  # every --json object carries the command's validity warnings (issue 17)
     }
     assert payload["path"] == str(tmp_path / "plan.joints.csv")
     assert (tmp_path / "plan.joints.csv").is_file()

@@ -251,6 +251,7 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
         "max_path_deviation_m",
         "feasible",
         "candidates",
+        "warnings",  # every --json object carries the command's validity warnings (issue 17)
     }
     assert payload["feasible"] and payload["peak_slosh_height_m"] <= 0.012
     assert out.read_text().splitlines()[0] == "t,x,y,z,qx,qy,qz,qw"

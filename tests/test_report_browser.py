@@ -4,6 +4,10 @@ figure renders and every table is present."""
 
 from __future__ import annotations
 
+import html
+import itertools
+import json
+import re
 import shutil
 from pathlib import Path
 
@@ -31,6 +35,57 @@ def test_report_files(report):
     text = report.read_text()
     assert "http://" not in text and "https://" not in text  # self-contained
     assert not list(folder.parent.glob(".*staging*"))
+    assert (folder / "figures" / "fig9_cfd_vs_model.png").is_file()  # shipped CFD signals
+
+
+UNIT = re.compile(r"\[[^\]]+\]")
+
+
+def _figure_axes_problems(name: str, axes: list[dict[str, str]]) -> list[str]:
+    """Every panel's shown axes need a label with a unit in brackets."""
+    problems = []
+    if not axes:
+        problems.append(f"{name}: no panels")
+    for panel in axes:
+        for key in ("xlabel", "ylabel"):
+            if key in panel and not UNIT.search(panel[key]):
+                problems.append(f"{name} / {panel['title']!r}: {key} {panel[key]!r} has no unit")
+        if "xlabel" not in panel and "ylabel" not in panel:
+            problems.append(f"{name} / {panel['title']!r}: no labelled axis")
+    return problems
+
+
+def test_every_figure_has_unit_bearing_axes(report):
+    folder = report.parent / "figures"
+    sidecars = sorted(folder.glob("*.axes.json"))
+    assert len(sidecars) == len(list(folder.glob("*.png")))
+    problems = []
+    for path in sidecars:
+        problems += _figure_axes_problems(path.name, json.loads(path.read_text()))
+    assert problems == []
+
+
+def test_summary_contents_and_warnings(report):
+    text = report.read_text()
+    summary = text[text.index('<section id="summary">') : text.index("</section>")]
+    assert "Fastest verified move" in summary and "faster</b> than the best of the paper" in summary
+    assert "f₁ = 4.7" in summary
+    assert (
+        text.index('id="summary"')
+        < text.index('id="contents"')
+        < text.index('id="equivalent-model"')
+    )
+    anchors = re.findall(r'<section id="([^"]+)">', text)
+    for anchor in anchors:
+        if anchor != "summary":
+            assert f'href="#{anchor}"' in text
+    assert "septic (the paper's jerk-continuous law)" in html.unescape(text)
+    assert "marks the preset" in text  # the asterisk of water-25C* explained
+    assert "not self-consistent" in text  # Table 4 comment
+    rows = json.loads((report.parent / "tables" / "sweep_shortest_safe.json").read_text())
+    keys = [(row["shortest safe duration [s]"], row["law"]) for row in rows]
+    assert all(a != b for a, b in itertools.pairwise(keys))  # repeated rows collapsed
+    assert sum(row["fill heights"] for row in rows) >= len(rows)
 
 
 @pytest.mark.skipif(
@@ -65,7 +120,7 @@ def test_report_renders_in_headless_chromium(report):
             "return Array.from(document.images)"
             ".map(i => [i.complete, i.naturalWidth, i.naturalHeight])"
         )
-        assert len(sizes) >= 6  # Figs. 5b, 7, 8, two slosh maps, the plan
+        assert len(sizes) >= 7  # Figs. 5b, 7, 8, 9, two slosh maps, the plan
         for complete, width, height in sizes:
             assert complete and width > 0 and height > 0
         names = driver.execute_script(
@@ -82,6 +137,27 @@ def test_report_renders_in_headless_chromium(report):
             assert name in names
         rows = driver.execute_script("return document.querySelectorAll('table tbody tr').length")
         assert rows > 20
+        summary = driver.execute_script(
+            "const s = document.querySelector('#summary'); return s ? s.innerText : ''"
+        )
+        assert "Fastest verified move" in summary and "faster" in summary
+        links = driver.execute_script(
+            "return Array.from(document.querySelectorAll('#contents a'))"
+            ".map(a => [a.getAttribute('href'), !!document.querySelector(a.getAttribute('href'))])"
+        )
+        assert len(links) >= 5 and all(found for _, found in links)
+        figures = driver.execute_script(
+            "return Array.from(document.querySelectorAll('figure'))"
+            ".map(f => [f.dataset.name, JSON.parse(f.dataset.axes)])"
+        )
+        assert len(figures) == len(sizes)
+        problems = [p for name, axes in figures for p in _figure_axes_problems(name, axes)]
+        assert problems == []
+        wide = driver.execute_script(
+            "return Array.from(document.querySelectorAll('pre'))"
+            ".filter(p => p.scrollWidth > p.clientWidth + 1).length"
+        )
+        assert wide == 0  # the scenario dump wraps
         errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
         assert errors == []
     finally:

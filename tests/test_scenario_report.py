@@ -32,6 +32,11 @@ def test_example_scenarios_run(tmp_path, name):
     compare = json.loads((tmp_path / "r" / "tables" / "compare.json").read_text())
     assert compare[0]["law"] == "trapezoidal"
     assert compare[0]["peak jerk [m/s³]"] is None  # unbounded: null, not Infinity
+    text = report.read_text()
+    assert '<section id="summary">' in text and '<nav id="contents"' in text
+    if name == "vial-2ml.toml":  # a 2 mL vial sloshes beyond linear theory in the fast laws
+        assert 'class="warning"' in text and "beyond small-amplitude theory" in text
+        assert any("beyond small-amplitude theory" in text for text in payload["warnings"])
 
 
 def test_paper_example_matches_the_built_in_scenario():

@@ -54,12 +54,18 @@ def atomic_open(
     'done'
     """
     target = Path(path)
+    if target.exists() and not target.is_file():  # never rename over /dev/null, a FIFO, ...
+        raise InputError("path", str(target), "exists and is not a regular file")
     target.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent)
     os.close(handle)
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(temporary, 0o666 & ~umask)  # mkstemp creates 0600; give the usual permissions
+    try:  # an existing file keeps its permissions; a new one gets the usual 0666 & ~umask
+        permissions = os.stat(target).st_mode & 0o7777
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        permissions = 0o666 & ~umask
+    os.chmod(temporary, permissions)  # mkstemp creates 0600
     try:
         with open(temporary, mode, encoding=None if "b" in mode else encoding) as stream:
             yield stream

@@ -365,6 +365,7 @@ def run_sweep(
         axis = "peak_acceleration"
     unit_peaks = np.array([shape.peak_acceleration_m_s2 for shape in shapes])
     peak_acceleration = unit_peaks[:, None] / durations**2
+    _check_sweep_size(len(laws), heights.size, durations, dt, chunk_cases)
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -402,6 +403,32 @@ def run_sweep(
         max_angle_rad=max_angle_rad,
         max_residual_rad=max_residual_rad,
         elapsed_s=time.perf_counter() - started,
+    )
+
+
+def _check_sweep_size(
+    laws: int, heights: int, durations: FloatArray, dt: float, chunk_cases: int
+) -> None:
+    """Refuse a sweep whose result maps or per-chunk velocity block exceed the memory limit."""
+    from sloshkit.budget import require_samples
+
+    counts = {"laws": laws, "fill_height": heights, "duration": durations.shape[1]}
+    largest = max(counts, key=lambda name: counts[name])
+    require_samples(
+        largest,
+        f"{laws} laws x {heights} fill heights x {durations.shape[1]} durations",
+        laws * heights * durations.shape[1],
+        8,
+        "cases",
+    )
+    longest = float(durations.max())
+    steps = longest / dt + 3.0
+    require_samples(
+        "sample_period",
+        f"{dt:.3g} s for moves up to {longest:.3g} s",
+        steps * min(durations.shape[1], chunk_cases),
+        3,
+        "velocity samples per block",
     )
 
 

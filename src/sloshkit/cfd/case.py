@@ -32,11 +32,18 @@ from sloshkit.cfd.excitation import (
     FreeDecay,
     Harmonic,
     MotionExcitation,
+    PoseExcitation,
     frame_motion,
 )
 from sloshkit.cfd.fields import initial_fields, set_fields_dict, transport_properties
 from sloshkit.cfd.foam import Raw, foam_file, format_number
-from sloshkit.cfd.mesh import block_mesh_dict, mesh_layout, probe_angles_rad, probe_columns
+from sloshkit.cfd.mesh import (
+    block_mesh_dict,
+    mesh_layout,
+    probe_angles_rad,
+    probe_columns,
+    wall_cell_size_m,
+)
 from sloshkit.cfd.spec import SCALE, CaseSpec
 
 __all__ = [
@@ -46,6 +53,7 @@ __all__ = [
     "FreeDecay",
     "Harmonic",
     "MotionExcitation",
+    "PoseExcitation",
     "acceleration_table",
     "block_mesh_dict",
     "case_files",
@@ -58,7 +66,8 @@ __all__ = [
 
 PROBE_RADIUS_FRACTION = 0.98
 #: Open MPI options that keep a run on this host: shared memory between the ranks (vader),
-#: and loopback for the TCP transport and the out-of-band (runtime) channel.
+#: and loopback for the TCP transport and the out-of-band (runtime) channel; waiting ranks
+#: yield their core (no busy polling: the machine may be shared).
 MPI_LOCAL_OPTIONS = (
     "--mca",
     "btl",
@@ -69,6 +78,9 @@ MPI_LOCAL_OPTIONS = (
     "--mca",
     "oob_tcp_if_include",
     "lo",
+    "--mca",
+    "mpi_yield_when_idle",
+    "1",
 )
 
 
@@ -237,7 +249,7 @@ def fv_solution(spec: CaseSpec) -> str:
         "PIMPLE": {
             "momentumPredictor": "no",
             "nOuterCorrectors": 1,
-            "nCorrectors": 3,
+            "nCorrectors": spec.pressure_correctors,
             "nNonOrthogonalCorrectors": 0,
         },
         "relaxationFactors": {"equations": {'".*"': 1}},
@@ -330,7 +342,25 @@ def case_files(spec: CaseSpec) -> dict[str, str]:
         ),
     }
     files.update(initial_fields())
+    if isinstance(spec.excitation, PoseExcitation):
+        files[POSE_FILE] = pose_table(spec.excitation)
     return files
+
+
+POSE_FILE = "sloshkit-poses.csv"
+
+
+def pose_table(excitation: PoseExcitation) -> str:
+    """The pose trajectory that drives the case, as a pose file (`sloshkit.io.poses`), so the
+    case can be compared with the 3-D model later without the original file."""
+    poses = excitation.poses
+    rows = ["t [s],x [m],y [m],z [m],qx,qy,qz,qw"]
+    for time, position, quaternion in zip(
+        poses.time_s, poses.position_m, poses.quaternion_xyzw, strict=True
+    ):
+        values = [time, *position, *quaternion]
+        rows.append(",".join(repr(float(v)) for v in values))
+    return "\n".join(rows) + "\n"
 
 
 def spec_summary(spec: CaseSpec) -> dict[str, Any]:
@@ -346,6 +376,13 @@ def spec_summary(spec: CaseSpec) -> dict[str, Any]:
             amplitude_m=excitation.amplitude_m,
             frequency_hz=excitation.frequency_hz,
             duration_s=excitation.duration_s,
+        )
+    elif isinstance(excitation, PoseExcitation):
+        description.update(
+            name=excitation.name,
+            duration_s=excitation.duration_s,
+            pose_file=POSE_FILE,
+            cutoff_hz=excitation.cutoff_hz,
         )
     else:
         description.update(name=excitation.name, duration_s=excitation.duration_s)
@@ -366,6 +403,10 @@ def spec_summary(spec: CaseSpec) -> dict[str, Any]:
         "max_alpha_courant": spec.max_alpha_courant,
         "write_interval_s": spec.write_interval_s,
         "ddt_scheme": spec.ddt_scheme,
+        "pressure_correctors": spec.pressure_correctors,
+        "wall_grading": spec.wall_grading,
+        "radial_cells": mesh_layout(spec).radial,
+        "wall_cell_m": wall_cell_size_m(spec),
         "processes": spec.processes,
         "probe_dz_m": dz,
         "probes_per_column": int(z.size),

@@ -11,9 +11,14 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation
+
+from sloshkit.motion.pose_kinematics import PoseKinematics
+from sloshkit.motion.poses import PoseTrajectory
 
 FloatArray = NDArray[np.float64]
 
@@ -59,7 +64,89 @@ class MotionExcitation:
         return np.asarray(self.acceleration_function(t), dtype=float)
 
 
-Excitation = FreeDecay | Harmonic | MotionExcitation
+#: Gravity in the world frame [m/s^2] (z up), as in constant/g of the case.
+GRAVITY_WORLD = np.array([0.0, 0.0, -9.81])
+
+
+@dataclass(frozen=True, eq=False)
+class PoseExcitation:
+    """A 3-D pose trajectory of the container's bottom centre (translation, tilt, rotation).
+
+    The case is solved in the container frame C with its origin at the bottom centre (the
+    mesh origin). ``tabulatedAccelerationSource`` (OpenFOAM v1912) sets g = g0 - a with g0
+    the constant ``constant/g`` in mesh (container) coordinates, and adds
+    -rho (2 Omega x U + Omega x (Omega x r) + dOmega/dt x r) with r measured from the mesh
+    origin. So the table holds, in container coordinates,
+
+        a = g0 - R^T (g - a_O),   Omega = omega_C,   dOmega/dt = alpha_C
+
+    with R (container -> world) and a_O the acceleration of the bottom centre in the world
+    frame: then g0 - a = R^T (g - a_O), the apparent gravity in the container frame, which
+    also turns with the container's tilt. Kinematics come from
+    `sloshkit.motion.poses.PoseTrajectory.kinematics` (smoothed with ``cutoff_hz``); before
+    the first and after the last pose the container rests in that pose.
+
+    References
+    ----------
+    OpenFOAM v1912, ``src/fvOptions/sources/derived/tabulatedAccelerationSource``
+    (``tabulatedAccelerationSourceTemplates.C``: the source terms above); L. D. Landau and
+    E. M. Lifshitz, *Mechanics*, 3rd ed., §39 (motion in a non-inertial frame).
+    """
+
+    poses: PoseTrajectory
+    cutoff_hz: float | None = None
+    sample_period_s: float = 1e-3
+
+    @property
+    def name(self) -> str:
+        """The trajectory's label."""
+        return self.poses.name or "poses"
+
+    @property
+    def duration_s(self) -> float:
+        """Time from the first to the last pose [s] (CFD time 0 is the first pose)."""
+        return self.poses.duration_s
+
+    @cached_property
+    def _kinematics(self) -> PoseKinematics:
+        if self.cutoff_hz is None:
+            return self.poses.kinematics(self.sample_period_s)
+        return self.poses.kinematics(self.sample_period_s, cutoff_hz=self.cutoff_hz)
+
+    @property
+    def initial_up_body(self) -> FloatArray:
+        """World up (0, 0, 1) in container coordinates at the first pose."""
+        rotation = Rotation.from_quat(self.poses.quaternion_xyzw[0])
+        return np.asarray(rotation.inv().apply([0.0, 0.0, 1.0]), dtype=float)
+
+    def acceleration(self, t: FloatArray) -> FloatArray:
+        """x component of the table's linear acceleration [m/s^2] (see `frame_motion`)."""
+        return self.frame_motion(t)[0][:, 0]
+
+    def frame_motion(self, t: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Table rows at CFD times ``t``: (a, Omega, dOmega/dt) in container coordinates."""
+        kinematics = self._kinematics
+        grid = kinematics.time_s - self.poses.start_s
+        times = np.asarray(t, dtype=float)
+        inside = (times >= grid[0]) & (times <= grid[-1])
+
+        def interpolate(values: FloatArray, hold: bool) -> FloatArray:
+            columns = [np.interp(times, grid, values[:, k]) for k in range(values.shape[1])]
+            result = np.column_stack(columns)
+            return result if hold else np.where(inside[:, None], result, 0.0)
+
+        quaternion = interpolate(kinematics.quaternion_xyzw, hold=True)
+        quaternion /= np.linalg.norm(quaternion, axis=1)[:, None]
+        to_body = Rotation.from_quat(quaternion).inv()
+        accel_world = interpolate(kinematics.acceleration_m_s2, hold=False)
+        apparent = to_body.apply(GRAVITY_WORLD[None, :] - accel_world)
+        linear = GRAVITY_WORLD[None, :] - apparent
+        omega = interpolate(kinematics.angular_velocity_body_rad_s, hold=False)
+        alpha = interpolate(kinematics.angular_acceleration_body_rad_s2, hold=False)
+        return np.asarray(linear), omega, alpha
+
+
+Excitation = FreeDecay | Harmonic | MotionExcitation | PoseExcitation
 
 
 def frame_motion(

@@ -10,30 +10,58 @@ from sloshkit.cfd.foam import Raw, foam_file, format_number
 from sloshkit.cfd.spec import AIR_DENSITY_KG_M3, AIR_VISCOSITY_PA_S, SCALE, CaseSpec
 
 
+def rest_surface_normal(spec: CaseSpec) -> tuple[float, float, float]:
+    """Unit normal of the initial free surface in the container frame: tilted by a free
+    decay's ``tilt_rad`` about y, or normal to gravity in the first pose of a 3-D motion."""
+    excitation = spec.excitation
+    if isinstance(excitation, FreeDecay):
+        return (-math.sin(excitation.tilt_rad), 0.0, math.cos(excitation.tilt_rad))
+    up = getattr(excitation, "initial_up_body", None)
+    if up is not None:
+        x, y, z = (float(v) for v in up)
+        norm = math.sqrt(x * x + y * y + z * z)
+        return (x / norm, y / norm, z / norm)
+    return (0.0, 0.0, 1.0)
+
+
+def _cross(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float, float]:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
 def set_fields_dict(spec: CaseSpec) -> str:
-    """setFieldsDict: water below the (possibly tilted) static free surface."""
+    """setFieldsDict: water below the (possibly tilted) static free surface, a plane through
+    the axis at the fill height (so the liquid volume is unchanged while it cuts the wall
+    only)."""
     radius, height, fill = spec.radius_m * SCALE, spec.height_m * SCALE, spec.fill_height_m * SCALE
-    tilt = spec.excitation.tilt_rad if isinstance(spec.excitation, FreeDecay) else 0.0
-    if tilt == 0.0:
+    normal = rest_surface_normal(spec)
+    if abs(normal[2] - 1.0) < 1e-12:
         region = f"""    boxToCell
     {{
         box (-{2 * radius} -{2 * radius} -1) ({2 * radius} {2 * radius} {format_number(fill)});
         fieldValues ( volScalarFieldValue alpha.water 1 );
     }}"""
     else:
-        c, s = math.cos(tilt), math.sin(tilt)
-        depth = 2 * height
-        span = 4 * radius
-        # Top face of the box lies on the plane z = fill + x tan(tilt) (through the axis, so
-        # the liquid volume is unchanged); the box reaches `depth` below it.
-        p0 = (-2 * radius * c, -2 * radius, fill - 2 * radius * s)
-        origin = (p0[0] + depth * s, p0[1], p0[2] - depth * c)
+        # A right-handed box (u, v, n) whose top face lies on the surface plane through
+        # (0, 0, fill); it reaches `depth` below it.
+        u = _cross((0.0, 1.0, 0.0), normal)
+        norm_u = math.sqrt(sum(c * c for c in u))
+        u = (u[0] / norm_u, u[1] / norm_u, u[2] / norm_u)
+        v = _cross(normal, u)
+        depth, span = 2 * height, 4 * radius
+        origin = tuple(
+            p - 0.5 * span * a - 0.5 * span * b - depth * n
+            for p, a, b, n in zip((0.0, 0.0, fill), u, v, normal, strict=True)
+        )
+
+        def vector(values: tuple[float, ...], scale: float = 1.0) -> str:
+            return " ".join(format_number(round(scale * c, 9)) for c in values)
+
         region = f"""    rotatedBoxToCell
     {{
-        origin ({" ".join(format_number(round(v, 9)) for v in origin)});
-        i ({format_number(round(span * c, 9))} 0 {format_number(round(span * s, 9))});
-        j (0 {format_number(span)} 0);
-        k ({format_number(round(-depth * s, 9))} 0 {format_number(round(depth * c, 9))});
+        origin ({vector(origin)});
+        i ({vector(u, span)});
+        j ({vector(v, span)});
+        k ({vector(normal, depth)});
         fieldValues ( volScalarFieldValue alpha.water 1 );
     }}"""
     entries = {

@@ -18,21 +18,26 @@ from sloshkit.cfd.foam import Raw, foam_file, format_number
 from sloshkit.cfd.spec import SCALE, CaseSpec
 
 CORE_FRACTION = 0.55  # radius of the O-grid's square core corners, as a fraction of R
+#: Inner radius of the wall annulus of graded meshes, as a fraction of R. Its inner and outer
+#: edges are concentric arcs, so its cells are orthogonal however strongly they are graded.
+ANNULUS_INNER = 0.85
 
 
 @dataclass(frozen=True)
 class MeshLayout:
-    """Cell counts of the O-grid: per quarter circumference, radial ring, and the z layers."""
+    """Cell counts of the O-grid: per quarter circumference, across the ring blocks, across
+    the wall annulus (0: none), and the z layers."""
 
     circumferential: int
     radial: int
     z_levels_m: tuple[float, ...]
     z_cells: tuple[int, ...]
+    annulus: int = 0
 
     @property
     def cells_per_layer(self) -> int:
-        """Cells in one horizontal layer: the square core plus four ring blocks."""
-        return self.circumferential**2 + 4 * self.circumferential * self.radial
+        """Cells in one horizontal layer: the square core plus the ring and annulus blocks."""
+        return self.circumferential**2 + 4 * self.circumferential * (self.radial + self.annulus)
 
     @property
     def cells(self) -> int:
@@ -57,55 +62,92 @@ def mesh_layout(spec: CaseSpec) -> MeshLayout:
         in_band = start >= low - 1e-12 and stop <= high + 1e-12
         size = fine if in_band else 2 * fine
         cells.append(max(1, round((stop - start) / size)))
-    return MeshLayout(n, max(2, round(n * (1 - CORE_FRACTION) * 1.1)), tuple(levels), tuple(cells))
+    uniform = max(2, round(n * (1 - CORE_FRACTION) * 1.1))
+    if spec.wall_grading >= 1.0:
+        return MeshLayout(n, spec.radial_cells or uniform, tuple(levels), tuple(cells))
+    middle = max(2, round(uniform * (ANNULUS_INNER - CORE_FRACTION) / (1 - CORE_FRACTION)))
+    annulus = spec.radial_cells or 2 * uniform
+    return MeshLayout(n, middle, tuple(levels), tuple(cells), annulus)
+
+
+def wall_cell_size_m(spec: CaseSpec) -> float:
+    """Radial size of the cells at the side wall, on the ring blocks' mid-lines [m]: a
+    geometric progression over the annulus (or ring) cells whose last-to-first ratio is the
+    grading."""
+    layout = mesh_layout(spec)
+    if layout.annulus:
+        length, count = spec.radius_m * (1.0 - ANNULUS_INNER), layout.annulus
+    else:
+        length, count = spec.radius_m * (1.0 - CORE_FRACTION / math.sqrt(2.0)), layout.radial
+    ratio = spec.wall_grading
+    if count == 1 or abs(ratio - 1.0) < 1e-12:
+        return length / count
+    q = ratio ** (1.0 / (count - 1))
+    first = length * (q - 1.0) / (q**count - 1.0)
+    return float(first * ratio)
 
 
 def block_mesh_dict(spec: CaseSpec) -> str:
     """blockMeshDict of the O-grid in millimetres; the top is the ``atmosphere`` patch, every
-    other face the ``walls`` patch."""
+    other face the ``walls`` patch.
+
+    Uniform meshes: a square core and four ring blocks (core edge to wall arc). Wall-graded
+    meshes add a wall annulus (arcs at `ANNULUS_INNER` R and R) that alone is graded: grading
+    the ring blocks themselves squeezes skewed cells into the O-grid corners, where interFoam
+    was seen to lose the hydrostatic balance (docs/cfd.md).
+    """
     layout = mesh_layout(spec)
     radius = spec.radius_m * SCALE
-    corner = radius / math.sqrt(2.0)
     core = CORE_FRACTION * radius / math.sqrt(2.0)
+    rings = [ANNULUS_INNER * radius, radius] if layout.annulus else [radius]
+    per_level = 4 + 4 * len(rings)
     signs = [(1, 1), (-1, 1), (-1, -1), (1, -1)]  # corners at 45, 135, 225, 315 degrees
     vertices = []
     for z in layout.z_levels_m:
         zz = z * SCALE
         vertices += [(core * sx, core * sy, zz) for sx, sy in signs]
-        vertices += [(corner * sx, corner * sy, zz) for sx, sy in signs]
+        for ring in rings:
+            corner = ring / math.sqrt(2.0)
+            vertices += [(corner * sx, corner * sy, zz) for sx, sy in signs]
 
-    def inner(level: int, i: int) -> int:
-        return 8 * level + i
+    def vertex(level: int, ring: int, i: int) -> int:  # ring 0: the core square
+        return per_level * level + 4 * ring + i
 
-    def outer(level: int, i: int) -> int:
-        return 8 * level + 4 + i
-
-    n, m = layout.circumferential, layout.radial
+    n = layout.circumferential
+    counts = [layout.radial, layout.annulus]
+    gradings = ["1 1 1", f"{format_number(spec.wall_grading)} 1 1"]
     blocks, top_faces = [], []
     for level, count in enumerate(layout.z_cells):
-        rings = [
-            ([inner(level, 2), inner(level, 3), inner(level, 0), inner(level, 1)], (n, n)),
-            ([inner(level, 3), outer(level, 3), outer(level, 0), inner(level, 0)], (m, n)),
-            ([inner(level, 0), outer(level, 0), outer(level, 1), inner(level, 1)], (m, n)),
-            ([inner(level, 1), outer(level, 1), outer(level, 2), inner(level, 2)], (m, n)),
-            ([inner(level, 2), outer(level, 2), outer(level, 3), inner(level, 3)], (m, n)),
-        ]
-        for bottom, (a, b) in rings:
-            top = [v + 8 for v in bottom]
+        quads = [([vertex(level, 0, k) for k in (2, 3, 0, 1)], (n, n), "1 1 1")]
+        for ring in range(1, len(rings) + 1):
+            for a, b in ((3, 0), (0, 1), (1, 2), (2, 3)):
+                quad = [
+                    vertex(level, ring - 1, a),
+                    vertex(level, ring, a),
+                    vertex(level, ring, b),
+                    vertex(level, ring - 1, b),
+                ]
+                quads.append((quad, (counts[ring - 1], n), gradings[ring - 1]))
+        for bottom, (a, b), grading in quads:
+            top = [v + per_level for v in bottom]
             blocks.append(
-                f"    hex ({' '.join(map(str, bottom + top))}) ({a} {b} {count}) simpleGrading (1 1 1)"
+                f"    hex ({' '.join(map(str, bottom + top))}) ({a} {b} {count}) "
+                f"simpleGrading ({grading})"
             )
             if level == len(layout.z_cells) - 1:
                 top_faces.append(f"            ({' '.join(map(str, top))})")
     arcs = []
-    midpoints = [(radius, 0.0), (0.0, radius), (-radius, 0.0), (0.0, -radius)]
     pairs = [(3, 0), (0, 1), (1, 2), (2, 3)]
     for level, z in enumerate(layout.z_levels_m):
-        for (a, b), (mx, my) in zip(pairs, midpoints, strict=True):
-            arcs.append(
-                f"    arc {outer(level, a)} {outer(level, b)} "
-                f"({format_number(mx)} {format_number(my)} {format_number(z * SCALE)})"
-            )
+        for ring, ring_radius in enumerate(rings, start=1):
+            midpoints = [(ring_radius, 0.0), (0.0, ring_radius), (-ring_radius, 0.0)]
+            midpoints.append((0.0, -ring_radius))
+            for (a, b), (mx, my) in zip(pairs, midpoints, strict=True):
+                arcs.append(
+                    f"    arc {vertex(level, ring, a)} {vertex(level, ring, b)} "
+                    f"({format_number(round(mx, 9))} {format_number(round(my, 9))} "
+                    f"{format_number(z * SCALE)})"
+                )
     vertex_text = "\n".join(
         f"    ({format_number(round(x, 9))} {format_number(round(y, 9))} {format_number(round(z, 9))})"
         for x, y, z in vertices

@@ -14,7 +14,14 @@ import numpy as np
 from scipy.special import j1
 
 from sloshkit.calibration import CalibrationResult, calibrate
-from sloshkit.cfd.case import CaseSpec, Excitation, FreeDecay, Harmonic, MotionExcitation
+from sloshkit.cfd.case import (
+    CaseSpec,
+    Excitation,
+    FreeDecay,
+    Harmonic,
+    MotionExcitation,
+    PoseExcitation,
+)
 from sloshkit.cfd.results import CfdSignals, read_signals
 from sloshkit.cfd.run import (
     RunResult,
@@ -31,20 +38,37 @@ from sloshkit.motion.recorded import from_samples
 from sloshkit.sim.simulate import simulate
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).
-RECOMMENDED = {"cells_per_radius": 10, "delta_t_s": 5e-4, "ddt_scheme": "Euler", "end_time_s": 3.0}
+RECOMMENDED: dict[str, Any] = {
+    "cells_per_radius": 11,
+    "delta_t_s": 2e-3,
+    "max_courant": 0.5,
+    "max_alpha_courant": 0.5,
+    "ddt_scheme": "Euler",
+    "end_time_s": 3.0,
+    "pressure_correctors": 3,
+}
 
 
 def case_spec(
     model: SloshModel,
     excitation: Excitation,
-    cells_per_radius: int = RECOMMENDED["cells_per_radius"],  # type: ignore[assignment]
-    end_time_s: float = RECOMMENDED["end_time_s"],  # type: ignore[assignment]
-    delta_t_s: float = RECOMMENDED["delta_t_s"],  # type: ignore[assignment]
-    ddt_scheme: str = RECOMMENDED["ddt_scheme"],  # type: ignore[assignment]
+    cells_per_radius: int = RECOMMENDED["cells_per_radius"],
+    end_time_s: float = RECOMMENDED["end_time_s"],
+    delta_t_s: float = RECOMMENDED["delta_t_s"],
+    ddt_scheme: str = RECOMMENDED["ddt_scheme"],
     processes: int = 1,
     surface_tension: bool = False,
+    max_courant: float = RECOMMENDED["max_courant"],
+    max_alpha_courant: float = RECOMMENDED["max_alpha_courant"],
+    adjust_time_step: bool = True,
+    probe_angles: int = 0,
+    pressure_correctors: int = RECOMMENDED["pressure_correctors"],
 ) -> CaseSpec:
-    """A case for ``model``'s container, fill and liquid."""
+    """A case for ``model``'s container, fill and liquid.
+
+    With ``adjust_time_step`` the step follows the Courant limits and never exceeds
+    ``delta_t_s``; otherwise it is fixed at ``delta_t_s``.
+    """
     return CaseSpec(
         radius_m=model.radius_m,
         fill_height_m=model.fill_height_m,
@@ -57,6 +81,11 @@ def case_spec(
         ddt_scheme=ddt_scheme,
         processes=processes,
         surface_tension=surface_tension,
+        adjust_time_step=adjust_time_step,
+        max_courant=max_courant,
+        max_alpha_courant=max_alpha_courant,
+        probe_angles=probe_angles,
+        pressure_correctors=pressure_correctors,
     )
 
 
@@ -101,7 +130,7 @@ def excitation_end(summary: dict[str, Any]) -> float:
     excitation = summary["excitation"]
     if excitation["type"] == "Harmonic":
         return float(excitation["duration_s"])
-    if excitation["type"] == "MotionExcitation":
+    if excitation["type"] in ("MotionExcitation", "PoseExcitation"):
         return float(excitation.get("duration_s", 0.0))
     return 0.0
 
@@ -257,8 +286,13 @@ def excitation_from_options(
     frequency_hz: float,
     excite_time_s: float,
     motion: Any = None,
+    poses: Any = None,
 ) -> Excitation:
     """Build the excitation named on the command line."""
+    if kind == "poses":
+        if poses is None:
+            raise InputError("excitation", kind, "needs --pose-file")
+        return PoseExcitation(poses)
     if kind == "free-decay":
         return FreeDecay(tilt_rad)
     if kind == "harmonic":
@@ -267,7 +301,7 @@ def excitation_from_options(
         if motion is None:
             raise InputError("excitation", kind, "needs --law and the move options")
         return MotionExcitation(motion.name, motion.acceleration, motion.duration_s)
-    raise InputError("excitation", kind, "must be free-decay, harmonic or law")
+    raise InputError("excitation", kind, "must be free-decay, harmonic, law or poses")
 
 
 def describe(record: dict[str, Any]) -> str:

@@ -22,17 +22,25 @@ FloatArray = NDArray[np.float64]
 
 
 def parse_table(text: str) -> FloatArray:
-    """Rows of numbers from a function-object file: '#' lines skipped, parentheses dropped."""
+    """Rows of numbers from a function-object file: '#' lines skipped, parentheses dropped.
+
+    A row that is not all numbers, or shorter than the others (the last line of a run killed
+    while writing it), is dropped.
+    """
     rows = []
     for line in text.splitlines():
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue
-        rows.append([float(v) for v in stripped.replace("(", " ").replace(")", " ").split()])
+        try:
+            rows.append([float(v) for v in stripped.replace("(", " ").replace(")", " ").split()])
+        except ValueError:
+            continue
     if not rows:
         return np.zeros((0, 0))
-    width = min(len(r) for r in rows)
-    return np.asarray([r[:width] for r in rows], dtype=float)
+    widths = [len(r) for r in rows]
+    width = max(set(widths), key=widths.count)
+    return np.asarray([r for r in rows if len(r) == width], dtype=float)
 
 
 def read_function_object(case: Path, name: str, file_name: str) -> FloatArray:

@@ -55,6 +55,7 @@ __all__ = [
     "RunResult",
     "check_processes",
     "expected_cells",
+    "interruptible",
     "latest_complete_time",
     "latest_time",
     "openfoam_environment",

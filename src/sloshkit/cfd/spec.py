@@ -23,6 +23,10 @@ DDT_SCHEMES = ("Euler", "CrankNicolson 0.9", "backward")
 class CaseSpec:
     """Everything that defines a case (SI units; the case itself is written in mm).
 
+    ``wall_grading`` is the ratio of the cell at the wall to the innermost cell of the O-grid's
+    ring blocks (1: uniform), with ``radial_cells`` across the ring (default from
+    ``cells_per_radius``): wall refinement for the oscillating boundary layer.
+
     With ``adjust_time_step`` (the default) interFoam chooses its step from the Courant limits
     ``max_courant`` and ``max_alpha_courant`` and never exceeds ``delta_t_s``; without it the
     step is fixed at ``delta_t_s``. Fields are written every ``write_interval_s`` only.
@@ -52,6 +56,9 @@ class CaseSpec:
     max_courant: float = 0.5
     max_alpha_courant: float = 0.5
     probe_angles: int = 0
+    pressure_correctors: int = 3
+    wall_grading: float = 1.0
+    radial_cells: int | None = None
 
     def __post_init__(self) -> None:
         require_positive("radius", self.radius_m, "m")
@@ -63,6 +70,10 @@ class CaseSpec:
         require_in_range("np", self.processes, 1, 256)
         require_in_range("max_courant", self.max_courant, 0.01, 5.0)
         require_in_range("max_alpha_courant", self.max_alpha_courant, 0.01, 5.0)
+        require_in_range("pressure_correctors", self.pressure_correctors, 1, 5)
+        require_in_range("wall_grading", self.wall_grading, 0.005, 1.0)
+        if self.radial_cells is not None:
+            require_in_range("radial_cells", self.radial_cells, 2, 200)
         if self.probe_angles:
             require_in_range("probe_angles", self.probe_angles, 4, 64)
         if self.height_m <= self.fill_height_m:

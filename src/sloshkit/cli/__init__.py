@@ -59,7 +59,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "Run a scenario file's analyses (model, calibrate, compare, sweep, plan) into a report.",
     ),
     "cfd": (
-        "sloshkit.cli.cfd",
+        # cfd_sweep imports cli.cfd (run, analyse, validate) and adds ``cfd sweep`` to it.
+        "sloshkit.cli.cfd_sweep",
         "The volume-of-fluid step with OpenFOAM (interFoam): generate, run, analyse, validate.",
     ),
 }
@@ -105,7 +106,7 @@ def main() -> None:
     if words and words[0] in COMMANDS:
         importlib.import_module(COMMANDS[words[0]][0])
         _app_module.main()
-    elif not words and all(word in ("--help", "-h") for word in sys.argv[1:]):
+    elif not words and all(word in ("--help", "-h", "--version") for word in sys.argv[1:]):
         _app_module.main(_help_app())
     else:  # an unknown command: the full application says which exist
         load_commands()

@@ -1,17 +1,25 @@
 """The ``sloshkit`` command line (typer + rich): parses units, calls the core, prints results.
 
-Exit codes: 0 success; 1 no feasible result (e.g. a plan that cannot meet the limits);
-2 invalid input (one line on stderr naming the parameter, value and valid range).
+Exit codes: 0 success; 1 no feasible result (e.g. a plan that cannot meet the limits) or a
+failure of the machine (disk full, out of memory); 2 invalid input, one line on stderr naming
+the parameter, value and valid range (also for typer/click usage errors); 3 an internal error
+(a bug: one line, ``SLOSHKIT_DEBUG=1`` shows the traceback); 130/143 interrupted by
+SIGINT/SIGTERM (no partial output is left).
 """
 
 from __future__ import annotations
 
+import errno
+import os
 import sys
 import warnings
+from collections.abc import Sequence
+from typing import Annotated
 
 import typer
-from rich.console import Console
 
+from sloshkit.cli import messages, signals
+from sloshkit.cli.notes import recording
 from sloshkit.errors import InputError, ValidityWarning
 
 app = typer.Typer(
@@ -26,28 +34,130 @@ app = typer.Typer(
 )
 
 
-stdout = Console(width=None if sys.stdout.isatty() else 160)
+stdout = messages.console()
+stderr = messages.console(stderr=True)
+
+
+def _version(value: bool) -> None:
+    if value:
+        from sloshkit import __version__
+
+        stdout.print(f"sloshkit {__version__}")
+        raise typer.Exit()
 
 
 @app.callback()
-def _root() -> None:
+def _root(
+    ctx: typer.Context,
+    version: Annotated[
+        bool,
+        typer.Option("--version", callback=_version, is_eager=True, help="Print the version."),
+    ] = False,
+    max_memory: Annotated[
+        str | None,
+        typer.Option(
+            "--max-memory",
+            help="Largest memory one request may use, e.g. 8GiB (default: half the RAM; "
+            "also SLOSHKIT_MAX_MEMORY).",
+        ),
+    ] = None,
+) -> None:
     """sloshkit: the sloshing toolkit (see the README for a tour)."""
+    ctx.with_resource(recording())
+    if max_memory is not None:
+        from sloshkit.budget import ENVIRONMENT_VARIABLE, parse_bytes
 
-
-stderr = Console(stderr=True, soft_wrap=True)
+        os.environ[ENVIRONMENT_VARIABLE] = str(parse_bytes(max_memory))
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def]
     prefix = "warning" if category is ValidityWarning else category.__name__
-    stderr.print(f"[yellow]{prefix}:[/yellow] {message}", highlight=False)
+    messages.warning(stderr, message, prefix)
 
 
-def main(application: typer.Typer | None = None) -> None:
-    """Run ``application`` (default `app`); user mistakes become one line on stderr and exit
-    code 2. `sloshkit.cli.main` is the entry point: it imports the command being run first."""
+def run(argv: Sequence[str] | None = None, application: typer.Typer | None = None) -> int:
+    """Run ``application`` (default `app`) on ``argv`` (default: ``sys.argv[1:]``) and return
+    the exit code.
+
+    Every failure ends in one line on stderr (see the module docstring for the codes); nothing
+    raises out of here except on ``SLOSHKIT_DEBUG=1``.
+    """
+    from sloshkit.budget import ENVIRONMENT_VARIABLE
+
+    saved_memory = os.environ.get(ENVIRONMENT_VARIABLE)
+    saved_showwarning = warnings.showwarning
     warnings.showwarning = _show_warning
     try:
-        (application or app)()
-    except InputError as error:
-        stderr.print(f"[red]error:[/red] {error}", highlight=False)
-        raise SystemExit(2) from None
+        with signals.installed():
+            try:
+                code = (application or app)(
+                    args=list(argv) if argv is not None else None, standalone_mode=False
+                )
+                if signals.received() is not None and not signals.was_reported():
+                    raise signals.Interrupted(signals.received() or 2)
+                return code if isinstance(code, int) else 0
+            except BaseException as failure:  # the one place that reports
+                return _report(failure)
+    finally:
+        warnings.showwarning = saved_showwarning
+        if saved_memory is None:
+            os.environ.pop(ENVIRONMENT_VARIABLE, None)
+        else:
+            os.environ[ENVIRONMENT_VARIABLE] = saved_memory
+
+
+def _report(failure: BaseException) -> int:
+    """Print ``failure`` as one line and return its exit code."""
+    if isinstance(failure, SystemExit):
+        return failure.code if isinstance(failure.code, int) else 1
+    signum = signals.received()
+    if isinstance(failure, signals.Interrupted) or signum is not None:
+        code = 128 + (signum if signum is not None else int(getattr(failure, "signum", 2)))
+        messages.error(stderr, f"interrupted (exit {code}); no partial output was written")
+        return code
+    if isinstance(failure, KeyboardInterrupt):
+        messages.error(stderr, "interrupted (exit 130); no partial output was written")
+        return 130
+    if isinstance(failure, InputError):
+        messages.error(stderr, failure)
+        return 2
+    if isinstance(failure, typer.TyperException):
+        if type(failure).__name__ == "NoArgsIsHelpError":
+            failure.show()  # type: ignore[attr-defined]
+            return failure.exit_code
+        hint = ""
+        context = getattr(failure, "ctx", None)
+        if context is not None:
+            hint = f" (see '{context.command_path} --help')"
+        messages.error(stderr, failure.format_message() + hint)
+        return 2 if failure.exit_code == 2 else failure.exit_code
+    if isinstance(failure, typer.Exit):
+        return failure.exit_code
+    if isinstance(failure, typer.Abort):
+        messages.error(stderr, "aborted")
+        return 130
+    if os.environ.get("SLOSHKIT_DEBUG"):
+        raise failure
+    if isinstance(failure, MemoryError):
+        messages.error(stderr, "out of memory; use smaller sizes (see --max-memory)")
+        return 1
+    if isinstance(failure, OSError):
+        if failure.errno == errno.EPIPE:
+            return 1
+        where = f"{failure.filename}: " if failure.filename else ""
+        messages.error(stderr, f"{where}{failure.strerror or failure}")
+        return 1
+    messages.error(
+        stderr,
+        f"internal error {type(failure).__name__}: {failure} "
+        "(a bug; rerun with SLOSHKIT_DEBUG=1 for the traceback and please report it)",
+    )
+    return 3
+
+
+def main(application: typer.Typer | None = None, argv: Sequence[str] | None = None) -> None:
+    """Run ``application`` (default `app`) and exit with its code (see `run`).
+
+    `sloshkit.cli.main` is the entry point: it imports the command being run first.
+    """
+    sys.exit(run(argv, application))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
 import typing
 import warnings
@@ -28,8 +29,13 @@ from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.models import write_model_file
+from sloshkit.io.outputs import check_file
 from sloshkit.io.tables import (
+    TIME_NAMES,
+    check_plausible_record,
     column_name,
+    column_si,
+    find_column,
     read_motion_file,
     read_table,
     select_column,
@@ -48,17 +54,20 @@ def _read_applied_motion(
     """A pose file (t,x,y,z,qx,qy,qz,qw) or a motion file, shifted by the clock offset; the
     poses too when the file has them."""
     header, data = read_table(path)
-    lowered = [name.lower() for name in header]
-    if all(name in lowered for name in POSE_COLUMNS):
-        index = [lowered.index(name) for name in POSE_COLUMNS]
-        time, position, quaternion = data[:, index[0]], data[:, index[1:4]], data[:, index[4:8]]
+    index = [find_column(header, (name,)) for name in POSE_COLUMNS]
+    if all(i is not None for i in index):
+        columns = typing.cast(list[int], index)
+        time = column_si(header, data, columns[0], "time")
+        position = np.column_stack([column_si(header, data, i, "length") for i in columns[1:4]])
+        quaternion = data[:, columns[4:8]]
         applied = applied_from_poses(time, position, quaternion, axis, name=str(path))
         poses = PoseTrajectory(time, position, quaternion, name=str(path))
         return replace(applied, start_s=applied.start_s + offset_s), poses
     if axis is not None:
         raise InputError("motion_axis", axis, "applies to pose files (t,x,y,z,qx,qy,qz,qw) only")
-    time_index = next((lowered.index(n) for n in ("t", "t_s", "time", "time_s") if n in lowered), 0)
-    start = float(data[0, time_index]) + offset_s
+    time_index = find_column(header, TIME_NAMES)
+    start = float(column_si(header, data, 0 if time_index is None else time_index, "time")[0])
+    start += offset_s
     return AppliedMotion(read_motion_file(path), start, (f"motion file {path}",)), None
 
 
@@ -253,6 +262,9 @@ def calibrate_command(
       --motion-file poses.csv --clock-offset 9.36s --fit-clock-offset --radius 49mm
       --fill-height 80mm
     """
+    check_file(model_file_out, "model_file_out", "model")
+    check_file(plot, "plot", "figure")
+    check_file(backbone_plot, "backbone_plot", "figure")
     methods = (*METHODS, "forced")
     if method is None:
         method = "forced" if motion_file is not None else "fit"
@@ -265,11 +277,18 @@ def calibrate_command(
     if signal_kind not in SIGNAL_KINDS:
         raise InputError("signal_kind", signal_kind, "must be one of " + ", ".join(SIGNAL_KINDS))
     header, table = read_table(data)
+    select_column(header, table, time_column, "time_column")  # a missing column first
     if time_unit is None:
         time_unit = unit_from_name(column_name(header, time_column)) or "s"
     time_scale = parse_quantity(f"1 {time_unit}", "time", "time_unit")
     time = select_column(header, table, time_column, "time_column") * time_scale
+    check_plausible_record(time, str(data))
     values = select_column(header, table, signal_column, "signal_column")
+    signal_unit = unit_from_name(column_name(header, signal_column))
+    signal_quantity = {"height": "length", "angle": "angle"}.get(signal_kind)
+    if signal_unit is not None and signal_quantity is not None:  # e.g. 'eta [mm]' -> metres
+        with contextlib.suppress(InputError):  # another dimension: the estimators are scale-free
+            values = values * parse_quantity(f"1 {signal_unit}", signal_quantity, "signal_column")
     lowpass_hz = None if lowpass is None else parse_quantity(lowpass, "frequency", "lowpass")
     offset = parse_quantity(clock_offset, "time", "clock_offset")
     applied, poses = (

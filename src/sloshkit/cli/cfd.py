@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -11,15 +13,25 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from sloshkit.cfd.pipeline import analyse, case_spec, describe, excitation_from_options, validate
+from sloshkit.cfd.pipeline import (
+    RECOMMENDED,
+    analyse,
+    case_spec,
+    describe,
+    excitation_from_options,
+    validate,
+)
 from sloshkit.cfd.pipeline import run as run_cfd
-from sloshkit.cfd.run import CfdError, CfdInterrupted
+from sloshkit.cfd.run import CfdError, CfdInterrupted, interruptible
+from sloshkit.cli import display, signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
 from sloshkit.io.models import write_model_file
+from sloshkit.io.outputs import check_file
+from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 from sloshkit.plotting import plot_cfd_validation
@@ -40,7 +52,10 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
         "excitation": (
             Annotated[
                 str,
-                typer.Option("--excitation", help="free-decay (tilted surface), harmonic or law."),
+                typer.Option(
+                    "--excitation",
+                    help="free-decay (tilted surface), harmonic, law, or poses (--pose-file).",
+                ),
             ],
             excitation,
         ),
@@ -66,12 +81,57 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
         ),
         "distance": (Distance, "0.1m"),
         "duration": (Duration, None),
+        "pose_file": (
+            Annotated[
+                Path | None,
+                typer.Option(
+                    "--pose-file",
+                    help="Pose trajectory for --excitation poses (t, x, y, z and qx, qy, qz, qw "
+                    "or roll, pitch, yaw; units in the header).",
+                ),
+            ],
+            None,
+        ),
+        "probe_angles": (
+            Annotated[
+                int | None,
+                typer.Option(
+                    "--probe-angles",
+                    help="Probe columns around the wall (default 2 on the x axis; 12 for poses).",
+                ),
+            ],
+            None,
+        ),
         "cells_per_radius": (
             Annotated[int, typer.Option("--cells-per-radius", help="Mesh resolution.")],
-            10,
+            RECOMMENDED["cells_per_radius"],
         ),
         "end_time": (Annotated[str, typer.Option("--end-time", help="Simulated time.")], end_time),
-        "delta_t": (Annotated[str, typer.Option("--delta-t", help="Fixed time step.")], "0.5ms"),
+        "delta_t": (
+            Annotated[
+                str,
+                typer.Option(
+                    "--delta-t", help="Largest time step (the step itself with --fixed-step)."
+                ),
+            ],
+            f"{RECOMMENDED['delta_t_s'] * 1e3:g}ms",
+        ),
+        "max_courant": (
+            Annotated[
+                float,
+                typer.Option(
+                    "--max-courant",
+                    help="Courant and interface-Courant limit of the adaptive time step.",
+                ),
+            ],
+            RECOMMENDED["max_courant"],
+        ),
+        "fixed_step": (
+            Annotated[
+                bool, typer.Option("--fixed-step", help="A fixed step of --delta-t (no Courant).")
+            ],
+            False,
+        ),
         "ddt": (
             Annotated[str, typer.Option("--ddt", help="Euler, 'CrankNicolson 0.9' or backward.")],
             "Euler",
@@ -98,7 +158,11 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
 
 def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
 
-    motion = None
+    motion = poses = None
+    if options["excitation"] == "poses":
+        if options["pose_file"] is None:
+            raise InputError("pose-file", None, "is needed with --excitation poses")
+        poses = read_pose_file(options["pose_file"])
     if options["excitation"] == "law":
         request = MoveRequest.parse(
             options["distance"], options["duration"], None, None, None, None, None
@@ -111,7 +175,11 @@ def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
         parse_quantity(options["frequency"], "frequency", "frequency"),
         parse_quantity(options["excite_time"], "time", "excite_time"),
         motion,
+        poses,
     )
+    angles = options["probe_angles"]
+    if angles is None:
+        angles = 12 if poses is not None else 0
     return case_spec(
         slosh_model,
         chosen,
@@ -121,6 +189,10 @@ def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
         ddt_scheme=options["ddt"],
         processes=options["np_"] or 1,
         surface_tension=options["cfd_surface_tension"],
+        max_courant=options["max_courant"],
+        max_alpha_courant=options["max_courant"],
+        adjust_time_step=not options["fixed_step"],
+        probe_angles=angles,
     )
 
 
@@ -161,6 +233,7 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
             raise typer.Exit(1) from None
         except CfdInterrupted as stop:
             bar.stop()
+            signals.reported()  # the resume hint below is the one line
             stderr.print(
                 Text(
                     f"interrupted at t = {stop.simulated_s:.4g} s of {spec.end_time_s:g} s; "
@@ -169,6 +242,25 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
                 highlight=False,
             )
             raise typer.Exit(128 + int(stop.signum)) from None
+
+
+@contextlib.contextmanager
+def _clean_interruption(case: Path) -> Iterator[None]:
+    """SIGINT, SIGTERM or SIGHUP anywhere in a cfd command (not only while OpenFOAM runs):
+    the tools are stopped, one line says how to continue, exit 128 + the signal number."""
+    try:
+        with interruptible([], [0.0]):
+            yield
+    except CfdInterrupted as stop:
+        signals.reported()  # the resume hint below is the one line
+        stderr.print(
+            Text(
+                f"interrupted (signal {int(stop.signum)}); continue with: "
+                f"sloshkit cfd run --case {case} --resume"
+            ),
+            highlight=False,
+        )
+        raise typer.Exit(128 + int(stop.signum)) from None
 
 
 def _print_analysis(
@@ -255,31 +347,33 @@ def cfd_run_command(
 
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
     """
-
-    spec = _cfd_spec(slosh_model, case_options)
-    if resume:
-        spec = _resumed_spec(spec, case, case_options["np_"])
-    result = _run_with_progress(spec, case, resume, overwrite)
-    try:
-        analysis = analyse(case)
-    except InputError as error:
-        # The run itself succeeded; a record too short to calibrate is not a failed run.
-        if json_output:
-            print_json(
-                {
-                    "case": str(case),
-                    "simulated_s": result.simulated_s,
-                    "wall_clock_s": result.wall_clock_s,
-                    "processes": result.processes,
-                    "cells": result.cells,
-                    "calibration_error": str(error),
-                }
-            )
-        else:
-            stdout.print(Text(f"{result.simulated_s:g} s simulated in {case}"))
-        stderr.print(Text(f"warning: no calibration: {error}", style="yellow"), highlight=False)
-        return
-    _print_analysis(analysis, json_output, model_file_out, plot, slosh_model)
+    check_file(model_file_out, "model_file_out", "model")
+    check_file(plot, "plot", "figure")
+    with _clean_interruption(case):
+        spec = _cfd_spec(slosh_model, case_options)
+        if resume:
+            spec = _resumed_spec(spec, case, case_options["np_"])
+        result = _run_with_progress(spec, case, resume, overwrite)
+        try:
+            analysis = analyse(case)
+        except InputError as error:
+            # The run itself succeeded; a record too short to calibrate is not a failed run.
+            if json_output:
+                print_json(
+                    {
+                        "case": str(case),
+                        "simulated_s": result.simulated_s,
+                        "wall_clock_s": result.wall_clock_s,
+                        "processes": result.processes,
+                        "cells": result.cells,
+                        "calibration_error": str(error),
+                    }
+                )
+            else:
+                stdout.print(Text(f"{result.simulated_s:g} s simulated in {case}"))
+            stderr.print(Text(f"warning: no calibration: {error}", style="yellow"), highlight=False)
+            return
+        _print_analysis(analysis, json_output, model_file_out, plot, slosh_model)
 
 
 @cfd_app.command("analyse")
@@ -298,6 +392,8 @@ def cfd_analyse_command(
 
       sloshkit cfd analyse vial-decay --json
     """
+    check_file(plot, "plot", "figure")
+    check_file(csv, "csv")
 
     if not (case / "sloshkit-case.json").is_file():
         raise InputError("case", str(case), "is not a sloshkit CFD case")
@@ -307,6 +403,18 @@ def cfd_analyse_command(
     if csv is not None:
         write_columns_csv(csv, analysis.signals.columns())
     _print_analysis(analysis, json_output, None, plot, None)
+
+
+def _validate(case: Path, slosh_model: SloshModel) -> dict[str, Any]:
+    """The 1-D comparison, or the 3-D one for a case driven by a pose trajectory."""
+    summary_path = case / "sloshkit-case.json"
+    if summary_path.is_file():
+        summary = json.loads(summary_path.read_text(encoding="utf-8"))
+        if summary.get("excitation", {}).get("type") == "PoseExcitation":
+            from sloshkit.cfd.spatial import validate_poses
+
+            return validate_poses(case, slosh_model)
+    return validate(case, slosh_model)
 
 
 @cfd_app.command("validate")
@@ -326,37 +434,49 @@ def cfd_validate_command(
     json_output: Json = False,
 ) -> None:
     """Run the CFD and the pendulum model on the same motion and report how far apart they
-    are (frequency, damping, peak and residual wall elevation).
+    are (frequency, damping, peak and residual wall elevation; for a pose trajectory, the peak
+    and residual slosh height against the 3-D model).
 
     Example:
 
       sloshkit cfd validate --case vial-harmonic --excitation harmonic --np 2 --plot fig9.png
-    """
 
-    if not reuse:
-        spec = _cfd_spec(slosh_model, case_options)
-        _run_with_progress(spec, case, False, overwrite)
-    result = validate(case, slosh_model)
-    if plot is not None:
-        plot_cfd_validation(result, plot)
-    summary = {
-        k: v
-        for k, v in result.items()
-        if k not in ("time_s", "cfd_elevation_m", "model_elevation_m")
-    }
-    if json_output:
-        print_json(summary)
-        return
-    table = Table(title=f"CFD against the pendulum model: {case}")
-    for header_text in ("quantity", "CFD", "model", "difference"):
-        table.add_column(Text(header_text), justify="right")
-    for key, row in summary["comparison"].items():
-        table.add_row(
-            key,
-            *("-" if row[k] is None else f"{row[k]:.4g}" for k in ("cfd", "model")),
-            "-"
-            if row["relative_difference"] is None
-            else f"{100 * row['relative_difference']:+.1f} %",
-        )
-    stdout.print(table)
-    stdout.print(f"correlation of the wall-elevation signals: {summary['correlation']:.4f}")
+      sloshkit cfd validate --case vial-3d --excitation poses --pose-file move.csv --np 2
+    """
+    check_file(plot, "plot", "figure")
+
+    with _clean_interruption(case):
+        if not reuse:
+            spec = _cfd_spec(slosh_model, case_options)
+            _run_with_progress(spec, case, False, overwrite)
+        result = _validate(case, slosh_model)
+        if plot is not None:
+            plot_cfd_validation(result, plot)
+        summary = {
+            k: v
+            for k, v in result.items()
+            if k not in ("time_s", "cfd_elevation_m", "model_elevation_m")
+        }
+        if json_output:
+            print_json(summary)
+            return
+        table = Table(title=f"CFD against the pendulum model: {case}")
+        for header_text in ("quantity", "CFD", "model", "difference"):
+            table.add_column(Text(header_text), justify="right")
+        for key, row in summary["comparison"].items():
+            table.add_row(
+                Text(display.label(key)),
+                *(display.value(key, row[k]) for k in ("cfd", "model")),
+                "-"
+                if row["relative_difference"] is None
+                else f"{100 * row['relative_difference']:+.1f} %",
+            )
+        stdout.print(table)
+        if summary["correlation"] is not None:
+            what = "slosh-height" if summary.get("kind") == "poses" else "wall-elevation"
+            stdout.print(f"correlation of the {what} signals: {summary['correlation']:.4f}")
+        if summary.get("wall_correlation") is not None:
+            stdout.print(
+                "correlation of the wall elevations of every probe column: "
+                f"{summary['wall_correlation']:.4f}"
+            )

@@ -19,6 +19,7 @@ from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.io.outputs import check_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 
@@ -299,6 +300,7 @@ def export_command(
     from sloshkit.export.exporter import SUFFIXES
 
     target = out if out is not None else plan_file.with_name(plan_file.stem + SUFFIXES.get(fmt, ""))
+    check_file(target, "out")
     result = run_export(
         plan_file,
         fmt,

@@ -2,54 +2,48 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from rich.table import Table
 from rich.text import Text
 
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
-from sloshkit.model.modal import SloshModel
+from sloshkit.model.modal import SloshMode, SloshModel
 
 
 def model_table(model: SloshModel) -> Table:
-    """A rich table of the equivalent model, with units."""
+    """A rich table of the equivalent model: one row per quantity (with its unit), one column
+    per mode, so it fits 80 columns for any number of modes up to about five."""
     table = Table(
         title=(
             f"Equivalent sloshing model: R = {1e3 * model.radius_m:.2f} mm, "
-            f"h = {1e3 * model.fill_height_m:.2f} mm, {model.liquid.name} "
-            f"(m_F = {1e3 * model.liquid_mass_kg:.2f} g, m_0 = {1e3 * model.rigid_mass_kg:.2f} g)"
+            f"h = {1e3 * model.fill_height_m:.2f} mm, {model.liquid.name}"
         )
     )
-    columns = [
-        ("mode", "n"),
-        ("ω [rad/s]", "{:.2f}"),
-        ("f [Hz]", "{:.3f}"),
-        ("m_n [g]", "{:.3f}"),
-        ("L_n [mm]", "{:.3f}"),
-        ("pivot [mm]", "{:.2f}"),
-        ("bob [mm]", "{:.2f}"),
-        ("bob − CG [mm]", "{:.2f}"),
-        ("k_n [N/m]", "{:.3f}"),
-        ("ζ [-]", "{:.4f}"),
-        ("c_n [N·s/m]", "{:.2e}"),
+    rows: list[tuple[str, Callable[[SloshMode], str]]] = [
+        ("natural pulsation ω [rad/s]", lambda m: f"{m.omega_rad_s:.2f}"),
+        ("frequency f [Hz]", lambda m: f"{m.frequency_hz:.3f}"),
+        ("slosh mass m_n [g]", lambda m: f"{1e3 * m.slosh_mass_kg:.3f}"),
+        ("pendulum length L_n [mm]", lambda m: f"{1e3 * m.length_m:.3f}"),
+        ("pivot height [mm]", lambda m: f"{1e3 * m.pivot_height_m:.2f}"),
+        ("bob height [mm]", lambda m: f"{1e3 * m.bob_height_m:.2f}"),
+        ("bob − liquid CG [mm]", lambda m: f"{1e3 * (m.bob_height_m - model.cg_height_m):.2f}"),
+        ("spring k_n [N/m]", lambda m: f"{m.stiffness_n_m:.4g}"),
+        ("damping ratio ζ [-]", lambda m: f"{m.damping_ratio:.4f}"),
+        ("damper c_n [N·s/m]", lambda m: f"{m.damping_coefficient_n_s_m:.3g}"),
     ]
-    for header, _ in columns:
-        table.add_column(Text(header), justify="right")
+    table.add_column(Text("quantity"))
     for mode in model.modes:
-        table.add_row(
-            str(mode.n),
-            f"{mode.omega_rad_s:.2f}",
-            f"{mode.frequency_hz:.3f}",
-            f"{1e3 * mode.slosh_mass_kg:.3f}",
-            f"{1e3 * mode.length_m:.3f}",
-            f"{1e3 * mode.pivot_height_m:.2f}",
-            f"{1e3 * mode.bob_height_m:.2f}",
-            f"{1e3 * (mode.bob_height_m - model.cg_height_m):.2f}",
-            f"{mode.stiffness_n_m:.3f}",
-            f"{mode.damping_ratio:.4f}",
-            f"{mode.damping_coefficient_n_s_m:.2e}",
-        )
-    table.caption = "Heights from the container bottom; damping: " + model.provenance.get(
-        "damping_ratio", model.damping_law
+        table.add_column(Text(f"mode {mode.n}"), justify="right")
+    for header, cell in rows:
+        table.add_row(Text(header), *(cell(mode) for mode in model.modes))
+    note = model.liquid.name.endswith("*")
+    table.caption = (
+        f"liquid mass m_F = {1e3 * model.liquid_mass_kg:.2f} g, rigid mass "
+        f"m_0 = {1e3 * model.rigid_mass_kg:.2f} g; heights from the container bottom; damping: "
+        + model.provenance.get("damping_ratio", model.damping_law)
+        + ("; * = preset liquid with overridden properties" if note else "")
     )
     return table
 

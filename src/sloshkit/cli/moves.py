@@ -11,6 +11,7 @@ from typing import Annotated, Any
 
 import typer
 
+from sloshkit.cli.notes import check_bare_length
 from sloshkit.cli.options import json_number, with_options
 from sloshkit.errors import InputError
 from sloshkit.io.units import parse_quantity
@@ -96,8 +97,10 @@ class MoveRequest:
         def optional(text: str | None, kind: str, name: str) -> float | None:
             return None if text is None else parse_quantity(text, kind, name)
 
+        distance_m = parse_quantity(distance, "length", "distance")
+        check_bare_length(distance, distance_m, "distance")
         return cls(
-            distance_m=parse_quantity(distance, "length", "distance"),
+            distance_m=distance_m,
             duration_s=optional(duration, "time", "duration"),
             peak_velocity_m_s=optional(peak_velocity, "velocity", "peak_velocity"),
             vmax=optional(vmax, "velocity", "vmax"),

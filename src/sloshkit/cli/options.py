@@ -15,6 +15,8 @@ from typing import Annotated, Any
 
 import typer
 
+from sloshkit.cli.notes import check_bare_length
+from sloshkit.errors import InputError
 from sloshkit.files import json_safe
 from sloshkit.io.models import read_model_file
 from sloshkit.io.requests import (
@@ -107,7 +109,11 @@ Json = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI un
 
 def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
     """The container from the model options."""
-    return container_request(radius, wall_height)
+    container = container_request(radius, wall_height)
+    check_bare_length(radius, container.radius_m, "radius")
+    if wall_height is not None and container.wall_height_m is not None:
+        check_bare_length(wall_height, container.wall_height_m, "wall_height")
+    return container
 
 
 def build_liquid(
@@ -138,10 +144,13 @@ def build_model(
 ) -> SloshModel:
     """Turn the model options (text with units) into a `SloshModel`."""
     container = build_container(radius, wall_height)
+    height = fill_height_request(container, fill_height, fill_volume)
+    if fill_volume is None:
+        check_bare_length(fill_height, height, "fill_height")
     return model_request(
         container,
         build_liquid(liquid, density, viscosity, sigma),
-        fill_height_request(container, fill_height, fill_volume),
+        height,
         modes=modes,
         damping_law=damping_law,
         damping_ratio=damping_ratio,
@@ -150,8 +159,12 @@ def build_model(
 
 
 def print_json(payload: object) -> None:
-    """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null)."""
+    """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null),
+    with the command's ``warnings`` list."""
 
+    from sloshkit.cli.notes import with_warnings
+
+    payload = with_warnings(payload)
     sys.stdout.write(json.dumps(json_safe(payload), indent=2, allow_nan=False) + "\n")
 
 
@@ -214,6 +227,17 @@ def with_options(
 def _model_from_options(values: dict[str, Any]) -> SloshModel:
     model_file = values.pop("model_file")
     if model_file is not None:
+        given = [
+            "--" + name.replace("_", "-")
+            for name, value in values.items()
+            if value != MODEL_OPTIONS[name][1]
+        ]
+        if given:
+            raise InputError(
+                "model_file",
+                str(model_file),
+                "replaces the model options; drop " + ", ".join(given) + " or the model file",
+            )
         return typing.cast(SloshModel, read_model_file(model_file))
     return build_model(**values)
 

@@ -7,9 +7,11 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich import box
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.export import (
     ExportSettings,
@@ -17,10 +19,12 @@ from sloshkit.cli.export import (
     show_export,
     with_export_options,
 )
+from sloshkit.cli.messages import error
 from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.io.outputs import check_file
 from sloshkit.io.requests import fraction_request
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
@@ -145,6 +149,8 @@ def plan_command(
     3-D path is planned instead (methods auto, retime, shaped, tilt; limits --max-slosh-height,
     --max-residual-height); the export is a pose file (t,x,y,z,qx,qy,qz,qw).
     """
+    check_file(out, "out")
+    check_file(plot, "plot", "figure")
     if path is not None or path_from_poses is not None:
         from sloshkit.cli.plan_path import run_path_plan
 
@@ -212,14 +218,13 @@ def plan_command(
         if max_duration is None
         else parse_quantity(max_duration, "time", "max_duration"),
     )
-    with stderr.status("planning") as status:
-        result = plan(
-            problem,
-            method,
-            nonlinear_optimal,
-            progress=lambda text: status.update(text),
-            smooth=smooth,
-        )
+
+    def progress(text: str) -> None:
+        status.update(text)
+        signals.check()  # between candidates: compiled kernels never see the signal
+
+    with stderr.status("planning") as status, signals.deferred():
+        result = plan(problem, method, nonlinear_optimal, progress=progress, smooth=smooth)
     if result.feasible:
         if out is not None:
             result.to_csv(out)
@@ -233,19 +238,26 @@ def plan_command(
     if json_output:
         print_json(payload)
     else:
-        table = Table(title=f"Plans for a {1e3 * problem.distance_m:.0f} mm move")
+        table = Table(
+            title=f"Plans for a {1e3 * problem.distance_m:.0f} mm move",
+            caption="T: duration; θ₁: first-mode slosh angle; "
+            "resid.: amplitude left after the move; "
+            "ok: verified against the limits",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+        )
+        table.add_column("method", no_wrap=True)
         for header_text in (
-            "method",
-            "duration",
-            "peak θ₁",
-            "residual θ₁",
-            "peak v",
-            "peak a",
-            "peak j",
-            "feasible",
-            "compute",
+            "T\n[s]",
+            "peak\nθ₁ [°]",
+            "resid.\nθ₁ [°]",
+            "peak v\n[m/s]",
+            "peak a\n[m/s²]",
+            "peak j\n[m/s³]",
+            "ok",
+            "cpu\n[s]",
         ):
-            table.add_column(Text(header_text), justify="right")
+            table.add_column(Text(header_text), justify="right", no_wrap=True)
         for candidate in payload["candidates"]:
 
             def show(value: float | None, fmt: str) -> str:
@@ -253,16 +265,16 @@ def plan_command(
 
             table.add_row(
                 candidate["method"],
-                show(candidate["duration_s"], ".4f") + " s",
-                show(candidate["peak_angle_deg"], ".3f") + "°",
-                show(candidate["residual_angle_deg"], ".3f") + "°",
+                show(candidate["duration_s"], ".4f"),
+                show(candidate["peak_angle_deg"], ".2f"),
+                show(candidate["residual_angle_deg"], ".2f"),
                 show(candidate["peak_velocity_m_s"], ".3f"),
-                show(candidate["peak_acceleration_m_s2"], ".3f"),
+                show(candidate["peak_acceleration_m_s2"], ".3g"),
                 "∞"
                 if candidate["peak_jerk_m_s3"] is None and candidate["duration_s"]
-                else show(candidate["peak_jerk_m_s3"], ".1f"),
+                else show(candidate["peak_jerk_m_s3"], ".3g"),
                 "yes" if candidate["feasible"] else "no",
-                f"{candidate['compute_time_s']:.3f} s",
+                f"{candidate['compute_time_s']:.2g}",
             )
         stdout.print(table)
         if result.feasible:
@@ -284,7 +296,7 @@ def plan_command(
         raise typer.Exit(1)
     if not result.feasible:
         messages = "; ".join(f"{c.method}: {c.message}" for c in result.candidates)
-        stderr.print(f"[red]error:[/red] no method meets the limits ({messages})", highlight=False)
+        error(stderr, f"no method meets the limits ({messages})")
         raise typer.Exit(1)
 
 

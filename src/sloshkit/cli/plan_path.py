@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 import typer
+from rich import box
 from rich.table import Table
 from rich.text import Text
 
@@ -165,9 +166,23 @@ def run_path_plan(
 
 
 def _print_table(payload: dict[str, Any], length_m: float, out: Path | None) -> None:
-    table = Table(title=f"Plans for a {length_m:.3f} m path")
-    for header in ("method", "duration", "peak height", "residual", "tilt", "feasible", "compute"):
-        table.add_column(Text(header), justify="right")
+    table = Table(
+        title=f"Plans for a {length_m:.3f} m path",
+        caption="T: duration; residual: slosh height left after the move; "
+        "ok: verified against the limits",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+    )
+    table.add_column("method", no_wrap=True)
+    for header in (
+        "T\n[s]",
+        "peak height\n[mm]",
+        "residual\n[mm]",
+        "tilt\n[°]",
+        "ok",
+        "cpu\n[s]",
+    ):
+        table.add_column(Text(header), justify="right", no_wrap=True)
 
     def show(value: float | None, scale: float, fmt: str) -> str:
         return "-" if value is None else format(value * scale, fmt)
@@ -175,12 +190,12 @@ def _print_table(payload: dict[str, Any], length_m: float, out: Path | None) -> 
     for candidate in payload["candidates"]:
         table.add_row(
             candidate["method"],
-            show(candidate["duration_s"], 1.0, ".3f") + " s",
-            show(candidate["peak_slosh_height_m"], 1e3, ".2f") + " mm",
-            show(candidate["residual_slosh_height_m"], 1e3, ".2f") + " mm",
-            show(candidate["peak_tilt_deg"], 1.0, ".1f") + "°",
+            show(candidate["duration_s"], 1.0, ".3f"),
+            show(candidate["peak_slosh_height_m"], 1e3, ".2f"),
+            show(candidate["residual_slosh_height_m"], 1e3, ".2f"),
+            show(candidate["peak_tilt_deg"], 1.0, ".1f"),
             "yes" if candidate["feasible"] else "no",
-            f"{candidate['compute_time_s']:.2f} s",
+            f"{candidate['compute_time_s']:.2g}",
         )
     stdout.print(table)
     if payload["feasible"]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import sys
 from pathlib import Path
 from typing import Annotated, Any
@@ -10,10 +11,12 @@ import typer
 
 from sloshkit.cfd.case import FreeDecay
 from sloshkit.cfd.pipeline import analyse, case_spec
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.cfd import _run_with_progress
 from sloshkit.cli.options import Json, print_json
 from sloshkit.errors import InputError
+from sloshkit.io.outputs import check_folder, mark_folder
 from sloshkit.io.scenario import read_scenario
 from sloshkit.model.modal import SloshModel
 from sloshkit.report.build import build_report
@@ -25,30 +28,48 @@ def _run_report(
 ) -> None:
     from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
-    with Progress(
-        SpinnerColumn(),
-        TextColumn("{task.description}"),
-        TimeElapsedColumn(),
-        console=stderr,
-        transient=True,
-    ) as bar:
+    with (
+        Progress(
+            SpinnerColumn(),
+            TextColumn("{task.description}"),
+            TimeElapsedColumn(),
+            console=stderr,
+            transient=True,
+        ) as bar,
+        signals.deferred(),
+    ):
         task = bar.add_task("starting", total=None)
+
+        def progress(text: str) -> None:
+            bar.update(task, description=text)
+            signals.check()  # between sections: compiled kernels never see the signal
+
         path = build_report(
             scenario,
             out,
-            progress=lambda text: bar.update(task, description=text),
+            progress=progress,
             cfd_calibration=cfd_calibration,
             command="sloshkit " + " ".join(sys.argv[1:]),
         )
+    mark_folder(out)
+    noted = json.loads((out / "warnings.json").read_text(encoding="utf-8"))
+    report_warnings = [f"{item['section']}: {item['message']}" for item in noted]
     if json_output:
         print_json(
             {
                 "report": str(path),
                 "figures": sorted(str(p) for p in (out / "figures").glob("*")),
                 "tables": sorted(str(p) for p in (out / "tables").glob("*")),
+                "warnings": report_warnings,
             }
         )
     else:
+        if report_warnings:
+            stderr.print(
+                f"{len(report_warnings)} validity warning(s) in the report, next to the numbers "
+                "they qualify (listed in its summary)",
+                highlight=False,
+            )
         stdout.print(f"report: {path.resolve()}")
 
 
@@ -69,6 +90,9 @@ def reproduce_command(
         Path | None,
         typer.Option("--cfd-case", help="Reuse a finished OpenFOAM case for the calibration."),
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """Rebuild the seed paper end to end on the analytic model and write a report.
@@ -81,6 +105,7 @@ def reproduce_command(
       sloshkit reproduce --out report/
     """
 
+    check_folder(out, "out", overwrite)
     scenario = paper_scenario()
     calibration = None
     if cfd or cfd_case is not None:
@@ -113,8 +138,14 @@ def _cfd_free_decay(slosh_model: SloshModel, case: Path, may_run: bool = True) -
 def run_command(
     scenario_file: Annotated[Path, typer.Argument(help="Scenario TOML (see examples/).")],
     out: Annotated[
-        Path | None, typer.Option("--out", help="Report folder (default: beside the file).")
+        Path | None,
+        typer.Option(
+            "--out", help="Report folder (default: the file's name, in the working folder)."
+        ),
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """Run a scenario file's analyses (model, calibrate, compare, sweep, plan) into a report.
@@ -124,6 +155,8 @@ def run_command(
       sloshkit run examples/vial-2ml.toml --out vial-2ml-report/
     """
 
+    target = out or Path(scenario_file.stem + "-report")
+    check_folder(target, "out", overwrite)
     scenario = read_scenario(scenario_file)
     calibration = None
     if "cfd" in scenario.analyses:
@@ -132,4 +165,4 @@ def run_command(
             scenario.model,
             scenario_file.parent / str(case or scenario_file.stem + "-cfd-free-decay"),
         )
-    _run_report(scenario, out or scenario_file.with_suffix(""), calibration, json_output)
+    _run_report(scenario, target, calibration, json_output)

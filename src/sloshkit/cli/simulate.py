@@ -9,11 +9,11 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cli import display
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.moves import (
     SIMULATION_OPTIONS,
     MoveRequest,
-    _format_metric,
     _simulate,
     metrics_json,
     with_move_options,
@@ -29,6 +29,7 @@ from sloshkit.cli.spatial import (
 )
 from sloshkit.errors import InputError
 from sloshkit.files import write_json, write_rows_csv
+from sloshkit.io.outputs import check_file, check_folder, staged_folder
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES
 from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison
@@ -66,6 +67,8 @@ def simulate_command(
 
       sloshkit simulate --pose-file move.csv --radius 49mm --fill-height 80mm --json
     """
+    check_file(csv, "csv")
+    check_file(plot, "plot", "figure")
     if pose_file is not None:
         response_3d, messages = simulate_poses(
             slosh_model,
@@ -93,10 +96,10 @@ def simulate_command(
     table = Table(
         title=f"{motion.name} move of {1e3 * motion.distance_m:.1f} mm, {model_kind} model"
     )
-    table.add_column("metric")
+    table.add_column("quantity")
     table.add_column("value", justify="right")
-    for key, value in response.metrics().items():
-        table.add_row(key, _format_metric(key, value))
+    for key, number in response.metrics().items():
+        table.add_row(Text(display.label(key)), display.value(key, number))
     stdout.print(table)
 
 
@@ -115,6 +118,9 @@ def compare_command(
     out: Annotated[
         Path | None, typer.Option("--out", help="Folder for compare.csv, compare.json, figures.")
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """All laws on the same move, side by side (the seed paper's Figs. 7-9).
@@ -127,6 +133,7 @@ def compare_command(
 
       sloshkit compare --distance 0.5m --peak-velocity 0.5m/s --out compare/
     """
+    check_folder(out, "out", overwrite)
     names = [name.strip() for name in laws.split(",") if name.strip()]
     if not names:
         raise InputError("laws", laws, "give at least one law name")
@@ -137,32 +144,27 @@ def compare_command(
         {"law": motion.name, **metrics_json(response)}
         for motion, response in zip(motions, responses, strict=True)
     ]
+    payload = {"distance_m": request.distance_m, "model": model_kind, "laws": rows}
     if out is not None:
-        write_rows_csv(out / "compare.csv", rows)
-        write_json(out / "compare.json", rows)
-        plot_law_comparison(motions, out / "fig7_laws.png")
-        plot_slosh_comparison(responses, out / "fig8_slosh.png")
+        with staged_folder(out) as staging:
+            write_rows_csv(staging / "compare.csv", rows)
+            write_json(staging / "compare.json", payload)
+            plot_law_comparison(motions, staging / "fig7_laws.png")
+            plot_slosh_comparison(responses, staging / "fig8_slosh.png")
     if json_output:
-        print_json(rows)
+        print_json(payload)
         return
     table = Table(
         title=f"Motion laws compared: {1e3 * request.distance_m:.0f} mm move, {model_kind} model"
     )
-    headers = [
-        ("law", None),
-        ("duration", "duration_s"),
-        ("peak acc.", "peak_acceleration_m_s2"),
-        ("peak jerk", "peak_jerk_m_s3"),
-        ("peak θ₁", "peak_angle_deg"),
-        ("residual θ₁", "residual_angle_deg"),
-        ("peak wall η", "peak_wall_elevation_m"),
-        ("settling", "settling_time_s"),
-    ]
-    for header, _ in headers:
-        table.add_column(Text(header), justify="right")
-    for motion, response in zip(motions, responses, strict=True):
-        metrics = response.metrics()
-        table.add_row(motion.name, *(_format_metric(k, metrics[k]) for _, k in headers[1:] if k))
+    table.add_column("quantity")
+    for motion in motions:
+        table.add_column(Text(motion.name), justify="right")
+    for key in responses[0].metrics() if responses else ():
+        table.add_row(
+            Text(display.label(key)),
+            *(display.value(key, response.metrics()[key]) for response in responses),
+        )
     stdout.print(table)
     if out is not None:
         stdout.print(f"wrote {out}/compare.csv, compare.json, fig7_laws.png, fig8_slosh.png")

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-import math
 import warnings
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 from rich.table import Table
+from rich.text import Text
 
+from sloshkit.cli import display
 from sloshkit.cli.app import stdout
 from sloshkit.cli.options import json_number, print_json
 from sloshkit.errors import InputError, ValidityWarning
@@ -113,16 +114,9 @@ def report_poses(
         print_json(spatial_json(response, messages))
         return
     table = Table(title=f"3-D move {response.motion_name!r}, {response.kind} model")
-    table.add_column("metric")
+    table.add_column("quantity")
     table.add_column("value", justify="right")
     for key, value in response.metrics().items():
-        if isinstance(value, str):
-            text = value
-        elif key.endswith("_m"):
-            text = f"{1e3 * value:.2f} mm"
-        elif key.endswith("_deg"):
-            text = f"{value:.2f}°"
-        else:
-            text = f"{value:.4g} s" if math.isfinite(value) else "∞"
-        table.add_row(key, text)
+        text = value if isinstance(value, str) else display.value(key, value)
+        table.add_row(Text(display.label(key)), text)
     stdout.print(table)

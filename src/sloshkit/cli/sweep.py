@@ -3,13 +3,16 @@
 from __future__ import annotations
 
 import typing
+import warnings
 from pathlib import Path
 from typing import Annotated
 
 import numpy as np
 import typer
 from rich.table import Table
+from rich.text import Text
 
+from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
 from sloshkit.cli.options import (
@@ -29,7 +32,8 @@ from sloshkit.cli.options import (
     check_damping_law,
     print_json,
 )
-from sloshkit.errors import InputError
+from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.io.outputs import check_folder, staged_folder
 from sloshkit.io.units import parse_quantity, parse_range
 from sloshkit.model.modal import model_family
 from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
@@ -87,6 +91,9 @@ def sweep_command(
     out: Annotated[
         Path | None, typer.Option("--out", help="Folder for sweep.csv and maps.")
     ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace the files of a non-empty --out folder.")
+    ] = False,
     json_output: Json = False,
 ) -> None:
     """Slosh maps over fill height x move duration x law (linear fast path).
@@ -102,6 +109,7 @@ def sweep_command(
     """
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
+    check_folder(out, "out", overwrite)
     container = build_container(radius, wall_height)
     if fill_height is not None and fill_volume is not None:
         raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
@@ -136,56 +144,72 @@ def sweep_command(
 
         def advance(done: int, total: int) -> None:
             bar.update(task, completed=done, total=total)
+            signals.check()  # between chunks: the numba kernel never sees the signal
 
-        result = run_sweep(
-            model_family(
-                container,
-                build_liquid(liquid, density, viscosity, sigma),
-                n_modes=modes,
-                damping_law=check_damping_law(damping_law),
-                damping_ratio=damping_ratio,
-                surface_tension=surface_tension_correction,
-            ),
-            names,
-            request.distance_m,
-            durations,
-            accelerations,
-            fill_heights_m=heights,
-            s_curve_limits=limits,
-            acceleration_fraction=accel_fraction,
-            sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
-            max_angle_rad=None
-            if max_angle is None
-            else parse_quantity(max_angle, "angle", "max_angle"),
-            max_residual_rad=None
-            if max_residual is None
-            else parse_quantity(max_residual, "angle", "max_residual"),
-            progress=advance,
+        with signals.deferred():
+            result = run_sweep(
+                model_family(
+                    container,
+                    build_liquid(liquid, density, viscosity, sigma),
+                    n_modes=modes,
+                    damping_law=check_damping_law(damping_law),
+                    damping_ratio=damping_ratio,
+                    surface_tension=surface_tension_correction,
+                ),
+                names,
+                request.distance_m,
+                durations,
+                accelerations,
+                fill_heights_m=heights,
+                s_curve_limits=limits,
+                acceleration_fraction=accel_fraction,
+                sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+                max_angle_rad=None
+                if max_angle is None
+                else parse_quantity(max_angle, "angle", "max_angle"),
+                max_residual_rad=None
+                if max_residual is None
+                else parse_quantity(max_residual, "angle", "max_residual"),
+                progress=advance,
+            )
+    no_limits = max_angle is None and max_residual is None
+    if no_limits:
+        warnings.warn(
+            "no limits given (--max-angle, --max-residual): no case is judged safe or unsafe; "
+            "'shortest' is simply the shortest duration swept",
+            ValidityWarning,
+            stacklevel=1,
         )
     summary = result.summary()
     if out is not None:
-        csv_path = result.to_csv(out / "sweep.csv")
-        maps = result.plot_maps(out)
-        summary["csv"] = str(csv_path)
-        summary["maps"] = [str(path) for path in maps]
+        with staged_folder(out) as staging:
+            result.to_csv(staging / "sweep.csv")
+            maps = result.plot_maps(staging)
+        summary["csv"] = str(out / "sweep.csv")
+        summary["maps"] = [str(out / path.name) for path in maps]
     if json_output:
         print_json(summary)
         return
     stderr.print(describe_rate(result))
     table = Table(
-        title=f"Shortest safe move per fill height ({summary['safe_cases']:,} of "
+        title=f"Shortest move per fill height ({summary['cases']:,} cases; no limits given)"
+        if no_limits
+        else f"Shortest safe move per fill height ({summary['safe_cases']:,} of "
         f"{summary['cases']:,} cases safe)"
     )
-    table.add_column("fill height", justify="right")
-    table.add_column("ω₁ [rad/s]", justify="right")
-    table.add_column("shortest safe duration", justify="right")
+    table.add_column(Text("fill height [mm]"), justify="right")
+    table.add_column(Text("ω₁ [rad/s]"), justify="right")
+    table.add_column(
+        Text("shortest duration [s]" if no_limits else "shortest safe duration [s]"),
+        justify="right",
+    )
     table.add_column("law")
     for row, omega in zip(result.shortest_safe(), result.omega_1_rad_s, strict=True):
         shortest = row["duration_s"]
         table.add_row(
-            f"{1e3 * float(typing.cast(float, row['fill_height_m'])):.1f} mm",
+            f"{1e3 * float(typing.cast(float, row['fill_height_m'])):.1f}",
             f"{omega:.2f}",
-            "none" if shortest is None else f"{float(typing.cast(float, shortest)):.3f} s",
+            "none" if shortest is None else f"{float(typing.cast(float, shortest)):.3f}",
             str(row["law"] or "-"),
         )
     stdout.print(table)

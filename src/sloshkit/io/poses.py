@@ -11,7 +11,6 @@ that point's frame.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -19,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
-from sloshkit.io.tables import read_table, unit_from_name
+from sloshkit.io.tables import base_name, read_table, unit_from_name
 from sloshkit.io.units import parse_quantity
 from sloshkit.motion.poses import PoseTrajectory, poses_from_rpy
 
@@ -28,7 +27,6 @@ FloatArray = NDArray[np.float64]
 _TIME_NAMES = ("t", "time")
 _QUATERNION = ("qx", "qy", "qz", "qw")
 _RPY = ("roll", "pitch", "yaw")
-_SUFFIX_UNITS = ("ms", "us", "min", "s", "mm", "cm", "um", "m", "deg", "rad")
 
 
 def split_column_name(name: str) -> tuple[str, str | None]:
@@ -39,16 +37,7 @@ def split_column_name(name: str) -> tuple[str, str | None]:
     >>> split_column_name("t [ms]"), split_column_name("roll_deg"), split_column_name("qw")
     (('t', 'ms'), ('roll', 'deg'), ('qw', None))
     """
-    text = name.strip()
-    unit = unit_from_name(text)
-    bracket = re.match(r"^(.*?)\s*[\[(]\s*[^\])]+?\s*[\])]\s*$", text)
-    if bracket:
-        return bracket.group(1).strip().lower(), unit
-    base = text.lower()
-    for suffix in _SUFFIX_UNITS:
-        if base.endswith("_" + suffix) and len(base) > len(suffix) + 1:
-            return base[: -len(suffix) - 1], suffix
-    return base, None
+    return base_name(name), unit_from_name(name)
 
 
 def _scale(unit: str | None, kind: str, column: str) -> float:

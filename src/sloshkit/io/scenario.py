@@ -7,20 +7,20 @@ See ``examples/*.toml``.
 
 from __future__ import annotations
 
-import tomllib
+import typing
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from sloshkit.errors import InputError
+from sloshkit.io import schema
 from sloshkit.io.requests import (
     container_request,
     fill_height_request,
-    fraction_request,
     liquid_request,
     model_request,
 )
-from sloshkit.io.units import parse_quantity, parse_range
+from sloshkit.io.units import parse_range
 from sloshkit.model.modal import SloshModel
 
 ANALYSES: tuple[str, ...] = ("model", "calibrate", "compare", "sweep", "plan", "cfd")
@@ -91,135 +91,151 @@ def _check_keys(table: dict[str, Any], section: str) -> None:
 def parse_scenario(
     document: dict[str, Any], source: str = "", base: Path | None = None
 ) -> Scenario:
-    """Build a `Scenario` from a TOML document (already parsed)."""
+    """Build a `Scenario` from a TOML document (already parsed).
+
+    Every key is read with its TOML type checked (`sloshkit.io.schema`); errors name the key
+    with its table, e.g. ``[container] radius``.
+    """
     _check_keys(document, "")
-    container_table = document.get("container", {})
+    container_table = schema.section(document, "container")
     if "radius" not in container_table:
         raise InputError("scenario", "[container] radius", "is required")
-    container = container_request(container_table["radius"], container_table.get("wall_height"))
-    liquid_table = document.get("liquid", {})
+    container = container_request(
+        schema.quantity(container_table, "container", "radius", "length"),
+        schema.quantity(container_table, "container", "wall_height", "length"),
+    )
+    liquid_table = schema.section(document, "liquid")
     liquid = liquid_request(
-        str(liquid_table.get("preset", "water-25C")),
-        liquid_table.get("density"),
-        liquid_table.get("viscosity"),
-        liquid_table.get("surface_tension"),
+        schema.text(liquid_table, "liquid", "preset", "water-25C") or "",
+        schema.quantity(liquid_table, "liquid", "density", "density"),
+        schema.quantity(liquid_table, "liquid", "viscosity", "viscosity"),
+        schema.quantity(liquid_table, "liquid", "surface_tension", "surface_tension"),
         note="overridden in the scenario",
     )
-    fill = document.get("fill", {})
+    fill = schema.section(document, "fill")
     height = fill_height_request(
         container,
-        fill.get("height"),
-        fill.get("volume"),
+        schema.quantity(fill, "fill", "height", "length"),
+        schema.quantity(fill, "fill", "volume", "volume"),
         default=None,
-        height_parameter="fill height",
-        volume_parameter="fill volume",
+        height_parameter="[fill] height",
+        volume_parameter="[fill] volume",
     )
-    model_table = document.get("model", {})
+    model_table = schema.section(document, "model")
     model = model_request(
         container,
         liquid,
         height,
-        modes=int(model_table.get("modes", 3)),
-        damping_law=str(model_table.get("damping_law", "seed")),
-        damping_ratio=model_table.get("damping_ratio"),
-        surface_tension_correction=bool(model_table.get("surface_tension_correction", False)),
+        modes=schema.integer(model_table, "model", "modes", 3, 1, 50),
+        damping_law=schema.text(model_table, "model", "damping_law", "seed") or "",
+        damping_ratio=schema.number(model_table, "model", "damping_ratio"),
+        surface_tension_correction=schema.boolean(
+            model_table, "model", "surface_tension_correction"
+        ),
     )
-    move = document.get("move", {})
+    move = schema.section(document, "move")
 
-    def optional(table: dict[str, Any], key: str, kind: str) -> float | None:
-        return None if key not in table else parse_quantity(table[key], kind, key)
+    def optional(table: dict[str, Any], key: str, kind: str, name: str) -> float | None:
+        return typing.cast(float | None, schema.quantity(table, name, key, kind))
 
-    analyses = tuple(document.get("analyses", ["model", "compare", "plan"]))
+    analyses = schema.text_list(document, "", "analyses", ["model", "compare", "plan"])
     for analysis in analyses:
         if analysis not in ANALYSES:
             raise InputError("analyses", analysis, "must be among " + ", ".join(ANALYSES))
-    limits = document.get("limits", {})
+    limits = schema.section(document, "limits")
     plan_limits: dict[str, Any] = {}
     if "plan" in analyses or "sweep" in analyses:
         for key, kind in (("max_angle", "angle"), ("max_residual", "angle")):
             if key not in limits:
                 raise InputError("scenario", f"[limits] {key}", "is required for plan and sweep")
-            plan_limits[key] = parse_quantity(limits[key], kind, key)
+            plan_limits[key] = schema.quantity(limits, "limits", key, kind)
     if "plan" in analyses:
         for key, kind in (("vmax", "velocity"), ("amax", "acceleration"), ("jmax", "jerk")):
             if key not in limits:
                 raise InputError("scenario", f"[limits] {key}", "is required for plan")
-            plan_limits[key] = parse_quantity(limits[key], kind, key)
-        plan_limits["sample_period"] = parse_quantity(
-            limits.get("sample_period", "4ms"), "time", "sample_period"
+            plan_limits[key] = schema.quantity(limits, "limits", key, kind)
+        plan_limits["sample_period"] = schema.quantity(
+            limits, "limits", "sample_period", "time", "4ms"
         )
-        plan_limits["robust"] = fraction_request(limits.get("robust", "0%"), "robust")
-        plan_limits["method"] = str(limits.get("method", "auto"))
-        plan_limits["max_wall_elevation"] = optional(limits, "max_wall_elevation", "length")
+        plan_limits["robust"] = schema.quantity(limits, "limits", "robust", "fraction", "0%")
+        plan_limits["method"] = schema.text(limits, "limits", "method", "auto")
+        plan_limits["max_wall_elevation"] = optional(
+            limits, "max_wall_elevation", "length", "limits"
+        )
     sweep: dict[str, Any] = {}
     if "sweep" in analyses:
-        table = document.get("sweep", {})
+        table = schema.section(document, "sweep")
+        default_fill = f"{0.5 * height}:{min(1.5 * height, container.wall_height_m or 1e9)}:21"
         sweep = {
             "fill_height": parse_range(
-                str(
-                    table.get(
-                        "fill_height",
-                        f"{0.5 * height}:{min(1.5 * height, container.wall_height_m or 1e9)}:21",
-                    )
-                ),
+                schema.text(table, "sweep", "fill_height", default_fill) or "",
                 "length",
-                "sweep fill_height",
+                "[sweep] fill_height",
             ),
             "duration": parse_range(
-                str(table.get("duration", "0.5s:3s:60")), "time", "sweep duration"
+                schema.text(table, "sweep", "duration", "0.5s:3s:60") or "",
+                "time",
+                "[sweep] duration",
             ),
-            "laws": tuple(table.get("laws", ["trapezoidal", "cubic", "quintic", "septic"])),
+            "laws": schema.text_list(
+                table, "sweep", "laws", ["trapezoidal", "cubic", "quintic", "septic"]
+            ),
         }
     calibrate: dict[str, Any] = {}
     if "calibrate" in analyses and "calibrate" in document:
-        table = document["calibrate"]
+        table = schema.section(document, "calibrate")
         if "data" not in table:
             raise InputError("scenario", "[calibrate] data", "is required to calibrate from a file")
-        data = Path(str(table["data"]))
+        data = Path(schema.text(table, "calibrate", "data") or "")
         if base is not None and not data.is_absolute():
             data = base / data
         calibrate = {
             "data": data,
-            "time_column": str(table.get("time_column", "0")),
-            "signal_column": str(table.get("signal_column", "1")),
-            "start": optional(table, "start", "time"),
-            "end": optional(table, "end", "time"),
-            "method": str(table.get("method", "fit")),
-            "time_unit": str(table.get("time_unit", "s")),
+            "time_column": _column(table, "time_column", "0"),
+            "signal_column": _column(table, "signal_column", "1"),
+            "start": optional(table, "start", "time", "calibrate"),
+            "end": optional(table, "end", "time", "calibrate"),
+            "method": schema.text(table, "calibrate", "method", "fit"),
+            "time_unit": schema.text(table, "calibrate", "time_unit", "s"),
         }
     return Scenario(
-        name=str(document.get("name", "scenario")),
+        name=schema.text(document, "", "name", "scenario") or "scenario",
         model=model,
-        distance_m=parse_quantity(move.get("distance", "0.5m"), "length", "distance"),
-        peak_velocity_m_s=optional(move, "peak_velocity", "velocity"),
-        duration_s=optional(move, "duration", "time"),
-        laws=tuple(move.get("laws", ["trapezoidal", "cubic", "quintic", "septic", "s-curve"])),
+        distance_m=schema.quantity(move, "move", "distance", "length", "0.5m"),
+        peak_velocity_m_s=optional(move, "peak_velocity", "velocity", "move"),
+        duration_s=optional(move, "duration", "time", "move"),
+        laws=schema.text_list(
+            move, "move", "laws", ["trapezoidal", "cubic", "quintic", "septic", "s-curve"]
+        ),
         move_limits=(
-            optional(move, "vmax", "velocity"),
-            optional(move, "amax", "acceleration"),
-            optional(move, "jmax", "jerk"),
+            optional(move, "vmax", "velocity", "move"),
+            optional(move, "amax", "acceleration", "move"),
+            optional(move, "jmax", "jerk", "move"),
         ),
         plan_limits=plan_limits,
         analyses=analyses,
         sweep=sweep,
         calibrate=calibrate,
-        cfd=dict(document.get("cfd", {})),
-        description=str(document.get("description", "")),
-        paper_comparison=bool(document.get("paper_comparison", False)),
+        cfd=dict(schema.section(document, "cfd")),
+        description=schema.text(document, "", "description", "") or "",
+        paper_comparison=schema.boolean(document, "", "paper_comparison"),
         source=source,
         raw=document,
     )
 
 
+def _column(table: dict[str, Any], key: str, default: str) -> str:
+    """A column given by name (text) or 0-based index (integer)."""
+    value = table.get(key, default)
+    if isinstance(value, int) and not isinstance(value, bool):
+        return str(value)
+    return schema.text(table, "calibrate", key, default) or default
+
+
 def read_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario TOML file."""
+    """Read and check a scenario TOML file (see `sloshkit.io.schema.read_document`)."""
     source = Path(path)
-    if not source.is_file():
-        raise InputError("scenario", str(source), "does not exist or is not a file")
-    try:
-        document = tomllib.loads(source.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as error:
-        raise InputError("scenario", str(source), f"is not valid TOML: {error}") from None
+    document = schema.read_document(source, "scenario")
     return parse_scenario(document, str(source), source.parent)
 
 

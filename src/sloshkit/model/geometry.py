@@ -5,7 +5,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from sloshkit.errors import InputError, require_positive
+from sloshkit.errors import InputError, require_in_range, require_positive
+
+#: Radii the formulas are evaluated for [m]: 10 um to 100 m (outside, the dimensionless numbers
+#: under- or overflow double precision; no container of interest is there).
+RADIUS_RANGE_M = (1e-5, 100.0)
+
+#: Deepest fill accepted, in radii: beyond about 385 radii sinh(1.84 h/R) overflows, and from a
+#: few radii on the modes are those of infinite depth: omega^2 = g xi/R tanh(xi h/R) (Ibrahim,
+#: Liquid Sloshing Dynamics, Cambridge UP (2005), ch. 2).
+MAX_DEPTH_RATIO = 100.0
 
 
 @dataclass(frozen=True)
@@ -32,7 +41,7 @@ class UprightCylinder:
     wall_height_m: float | None = None
 
     def __post_init__(self) -> None:
-        require_positive("radius", self.radius_m, "m")
+        require_in_range("radius", self.radius_m, *RADIUS_RANGE_M, "m")
         if self.wall_height_m is not None:
             require_positive("wall_height", self.wall_height_m, "m")
 
@@ -60,6 +69,13 @@ class UprightCylinder:
     def check_fill_height(self, fill_height_m: float) -> float:
         """Return the fill height, or raise `InputError` if it is not > 0 or above the wall."""
         height = require_positive("fill_height", fill_height_m, "m")
+        if height > MAX_DEPTH_RATIO * self.radius_m:
+            raise InputError(
+                "fill_height",
+                f"{height:.6g} m",
+                f"must not exceed {MAX_DEPTH_RATIO:g} radii "
+                f"({MAX_DEPTH_RATIO * self.radius_m:.6g} m; deeper fills slosh like that one)",
+            )
         if self.wall_height_m is not None and height > self.wall_height_m:
             raise InputError(
                 "fill_height",

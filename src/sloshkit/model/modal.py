@@ -143,6 +143,14 @@ def equivalent_model(
             radius, height, liquid.kinematic_viscosity_m2_s, damping_law, gravity
         )
         provenance["damping_ratio"] = f"correlation: {damping_law} (mode 1, used for all modes)"
+        if not zeta < 0.99:
+            raise InputError(
+                "viscosity",
+                f"{liquid.viscosity_pa_s:.6g} Pa s",
+                f"gives a correlation damping ratio {zeta:.3g} >= 0.99: the liquid does not "
+                "oscillate (overdamped)",
+                "give --damping-ratio from a measurement",
+            )
         if zeta > 0.1:
             warn_validity(
                 f"correlation damping ratio {zeta:.3g} > 0.1: viscous boundary layers are no "

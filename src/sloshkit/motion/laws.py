@@ -37,6 +37,10 @@ from sloshkit.motion.profile import Motion as Motion  # re-exported (v1 path)
 from sloshkit.motion.profile import _piecewise_constant_jerk as _piecewise_constant_jerk
 from sloshkit.motion.recorded import from_samples as from_samples  # re-exported (v1 path)
 
+#: Move durations the laws accept [s]: 1 us to about 30 years (a polynomial law divides the
+#: distance by T^7, which underflows to 0 for shorter moves).
+DURATION_RANGE_S = (1e-6, 1e9)
+
 LAW_NAMES: tuple[str, ...] = (
     "trapezoidal",
     "cubic",
@@ -52,7 +56,7 @@ def _normalised_polynomial(
 ) -> Motion:
     """s(t) = D * sum_k c_k (t/T)^k as a one-piece `PPoly` (c_k in ascending powers)."""
     distance = require_positive("distance", distance_m, "m")
-    duration = require_positive("duration", duration_s, "s")
+    duration = require_in_range("duration", duration_s, *DURATION_RANGE_S, "s")
     # PPoly wants descending powers of (t - 0): c_k D / T^k.
     scaled = [distance * c / duration**k for k, c in enumerate(coefficients)]
     return Motion(name, PPoly(np.asarray(scaled[::-1], dtype=float)[:, None], [0.0, duration]))
@@ -232,7 +236,7 @@ def trapezoidal(
                 "cannot be set together with both peak velocity and duration",
             )
         velocity = require_positive("peak_velocity", peak_velocity_m_s, "m/s")
-        duration = require_positive("duration", duration_s, "s")
+        duration = require_in_range("duration", duration_s, *DURATION_RANGE_S, "s")
         accel_time = duration - distance / velocity
         if not 0.0 < accel_time <= duration / 2.0 * (1 + 1e-12):
             raise InputError(
@@ -249,7 +253,7 @@ def trapezoidal(
             else require_in_range("acceleration_fraction", acceleration_fraction, 1e-6, 0.5)
         )
         if duration_s is not None:
-            duration = require_positive("duration", duration_s, "s")
+            duration = require_in_range("duration", duration_s, *DURATION_RANGE_S, "s")
             velocity = distance / (duration * (1.0 - fraction))
         else:
             velocity = require_positive("peak_velocity", peak_velocity_m_s, "m/s")  # type: ignore[arg-type]

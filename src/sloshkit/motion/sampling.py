@@ -64,10 +64,21 @@ def sample_times(duration_s: float, sample_period_s: float) -> FloatArray:
     >>> sample_times(0.25, 0.1).tolist()
     [0.0, 0.1, 0.2, 0.25]
     """
-    count = steps_to_reach(duration_s, sample_period_s)
+    count = _checked_steps(duration_s, sample_period_s)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     t[-1] = duration_s
     return t
+
+
+def _checked_steps(duration_s: float, sample_period_s: float) -> int:
+    """`steps_to_reach`, after checking that the five sampled columns fit in memory."""
+    from sloshkit.budget import require_samples
+
+    samples = duration_s / sample_period_s if sample_period_s > 0.0 else math.inf
+    require_samples(
+        "sample_period", f"{sample_period_s:.3g} s for {duration_s:.3g} s", samples + 1.0, 5
+    )
+    return steps_to_reach(duration_s, sample_period_s)
 
 
 def sample_motion(motion: Motion, sample_period_s: float) -> dict[str, FloatArray]:
@@ -125,7 +136,7 @@ def export_samples(motion: Motion, sample_period_s: float) -> dict[str, FloatArr
     >>> export_samples(quintic(0.1, 1.0), 0.3)["t_s"].tolist()
     [0.0, 0.3, 0.6, 0.8999999999999999, 1.2]
     """
-    count = steps_to_reach(motion.duration_s, sample_period_s)
+    count = _checked_steps(motion.duration_s, sample_period_s)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     jerk = motion.jerk(t)
     jerk[t >= motion.duration_s - 1e-12] = 0.0

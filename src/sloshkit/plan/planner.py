@@ -31,6 +31,7 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.sampling import export_samples
+from sloshkit.plan.cost import check_cost
 from sloshkit.plan.optimal import plan_optimal
 from sloshkit.plan.problem import PAPER_LAWS, Candidate, PlanProblem
 from sloshkit.plan.searches import plan_paper_law, plan_shaped
@@ -204,6 +205,7 @@ def plan(
     if method not in METHODS:
         raise InputError("method", method, "must be one of " + ", ".join(METHODS))
     say = progress or (lambda _: None)
+    check_cost(problem, method)  # refuse a search that would take minutes, before it starts
     if nonlinear_optimal and not problem.nonlinear:
         problem = replace(problem, nonlinear=True)  # verify everything with the same model
     candidates: list[Candidate] = []

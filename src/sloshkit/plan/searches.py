@@ -12,12 +12,14 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.errors import InputError, warn_validity
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import make_law, s_curve
 from sloshkit.motion.profile import Motion
 from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv
+from sloshkit.plan.cost import work_limit
 from sloshkit.plan.problem import (
     SEARCH_MARGIN,
     SHAPERS,
@@ -94,21 +96,27 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
     dt = problem.sample_period_s  # screen on the grid the verification uses
     velocity_pp = shape.derivative_pp(1)
     upper = floor
-    for _ in range(6):  # widen the scan until something is feasible
+    budget = work_limit() / (len(problem.models()) * len(problem.model.modes) * grid)
+    stopped = False
+    for _ in range(6):  # widen the scan until something is feasible (within the work limit)
+        if upper * 4.0 / dt > budget and upper > floor:
+            stopped = True
+            break
         upper *= 4.0
         durations = np.linspace(floor, upper, grid)
         velocity = scaled_velocity_samples(velocity_pp, durations, dt, steps_for(upper, dt))
         feasible = _screen(velocity, durations, problem, dt)
         if feasible.any():
             break
-    else:
+    if stopped or not feasible.any():
         return Candidate(
             law,
             PlanStatus.INFEASIBLE,
             None,
             None,
             time.perf_counter() - started,
-            f"no duration up to {upper:.3g} s meets the slosh limits",
+            f"no duration up to {upper:.3g} s meets the slosh limits"
+            + (" (longer scans exceed the planner work limit)" if stopped else ""),
         )
     first = int(np.argmax(feasible))
     if first == 0:
@@ -161,7 +169,15 @@ def plan_shaped(problem: PlanProblem, shapers: Sequence[str] = SHAPERS) -> Candi
     best: Candidate | None = None
     tried: list[str] = []
     for name in shapers:
-        shaper = shaper_for(name, problem.model)
+        try:
+            shaper = shaper_for(name, problem.model)
+        except InputError as error:  # e.g. no EI shaper exists at a large damping ratio
+            tried.append(f"{name}: skipped ({error.valid})")
+            warn_validity(
+                f"no {name.upper()} shaper exists for damping ratio "
+                f"{problem.model.modes[0].damping_ratio:.3g}; planned with the other shapers"
+            )
+            continue
         accelerations = machine.max_acceleration_m_s2 * np.geomspace(1e-3, 1.0, 40)
         jerks = machine.max_jerk_m_s3 * np.array([1.0, 0.2, 0.04])
         bases: list[Motion] = []

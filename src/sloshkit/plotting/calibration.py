@@ -19,19 +19,47 @@ FloatArray = NDArray[np.float64]
 
 @register_plot(CalibrationResult)
 def plot_calibration(
-    result: CalibrationResult, path: str | Path | None = None, *, ax: Any = None
+    result: CalibrationResult,
+    path: str | Path | None = None,
+    *,
+    ax: Any = None,
+    signal_label: str = "signal (detrended) [unit of the record]",
 ) -> Any:
-    """Signal in the window, detected peaks and the fitted decay envelope (seed Fig. 5b)."""
+    """Signal in the window, every peak and trough, the peaks the estimators use and the fitted
+    decay envelope (seed Fig. 5b); ``signal_label`` names the signal and its unit."""
+    from scipy.signal import find_peaks
+
     figure, axis = panels(ax, 1, figsize=(8, 4.2), layout="constrained")
     signal = result.signal
     axis.plot(signal.time_s, signal.values, color="tab:blue", linewidth=1, label="signal (window)")
+    omega = result.chosen.omega_n_rad_s
+    if omega and signal.time_s.size > 2:
+        step = float(np.median(np.diff(signal.time_s)))
+        distance = max(1, int(0.6 * 2 * math.pi / omega / step))
+        extremes = np.sort(
+            np.concatenate(
+                [
+                    find_peaks(signal.values, distance=distance)[0],
+                    find_peaks(-signal.values, distance=distance)[0],
+                ]
+            )
+        )
+        axis.plot(
+            signal.time_s[extremes],
+            signal.values[extremes],
+            "o",
+            markerfacecolor="none",
+            color="tab:gray",
+            markersize=6,
+            label=f"peaks and troughs ({extremes.size})",
+        )
     axis.plot(
         result.peak_times_s,
         result.peak_values,
         "o",
         color="tab:red",
         markersize=4,
-        label=f"peaks ({result.peak_times_s.size})",
+        label=f"peaks above the noise, used by logdec ({result.peak_times_s.size})",
     )
     fit = result.estimates.get("fit")
     if fit is not None and fit.amplitude is not None and fit.omega_n_rad_s and fit.damping_ratio:
@@ -40,16 +68,15 @@ def plot_calibration(
             -fit.damping_ratio * fit.omega_n_rad_s * (signal.time_s - t0)
         )
         # The plotted signal is detrended; the envelope is centred on zero like it.
-        offset = 0.0
         axis.plot(
             signal.time_s,
-            offset + envelope,
+            envelope,
             "--",
             color="black",
             linewidth=1,
             label=f"fit envelope, ζ = {fit.damping_ratio:.4f}",
         )
-        axis.plot(signal.time_s, offset - envelope, "--", color="black", linewidth=1)
+        axis.plot(signal.time_s, -envelope, "--", color="black", linewidth=1)
     chosen = result.chosen
     frequency = (chosen.omega_n_rad_s or math.nan) / (2 * math.pi)
     zeta = "n/a" if chosen.damping_ratio is None else f"{chosen.damping_ratio:.4f}"
@@ -57,9 +84,9 @@ def plot_calibration(
     why = "" if window is None else f" (window: {window.source})"
     axis.set_title(f"{result.method}: f_n = {frequency:.4g} Hz, ζ = {zeta}{why}")
     axis.set_xlabel("time [s]")
-    axis.set_ylabel("signal (detrended)")
+    axis.set_ylabel(signal_label)
     axis.grid(alpha=0.3)
-    axis.legend(loc="upper right")
+    axis.legend(loc="upper right", fontsize="small")
     return save_figure(figure, path)
 
 

@@ -29,7 +29,7 @@ def plot_cfd_validation(
     if result.get("excitation_end_s"):
         axis.axvline(result["excitation_end_s"], color="grey", linestyle=":", linewidth=1)
     axis.set_xlabel("time [s]")
-    axis.set_ylabel("wall elevation at 0.98 R [mm]")
+    axis.set_ylabel(result.get("quantity_label", "wall elevation at 0.98 R [mm]"))
     axis.set_title(f"CFD vs equivalent model (correlation {result['correlation']:.3f})")
     axis.grid(alpha=0.3)
     axis.legend()

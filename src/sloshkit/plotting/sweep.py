@@ -25,7 +25,7 @@ def plot_sweep_map(
 
     values = getattr(result, quantity)
     count = len(result.laws)
-    columns = min(count, 3)
+    columns = count if count <= 3 else (2 if count == 4 else 3)
     rows = math.ceil(count / columns)
     figure, axes = panels(
         ax,
@@ -40,7 +40,7 @@ def plot_sweep_map(
     low = float(positive.min()) if positive.size else 1e-6
     high = float(values.max()) if values.size else 1.0
     norm = LogNorm(vmin=max(low, high * 1e-4), vmax=max(high, low * 10))
-    safe = result.safe()
+    limit = result.max_angle_deg if quantity == "peak_angle_deg" else result.max_residual_deg
     heights_mm = 1e3 * result.fill_heights_m
     image = None
     for index, law in enumerate(result.laws):
@@ -54,33 +54,8 @@ def plot_sweep_map(
             image = axis.pcolormesh(
                 x, heights_mm, values[index], norm=norm, shading="nearest", cmap="viridis"
             )
-            if not safe[index].any():
-                axis.fill_between(
-                    [x.min(), x.max()],
-                    heights_mm.min(),
-                    heights_mm.max(),
-                    facecolor="none",
-                    hatch="//",
-                    edgecolor="black",
-                    linewidth=0,
-                )
-            elif not safe[index].all():
-                axis.contour(
-                    x,
-                    heights_mm,
-                    safe[index].astype(float),
-                    levels=[0.5],
-                    colors="white",
-                    linewidths=1.5,
-                )
-                axis.contourf(
-                    x,
-                    heights_mm,
-                    safe[index].astype(float),
-                    levels=[-0.5, 0.5],
-                    colors="none",
-                    hatches=["//"],
-                )
+            if limit is not None:
+                _hatch_violations(axis, x, heights_mm, values[index] <= limit)
         else:
             axis.plot(x, values[index].T, marker=".")
         axis.set_title(law)
@@ -88,17 +63,53 @@ def plot_sweep_map(
         if index % columns == 0:
             axis.set_ylabel("fill height [mm]")
     for index in range(count, rows * columns):
-        axes[index // columns][index % columns].set_visible(False)
-    label = "peak slosh angle θ₁ [deg]" if quantity == "peak_angle_deg" else "residual θ₁ [deg]"
+        figure.delaxes(axes[index // columns][index % columns])
+    label = (
+        "peak slosh angle θ₁ [°]" if quantity == "peak_angle_deg" else "residual slosh angle θ₁ [°]"
+    )
     if image is not None:
-        figure.colorbar(image, ax=axes.ravel().tolist(), label=label, shrink=0.9)
-    limits = []
-    if result.max_angle_deg is not None:
-        limits.append(f"peak ≤ {result.max_angle_deg:g}°")
-    if result.max_residual_deg is not None:
-        limits.append(f"residual ≤ {result.max_residual_deg:g}°")
+        bar = figure.colorbar(image, ax=axes.ravel()[:count].tolist(), label=label, shrink=0.9)
+        _plain_log_ticks(bar, float(norm.vmin or low), float(norm.vmax or high))
+    what = "peak" if quantity == "peak_angle_deg" else "residual"
     figure.suptitle(
-        f"{label}, {1e3 * result.distance_m:.0f} mm move"
-        + (f"; hatched: violates {', '.join(limits)}" if limits else "")
+        f"{label}, {1e3 * result.distance_m:.0f} mm move; "
+        + (f"hatched: {what} above {limit:g}°" if limit is not None else f"no {what} limit given")
     )
     return save_figure(figure, path)
+
+
+def _hatch_violations(axis: Any, x: Any, heights_mm: Any, ok: Any) -> None:
+    """Hatch the cells where ``ok`` is False and outline the boundary."""
+    import numpy as np
+
+    if ok.all():
+        return
+    if not ok.any():
+        axis.fill_between(
+            [x.min(), x.max()],
+            heights_mm.min(),
+            heights_mm.max(),
+            facecolor="none",
+            hatch="//",
+            edgecolor="black",
+            linewidth=0,
+        )
+        return
+    level = np.asarray(ok, dtype=float)
+    axis.contour(x, heights_mm, level, levels=[0.5], colors="white", linewidths=1.5)
+    axis.contourf(x, heights_mm, level, levels=[-0.5, 0.5], colors="none", hatches=["//"])
+
+
+def _plain_log_ticks(bar: Any, low: float, high: float) -> None:
+    """Colour-bar ticks at 1, 2, 5 x 10^k written as plain numbers (not 4x10^1)."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+    ticks = [
+        m * 10.0**k
+        for k in range(math.floor(math.log10(low)) - 1, math.ceil(math.log10(high)) + 1)
+        for m in (1, 2, 5)
+        if low <= m * 10.0**k <= high
+    ]
+    bar.ax.yaxis.set_major_locator(FixedLocator(ticks))
+    bar.ax.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+    bar.ax.yaxis.set_minor_formatter(NullFormatter())

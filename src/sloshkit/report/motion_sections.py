@@ -6,9 +6,7 @@ from __future__ import annotations
 import html
 import math
 import typing
-import warnings
 
-from sloshkit.errors import ValidityWarning
 from sloshkit.files import write_columns_csv
 from sloshkit.io.scenario import Scenario
 from sloshkit.model.modal import SloshModel, model_family
@@ -16,9 +14,53 @@ from sloshkit.motion.laws import comparison_s_curve_limits, make_law
 from sloshkit.plan.planner import plan
 from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison, plot_sweep_map
-from sloshkit.report.writer import ReportWriter
-from sloshkit.sim.simulate import simulate
+from sloshkit.report.writer import ReportWriter, recorded_warnings
+from sloshkit.sim.simulate import LARGE_ANGLE_DEG, simulate
 from sloshkit.sweep import linspace_inclusive, run_sweep
+
+#: What the report calls the laws the paper names differently.
+LAW_NOTES = {"septic": "septic (the paper's jerk-continuous law)"}
+
+
+def law_label(name: str) -> str:
+    """A law's name with the paper's name for it, e.g. ``septic (the paper's jerk-continuous
+    law)``."""
+    return LAW_NOTES.get(name, name)
+
+
+def _best_paper_law(payload: dict[str, typing.Any]) -> tuple[str, float] | None:
+    """The fastest feasible candidate among the paper's laws: (name, duration [s])."""
+    from sloshkit.plan.problem import PAPER_LAWS
+
+    feasible = [
+        (c["method"], float(c["duration_s"]))
+        for c in payload["candidates"]
+        if c["feasible"] and c["method"] in PAPER_LAWS and c["duration_s"]
+    ]
+    return min(feasible, key=lambda item: item[1]) if feasible else None
+
+
+def _collapsed_shortest(rows: list[dict[str, object]]) -> list[dict[str, object]]:
+    """Consecutive fill heights with the same shortest safe duration and law as one row."""
+    collapsed: list[dict[str, object]] = []
+    for row in rows:
+        height = 1e3 * float(typing.cast(float, row["fill_height_m"]))
+        law = law_label(str(row["law"])) if row["law"] else "none"
+        last = collapsed[-1] if collapsed else None
+        if last and last["shortest safe duration [s]"] == row["duration_s"] and last["law"] == law:
+            last["to fill height [mm]"] = height
+            last["fill heights"] = typing.cast(int, last["fill heights"]) + 1
+            continue
+        collapsed.append(
+            {
+                "from fill height [mm]": height,
+                "to fill height [mm]": height,
+                "fill heights": 1,
+                "shortest safe duration [s]": row["duration_s"],
+                "law": law,
+            }
+        )
+    return collapsed
 
 
 def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
@@ -41,15 +83,18 @@ def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel
                 max_jerk_m_s3=jmax,
             )
         )
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
-        responses = [simulate(model, motion) for motion in motions]
+    responses = []
+    notes: list[str] = []
+    for motion in motions:
+        with recorded_warnings() as found:
+            responses.append(simulate(model, motion))
+        notes.extend(f"{law_label(motion.name)}: {message}" for message in found)
     rows = []
     for motion, response in zip(motions, responses, strict=True):
         metrics = response.metrics()
         rows.append(
             {
-                "law": motion.name,
+                "law": law_label(motion.name),
                 "duration [s]": metrics["duration_s"],
                 "peak acc. [m/s²]": metrics["peak_acceleration_m_s2"],
                 "peak jerk [m/s³]": metrics["peak_jerk_m_s3"],
@@ -65,12 +110,14 @@ def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel
         rows,
         "Motion laws compared (peak values during the move; residual amplitude left at its end)",
     )
+    body += writer.warning_note("Motion laws", notes, "about the table above")
     residual = {
         motion.name: response.metrics()["residual_angle_deg"]
         for motion, response in zip(motions, responses, strict=True)
     }
     if "trapezoidal" in residual and "septic" in residual and residual["septic"] > 0:
         ratio = residual["trapezoidal"] / residual["septic"]
+        writer.facts["residual_ratio_trapezoid_septic"] = ratio
         body += (
             f'<p class="note">The trapezoid leaves <b>{ratio:.1f}×</b> the residual slosh of the '
             "jerk-continuous (septic) law at the same duration: the paper's conclusion, in "
@@ -79,12 +126,14 @@ def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel
     body += writer.figure(
         "fig7_laws",
         plot_law_comparison(motions, None),
-        "Velocity, acceleration and jerk of each law (the paper's Fig. 7)",
+        "Velocity, acceleration and jerk of each law (the paper's Fig. 7; septic = the paper's "
+        "jerk-continuous law)",
     )
     body += writer.figure(
         "fig8_slosh",
         plot_slosh_comparison(responses, None),
-        "First-mode slosh angle and rate under each law (the paper's Figs. 8–9)",
+        "First-mode slosh angle and rate under each law (the paper's Figs. 8–9; septic = the "
+        "paper's jerk-continuous law)",
     )
     writer.section("Motion laws", body)
 
@@ -105,8 +154,7 @@ def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) 
         # The scenario's (possibly calibrated) model at its own fill height, theory elsewhere.
         return model if math.isclose(fill_height_m, model.fill_height_m) else family(fill_height_m)
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
+    with recorded_warnings() as found:
         result = run_sweep(
             model_at,
             list(options["laws"]),
@@ -116,30 +164,38 @@ def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) 
             max_angle_rad=scenario.plan_limits["max_angle"],
             max_residual_rad=scenario.plan_limits["max_residual"],
         )
-    rows = [
-        {
-            "fill height [mm]": 1e3 * float(typing.cast(float, row["fill_height_m"])),
-            "shortest safe duration [s]": row["duration_s"],
-            "law": row["law"] or "none",
-        }
-        for row in result.shortest_safe()
-    ]
+    rows = _collapsed_shortest(result.shortest_safe())
     body = (
         f"<p>{result.cases:,} cases (fill height × duration × law) on the fast path in "
         f"{result.elapsed_s:.2f} s; safe means peak θ₁ ≤ {result.max_angle_deg:g}° and residual ≤ "
-        f"{result.max_residual_deg:g}°.</p>"
+        f"{result.max_residual_deg:g}°. Each map is hatched where its own quantity breaks its "
+        "own limit.</p>"
     )
+    beyond = float((result.peak_angle_deg > LARGE_ANGLE_DEG).mean())
+    if beyond > 0:
+        found.append(
+            f"{100 * beyond:.0f} % of the cases reach a peak slosh angle above {LARGE_ANGLE_DEG:g}° "
+            f"(up to {float(result.peak_angle_deg.max()):.0f}°), where the linear model is not "
+            "trustworthy: read those colours as 'far too much', not as values"
+        )
     body += writer.figure(
         "sweep_peak_map",
         plot_sweep_map(result, "peak_angle_deg", None),
-        "Peak slosh angle over fill height and duration (unsafe region hatched)",
+        f"Peak slosh angle over fill height and duration (hatched: peak above "
+        f"{result.max_angle_deg:g}°)",
     )
+    body += writer.warning_note("Slosh maps", found, "about the maps")
     body += writer.figure(
         "sweep_residual_map",
         plot_sweep_map(result, "residual_angle_deg", None),
-        "Residual slosh angle over fill height and duration (unsafe region hatched)",
+        f"Residual slosh angle over fill height and duration (hatched: residual above "
+        f"{result.max_residual_deg:g}°)",
     )
-    body += writer.table("sweep_shortest_safe", rows, "Shortest safe duration per fill height")
+    body += writer.table(
+        "sweep_shortest_safe",
+        rows,
+        "Shortest safe duration per fill height (fill heights with the same answer in one row)",
+    )
     writer.section("Slosh maps", body)
 
 
@@ -158,11 +214,12 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
         model,
         limits["sample_period"],
     )
-    result = plan(problem, limits.get("method", "auto"))
+    with recorded_warnings() as found:
+        result = plan(problem, limits.get("method", "auto"))
     payload = result.to_dict()
     rows = [
         {
-            "method": c["method"],
+            "method": law_label(c["method"]),
             "duration [s]": c["duration_s"],
             "peak θ₁ [deg]": c["peak_angle_deg"],
             "residual θ₁ [deg]": c["residual_angle_deg"],
@@ -183,6 +240,12 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
     )
     if result.feasible and result.chosen is not None:
         speed_up = payload["speed_up_over_best_paper_law"]
+        writer.facts["plan"] = {
+            "method": result.chosen.method,
+            "duration_s": result.chosen.duration_s,
+            "speed_up": speed_up,
+            "best_paper_law": _best_paper_law(payload),
+        }
         body += (
             f'<p class="good">Fastest safe move: {html.escape(result.chosen.method)}, '
             f"{result.chosen.duration_s:.3f} s"
@@ -197,8 +260,12 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
     else:
         body += '<p class="bad">No method meets these limits.</p>'
     body += writer.table("plan", rows, "Planner candidates")
+    body += writer.warning_note("Fastest safe move", found, "about the planner's candidates")
     if result.feasible:
         body += writer.figure(
-            "plan", result.plot(None), "The fastest verified moves against the paper's laws"
+            "plan",
+            result.plot(None),
+            "The fastest verified moves against the paper's laws (septic = the paper's "
+            "jerk-continuous law)",
         )
     writer.section("Fastest safe move", body)

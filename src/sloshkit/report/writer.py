@@ -4,13 +4,16 @@ rendered to HTML with the jinja2 templates in ``report/templates/``."""
 from __future__ import annotations
 
 import base64
+import contextlib
 import functools
 import html
 import io
+import json
 import math
 import os
 import platform
-from collections.abc import Sequence
+import warnings
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from importlib import metadata
 from pathlib import Path
@@ -19,6 +22,7 @@ from typing import Any
 import jinja2
 import markupsafe
 
+from sloshkit.errors import ValidityWarning
 from sloshkit.files import write_json, write_rows_csv
 
 #: The templates and the style sheet of the report.
@@ -47,12 +51,31 @@ class ReportWriter:
     sections: list[str] = field(default_factory=list)
     figure_names: list[str] = field(default_factory=list)
     table_names: list[str] = field(default_factory=list)
+    #: (anchor, title) of each section, for the table of contents.
+    contents: list[tuple[str, str]] = field(default_factory=list)
+    #: Headline figures the sections found, for the summary at the top.
+    facts: dict[str, Any] = field(default_factory=dict)
+    #: (section title, message) of every validity warning shown in the report.
+    warnings: list[tuple[str, str]] = field(default_factory=list)
 
     def section(self, title: str, body: str) -> None:
         anchor = title.lower().replace(" ", "-")
+        self.contents.append((anchor, title))
         self.sections.append(
             render("section.html.j2", anchor=anchor, title=title, body=markupsafe.Markup(body))
         )
+
+    def warning_note(self, section: str, messages: Sequence[str], about: str = "") -> str:
+        """HTML of the validity warnings about the numbers just above (empty when none)."""
+        unique = list(dict.fromkeys(messages))
+        if not unique:
+            return ""
+        self.warnings.extend((section, message) for message in unique)
+        items = "".join(f"<li>{html.escape(message)}</li>" for message in unique)
+        lead = f"Validity warning{'s' if len(unique) > 1 else ''}" + (
+            f" ({html.escape(about)})" if about else ""
+        )
+        return f'<div class="warning" role="note"><b>{lead}:</b><ul>{items}</ul></div>'
 
     def table(
         self,
@@ -81,18 +104,29 @@ class ReportWriter:
         figure.savefig(buffer, format="png", dpi=110, bbox_inches="tight")
         (folder / f"{name}.png").write_bytes(buffer.getvalue())
         figure.savefig(folder / f"{name}.svg", format="svg", bbox_inches="tight")
+        axes = axis_labels(figure)
+        write_json(folder / f"{name}.axes.json", axes)
         self.figure_names.append(name)
         data = base64.b64encode(buffer.getvalue()).decode("ascii")
-        return render("figure.html.j2", caption=caption, data=data)
+        return render(
+            "figure.html.j2", name=name, caption=caption, data=data, axes=json.dumps(axes)
+        )
 
-    def finish(self, out_dir: Path, title: str, intro: str) -> Path:
-        """Write report.html and move everything into ``out_dir`` (report.html last)."""
+    def finish(self, out_dir: Path, title: str, intro: str, summary: str = "") -> Path:
+        """Write report.html (summary and table of contents first) and move everything into
+        ``out_dir`` (report.html last)."""
         page = render(
             "page.html.j2",
             title=title,
             css=markupsafe.Markup((TEMPLATES / "report.css").read_text(encoding="utf-8")),
             intro=markupsafe.Markup(intro),
+            summary=markupsafe.Markup(summary),
+            contents=self.contents,
             sections=[markupsafe.Markup(section) for section in self.sections],
+        )
+        write_json(
+            self.staging / "warnings.json",
+            [{"section": section, "message": message} for section, message in self.warnings],
         )
         (self.staging / "report.html").write_text(page, encoding="utf-8")
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -103,6 +137,68 @@ class ReportWriter:
                 os.replace(path, target)
         os.replace(self.staging / "report.html", out_dir / "report.html")
         return out_dir / "report.html"
+
+
+@contextlib.contextmanager
+def recorded_warnings() -> Iterator[list[str]]:
+    """Collect the `ValidityWarning` messages raised inside the block (each once, in order)
+    for the report, instead of printing or dropping them."""
+    messages: list[str] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ValidityWarning)
+        try:
+            yield messages
+        finally:
+            for item in caught:
+                if issubclass(item.category, ValidityWarning):
+                    text = str(item.message)
+                    if text not in messages:
+                        messages.append(text)
+
+
+def axis_labels(figure: Any) -> list[dict[str, str]]:
+    """The x and y labels of every visible panel of a matplotlib figure (colour bars included),
+    a panel without its own label taking the label of the panels it shares that axis with.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+        The figure.
+
+    Returns
+    -------
+    list of dict
+        One ``{"title", "xlabel", "ylabel"}`` per panel that shows tick labels on that axis
+        (a colour bar has only the axis carrying its scale).
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> figure = Figure()
+    >>> axis = figure.subplots()
+    >>> _ = axis.set_xlabel("time [s]"), axis.set_ylabel("angle [°]")
+    >>> axis_labels(figure)
+    [{'title': '', 'xlabel': 'time [s]', 'ylabel': 'angle [°]'}]
+    """
+    found = []
+    for axis in figure.axes:
+        if not axis.get_visible():
+            continue
+        entry = {"title": axis.get_title()}
+        for name, ticks, shared in (
+            ("xlabel", axis.xaxis, axis.get_shared_x_axes()),
+            ("ylabel", axis.yaxis, axis.get_shared_y_axes()),
+        ):
+            shown = [tick for tick in ticks.get_ticklabels() if tick.get_visible()]
+            if not ticks.get_visible() or not any(tick.get_text() for tick in shown):
+                continue
+            labels = [ticks.get_label_text()] + [
+                (other.xaxis if name == "xlabel" else other.yaxis).get_label_text()
+                for other in shared.get_siblings(axis)
+            ]
+            entry[name] = next((text for text in labels if text), "")
+        found.append(entry)
+    return found
 
 
 def _cell(value: Any, fmt: str | None) -> str:

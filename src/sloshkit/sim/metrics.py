@@ -193,6 +193,9 @@ def simulation_grid(
 ) -> FloatArray:
     """Uniform times k Ts from 0 to at least T + settle time [s] (shared by all paths).
 
+    Refuses (`InputError`) a grid whose simulation arrays would exceed the memory limit of
+    `sloshkit.budget` (about 32 float64 columns per sample for states, metrics and output).
+
     Parameters
     ----------
     move_duration_s : float
@@ -212,6 +215,11 @@ def simulation_grid(
     >>> simulation_grid(0.3, 0.1, 0.0).tolist()
     [0.0, 0.1, 0.2, 0.30000000000000004]
     """
+    from sloshkit.budget import require_samples
+
+    total_s = move_duration_s + settle_time_s
+    samples = total_s / sample_period_s if sample_period_s > 0.0 else math.inf
+    require_samples("sample_period", f"{sample_period_s:.3g} s for {total_s:.3g} s", samples, 32)
     count = steps_to_reach(move_duration_s + settle_time_s, sample_period_s) + 1
     return np.arange(count, dtype=float) * sample_period_s
 

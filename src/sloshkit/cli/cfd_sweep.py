@@ -1,0 +1,133 @@
+"""``sloshkit cfd sweep``: CFD campaigns on Dask (`sloshkit.cfd.campaign`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.table import Table
+from rich.text import Text
+
+from sloshkit.cli.app import stderr, stdout
+from sloshkit.cli.cfd import _cfd_spec, cfd_app, cfd_options
+from sloshkit.cli.options import Json, print_json, with_model_options, with_options
+from sloshkit.io.units import parse_quantity
+from sloshkit.model.modal import SloshModel
+
+
+def _split(text: str) -> list[str]:
+    return [item.strip() for item in text.split(",") if item.strip()]
+
+
+@cfd_app.command("sweep")
+@with_model_options
+@with_options(cfd_options("free-decay", "3s"), "case_options", dict)
+def cfd_sweep_command(
+    slosh_model: SloshModel,
+    case_options: dict[str, Any],
+    out: Annotated[
+        Path, typer.Option("--out", help="Campaign folder (one case folder per case).")
+    ] = Path("sloshkit-cfd-campaign"),
+    fills: Annotated[
+        str | None,
+        typer.Option("--fills", help="Fill heights, comma-separated (default: --fill-height)."),
+    ] = None,
+    liquids: Annotated[
+        str | None,
+        typer.Option("--liquids", help="Liquid presets, comma-separated (default: --liquid)."),
+    ] = None,
+    meshes: Annotated[
+        str | None,
+        typer.Option(
+            "--meshes", help="Cells per radius, comma-separated (default: --cells-per-radius)."
+        ),
+    ] = None,
+    workers: Annotated[
+        int, typer.Option("--workers", help="Cases run at once on the local Dask cluster.")
+    ] = 1,
+    scheduler: Annotated[
+        str | None,
+        typer.Option(
+            "--scheduler",
+            help="Address of an existing Dask scheduler (e.g. from dask-jobqueue) instead of "
+            "the local cluster.",
+        ),
+    ] = None,
+    json_output: Json = False,
+) -> None:
+    """Run a CFD campaign (fills x liquids x meshes) on Dask; gather one table (results.csv,
+    results.json) and a calibration-versus-fill model. Started again, it skips finished cases
+    and resumes half-run ones.
+
+    Example:
+
+      sloshkit cfd sweep --out campaign --fills 30mm,39mm,45mm --meshes 8 --end-time 2s
+    """
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+    from sloshkit.cfd.campaign import CampaignCase, run_campaign
+    from sloshkit.errors import require_in_range
+    from sloshkit.model.liquids import get_liquid
+    from sloshkit.model.modal import equivalent_model
+
+    require_in_range("workers", workers, 1, 64)
+    fill_list = [parse_quantity(text, "length", "fills") for text in _split(fills or "")] or [
+        slosh_model.fill_height_m
+    ]
+    liquid_list = [get_liquid(name) for name in _split(liquids or "")] or [slosh_model.liquid]
+    mesh_list = [
+        int(require_in_range("meshes", float(text), 3, 60)) for text in _split(meshes or "")
+    ] or [case_options["cells_per_radius"]]
+    cases = []
+    for liquid in liquid_list:
+        for fill in fill_list:
+            model = equivalent_model(slosh_model.container, liquid, fill)
+            for cells in mesh_list:
+                spec = _cfd_spec(model, {**case_options, "cells_per_radius": cells})
+                name = f"{liquid.name}-h{fill * 1e3:g}mm-n{cells}"
+                cases.append(CampaignCase(name, spec, model.modes[0].frequency_hz))
+    with Progress(
+        TextColumn("campaign"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total} cases"),
+        TextColumn("ETA"),
+        TimeRemainingColumn(),
+        console=stderr,
+        transient=True,
+    ) as bar:
+        task = bar.add_task("campaign", total=len(cases))
+
+        def advance(done: int, total: int, eta: float | None) -> None:
+            bar.update(task, completed=done, total=total)
+
+        result = run_campaign(
+            cases,
+            out,
+            workers=workers,
+            processes=case_options["np_"] or 1,
+            scheduler=scheduler,
+            progress=advance,
+        )
+    if json_output:
+        print_json(result)
+        return
+    table = Table(title=f"CFD campaign: {out} ({result['skipped']} reused)")
+    for header_text in ("case", "status", "f [Hz]", "f / theory", "ζ [-]"):
+        table.add_column(Text(header_text), justify="right")
+    for row in result["rows"]:
+        table.add_row(
+            Text(row["case"]),
+            Text(row["status"]),
+            *(
+                "-" if row[k] is None else f"{row[k]:.4g}"
+                for k in ("frequency_hz", "frequency_ratio", "damping_ratio")
+            ),
+        )
+    stdout.print(table)
+    stdout.print(Text(f"table: {result['csv']}; model: {result['json']}"))
+    failed = [row for row in result["rows"] if row["status"] != "completed"]
+    if failed:
+        for row in failed:
+            stderr.print(Text(f"failed: {row['case']}: {row['error']}"), highlight=False)
+        raise typer.Exit(1)

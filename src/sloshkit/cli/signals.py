@@ -1,0 +1,97 @@
+"""SIGINT/SIGTERM for the CLI: stop cleanly, exit 130/143, leave no partial output.
+
+The handler raises `Interrupted` (a `KeyboardInterrupt`, so no ``except Exception`` swallows it);
+``finally`` blocks and the atomic writers then remove temporary files and staging folders.
+Inside `deferred` blocks (compiled numba kernels, which must not see an exception raised in the
+middle of a call) the signal is only recorded, and `check` raises it between chunks.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+from collections.abc import Iterator
+from types import FrameType
+from typing import Any
+
+HANDLED = (signal.SIGINT, signal.SIGTERM)
+
+
+class Interrupted(KeyboardInterrupt):
+    """The process received SIGINT or SIGTERM; the exit code is 128 + signal number.
+
+    A `KeyboardInterrupt`, so code that cleans up on Ctrl-C (the CFD runner stops its MPI
+    processes and reports how to ``--resume``) does the same on SIGTERM.
+    """
+
+    def __init__(self, signum: int) -> None:
+        self.signum = signum
+        super().__init__(f"interrupted by {signal.Signals(signum).name}")
+
+    @property
+    def exit_code(self) -> int:
+        """130 for SIGINT, 143 for SIGTERM (the shell convention 128 + N)."""
+        return 128 + self.signum
+
+
+_state: dict[str, Any] = {"received": None, "depth": 0, "reported": False}
+
+
+def _handler(signum: int, frame: FrameType | None) -> None:
+    if _state["received"] is None:
+        _state["received"] = signum
+    if _state["depth"] == 0:
+        raise Interrupted(signum)
+
+
+def received() -> int | None:
+    """The first signal received since `install`, or None."""
+    return _state["received"]  # type: ignore[no-any-return]
+
+
+def reported() -> None:
+    """Say that the command has told the user about the interruption itself (e.g. how to
+    ``--resume``), so the entry point adds no second line."""
+    _state["reported"] = True
+
+
+def was_reported() -> bool:
+    """True when the command reported the interruption itself (see `reported`)."""
+    return bool(_state["reported"])
+
+
+def check() -> None:
+    """Raise `Interrupted` if a signal arrived (call between chunks of work)."""
+    if _state["received"] is not None:
+        raise Interrupted(_state["received"])
+
+
+@contextlib.contextmanager
+def deferred() -> Iterator[None]:
+    """Record signals instead of raising them inside the block; raise on leaving it."""
+    _state["depth"] += 1
+    try:
+        yield
+    finally:
+        _state["depth"] -= 1
+    check()
+
+
+@contextlib.contextmanager
+def installed() -> Iterator[None]:
+    """Install the handlers for the block (main thread only) and restore the previous ones."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {sig: signal.getsignal(sig) for sig in HANDLED}
+    _state.update(received=None, depth=0, reported=False)
+    for sig in HANDLED:
+        signal.signal(sig, _handler)
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+        _state.update(received=None, depth=0, reported=False)  # nothing leaks to a next run

@@ -1,0 +1,206 @@
+"""Output paths: checked before any work, written all or nothing.
+
+Every ``--csv``, ``--out``, ``--model-file-out`` and ``--plot`` goes through `check_file` or
+`check_folder` at the start of its command, so a bad path costs nothing: an existing folder
+where a file is expected, a file where a folder is expected, a folder without write permission
+or on a read-only file system, an unknown figure extension, or a non-empty folder that sloshkit
+did not write (replaced only with ``--overwrite``, as ``cfd run`` does). Folders of several
+outputs are written through `staged_folder`: everything goes to a hidden staging folder beside
+the target and is moved into place only when the command succeeds; an error or an interruption
+(SIGINT/SIGTERM raise in the CLI) removes the staging folder.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import shutil
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+
+from sloshkit.errors import InputError
+
+#: Figure formats matplotlib writes without extra packages.
+FIGURE_SUFFIXES: tuple[str, ...] = (".png", ".svg", ".pdf", ".jpg", ".jpeg", ".eps", ".ps")
+
+#: Model file formats (`sloshkit.io.models.write_model_file`).
+MODEL_SUFFIXES: tuple[str, ...] = (".toml", ".json")
+
+#: File sloshkit leaves in each output folder it wrote; such a folder may be rewritten.
+MARKER = ".sloshkit-output"
+
+
+def _existing_ancestor(path: Path, parameter: str) -> Path:
+    """The nearest existing ancestor of ``path``; `InputError` if it is not a folder."""
+    for parent in path.absolute().parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise InputError(parameter, str(path), f"{parent} is a file, not a folder")
+            return parent
+    return Path(path.absolute().anchor)
+
+
+def _require_writable(folder: Path, path: Path, parameter: str) -> None:
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise InputError(
+            parameter,
+            str(path),
+            f"folder {folder} is not writable (permissions or a read-only file system)",
+        )
+
+
+def check_file(path: Path | str | None, parameter: str, kind: str = "file") -> Path | None:
+    """Check an output file path before any work; return it (None passes through).
+
+    Parameters
+    ----------
+    path : Path, str or None
+        The path given by the user.
+    parameter : str
+        Its option name, for the message (``"csv"``, ``"plot"``, ...).
+    kind : str
+        ``"file"`` (any), ``"figure"`` (a `FIGURE_SUFFIXES` extension) or ``"model"``
+        (``.toml``/``.json``).
+
+    Returns
+    -------
+    Path or None
+        ``path`` as a `Path`.
+
+    Raises
+    ------
+    InputError
+        For a folder, a parent that is a file, a read-only file or folder, a wrong extension.
+
+    References
+    ----------
+    POSIX.1-2017, ``rename()``: atomic replacement within one file system.
+
+    Examples
+    --------
+    >>> check_file("figure.png", "plot", "figure")
+    PosixPath('figure.png')
+    """
+    if path is None:
+        return None
+    target = Path(path)
+    if str(path).strip() == "" or target.name in ("", ".", ".."):
+        raise InputError(parameter, str(path), "must name a file")
+    if target.is_dir():
+        raise InputError(parameter, str(path), "is a folder; give a file name")
+    if target.exists() and not target.is_file():
+        raise InputError(parameter, str(path), "is not a regular file (a device or a pipe)")
+    suffixes = {"figure": FIGURE_SUFFIXES, "model": MODEL_SUFFIXES}.get(kind)
+    if suffixes is not None and target.suffix.lower() not in suffixes:
+        raise InputError(
+            parameter,
+            str(path),
+            f"unknown {kind} extension {target.suffix or '(none)'!r}; use " + ", ".join(suffixes),
+        )
+    folder = _existing_ancestor(target, parameter)
+    if target.exists() and not os.access(target, os.W_OK):
+        raise InputError(parameter, str(path), "exists and is read-only")
+    _require_writable(folder, target, parameter)
+    return target
+
+
+def check_folder(path: Path | str | None, parameter: str, overwrite: bool = False) -> Path | None:
+    """Check an output folder before any work; return it (None passes through).
+
+    A folder that exists must be empty, hold a previous sloshkit output (`MARKER`), or
+    ``overwrite`` must be set.
+
+    Parameters
+    ----------
+    path : Path, str or None
+        The folder given by the user.
+    parameter : str
+        Its option name (``"out"``).
+    overwrite : bool
+        Allow replacing files in a non-empty folder not written by sloshkit.
+
+    Returns
+    -------
+    Path or None
+        ``path`` as a `Path`.
+
+    Examples
+    --------
+    >>> check_folder("new-report", "out")
+    PosixPath('new-report')
+    """
+    if path is None:
+        return None
+    target = Path(path)
+    if str(path).strip() == "":
+        raise InputError(parameter, str(path), "must name a folder")
+    if target.exists() and not target.is_dir():
+        raise InputError(parameter, str(path), "is a file; give a folder")
+    if target.is_dir():
+        entries = [entry.name for entry in target.iterdir()]
+        if entries and MARKER not in entries and not overwrite:
+            raise InputError(
+                parameter,
+                str(path),
+                "exists and is not empty (use --overwrite to replace its files)",
+            )
+        _require_writable(target, target, parameter)
+    else:
+        _require_writable(_existing_ancestor(target, parameter), target, parameter)
+    return target
+
+
+@contextlib.contextmanager
+def staged_folder(target: Path | str) -> Iterator[Path]:
+    """Write a folder's outputs to a staging folder; move them into ``target`` on success.
+
+    Parameters
+    ----------
+    target : Path or str
+        The output folder (created if missing).
+
+    Yields
+    ------
+    Path
+        The staging folder to write into (same file system as ``target``).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "out"
+    >>> with staged_folder(out) as staging:
+    ...     _ = (staging / "a.csv").write_text("x\\n1\\n")
+    >>> sorted(p.name for p in out.iterdir())
+    ['.sloshkit-output', 'a.csv']
+    """
+    folder = Path(target)
+    folder.absolute().parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(
+        tempfile.mkdtemp(prefix=f".{folder.absolute().name}.staging-", dir=folder.absolute().parent)
+    )
+    try:
+        yield staging
+        folder.mkdir(exist_ok=True)
+        (staging / MARKER).write_text("written by sloshkit; this folder may be rewritten\n")
+        for entry in sorted(staging.rglob("*")):
+            destination = folder / entry.relative_to(staging)
+            if entry.is_dir():
+                destination.mkdir(exist_ok=True)
+            else:
+                _keep_mode(destination, entry)
+                os.replace(entry, destination)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+
+
+def mark_folder(folder: Path | str) -> None:
+    """Leave the `MARKER` in a folder sloshkit wrote (so a rerun may rewrite it)."""
+    marker = Path(folder) / MARKER
+    if Path(folder).is_dir() and not marker.exists():
+        marker.write_text("written by sloshkit; this folder may be rewritten\n")
+
+
+def _keep_mode(existing: Path, replacement: Path) -> None:
+    with contextlib.suppress(OSError):
+        os.chmod(replacement, os.stat(existing).st_mode & 0o7777)

@@ -1,0 +1,139 @@
+"""Real signals to the real entry point: exit 130 (SIGINT) or 143 (SIGTERM), one line, no
+traceback (no SystemError out of the numba kernel), and no partial output or staging folder."""
+
+from __future__ import annotations
+
+import importlib
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+pytestmark = pytest.mark.skipif(
+    not Path("/proc/self/status").exists(), reason="needs Linux /proc to see installed handlers"
+)
+
+
+def _handlers_installed(pid: int) -> bool:
+    """True once the process catches SIGTERM (sloshkit's handler, installed just before work)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    caught = next(line for line in status.splitlines() if line.startswith("SigCgt:"))
+    return bool(int(caught.split()[1], 16) & (1 << (signal.SIGTERM - 1)))
+
+
+def _interrupt(args: list[str], folder: Path, signum: int, delay_s: float) -> tuple[int, str]:
+    """Start ``sloshkit ARGS`` in ``folder``, send ``signum`` ``delay_s`` after its handlers are
+    installed, and return (exit code, stderr)."""
+    process = subprocess.Popen(
+        [sys.executable, "-c", "from sloshkit.cli import main; main()", *args],
+        cwd=folder,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)},
+    )
+    deadline = time.monotonic() + 120.0
+    while not _handlers_installed(process.pid):
+        assert process.poll() is None, process.communicate()
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+    time.sleep(delay_s)
+    assert process.poll() is None, "finished before the signal: make the job larger"
+    process.send_signal(signum)
+    _, stderr = process.communicate(timeout=120)
+    return process.returncode, stderr
+
+
+def _assert_clean(folder: Path, code: int, expected: int, stderr: str) -> None:
+    assert code == expected, stderr
+    assert "Traceback" not in stderr and "SystemError" not in stderr, stderr
+    assert [line for line in stderr.splitlines() if line.startswith("error:")] == [
+        f"error: interrupted (exit {expected}); no partial output was written"
+    ], stderr
+    assert sorted(p.name for p in folder.iterdir()) == [], "partial output left behind"
+
+
+def test_sigint_during_a_sweep_stops_between_chunks(tmp_path: Path) -> None:
+    args = ["sweep", "--fill-height", "10mm:60mm:300", "--duration", "0.5s:3s:400", "--out", "maps"]
+    code, stderr = _interrupt(args, tmp_path, signal.SIGINT, 1.5)
+    _assert_clean(tmp_path, code, 130, stderr)
+
+
+def test_sigterm_during_reproduce_removes_the_staging_folder(tmp_path: Path) -> None:
+    code, stderr = _interrupt(["reproduce", "--out", "report"], tmp_path, signal.SIGTERM, 2.0)
+    _assert_clean(tmp_path, code, 143, stderr)
+
+
+def test_sigterm_during_plan_writes_no_trajectory(tmp_path: Path) -> None:
+    args = [
+        "plan",
+        "--vmax", "1.5m/s", "--amax", "20m/s^2", "--jmax", "500m/s^3",
+        "--max-angle", "5deg", "--max-residual", "0.25deg",
+        "--out", "trajectory.csv", "--plot", "plan.png",
+    ]  # fmt: skip
+    code, stderr = _interrupt(args, tmp_path, signal.SIGTERM, 1.0)
+    _assert_clean(tmp_path, code, 143, stderr)
+
+
+def test_a_command_that_reports_its_own_interruption_gets_no_second_line(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The CFD runner's pattern: catch the interrupt, stop its tools, print how to resume, exit
+    128 + N; the entry point must not add a second line (in-process, a real SIGINT)."""
+    import typer
+
+    app_module = importlib.import_module("sloshkit.cli.app")
+    from sloshkit.cli import signals
+
+    tiny = typer.Typer()
+
+    @tiny.command()
+    def work() -> None:
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(5.0)
+        except KeyboardInterrupt:
+            signals.reported()
+            print("interrupted at t = 0.1 s; continue with --resume", file=sys.stderr)
+            raise typer.Exit(130) from None
+
+    @tiny.callback()
+    def root() -> None:
+        """Two commands' worth of group so 'work' is a subcommand."""
+
+    monkeypatch.setattr(app_module, "app", tiny)
+    assert app_module.run(["work"]) == 130
+    lines = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert lines == ["interrupted at t = 0.1 s; continue with --resume"]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_an_unreported_interruption_is_one_error_line(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import typer
+
+    app_module = importlib.import_module("sloshkit.cli.app")
+
+    tiny = typer.Typer()
+
+    @tiny.command()
+    def work() -> None:
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(5.0)
+
+    @tiny.callback()
+    def root() -> None:
+        """Group."""
+
+    monkeypatch.setattr(app_module, "app", tiny)
+    assert app_module.run(["work"]) == 143
+    lines = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert lines == ["error: interrupted (exit 143); no partial output was written"]
