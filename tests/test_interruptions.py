@@ -137,3 +137,26 @@ def test_an_unreported_interruption_is_one_error_line(
     assert app_module.run(["work"]) == 143
     lines = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert lines == ["error: interrupted (exit 143); no partial output was written"]
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_after_the_command_finished_does_not_undo_it(signum):
+    """A signal in the last moments of the process (the command done, the interpreter shutting
+    down) leaves the command's exit code: Python would otherwise die of an uncaught Ctrl-C
+    (exit -2), as a CI run once saw when a CFD test's signal came just after the run ended."""
+    script = (
+        "import os, sys\n"
+        "from sloshkit.cli.app import run\n"
+        "code = run(['--version'], exiting=True)\n"
+        f"os.kill(os.getpid(), {int(signum)})\n"
+        "sys.exit(code)\n"
+    )
+    finished = subprocess.run(
+        [sys.executable, "-c", script],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)},
+        timeout=120,
+    )
+    assert finished.returncode == 0, finished.stderr
+    assert "Traceback" not in finished.stderr

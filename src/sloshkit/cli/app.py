@@ -75,7 +75,12 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):  #
     messages.warning(stderr, message, prefix)
 
 
-def run(argv: Sequence[str] | None = None, application: typer.Typer | None = None) -> int:
+def run(
+    argv: Sequence[str] | None = None,
+    application: typer.Typer | None = None,
+    *,
+    exiting: bool = False,
+) -> int:
     """Run ``application`` (default `app`) on ``argv`` (default: ``sys.argv[1:]``) and return
     the exit code.
 
@@ -88,7 +93,7 @@ def run(argv: Sequence[str] | None = None, application: typer.Typer | None = Non
     saved_showwarning = warnings.showwarning
     warnings.showwarning = _show_warning
     try:
-        with signals.installed():
+        with signals.installed(restore=not exiting):
             try:
                 code = (application or app)(
                     args=list(argv) if argv is not None else None, standalone_mode=False
@@ -160,4 +165,4 @@ def main(application: typer.Typer | None = None, argv: Sequence[str] | None = No
 
     `sloshkit.cli.main` is the entry point: it imports the command being run first.
     """
-    sys.exit(run(argv, application))
+    sys.exit(run(argv, application, exiting=True))

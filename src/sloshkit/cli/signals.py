@@ -78,8 +78,14 @@ def deferred() -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def installed() -> Iterator[None]:
-    """Install the handlers for the block (main thread only) and restore the previous ones."""
+def installed(restore: bool = True) -> Iterator[None]:
+    """Install the handlers for the block (main thread only) and restore the previous ones.
+
+    With ``restore=False`` (the console entry point, which exits right after) the signals are
+    ignored on leaving instead: the command has finished and written its output, and a signal
+    in the last milliseconds of interpreter shutdown must not turn it into a crash (Python
+    re-raises an uncaught Ctrl-C as a death by SIGINT).
+    """
     import threading
 
     if threading.current_thread() is not threading.main_thread():
@@ -93,5 +99,5 @@ def installed() -> Iterator[None]:
         yield
     finally:
         for sig, handler in previous.items():
-            signal.signal(sig, handler)
+            signal.signal(sig, handler if restore else signal.SIG_IGN)
         _state.update(received=None, depth=0, reported=False)  # nothing leaks to a next run
