@@ -169,7 +169,9 @@ def test_run_killed_at_an_arbitrary_moment_resumes_to_the_same_result(
         assert "Traceback" not in err and "--resume" in err, context
         # One line says what happened; warnings printed before the signal came may precede it.
         lines = [
-            line for line in err.splitlines() if line.strip() and not line.lstrip().startswith("warning:")
+            line
+            for line in err.splitlines()
+            if line.strip() and not line.lstrip().startswith("warning:")
         ]
         assert len(lines) == 1, context
         # Nothing of the run is left running.
