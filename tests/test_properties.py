@@ -9,7 +9,7 @@ import time
 import warnings
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from sloshkit.errors import InputError
@@ -39,13 +39,17 @@ liquids = st.one_of(
 def models(draw: st.DrawFn) -> object:
     radius = draw(st.floats(0.003, 0.2))
     fill = radius * draw(st.floats(0.1, 3.0))
-    return equivalent_model(
-        UprightCylinder(radius),
-        draw(liquids),
-        fill,
-        n_modes=draw(st.integers(1, 4)),
-        surface_tension=draw(st.booleans()),
-    )
+    try:
+        return equivalent_model(
+            UprightCylinder(radius),
+            draw(liquids),
+            fill,
+            n_modes=draw(st.integers(1, 4)),
+            surface_tension=draw(st.booleans()),
+        )
+    except InputError:  # refused with one clear line (e.g. overdamped): not a model to test
+        assume(False)
+        raise
 
 
 @FAST

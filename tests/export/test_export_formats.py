@@ -27,7 +27,7 @@ from sloshkit.export.frames import Mounting
 from sloshkit.export.kinematics import load_arm
 from sloshkit.export.plans import LinePlan, PoseStream
 
-GOLDEN = Path(__file__).parent / "data" / "export"
+GOLDEN = Path(__file__).parents[1] / "data" / "export"
 MOUNTING = Mounting(base_xyz_m=(-0.49, -0.13, 0.39))
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
 

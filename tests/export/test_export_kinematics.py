@@ -110,7 +110,7 @@ def test_unreachable_pose_names_the_sample(ur5e):
 def test_joint_limit_violation_names_the_joint(tmp_path: Path, ur5e):
     """The UR5e with the base joint limited to +-0.2 rad: a path that needs 0.5 rad fails
     at the first sample beyond the limit, naming shoulder_pan_joint."""
-    source = Path(__file__).parents[1] / "src/sloshkit/export/robots/ur5e.urdf"
+    source = Path(__file__).parents[2] / "src/sloshkit/export/robots/ur5e.urdf"
     text = source.read_text().replace(
         'lower="-6.283185307179586" upper="6.283185307179586" effort="150"',
         'lower="-0.2" upper="0.2" effort="150"',
@@ -147,7 +147,7 @@ def test_joint_velocity_limit_names_the_joint(ur5e):
 
 
 def test_load_arm_from_urdf_between_links(ur5e):
-    source = Path(__file__).parents[1] / "src/sloshkit/export/robots/ur5e.urdf"
+    source = Path(__file__).parents[2] / "src/sloshkit/export/robots/ur5e.urdf"
     arm = load_arm(urdf=source, base_link="shoulder_link", tip_link="wrist_3_link")
     assert arm.joint_names == ur5e.joint_names[1:]
     np.testing.assert_allclose(arm.velocity_limit_rad_s, math.pi)

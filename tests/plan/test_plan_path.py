@@ -34,7 +34,7 @@ from sloshkit.plan.tilt import tilt_compensated
 from sloshkit.sim.spatial import simulate_spatial
 from tests.conftest import run_entry_point
 
-DATA = Path(__file__).parent / "data" / "measured-3d" / "poses"
+DATA = Path(__file__).parents[1] / "data" / "measured-3d" / "poses"
 
 
 @pytest.fixture(scope="module")

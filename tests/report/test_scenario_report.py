@@ -15,7 +15,7 @@ from sloshkit.errors import InputError
 from sloshkit.io.scenario import PAPER_SCENARIO, parse_scenario, read_scenario
 from sloshkit.report.build import build_report
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 @pytest.mark.parametrize("name", ["vial-2ml.toml", "bottle-100ml.toml"])

@@ -126,7 +126,7 @@ def test_run_without_out_writes_to_the_working_folder(tmp_path, monkeypatch):
     seen = []
     monkeypatch.setattr(module, "_run_report", lambda scenario, out, *rest: seen.append(out))
     monkeypatch.chdir(tmp_path)
-    example = Path(__file__).resolve().parents[1] / "examples" / "vial-2ml.toml"
+    example = Path(__file__).resolve().parents[2] / "examples" / "vial-2ml.toml"
     result = runner.invoke(app, ["run", str(example)])
     assert result.exit_code == 0, result.output
     assert seen and seen[0].resolve().parent == tmp_path.resolve()

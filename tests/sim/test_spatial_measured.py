@@ -22,7 +22,7 @@ from sloshkit.model.modal import equivalent_model
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.spatial import simulate_spatial
 
-DATA = Path(__file__).parent / "data" / "measured-3d"
+DATA = Path(__file__).parents[1] / "data" / "measured-3d"
 
 
 def _series() -> list[dict[str, str]]:

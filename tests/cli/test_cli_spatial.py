@@ -18,7 +18,7 @@ from sloshkit.motion.laws import quintic
 from sloshkit.motion.sampling import sample_times
 
 runner = CliRunner()
-DATA = Path(__file__).parent / "data" / "measured-3d"
+DATA = Path(__file__).parents[1] / "data" / "measured-3d"
 MODEL = ["--radius", "49mm", "--fill-height", "80mm", "--liquid", "water-20C"]
 KEYS = {
     "duration_s",

@@ -205,7 +205,7 @@ def test_cli_defaults_on_a_force_record(tmp_path):
 
 def test_readme_example_runs_as_written(tmp_path, monkeypatch):
     """The calibrate block of README.md, run verbatim on a clean decay.csv."""
-    readme = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
+    readme = (Path(__file__).parents[2] / "README.md").read_text(encoding="utf-8")
     section = readme[readme.index("### `sloshkit calibrate`") :]
     block = re.search(r"```sh\n(.*?)```", section, re.S)
     assert block is not None

@@ -25,7 +25,7 @@ from sloshkit.model import UprightCylinder, equivalent_model, get_liquid
 
 load_commands()  # the entry point imports only the command it runs; the tests run them all
 
-TABLE = Path(__file__).parent / "data" / "hostile_inputs.toml"
+TABLE = Path(__file__).parents[1] / "data" / "hostile_inputs.toml"
 CASES = tomllib.loads(TABLE.read_text(encoding="utf-8"))["case"]
 
 SCENARIO = """\

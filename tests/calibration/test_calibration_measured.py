@@ -23,7 +23,7 @@ from sloshkit.model.modal import equivalent_model
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.spatial import simulate_spatial
 
-DATA = Path(__file__).parent / "data" / "measured-3d"
+DATA = Path(__file__).parents[1] / "data" / "measured-3d"
 FREE_DECAY_OMEGA_D = 19.04  # rad/s, force-sensor free decay of the same container
 
 
