@@ -162,6 +162,50 @@ def _continuous(quaternions: FloatArray) -> FloatArray:
     return np.asarray(quaternions * signs[:, None])
 
 
+def _qmul(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Hamilton product of quaternion arrays (scalar last), the rotation a * b."""
+    ax, ay, az, aw = np.moveaxis(a, -1, 0)
+    bx, by, bz, bw = np.moveaxis(b, -1, 0)
+    return np.stack(
+        (
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz,
+        ),
+        axis=-1,
+    )
+
+
+def _qconj(q: FloatArray) -> FloatArray:
+    """Inverse of unit quaternions (scalar last)."""
+    return np.asarray(q * np.array([-1.0, -1.0, -1.0, 1.0]))
+
+
+def _qrotvec(q: FloatArray) -> FloatArray:
+    """Rotation vectors of unit quaternions (scalar last), angle in [0, pi]."""
+    q = np.where(q[..., 3:4] < 0.0, -q, q)
+    sine = np.linalg.norm(q[..., :3], axis=-1)
+    angle = 2.0 * np.arctan2(sine, q[..., 3])
+    # angle / sin(angle / 2), -> 2 for small angles (series 2 + angle^2 / 12)
+    scale = np.where(sine > 1e-6, angle / np.maximum(sine, 1e-300), 2.0 + angle**2 / 12.0)
+    return np.asarray(q[..., :3] * scale[..., None])
+
+
+def _qaxis(q: FloatArray) -> FloatArray:
+    """The rotated z axis R e_z of unit quaternions (scalar last)."""
+    x, y, z, w = np.moveaxis(q, -1, 0)
+    return np.stack((2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)), axis=-1)
+
+
+def _qapply_inverse(q: FloatArray, v: FloatArray) -> FloatArray:
+    """R^T v for unit quaternions q and vectors v (rows)."""
+    u = -q[..., :3]
+    w = q[..., 3:4]
+    t = 2.0 * np.cross(u, v)
+    return np.asarray(v + w * t + np.cross(u, t))
+
+
 def _second_difference(values: FloatArray, step: float) -> FloatArray:
     """Central second difference along axis 0, the ends held at rest."""
     padded = np.concatenate((values[:1], values, values[-1:]))
@@ -201,18 +245,20 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
     from sloshkit.sim.discretisation import linear_mode_response
 
     ts = float(poses.time_s[1] - poses.time_s[0])
-    rotation = poses.rotation
-    spin_rate = (rotation[:-1].inv() * rotation[1:]).as_rotvec()[:, 2]
+    quaternion = poses.quaternion_xyzw
+    spin_rate = _qrotvec(_qmul(_qconj(quaternion[:-1]), quaternion[1:]))[:, 2]
     spin = np.concatenate(([0.0], np.cumsum(spin_rate)))
-    frame = rotation * Rotation.from_rotvec(-spin[:, None] * np.array([0.0, 0.0, 1.0]))
-    axis = rotation.apply([0.0, 0.0, 1.0])
+    unspin = np.zeros((spin.size, 4))
+    unspin[:, 2], unspin[:, 3] = np.sin(-0.5 * spin), np.cos(-0.5 * spin)
+    frame = _qmul(quaternion, unspin)
+    axis = _qaxis(quaternion)
     peak = residual = angle = 0.0
     for model in models:
         wall = np.zeros((poses.time_s.size, 2))
         bound = 0.0
         for index, mode in enumerate(model.modes):
             point = poses.position_m + mode.bob_height_m * axis
-            force = frame.inv().apply(GRAVITY - _second_difference(point, ts))[:, :2]
+            force = _qapply_inverse(frame, GRAVITY - _second_difference(point, ts))[:, :2]
             rest = force / (mode.length_m * mode.omega_rad_s**2)
             # Equivalent velocity w with w' = -(f - f_0): linear_mode_response solves
             # theta'' + 2 zeta w theta' + w^2 theta = -w'/L.
@@ -258,11 +304,11 @@ def kinematics(poses: PoseSamples) -> dict[str, float]:
     velocity = np.diff(rest, axis=0) / ts
     acceleration = np.diff(velocity, axis=0) / ts
     jerk = np.diff(acceleration, axis=0) / ts
-    rotation = poses.rotation
-    omega = (rotation[1:] * rotation[:-1].inv()).as_rotvec() / ts
+    quaternion = poses.quaternion_xyzw
+    omega = _qrotvec(_qmul(quaternion[1:], _qconj(quaternion[:-1]))) / ts
     omega = np.concatenate((np.zeros((1, 3)), omega, np.zeros((1, 3))))
     alpha = np.diff(omega, axis=0) / ts
-    axis = rotation.apply([0.0, 0.0, 1.0])
+    axis = _qaxis(quaternion)
     return {
         "velocity": float(np.max(np.linalg.norm(velocity, axis=1))),
         "acceleration": float(np.max(np.linalg.norm(acceleration, axis=1))),
