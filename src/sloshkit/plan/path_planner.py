@@ -13,11 +13,12 @@ speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the tim
   tilted export passes the screen and the tilt and angular limits;
 - ``auto``: all three, the fastest verified.
 
-Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.spatial.verify`); when
-the verified export still exceeds a slosh limit, it is stretched in time by the excess and
-verified again (a few times). An optional reference timing (the pose file's own) is slowed
-uniformly until the screen passes and reported as the ``uniform`` candidate, the naive fix the
-methods are compared with (never chosen).
+Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path_result.verify`); when
+the verified export still exceeds a limit that a slower copy meets (slosh, Cartesian, angular,
+a robot's joint speeds), it is stretched in time by the excess and verified again
+(`sloshkit.plan.path_result.verified_candidate`). An optional reference timing (the pose
+file's own) is slowed uniformly until the limits and the screen pass and reported as the
+``uniform`` candidate, the naive fix the methods are compared with (never chosen).
 """
 
 from __future__ import annotations
@@ -25,13 +26,20 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.plan.path_result import (
+    PathCandidate,
+    PathPlanResult,
+    Verifier,
+    linear_verifier,
+    verified_candidate,
+    verify,
+)
 from sloshkit.plan.retime import (
     Timing,
     axis_shaped_samples,
@@ -43,144 +51,18 @@ from sloshkit.plan.retime import (
 from sloshkit.plan.spatial import (
     PathProblem,
     PoseSamples,
-    Verification,
     linear_screen,
+    machine_stretch,
     machine_violations,
     path_deviation,
     sample_path,
     screen_ok,
-    verify,
 )
 from sloshkit.plan.tilt import tilt_compensated
-from sloshkit.results import ResultMixin
+from sloshkit.plan.transcription import transcribed_timing
 
 FloatArray = NDArray[np.float64]
 PATH_METHODS: tuple[str, ...] = ("auto", "retime", "shaped", "tilt")
-Verifier = Callable[[PathProblem, PoseSamples, bool], Verification]
-#: Re-tries after a verification that fails on slosh only.
-ATTEMPTS = 4
-
-
-@dataclass(frozen=True, eq=False)
-class PathCandidate:
-    """One method's best export, its verification and its compute time [s]."""
-
-    method: str
-    poses: PoseSamples | None
-    verification: Verification | None
-    compute_time_s: float
-    message: str
-    detail: dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def feasible(self) -> bool:
-        """Verified to meet every limit."""
-        return self.verification is not None and self.verification.feasible
-
-    @property
-    def duration_s(self) -> float:
-        """Duration of the export [s] (inf without one)."""
-        return math.inf if self.poses is None else self.poses.duration_s
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (SI, unit-suffixed keys)."""
-        check = self.verification
-        return {
-            "method": self.method,
-            "duration_s": None if self.poses is None else self.duration_s,
-            "peak_slosh_height_m": None if check is None else check.peak_height_m,
-            "residual_slosh_height_m": None if check is None else check.residual_height_m,
-            "peak_tilt_deg": None if check is None else math.degrees(check.peak_tilt_rad),
-            "max_path_deviation_m": None if check is None else check.max_path_deviation_m,
-            "feasible": self.feasible,
-            "violations": [] if check is None else list(check.violations),
-            "compute_time_s": self.compute_time_s,
-            "message": self.message,
-            **self.detail,
-        }
-
-
-@dataclass(frozen=True, eq=False)
-class PathPlanResult(ResultMixin):
-    """The chosen export and every candidate tried (``columns``: the chosen pose export)."""
-
-    problem: PathProblem
-    chosen: PathCandidate | None
-    candidates: tuple[PathCandidate, ...]
-
-    @property
-    def feasible(self) -> bool:
-        """True when some method met every limit."""
-        return self.chosen is not None and self.chosen.feasible
-
-    def reason(self) -> str:
-        """Why no method met the limits (one line per method)."""
-        return "; ".join(f"{c.method}: {c.message}" for c in self.candidates)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The ``plan --path`` JSON keys."""
-        chosen = self.chosen.to_dict() if self.chosen is not None else {}
-        return {
-            "method": chosen.get("method"),
-            "duration_s": chosen.get("duration_s"),
-            "peak_slosh_height_m": chosen.get("peak_slosh_height_m"),
-            "residual_slosh_height_m": chosen.get("residual_slosh_height_m"),
-            "peak_tilt_deg": chosen.get("peak_tilt_deg"),
-            "max_path_deviation_m": chosen.get("max_path_deviation_m"),
-            "feasible": self.feasible,
-            "candidates": [c.to_dict() for c in self.candidates],
-        }
-
-    def columns(self) -> dict[str, FloatArray]:
-        """The chosen export as pose-file columns (``t,x,y,z,qx,qy,qz,qw``, SI)."""
-        if self.chosen is None or self.chosen.poses is None:
-            raise InputError("plan", "infeasible", "no trajectory to export")
-        return self.chosen.poses.columns()
-
-
-def _verified(
-    method: str,
-    problem: PathProblem,
-    poses_for: Callable[[float], PoseSamples],
-    factor: float,
-    started: float,
-    verifier: Verifier,
-    tilted: bool,
-    detail: dict[str, Any],
-) -> PathCandidate:
-    """Verify poses_for(factor); on a slosh-only violation stretch by the excess and retry."""
-    check: Verification | None = None
-    poses = poses_for(factor)
-    for _ in range(ATTEMPTS):
-        poses = poses_for(factor)
-        check = verifier(problem, poses, tilted)
-        if check.feasible or not _slosh_only(check):
-            break
-        factor *= math.sqrt(_excess(problem, check)) * 1.005
-    assert check is not None
-    message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
-    return PathCandidate(
-        method,
-        poses,
-        check,
-        time.perf_counter() - started,
-        message,
-        {**detail, "stretch": factor},
-    )
-
-
-def _slosh_only(check: Verification) -> bool:
-    return all(v.startswith(("peak slosh", "residual slosh", "surface")) for v in check.violations)
-
-
-def _excess(problem: PathProblem, check: Verification) -> float:
-    """Largest ratio of a verified slosh value to its limit (>= 1 when violated)."""
-    slosh = problem.slosh
-    return max(
-        check.peak_height_m / slosh.max_height_m,
-        check.residual_height_m / slosh.max_residual_height_m,
-        1.0,
-    )
 
 
 def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
@@ -215,7 +97,7 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
     def poses_for(factor: float) -> PoseSamples:
         return sampler(member.stretched(factor))
 
-    return _verified(
+    return verified_candidate(
         "shaped",
         problem,
         poses_for,
@@ -261,41 +143,12 @@ def plan_retime(
     detail: dict[str, Any] = {"acceleration_cap_m_s2": cap, "shaper": shaper_name}
     if transcription:
         warm = min([member, *warm_starts], key=lambda timing: timing.duration_s)
-        refined = _transcribed(problem, warm)
+        refined = transcribed_timing(problem, warm)
         if refined is not None and refined[0].duration_s < duration:
             timing, status = refined
             poses_for = stretcher(problem, timing)
             detail = {**detail, "ipopt_status": status}
-    return _verified("retime", problem, poses_for, 1.0, started, verifier, False, detail)
-
-
-#: Fractions of the peak and residual limits the transcription is solved for: its limits hold
-#: at the nodes of an RK4 model, and on the measured TRD path the sampled export exceeded them
-#: by 4 % (peak) and 20 % (residual); stretching the solution uniformly does not help (the
-#: residual it cancels comes back), and re-solving with tightened limits did not converge.
-TRANSCRIPTION_TIGHTENING = (0.95, 0.8)
-
-
-def _transcribed(problem: PathProblem, warm: Timing) -> tuple[Timing, str] | None:
-    """The transcription warm-started from ``warm`` (limits tightened by
-    `TRANSCRIPTION_TIGHTENING`); (timing, IPOPT status) when its export passes the linear
-    screen and the Cartesian limits, else None."""
-    from sloshkit.plan.transcription import optimal_timing
-
-    path = problem.path
-    peak, residual = TRANSCRIPTION_TIGHTENING
-    solved = optimal_timing(problem, warm, tightening=peak, residual_tightening=residual)
-    if solved is None:
-        return None
-    motion, status = solved
-    grid = np.linspace(0.0, motion.duration_s, max(8, math.ceil(motion.duration_s / 5e-4)) + 1)
-    timing = Timing.from_samples("retime", grid, np.clip(motion.position(grid), 0, path.length_m))
-    poses = sample_path(path, timing, problem.sample_period_s)
-    if not screen_ok(problem, linear_screen(problem.models(), poses)) or machine_violations(
-        problem, poses, False
-    ):
-        return None
-    return timing, status
+    return verified_candidate("retime", problem, poses_for, 1.0, started, verifier, False, detail)
 
 
 def plan_tilt(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
@@ -344,17 +197,18 @@ def plan_tilt(problem: PathProblem, verifier: Verifier = verify) -> PathCandidat
         "shaper": shaper_name,
         "rotation_centre_height_m": problem.tilt_centre_height_m,
     }
-    return _verified("tilt", problem, poses_for, 1.0, started, verifier, True, detail)
+    return verified_candidate("tilt", problem, poses_for, 1.0, started, verifier, True, detail)
 
 
 def plan_uniform(
     problem: PathProblem, reference: Timing, verifier: Verifier = verify
 ) -> PathCandidate:
-    """The reference timing slowed uniformly until the screen passes (the naive fix)."""
+    """The reference timing slowed uniformly until it meets the Cartesian and angular limits
+    and then the slosh screen (the naive fix)."""
     started = time.perf_counter()
 
     poses_for = stretcher(problem, reference)
-    found = slowed_until(problem, poses_for)
+    found = slowed_until(problem, poses_for, machine_stretch(problem, poses_for(1.0)))
     if found is None:
         return PathCandidate(
             "uniform",
@@ -363,7 +217,7 @@ def plan_uniform(
             time.perf_counter() - started,
             "no uniform stretch up to 64x meets the slosh limits",
         )
-    return _verified("uniform", problem, poses_for, found[0], started, verifier, False, {})
+    return verified_candidate("uniform", problem, poses_for, found[0], started, verifier, False, {})
 
 
 def plan_path(
@@ -448,26 +302,6 @@ def plan_path(
     if uniform is not None:
         candidates.append(uniform)
     return PathPlanResult(problem, chosen, tuple(candidates))
-
-
-def linear_verifier(problem: PathProblem, poses: PoseSamples, tilted: bool) -> Verification:
-    """A verification with the linear screen instead of the nonlinear model (for tests of the
-    search logic only; never used to call a plan feasible by the CLI)."""
-    from sloshkit.plan.spatial import kinematics, path_deviation
-
-    screen = linear_screen(problem.models(), poses)
-    violations = machine_violations(problem, poses, tilted)
-    if screen.peak_height_m > problem.slosh.max_height_m:
-        violations.append("peak slosh height")
-    if screen.residual_height_m > problem.slosh.max_residual_height_m:
-        violations.append("residual slosh height")
-    return Verification(
-        screen.peak_height_m,
-        screen.residual_height_m,
-        kinematics(poses)["tilt"],
-        path_deviation(problem.path, poses),
-        tuple(violations),
-    )
 
 
 __all__ = [

@@ -3,7 +3,8 @@
 The planner's methods (`sloshkit.plan.retime`, `sloshkit.plan.tilt`) search with a fast linear
 model of the lateral modes along the sampled export (`linear_screen`); nothing is called
 feasible before the export has been simulated with the nonlinear 3-D model of
-`sloshkit.sim.spatial` for every frequency of the robustness band (`verify`).
+`sloshkit.sim.spatial` for every frequency of the robustness band
+(`sloshkit.plan.path_result.verify`).
 
 Linear screen (Abramson, NASA SP-106 (1966) ch. 6; Dodge (2000) ch. 3): each mode n is a
 spherical pendulum of length L_n whose small deflection phi_n (2-vector, relative to the
@@ -18,7 +19,7 @@ e_n = 2R/(xi_n^2 - 1) (the model's ``wall_elevation_factor_m``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -355,82 +356,38 @@ def machine_violations(problem: PathProblem, poses: PoseSamples, tilted: bool) -
     ]
 
 
+def machine_stretch(problem: PathProblem, poses: PoseSamples) -> float:
+    """Smallest uniform stretch in time c >= 1 after which the export meets the Cartesian and
+    angular limits (speeds scale as 1/c, accelerations 1/c^2, jerks 1/c^3).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.motion.laws import s_curve
+    >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
+    >>> problem = PathProblem(path, CartesianLimits(0.5, 10.0, 100.0),
+    ...                       SpatialSloshLimits(0.01, 0.002), None)
+    >>> poses = sample_path(path, s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
+    >>> speed = kinematics(poses)["velocity"]  # 0.9 m/s against 0.5 m/s
+    >>> bool(np.isclose(machine_stretch(problem, poses), speed / 0.5))
+    True
+    """
+    peaks = kinematics(poses)
+    machine = problem.machine
+    needs = [
+        peaks["velocity"] / machine.max_velocity_m_s,
+        math.sqrt(peaks["acceleration"] / machine.max_acceleration_m_s2),
+        (peaks["jerk"] / machine.max_jerk_m_s3) ** (1.0 / 3.0),
+    ]
+    if machine.max_angular_velocity_rad_s is not None:
+        needs.append(peaks["angular_velocity"] / machine.max_angular_velocity_rad_s)
+    if machine.max_angular_acceleration_rad_s2 is not None:
+        needs.append(
+            math.sqrt(peaks["angular_acceleration"] / machine.max_angular_acceleration_rad_s2)
+        )
+    return float(max(1.0, *needs))
+
+
 def path_deviation(path: Path, poses: PoseSamples) -> float:
     """Largest distance [m] of the exported positions from the path (`Path.distance_to`)."""
     return float(np.max(path.distance_to(poses.position_m)))
-
-
-@dataclass(frozen=True)
-class Verification:
-    """Nonlinear 3-D simulation of the export (worst over the band) and the limit checks;
-    ``time_s``/``height_m``: the nominal model's slosh height over time [s, m] (for figures)."""
-
-    peak_height_m: float
-    residual_height_m: float
-    peak_tilt_rad: float
-    max_path_deviation_m: float
-    violations: tuple[str, ...]
-    time_s: FloatArray = field(default_factory=lambda: np.empty(0))
-    height_m: FloatArray = field(default_factory=lambda: np.empty(0))
-
-    @property
-    def feasible(self) -> bool:
-        """True when no limit is broken."""
-        return not self.violations
-
-
-def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Verification:
-    """Simulate the export with the nonlinear 3-D model (all modes, every band frequency) and
-    check the slosh, Cartesian, angular and tilt limits.
-
-    The slosh height is `sloshkit.sim.spatial.simulate_spatial`'s peak slosh height (the
-    largest free-surface elevation at the wall, over the circumference) and its residual
-    slosh height after the move; the surface angle its first-mode deflection. The export is
-    simulated twice, with exact differentiation of the poses and with the default smoothing
-    filter that ``simulate --pose-file`` uses, and the worse of the two counts.
-    """
-    import warnings
-
-    from sloshkit.errors import ValidityWarning
-    from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ
-    from sloshkit.sim.spatial import simulate_spatial
-
-    trajectory = poses.to_pose_trajectory()
-    peak = residual = angle = 0.0
-    series: tuple[FloatArray, FloatArray] = (np.empty(0), np.empty(0))
-    models = problem.models()
-    for index, model in enumerate(models):
-        for cutoff in (None, DEFAULT_CUTOFF_HZ):
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", ValidityWarning)
-                response = simulate_spatial(model, trajectory, nonlinear=True, cutoff_hz=cutoff)
-            peak = max(peak, float(response.peak_slosh_height_m))
-            residual = max(residual, float(response.residual_slosh_height_m))
-            angle = max(angle, float(response.peak_angle_rad))
-            if cutoff is None and index == len(models) // 2:
-                series = (response.time_s, response.slosh_height_m)
-    slosh = problem.slosh
-    violations = machine_violations(problem, poses, tilted)
-    if peak > slosh.max_height_m:
-        violations.append(f"peak slosh height {peak * 1e3:.4g} > {slosh.max_height_m * 1e3:.4g} mm")
-    if residual > slosh.max_residual_height_m:
-        violations.append(
-            f"residual slosh height {residual * 1e3:.4g} > "
-            f"{slosh.max_residual_height_m * 1e3:.4g} mm"
-        )
-    if slosh.max_surface_angle_rad is not None and angle > slosh.max_surface_angle_rad:
-        violations.append(
-            f"surface angle {math.degrees(angle):.4g} > "
-            f"{math.degrees(slosh.max_surface_angle_rad):.4g} deg"
-        )
-    end = problem.path.position(problem.path.length_m)
-    if float(np.linalg.norm(poses.position_m[-1] - end)) > 1e-6:
-        violations.append("does not end on the path's last pose")
-    return Verification(
-        peak,
-        residual,
-        kinematics(poses)["tilt"],
-        path_deviation(problem.path, poses),
-        tuple(violations),
-        *series,
-    )
