@@ -157,7 +157,30 @@ def _resampled(
 def generalised_arc_length(
     positions_m: FloatArray, rotations: Rotation, rotation_length_m: float = ROTATION_LENGTH_M
 ) -> FloatArray:
-    """Cumulative s of pose samples: ds^2 = |dp|^2 + (rho dtheta)^2 [m]."""
+    """Cumulative path parameter of pose samples: ds^2 = |dp|^2 + (rho dtheta)^2 [m].
+
+    Parameters
+    ----------
+    positions_m : ndarray, shape (n, 3)
+        Positions [m].
+    rotations : scipy Rotation of length n
+        Orientations.
+    rotation_length_m : float
+        rho: the length one radian of rotation counts for [m].
+
+    Returns
+    -------
+    ndarray
+        s at each sample, from 0 [m].
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> s = generalised_arc_length(np.array([[0, 0, 0], [0.3, 0, 0], [0.3, 0, 0]]),
+    ...                            Rotation.from_euler("z", [[0.0], [0.0], [1.0]]))
+    >>> s.round(3).tolist()  # 0.3 m, then 1 rad counts 0.05 m
+    [0.0, 0.3, 0.35]
+    """
     steps = np.linalg.norm(np.diff(positions_m, axis=0), axis=1)
     turns = (rotations[1:] * rotations[:-1].inv()).magnitude()
     return np.concatenate(([0.0], np.cumsum(np.hypot(steps, rotation_length_m * turns))))

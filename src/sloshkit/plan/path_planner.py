@@ -40,14 +40,8 @@ from sloshkit.plan.path_result import (
     verified_candidate,
     verify,
 )
-from sloshkit.plan.retime import (
-    Timing,
-    axis_shaped_samples,
-    fastest_capped,
-    first_mode_shaper,
-    slowed_until,
-    stretcher,
-)
+from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
+from sloshkit.plan.retime import axis_shaped_samples, first_mode_shaper
 from sloshkit.plan.spatial import (
     PathProblem,
     PoseSamples,
@@ -59,6 +53,7 @@ from sloshkit.plan.spatial import (
     screen_ok,
 )
 from sloshkit.plan.tilt import tilt_compensated
+from sloshkit.plan.timing import Timing
 from sloshkit.plan.transcription import transcribed_timing
 
 FloatArray = NDArray[np.float64]
@@ -66,9 +61,31 @@ PATH_METHODS: tuple[str, ...] = ("auto", "retime", "shaped", "tilt")
 
 
 def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
-    """Per-axis input shaping (ZV, ZVD with a band) of the family's members, the largest
+    """Per-axis input shaping (ZV, ZVD with a band) of the family's members: the largest
     acceleration cap whose shaped export passes the screen, the machine limits and the path
-    deviation bound (module docstring)."""
+    deviation bound (module docstring), then verified.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model.
+    verifier : callable
+        Verification of an export (default `sloshkit.plan.path_result.verify`).
+
+    Returns
+    -------
+    PathCandidate
+
+    References
+    ----------
+    Singer & Seering (1990), doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    >>> problem = _example_problem()
+    >>> plan_shaped(problem, linear_verifier).feasible
+    True
+    """
     started = time.perf_counter()
     shaper = first_mode_shaper(problem)
     models = problem.models()
@@ -115,8 +132,35 @@ def plan_retime(
     transcription: bool = True,
     warm_starts: Sequence[Timing] = (),
 ) -> PathCandidate:
-    """The fastest acceleration cap of the family under the slosh screen, then (with
-    ``transcription``) the minimum-time transcription warm-started from it (module doc)."""
+    """The fastest acceleration cap of the family under the slosh screen (with and without the
+    timing shaper), then, with ``transcription``, the minimum-time transcription warm-started
+    from it; verified. The container stays on the path.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model.
+    verifier : callable
+        Verification of an export.
+    transcription : bool
+        Also try `sloshkit.plan.transcription.transcribed_timing`.
+    warm_starts : sequence of Timing
+        Further warm starts for the transcription (e.g. the pose file's slowed timing).
+
+    Returns
+    -------
+    PathCandidate
+
+    References
+    ----------
+    Bobrow et al. (1985), doi:10.1177/027836498500400301; Betts (2010) ch. 4.
+
+    Examples
+    --------
+    >>> problem = _example_problem()
+    >>> plan_retime(problem, linear_verifier, transcription=False).detail["shaper"]
+    'zv'
+    """
     started = time.perf_counter()
     models = problem.models()
     best: tuple[float, float, Timing, str] | None = None
@@ -152,7 +196,31 @@ def plan_retime(
 
 
 def plan_tilt(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
-    """Tilt compensation of the family, the largest cap that passes every screen."""
+    """Tilt compensation of the family: the largest cap whose tilted export passes the screen
+    and the tilt and angular limits, then verified.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits (``max_tilt_rad``, ``tilt_centre_height_m``), model.
+    verifier : callable
+        Verification of an export.
+
+    Returns
+    -------
+    PathCandidate
+
+    References
+    ----------
+    Feddema et al. (1997), doi:10.1109/37.569711.
+
+    Examples
+    --------
+    >>> problem = _example_problem()
+    >>> found = plan_tilt(problem, linear_verifier)
+    >>> found.feasible, found.verification.peak_tilt_rad > 0.0
+    (True, True)
+    """
     started = time.perf_counter()
     bob = problem.model.modes[0].bob_height_m
     models = problem.models()
@@ -204,7 +272,29 @@ def plan_uniform(
     problem: PathProblem, reference: Timing, verifier: Verifier = verify
 ) -> PathCandidate:
     """The reference timing slowed uniformly until it meets the Cartesian and angular limits
-    and then the slosh screen (the naive fix)."""
+    and then the slosh screen (the naive fix), then verified.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model.
+    reference : Timing
+        The timing to slow down (e.g. the pose file's own).
+    verifier : callable
+        Verification of an export.
+
+    Returns
+    -------
+    PathCandidate
+
+    Examples
+    --------
+    >>> from sloshkit.plan.retime import capped_timing
+    >>> problem = _example_problem()
+    >>> found = plan_uniform(problem, capped_timing(problem, 10.0), linear_verifier)
+    >>> found.feasible, found.detail["stretch"] > 1.0
+    (True, True)
+    """
     started = time.perf_counter()
 
     poses_for = stretcher(problem, reference)
@@ -229,51 +319,58 @@ def plan_path(
     transcription: bool = False,
     tilt: bool = True,
 ) -> PathPlanResult:
-    """Plan a slosh-safe timing (and tilt) of ``problem.path``.
+    """Plan a slosh-safe timing (and tilt) of a 3-D path, every candidate verified.
+
+    The methods (`plan_retime`, `plan_shaped`, `plan_tilt`) are compared side by side; each
+    export is simulated again with ``verifier`` (the nonlinear 3-D model of every mode and
+    band frequency by default) before it may be called feasible, and the fastest feasible one
+    is chosen. The export (`PathPlanResult.columns`, ``to_csv``) is a pose file
+    ``t,x,y,z,qx,qy,qz,qw`` that ``sloshkit simulate --pose-file`` reads.
 
     Parameters
     ----------
     problem : PathProblem
-        Path, limits, model, sample period.
+        Path, Cartesian/angular limits, slosh limits, model, sample period.
     method : str
-        ``auto`` (all), ``retime``, ``shaped`` or ``tilt``.
+        ``auto`` (all, the fastest verified), ``retime``, ``shaped`` or ``tilt``.
     reference : Timing, optional
         The path's existing timing (e.g. of the pose file it came from): slowed uniformly and
         reported as the ``uniform`` candidate, never chosen.
     progress : callable, optional
         Receives one line per step.
     verifier : callable
-        Verification of an export (default: the nonlinear 3-D model, `verify`).
+        (problem, poses, tilted) -> Verification (default `verify`: the nonlinear 3-D model;
+        `sloshkit.export.path_robot.robot_verifier` adds a robot's joint-speed check).
     transcription : bool
         Also try the casadi/IPOPT transcription (`sloshkit.plan.transcription`) warm-started
-        from the family (and the reference) for ``retime``; off by default: on the measured
-        paths it takes minutes on a loaded 2-core machine and its export rarely passes.
+        from the family (and the reference) for ``retime``; off by default (see
+        docs/planning-3d.md for the measured figures).
     tilt : bool
         Whether ``auto`` may tilt the container (``method="tilt"`` always does).
 
     Returns
     -------
     PathPlanResult
-        The fastest feasible candidate (or, when none is feasible, the fastest at all).
+        The fastest feasible candidate (or, when none is feasible, the fastest at all) and
+        every candidate with its verification and compute time.
 
     References
     ----------
-    Bobrow et al. (1985); Singer & Seering (1990); Feddema et al. (1997).
+    Bobrow, Dubowsky & Gibson (1985), doi:10.1177/027836498500400301 (time-optimal path
+    timing); Singer & Seering (1990), doi:10.1115/1.2894142 (input shaping); Feddema et al.
+    (1997), doi:10.1109/37.569711 (tilt compensation).
 
     Examples
     --------
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, SpatialSloshLimits
-    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
-    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
-    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
-    ...                       model, sample_period_s=0.01)
-    >>> result = plan_path(problem, "shaped", verifier=linear_verifier)
-    >>> result.feasible, result.chosen.method
-    (True, 'shaped')
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
+    >>> problem = sk.PathProblem(
+    ...     sk.path_from_waypoints([[0, 0, 0], [0.3, 0, 0], [0.3, 0.2, 0]], blend_radius_m=0.05),
+    ...     sk.CartesianLimits(2.0, 10.0, 100.0), sk.SpatialSloshLimits(0.01, 0.002), model,
+    ...     sample_period_s=0.01)
+    >>> result = sk.plan_path(problem, "shaped", verifier=linear_verifier)
+    >>> result.feasible, result.chosen.method, float(result.columns()["y"][-1])
+    (True, 'shaped', 0.2)
     """
     if method not in PATH_METHODS:
         raise InputError("method", method, "must be one of " + ", ".join(PATH_METHODS))
@@ -315,3 +412,21 @@ __all__ = [
     "plan_tilt",
     "plan_uniform",
 ]
+
+
+def _example_problem() -> PathProblem:
+    """A 0.3 m straight path with the measured series' vial (for the examples)."""
+    from sloshkit.model.geometry import UprightCylinder
+    from sloshkit.model.liquids import get_liquid
+    from sloshkit.model.modal import equivalent_model
+    from sloshkit.plan.path import path_from_waypoints
+    from sloshkit.plan.spatial import CartesianLimits, SpatialSloshLimits
+
+    model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    return PathProblem(
+        path_from_waypoints(np.array([[0.0, 0.0, 0.0], [0.3, 0.0, 0.0]])),
+        CartesianLimits(2.0, 10.0, 100.0),
+        SpatialSloshLimits(0.01, 0.002),
+        model,
+        sample_period_s=0.01,
+    )

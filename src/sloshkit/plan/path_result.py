@@ -49,10 +49,33 @@ STRETCHABLE = (
 
 @dataclass(frozen=True)
 class Verification:
-    """Nonlinear 3-D simulation of the export (worst over the band) and the limit checks;
-    ``time_s``/``height_m``: the nominal model's slosh height over time [s, m] (for figures);
-    ``required_stretch``: a uniform slow-down the verifier estimates for limits outside the
-    slosh and Cartesian ones (a robot's joint speeds), 1 when none."""
+    """Nonlinear 3-D simulation of an export (worst over the band) and the limit checks.
+
+    Parameters
+    ----------
+    peak_height_m : float
+        Peak slosh height [m].
+    residual_height_m : float
+        Residual slosh height [m].
+    peak_tilt_rad : float
+        Largest tilt of the container axis from vertical [rad].
+    max_path_deviation_m : float
+        Largest distance of the export from the path [m].
+    violations : tuple of str
+        The limits broken (empty: feasible).
+    time_s : ndarray
+        Times of the nominal model's slosh height (for figures) [s].
+    height_m : ndarray
+        The nominal model's slosh height over time [m].
+    required_stretch : float
+        A uniform slow-down the verifier estimates for limits outside the slosh and Cartesian
+        ones (a robot's joint speeds); 1 when none.
+
+    Examples
+    --------
+    >>> Verification(0.01, 0.001, 0.0, 0.0, ()).feasible
+    True
+    """
 
     peak_height_m: float
     residual_height_m: float
@@ -78,6 +101,33 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
     slosh height after the move; the surface angle its first-mode deflection. The export is
     simulated twice, with exact differentiation of the poses and with the default smoothing
     filter that ``simulate --pose-file`` uses, and the worse of the two counts.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Limits and model.
+    poses : PoseSamples
+        The export.
+    tilted : bool
+        Whether the tilt limit applies.
+
+    Returns
+    -------
+    Verification
+
+    References
+    ----------
+    `sloshkit.sim.spatial` (the 3-D spherical-pendulum model and its sources).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path_planner import _example_problem
+    >>> from sloshkit.plan.retime import family_member
+    >>> from sloshkit.plan.spatial import sample_path
+    >>> problem = _example_problem()
+    >>> poses = sample_path(problem.path, family_member(problem, 10.0, None), 0.01)
+    >>> verify(problem, poses).violations[0][:17]
+    'peak slosh height'
     """
     import warnings
 
@@ -290,7 +340,8 @@ def verified_candidate(
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.retime import family_member, stretcher
+    >>> from sloshkit.plan.path_search import stretcher
+    >>> from sloshkit.plan.retime import family_member
     >>> from sloshkit.plan.spatial import CartesianLimits, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])

@@ -37,9 +37,26 @@ SEARCH_MARGIN = 0.03
 
 @dataclass(frozen=True)
 class CartesianLimits:
-    """Limits of the reference point (path speed [m/s], acceleration incl. centripetal
-    [m/s^2], jerk [m/s^3]) and optionally of the container's angular velocity [rad/s] and
-    angular acceleration [rad/s^2]."""
+    """Limits of the container's reference point and rotation.
+
+    Parameters
+    ----------
+    max_velocity_m_s : float
+        Path speed [m/s].
+    max_acceleration_m_s2 : float
+        Acceleration, tangential and centripetal together [m/s^2].
+    max_jerk_m_s3 : float
+        Jerk [m/s^3].
+    max_angular_velocity_rad_s : float, optional
+        Angular speed of the container [rad/s] (None: no limit).
+    max_angular_acceleration_rad_s2 : float, optional
+        Angular acceleration of the container [rad/s^2] (None: no limit).
+
+    Examples
+    --------
+    >>> CartesianLimits(2.0, 10.0, 100.0, max_angular_velocity_rad_s=3.14).max_jerk_m_s3
+    100.0
+    """
 
     max_velocity_m_s: float
     max_acceleration_m_s2: float
@@ -58,9 +75,24 @@ class CartesianLimits:
 
 @dataclass(frozen=True)
 class SpatialSloshLimits:
-    """Peak slosh height during the move and residual slosh height after it [m], optionally
-    the peak first-mode surface angle [rad]; ``robustness``: relative frequency band (0.1 for
-    +-10 %) over which they must hold."""
+    """Slosh limits of a 3-D move.
+
+    Parameters
+    ----------
+    max_height_m : float
+        Peak slosh height during the move [m].
+    max_residual_height_m : float
+        Residual slosh height after it [m].
+    max_surface_angle_rad : float, optional
+        Peak first-mode surface angle [rad].
+    robustness : float
+        Relative frequency band over which the limits must hold (0.1 for +-10 %).
+
+    Examples
+    --------
+    >>> SpatialSloshLimits(0.015, 0.002, robustness=0.1).robustness
+    0.1
+    """
 
     max_height_m: float
     max_residual_height_m: float
@@ -77,11 +109,37 @@ class SpatialSloshLimits:
 
 @dataclass(frozen=True, eq=False)
 class PathProblem:
-    """A path, its limits, the container model (any object with ``modes`` and ``radius_m``,
-    see `sloshkit.model.modal.SloshModel`), the controller sample period [s], the largest tilt
-    [rad] the ``tilt`` method may use, the height of its rotation centre above the container
-    bottom on the axis [m], and the largest distance from the path [m] the ``shaped`` method
-    may leave (per-axis shaping cuts corners)."""
+    """A path, its limits, the container model and the controller's sample period.
+
+    Parameters
+    ----------
+    path : Path
+        The geometry (`sloshkit.plan.path`).
+    machine : CartesianLimits
+        Cartesian and angular limits.
+    slosh : SpatialSloshLimits
+        Slosh limits.
+    model : SloshModel
+        The container model (any object with ``modes`` and ``radius_m``).
+    sample_period_s : float
+        Controller sample period of the export [s].
+    max_tilt_rad : float
+        Largest tilt from vertical the ``tilt`` method may use [rad].
+    tilt_centre_height_m : float
+        Height of the tilt's rotation centre above the container bottom, on its axis [m].
+    max_path_deviation_m : float
+        Largest distance from the path the ``shaped`` method may leave [m] (per-axis shaping
+        cuts corners).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None)
+    >>> problem.sample_period_s, round(problem.path.length_m, 3)
+    (0.004, 0.3)
+    """
 
     path: Path
     machine: CartesianLimits
@@ -111,8 +169,24 @@ def _scaled(model: Any, factor: float) -> Any:
 
 @dataclass(frozen=True, eq=False)
 class PoseSamples:
-    """A sampled pose trajectory on a uniform grid: times [s], reference-point positions [m]
-    (n, 3), container-to-world quaternions (n, 4, scalar last). Starts and ends at rest."""
+    """A sampled pose trajectory on a uniform grid, at rest at both ends.
+
+    Parameters
+    ----------
+    time_s : ndarray
+        Sample times [s] from 0, uniform.
+    position_m : ndarray, shape (n, 3)
+        Reference-point (container bottom centre) positions, world frame [m].
+    quaternion_xyzw : ndarray, shape (n, 4)
+        Container-to-world unit quaternions, scalar last.
+
+    Examples
+    --------
+    >>> t = np.arange(3) * 0.1
+    >>> poses = PoseSamples(t, np.zeros((3, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (3, 1)))
+    >>> poses.duration_s, sorted(poses.columns())[:3]
+    (0.2, ['qw', 'qx', 'qy'])
+    """
 
     time_s: FloatArray
     position_m: FloatArray
@@ -146,8 +220,32 @@ class PoseSamples:
 
 
 def sample_path(path: Path, timing: Any, sample_period_s: float) -> PoseSamples:
-    """Sample ``path`` along the timing s(t) (a `sloshkit.motion.laws.Motion` whose position is
-    s [m]) at t = k Ts until the first sample at or after the end; quaternions sign-continuous."""
+    """Sample ``path`` along the timing s(t) at t = k Ts until the first sample at or after the
+    end; quaternions sign-continuous.
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    timing : Timing or Motion
+        Anything with ``duration_s`` and ``position(t)`` giving s [m].
+    sample_period_s : float
+        Ts [s].
+
+    Returns
+    -------
+    PoseSamples
+        The export, ending exactly on the path's last pose.
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.motion.laws import s_curve
+    >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
+    >>> poses = sample_path(path, s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
+    >>> poses.position_m[-1].tolist()
+    [0.5, 0.0, 0.0]
+    """
     count = math.ceil(timing.duration_s / sample_period_s - 1e-9)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     s = np.clip(timing.position(np.minimum(t, timing.duration_s)), 0.0, path.length_m)
@@ -215,8 +313,22 @@ def _second_difference(values: FloatArray, step: float) -> FloatArray:
 
 @dataclass(frozen=True)
 class ScreenResult:
-    """Linear-screen metrics (worst over the band): peak and residual slosh height [m],
-    peak first-mode surface angle [rad]."""
+    """Linear-screen metrics, the worst over the band.
+
+    Parameters
+    ----------
+    peak_height_m : float
+        Peak slosh height at the wall [m].
+    residual_height_m : float
+        Bound of the residual slosh height [m].
+    peak_angle_rad : float
+        Peak first-mode surface angle [rad].
+
+    Examples
+    --------
+    >>> ScreenResult(0.01, 0.001, 0.05).residual_height_m
+    0.001
+    """
 
     peak_height_m: float
     residual_height_m: float
@@ -229,6 +341,23 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
     The liquid starts in equilibrium with the first pose; the residual height is the bound
     sum_n e_n sqrt(|A_n|^2 + |B_n|^2) of the free oscillation about the last pose's equilibrium
     (A_n, B_n: the cosine and sine amplitude vectors of mode n).
+
+    Parameters
+    ----------
+    models : list of SloshModel
+        The models of the band (`PathProblem.models`).
+    poses : PoseSamples
+        The export.
+
+    Returns
+    -------
+    ScreenResult
+        The worst over the models.
+
+    References
+    ----------
+    Abramson, NASA SP-106 (1966) ch. 6; Dodge, *The New "Dynamic Behavior of Liquids in
+    Moving Containers"*, SwRI (2000) ch. 3.
 
     Examples
     --------
@@ -284,7 +413,30 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
 
 
 def screen_ok(problem: PathProblem, result: ScreenResult, margin: float = SEARCH_MARGIN) -> bool:
-    """True when the screen meets every slosh limit with the relative ``margin``."""
+    """True when the screen meets every slosh limit with the relative ``margin``.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        The limits.
+    result : ScreenResult
+        The screen of an export.
+    margin : float
+        Relative margin kept from each limit.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None)
+    >>> [screen_ok(problem, ScreenResult(peak, 0.001, 0.0)) for peak in (0.0099, 0.009)]
+    [False, True]
+    """
     slosh = problem.slosh
     keep = 1.0 - margin
     ok = result.peak_height_m <= slosh.max_height_m * keep
@@ -295,9 +447,28 @@ def screen_ok(problem: PathProblem, result: ScreenResult, margin: float = SEARCH
 
 
 def kinematics(poses: PoseSamples) -> dict[str, float]:
-    """Peaks of the sampled export by finite differences: speed [m/s], acceleration
-    [m/s^2], jerk [m/s^3], angular velocity [rad/s], angular acceleration [rad/s^2], tilt from
-    vertical [rad]."""
+    """Peaks of the sampled export by finite differences (the ends held at rest).
+
+    Parameters
+    ----------
+    poses : PoseSamples
+        The export.
+
+    Returns
+    -------
+    dict
+        ``velocity`` [m/s], ``acceleration`` [m/s^2], ``jerk`` [m/s^3], ``angular_velocity``
+        [rad/s], ``angular_acceleration`` [rad/s^2], ``tilt`` (from vertical) [rad].
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.motion.laws import s_curve
+    >>> poses = sample_path(path_from_waypoints([[0, 0, 0], [0.5, 0, 0]]),
+    ...                     s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
+    >>> round(kinematics(poses)["acceleration"], 1), kinematics(poses)["tilt"]
+    (2.0, 0.0)
+    """
     ts = float(poses.time_s[1] - poses.time_s[0])
     rest = np.concatenate(
         (poses.position_m[:1],) * 2 + (poses.position_m,) + (poses.position_m[-1:],) * 2
@@ -321,7 +492,32 @@ def kinematics(poses: PoseSamples) -> dict[str, float]:
 
 
 def machine_violations(problem: PathProblem, poses: PoseSamples, tilted: bool) -> list[str]:
-    """Names and values of the Cartesian, angular and tilt limits the export breaks."""
+    """Names and values of the Cartesian, angular and tilt limits the export breaks.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        The limits.
+    poses : PoseSamples
+        The export.
+    tilted : bool
+        Whether the tilt limit applies.
+
+    Returns
+    -------
+    list of str
+        One sentence per limit broken (empty when all hold).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.motion.laws import s_curve
+    >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
+    >>> problem = PathProblem(path, CartesianLimits(2.0, 1.0, 100.0),
+    ...                       SpatialSloshLimits(0.01, 0.002), None)
+    >>> machine_violations(problem, sample_path(path, s_curve(0.5, 1.0, 2.0, 20.0), 4e-3), False)
+    ['acceleration 2 > 1 m/s^2']
+    """
     peaks = kinematics(poses)
     machine = problem.machine
     checks = [
@@ -360,6 +556,17 @@ def machine_stretch(problem: PathProblem, poses: PoseSamples) -> float:
     """Smallest uniform stretch in time c >= 1 after which the export meets the Cartesian and
     angular limits (speeds scale as 1/c, accelerations 1/c^2, jerks 1/c^3).
 
+    Parameters
+    ----------
+    problem : PathProblem
+        The limits.
+    poses : PoseSamples
+        The export.
+
+    Returns
+    -------
+    float
+
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
@@ -389,5 +596,26 @@ def machine_stretch(problem: PathProblem, poses: PoseSamples) -> float:
 
 
 def path_deviation(path: Path, poses: PoseSamples) -> float:
-    """Largest distance [m] of the exported positions from the path (`Path.distance_to`)."""
+    """Largest distance [m] of the exported positions from the path (`Path.distance_to`).
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    poses : PoseSamples
+        The export.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
+    >>> poses = PoseSamples(np.arange(2) * 0.1, np.array([[0.1, 0.002, 0], [0.3, 0, 0]]),
+    ...                     np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)))
+    >>> round(path_deviation(path, poses), 6)
+    0.002
+    """
     return float(np.max(path.distance_to(poses.position_m)))

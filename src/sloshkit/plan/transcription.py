@@ -27,7 +27,6 @@ from scipy.spatial.transform import Rotation
 
 from sloshkit.motion.laws import Motion, _piecewise_constant_jerk
 from sloshkit.plan.path import Path
-from sloshkit.plan.retime import FINE_STEP_S, Timing
 from sloshkit.plan.spatial import (
     GRAVITY,
     SEARCH_MARGIN,
@@ -37,6 +36,7 @@ from sloshkit.plan.spatial import (
     sample_path,
     screen_ok,
 )
+from sloshkit.plan.timing import FINE_STEP_S, Timing
 
 FloatArray = NDArray[np.float64]
 #: Fraction of the Cartesian limits the transcription uses (they hold at its nodes only).
@@ -44,10 +44,31 @@ MARGIN = 0.98
 
 
 def path_tables(path: Path, count: int) -> tuple[FloatArray, FloatArray]:
-    """Grid of s [m] and a (22, count) table of the path quantities the transcription needs:
-    rows 0-1 R_N^T g, 2-3 R_N^T p', 4-5 R_N^T (R e_z)', 6-7 R_N^T p'', 8-9 R_N^T (R e_z)''
+    """Grid of s and the table of path quantities the transcription interpolates.
+
+    Rows 0-1 R_N^T g, 2-3 R_N^T p', 4-5 R_N^T (R e_z)', 6-7 R_N^T p'', 8-9 R_N^T (R e_z)''
     (lateral components in the spin-free container frame R_N), 10-12 p', 13-15 p'', 16-18
-    p''', 19-21 omega_s (world)."""
+    p''', 19-21 omega_s (world).
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    count : int
+        Grid points.
+
+    Returns
+    -------
+    tuple of ndarray
+        (s grid [m], table of shape (22, count)).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> grid, table = path_tables(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]), 5)
+    >>> table.shape, table[10:13, 2].round(6).tolist()  # p' along x
+    ((22, 5), [1.0, 0.0, 0.0])
+    """
     grid = np.linspace(0.0, path.length_m, count)
     rotation = path.orientation(grid)
     axis = rotation.apply([0.0, 0.0, 1.0])
