@@ -276,3 +276,53 @@ def test_angular_limits_parse_rad_and_deg() -> None:
     assert _angular(None, 1, "w") is None
     with pytest.raises(InputError, match="angular rate"):
         _angular("5 furlongs", 1, "max_angular_velocity")
+
+
+def test_angular_limits_default_and_none() -> None:
+    from sloshkit.cli.plan_path import (
+        DEFAULT_ANGULAR_ACCELERATION,
+        DEFAULT_ANGULAR_VELOCITY,
+        _angular,
+    )
+
+    assert _angular(DEFAULT_ANGULAR_VELOCITY, 1, "w") == pytest.approx(math.pi)
+    assert _angular(DEFAULT_ANGULAR_ACCELERATION, 2, "a") == pytest.approx(math.radians(1000))
+    assert _angular("none", 1, "w") is None
+
+
+def test_robot_check_refuses_fast_joints_and_slows_the_plan_down(robot_vial: SloshModel) -> None:
+    """A yaw of 90 degrees in 0.5 s along a 50 mm move needs the UR5e's wrist_3 at about
+    1.9x its 3.14 rad/s: the robot-aware verification names the joint, the stretch loop slows
+    the export down until every joint is within its limit, and the export still ends on the
+    path's last pose."""
+    from sloshkit.export.frames import Mounting
+    from sloshkit.export.kinematics import load_arm
+    from sloshkit.export.path_robot import joint_speed_ratio, robot_verifier
+    from sloshkit.plan.path_result import linear_verifier, verified_candidate
+    from sloshkit.plan.path_search import stretcher
+    from sloshkit.plan.timing import Timing
+
+    arm, mounting = load_arm("ur5e"), Mounting(base_xyz_m=(-0.45, -0.13, 0.3))
+    path = path_from_waypoints([[0, 0, 0], [0.05, 0, 0]], yaw_rad=[0.0, math.pi / 2], name="turn")
+    problem = PathProblem(
+        path,
+        CartesianLimits(2.0, 20.0, 1000.0),
+        SpatialSloshLimits(1.0, 1.0),
+        robot_vial,
+        sample_period_s=0.01,
+    )
+    t = np.linspace(0.0, 0.5, 101)
+    timing = Timing.from_samples(
+        "fast", t, path.length_m * (t / 0.5) ** 3 * (10 - 15 * t / 0.5 + 6 * (t / 0.5) ** 2)
+    )
+    poses_for = stretcher(problem, timing)
+    ratio, joint = joint_speed_ratio(arm, mounting, poses_for(1.0))
+    assert ratio > 1.2 and joint.startswith("wrist_3_joint")
+    check = robot_verifier(arm, mounting, linear_verifier)
+    first = check(problem, poses_for(1.0), False)
+    assert not first.feasible and first.violations[-1].startswith("joint speed wrist_3_joint")
+    assert first.required_stretch == pytest.approx(ratio)
+    found = verified_candidate("retime", problem, poses_for, 1.0, 0.0, check, False, {})
+    assert found.feasible, found.message
+    assert found.detail["stretch"] >= ratio
+    assert joint_speed_ratio(arm, mounting, found.poses)[0] <= 1.0
