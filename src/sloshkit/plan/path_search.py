@@ -17,7 +17,7 @@ from collections.abc import Callable
 import numpy as np
 
 from sloshkit.motion.shaping import Shaper
-from sloshkit.plan.retime import family_member
+from sloshkit.plan.retime import ShaperFactory, family_member
 from sloshkit.plan.spatial import (
     PathProblem,
     PoseSamples,
@@ -156,7 +156,7 @@ def slowed_until(
 def fastest_capped(
     problem: PathProblem,
     passes: Callable[[PoseSamples], bool],
-    shaper: Shaper | None,
+    shaper: Shaper | ShaperFactory | None,
     low_fraction: float = 1e-3,
     sampler: Callable[[Timing], PoseSamples] | None = None,
 ) -> tuple[float, Timing] | None:
@@ -169,8 +169,8 @@ def fastest_capped(
         Path and limits.
     passes : callable
         PoseSamples -> bool.
-    shaper : Shaper or None
-        Shaper of the family's timings.
+    shaper : Shaper, callable or None
+        Shaper of the family's timings (or a function of the cap giving it).
     low_fraction : float
         Smallest cap tried, as a fraction of amax.
     sampler : callable, optional
@@ -225,7 +225,7 @@ def fastest_capped(
 def _refine(
     problem: PathProblem,
     ok: Callable[[Timing], bool],
-    shaper: Shaper | None,
+    shaper: Shaper | ShaperFactory | None,
     low: float,
     member: Timing | None,
     high: float,
