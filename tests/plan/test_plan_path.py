@@ -20,14 +20,14 @@ from sloshkit.model.modal import SloshModel, equivalent_model
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path import path_from_poses, path_from_waypoints
+from sloshkit.plan.path_limits import kinematics
 from sloshkit.plan.path_planner import linear_verifier, plan_path
+from sloshkit.plan.path_screen import linear_screen
 from sloshkit.plan.spatial import (
     CartesianLimits,
     PathProblem,
     PoseSamples,
     SpatialSloshLimits,
-    kinematics,
-    linear_screen,
     sample_path,
 )
 from sloshkit.plan.tilt import tilt_compensated

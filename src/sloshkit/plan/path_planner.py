@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.shaping import Shaper
+from sloshkit.plan.path_limits import machine_stretch, machine_violations, path_deviation
 from sloshkit.plan.path_result import (
     PathCandidate,
     PathPlanResult,
@@ -41,6 +42,7 @@ from sloshkit.plan.path_result import (
     verified_candidate,
     verify,
 )
+from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
 from sloshkit.plan.retime import (
     ShaperFactory,
@@ -48,16 +50,7 @@ from sloshkit.plan.retime import (
     curve_shaper,
     first_mode_shaper,
 )
-from sloshkit.plan.spatial import (
-    PathProblem,
-    PoseSamples,
-    linear_screen,
-    machine_stretch,
-    machine_violations,
-    path_deviation,
-    sample_path,
-    screen_ok,
-)
+from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
 from sloshkit.plan.tilt import tilt_compensated
 from sloshkit.plan.timing import Timing
 from sloshkit.plan.transcription import transcribed_timing

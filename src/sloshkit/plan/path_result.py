@@ -19,15 +19,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
-from sloshkit.plan.spatial import (
-    PathProblem,
-    PoseSamples,
+from sloshkit.plan.path_limits import (
     kinematics,
-    linear_screen,
     machine_stretch,
     machine_violations,
     path_deviation,
 )
+from sloshkit.plan.path_screen import linear_screen
+from sloshkit.plan.spatial import PathProblem, PoseSamples
 from sloshkit.results import ResultMixin
 
 FloatArray = NDArray[np.float64]

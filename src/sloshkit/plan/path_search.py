@@ -17,14 +17,9 @@ from collections.abc import Callable
 import numpy as np
 
 from sloshkit.motion.shaping import Shaper
+from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.retime import ShaperFactory, family_member
-from sloshkit.plan.spatial import (
-    PathProblem,
-    PoseSamples,
-    linear_screen,
-    sample_path,
-    screen_ok,
-)
+from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
 from sloshkit.plan.timing import Timing
 
 
@@ -184,8 +179,8 @@ def fastest_capped(
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, SpatialSloshLimits,
-    ...                                   kinematics)
+    >>> from sloshkit.plan.path_limits import kinematics
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None, sample_period_s=0.01)

@@ -34,13 +34,8 @@ from scipy.interpolate import CubicHermiteSpline
 
 from sloshkit.motion.shaping import Shaper, zv, zvd
 from sloshkit.plan.path import Path
-from sloshkit.plan.spatial import (
-    PathProblem,
-    PoseSamples,
-    _continuous,
-    machine_violations,
-    sample_path,
-)
+from sloshkit.plan.path_limits import machine_violations
+from sloshkit.plan.spatial import PathProblem, PoseSamples, _continuous, sample_path
 from sloshkit.plan.timing import Timing, _fine_grid, box_smoothed, shaped_timing
 
 FloatArray = NDArray[np.float64]

@@ -27,15 +27,9 @@ from scipy.spatial.transform import Rotation
 
 from sloshkit.motion.laws import Motion, _piecewise_constant_jerk
 from sloshkit.plan.path import Path
-from sloshkit.plan.spatial import (
-    GRAVITY,
-    SEARCH_MARGIN,
-    PathProblem,
-    linear_screen,
-    machine_violations,
-    sample_path,
-    screen_ok,
-)
+from sloshkit.plan.path_limits import machine_violations
+from sloshkit.plan.path_screen import linear_screen, screen_ok
+from sloshkit.plan.spatial import GRAVITY, SEARCH_MARGIN, PathProblem, sample_path
 from sloshkit.plan.timing import FINE_STEP_S, Timing
 
 FloatArray = NDArray[np.float64]
@@ -348,7 +342,7 @@ def transcribed_timing(problem: PathProblem, warm: Any) -> tuple[Timing, str] | 
     The transcription's slosh limits hold at its shooting nodes of an RK4 model with the path
     quantities interpolated between nodes; the sampled export can break them between and at
     the nodes (by 4 % peak and 20 % residual on the measured TRD path). So the export of each
-    solution is screened (`sloshkit.plan.spatial.linear_screen` on the controller grid, with
+    solution is screened (`sloshkit.plan.path_screen.linear_screen` on the controller grid, with
     the search margin): when a slosh limit is broken, that limit is tightened by the ratio of
     the screened value to the allowed one and the problem is solved again, warm-started from
     the previous solution, at most `TIGHTENING_STEPS` times.
