@@ -181,6 +181,94 @@ def text_list(
     return tuple(value)
 
 
+def number_list(
+    table: dict[str, Any], name: str, key: str, length: int | None = None
+) -> list[float] | None:
+    """A list of finite numbers (ints or floats; bools, text and NaN refused); None if absent.
+
+    Parameters
+    ----------
+    table : dict
+        The table holding the key.
+    name : str
+        The table's name (``""`` at the top level), for the message.
+    key : str
+        The key.
+    length : int, optional
+        Required number of items.
+
+    Returns
+    -------
+    list of float or None
+
+    Examples
+    --------
+    >>> number_list({"yaw_deg": [0, 90.0]}, "", "yaw_deg")
+    [0.0, 90.0]
+    """
+    if key not in table:
+        return None
+    value = table[key]
+    if not isinstance(value, list):
+        raise InputError(where(name, key), _shown(value), "must be a list of numbers")
+    if length is not None and len(value) != length:
+        raise InputError(where(name, key), _shown(value), f"must hold {length} numbers")
+    numbers = []
+    for index, item in enumerate(value):
+        if isinstance(item, bool) or not isinstance(item, int | float):
+            raise InputError(
+                f"{where(name, key)} item {index + 1}", _shown(item), "must be a number"
+            )
+        if not math.isfinite(item):
+            raise InputError(f"{where(name, key)} item {index + 1}", item, "must be finite")
+        numbers.append(float(item))
+    return numbers
+
+
+def number_rows(
+    table: dict[str, Any], name: str, key: str, width: int, most: int = 100_000
+) -> list[list[float]] | None:
+    """A list of rows of ``width`` finite numbers, e.g. ``waypoints = [[0, 0, 0], ...]``.
+
+    Parameters
+    ----------
+    table : dict
+        The table holding the key.
+    name : str
+        The table's name (``""`` at the top level).
+    key : str
+        The key.
+    width : int
+        Numbers per row.
+    most : int
+        Largest number of rows accepted.
+
+    Returns
+    -------
+    list of list of float or None
+        None if the key is absent.
+
+    Examples
+    --------
+    >>> number_rows({"waypoints": [[0, 0, 0], [0.1, 0, 0]]}, "", "waypoints", 3)
+    [[0.0, 0.0, 0.0], [0.1, 0.0, 0.0]]
+    """
+    if key not in table:
+        return None
+    value = table[key]
+    if not isinstance(value, list):
+        raise InputError(where(name, key), _shown(value), f"must be a list of [{width} numbers]")
+    if len(value) > most:
+        raise InputError(where(name, key), f"{len(value)} rows", f"at most {most:,} rows")
+    rows = []
+    for index, row in enumerate(value):
+        label = f"{where(name, key)} row {index + 1}"
+        if not isinstance(row, list) or len(row) != width:
+            raise InputError(label, _shown(row), f"must be a list of {width} numbers")
+        rows.append(number_list({key: row}, name, key, width) or [])
+    return rows
+
+
 def _scalar(value: Any, name: str, key: str, expected: str) -> Any:
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         raise InputError(where(name, key), _shown(value), f"must be {expected}")
