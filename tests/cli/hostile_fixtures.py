@@ -23,7 +23,9 @@ def _pose_rows(count: int = 31, duration_s: float = 0.6, distance_m: float = 0.0
     """A rest-to-rest quintic move along x, container upright (identity quaternion)."""
     t = np.linspace(0.0, duration_s, count)
     x = distance_m * _quintic(t / duration_s)
-    return [[f"{a:.6f}", f"{b:.9f}", "0", "0", "0", "0", "0", "1"] for a, b in zip(t, x)]
+    return [
+        [f"{a:.6f}", f"{b:.9f}", "0", "0", "0", "0", "0", "1"] for a, b in zip(t, x, strict=True)
+    ]
 
 
 def _csv(header: str, rows: list[list], separator: str = ",") -> str:
@@ -38,8 +40,7 @@ def _with(rows: list[list], row: int, column: int, value: str) -> list[list]:
 
 def _pose_files() -> dict[str, str]:
     rows = _pose_rows()
-    rpy = "t,x,y,z,roll,pitch,yaw"
-    rpy_rows = [r[:4] + ["0", "0", "0"] for r in rows]
+    rpy_rows = [[*r[:4], "0", "0", "0"] for r in rows]
     backwards = [list(r) for r in rows]
     backwards[10][0], backwards[11][0] = backwards[11][0], backwards[10][0]
     duplicate = [list(r) for r in rows]
@@ -54,7 +55,7 @@ def _pose_files() -> dict[str, str]:
         "p_nan_q.csv": _csv(POSE_HEADER, _with(rows, 5, 7, "NaN")),
         "p_inf_z.csv": _csv(POSE_HEADER, _with(rows, 7, 3, "inf")),
         "p_zero_q.csv": _csv(POSE_HEADER, _with(rows, 9, 7, "0")),
-        "p_nonunit_q.csv": _csv(POSE_HEADER, [r[:7] + ["2"] for r in rows]),
+        "p_nonunit_q.csv": _csv(POSE_HEADER, [[*r[:7], "2"] for r in rows]),
         "p_backwards_t.csv": _csv(POSE_HEADER, backwards),
         "p_dup_t.csv": _csv(POSE_HEADER, duplicate),
         "p_one_row.csv": _csv(POSE_HEADER, rows[:1]),
@@ -69,7 +70,8 @@ def _pose_files() -> dict[str, str]:
         "p_no_time.csv": _csv("x,y,z,qx,qy,qz,qw", [r[1:] for r in rows]),
         "p_text.csv": _csv(POSE_HEADER, _with(rows, 4, 2, "abc")),
         "p_ragged.csv": _csv(POSE_HEADER, [*rows[:3], rows[3][:5], *rows[4:]]),
-        "p_mixed_separators.csv": "t;x;y;z;qx;qy;qz;qw\n" + "".join(",".join(r) + "\n" for r in rows),
+        "p_mixed_separators.csv": "t;x;y;z;qx;qy;qz;qw\n"
+        + "".join(",".join(r) + "\n" for r in rows),
         "p_semicolon_bad.csv": _csv("t;x;y;z;qx;qy;qz;qw", _with(rows, 3, 1, "1,2,3"), ";"),
         "p_huge_position.csv": _csv(POSE_HEADER, _with(rows, 15, 1, "1e300")),
         "p_long.csv": _csv(POSE_HEADER, long_rows),
@@ -99,7 +101,7 @@ def _waypoint_files() -> dict[str, str]:
         "w_bool.toml": "waypoints = [[0, 0, 0], [true, 0, 0]]\n",
         "w_yaw_length.toml": "waypoints = [[0, 0, 0], [0.1, 0, 0]]\nyaw_deg = [0, 1, 2]\n",
         "w_yaw_text.toml": 'waypoints = [[0, 0, 0], [0.1, 0, 0]]\nyaw_deg = "abc"\n',
-        "w_missing.toml": 'path = [[0, 0, 0], [0.1, 0, 0]]\n',
+        "w_missing.toml": "path = [[0, 0, 0], [0.1, 0, 0]]\n",
         "w_invalid.toml": "waypoints = [[0, 0, 0\n",
         "w_deep.toml": "waypoints = " + "[" * 5000 + "]" * 5000 + "\n",
         "w_ragged.toml": "waypoints = [[0, 0, 0], [0.1, 0, 0, 0]]\n",
@@ -113,7 +115,7 @@ def _plan_files() -> dict[str, str]:
     v = 0.5 * (30 * u**2 - 60 * u**3 + 30 * u**4)
     a = 0.5 * (60 * u - 180 * u**2 + 120 * u**3)
     header = "t_s,position_m,velocity_m_s,acceleration_m_s2"
-    rows = [[f"{c:.9g}" for c in row] for row in zip(t, x, v, a)]
+    rows = [[f"{c:.9g}" for c in row] for row in zip(t, x, v, a, strict=True)]
     backwards = [list(r) for r in rows]
     backwards[50][0] = "0.1"
     return {
@@ -181,7 +183,5 @@ def make_spatial_fixtures(folder: Path) -> None:
             (folder / name).write_text(text, encoding="utf-8")
     (folder / "p_binary.csv").write_bytes(b"t,x,y,z,qx,qy,qz,qw\n" + bytes(range(256)) * 8)
     (folder / "p_latin1.csv").write_bytes(
-        ("t [\u00b5s],x,y,z,qx,qy,qz,qw\n" + "0,0,0,0,0,0,0,1\n1,0,0,0,0,0,0,1\n").encode(
-            "latin-1"
-        )
+        ("t [\u00b5s],x,y,z,qx,qy,qz,qw\n" + "0,0,0,0,0,0,0,1\n1,0,0,0,0,0,0,1\n").encode("latin-1")
     )

@@ -16,10 +16,10 @@ from rich import box
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.budget import require_samples
 from sloshkit.cli import messages
 from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.options import print_json
-from sloshkit.budget import require_samples
 from sloshkit.errors import InputError
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_bounded, parse_quantity
