@@ -62,7 +62,7 @@ def _read_applied_motion(
         # the pose-file reader checks rows, units, time and quaternions, naming --motion-file
         poses = read_pose_file(path, name=str(path), parameter="motion_file")
         time, position = poses.time_s, poses.position_m
-        with naming("motion_file", path):
+        with naming("motion_file", path, keep=("motion_axis",)):
             applied = applied_from_poses(
                 time, position, poses.quaternion_xyzw, axis, name=str(path)
             )

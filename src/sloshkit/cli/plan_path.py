@@ -41,7 +41,13 @@ def _angular(text: str | None, power: int, name: str) -> float | None:
     if text is None:
         return None
     kind = "angular_velocity" if power == 1 else "angular_acceleration"
-    return parse_bounded(text, kind, name, 0.0, math.inf)
+    try:
+        return parse_bounded(text, kind, name, 0.0, math.inf)
+    except InputError as error:
+        example = "90deg/s" if power == 1 else "300deg/s^2"
+        raise InputError(
+            name, text, f"must be an angular rate > 0, e.g. {example}", error.valid
+        ) from None
 
 
 def _reference_timing(time_s: Any, positions: Any, quaternions: Any, length_m: float) -> Timing:

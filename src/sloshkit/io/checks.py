@@ -18,7 +18,7 @@ FloatArray = NDArray[np.float64]
 
 
 @contextlib.contextmanager
-def naming(parameter: str, path: str | Path) -> Iterator[None]:
+def naming(parameter: str, path: str | Path, keep: tuple[str, ...] = ()) -> Iterator[None]:
     """Name the option a file came from in every `InputError` raised while it is read.
 
     Errors found inside a file (a NaN in a column, a time stamp that goes back, a unit that
@@ -33,6 +33,8 @@ def naming(parameter: str, path: str | Path) -> Iterator[None]:
         The option or argument that named the file.
     path : str or Path
         The file.
+    keep : tuple of str
+        Parameters whose errors pass unchanged (other options checked inside the block).
 
     Yields
     ------
@@ -51,13 +53,14 @@ def naming(parameter: str, path: str | Path) -> Iterator[None]:
     try:
         yield
     except InputError as error:
-        if error.parameter == parameter:
+        if error.parameter == parameter or error.parameter in keep:
             raise
-        detail = error.value if isinstance(error.value, str) else repr(error.value)
-        where = detail if error.parameter == "file" else f"{error.parameter} {detail}"
-        if where.split(":")[0] == str(path):  # the file's own name (``path:row``) says no more
-            where = where[len(str(path)) :].lstrip(":")
-            where = f"data row {where}" if where else ""
+        detail = error.value if isinstance(error.value, str) else str(error.value)
+        label = "" if error.parameter == "file" else error.parameter
+        if detail.startswith(str(path)):  # the file's own name (``path:row``) says no more
+            rest = detail[len(str(path)) :].lstrip(":")
+            detail, label = (f"data row {rest}" if rest else ""), ""
+        where = " ".join(part for part in (label, detail) if part)
         raise InputError(
             parameter, str(path), f"{where}: {error.valid}" if where else error.valid, error.hint
         ) from None
@@ -95,7 +98,7 @@ def require_finite_rows(
             raise InputError(
                 parameter,
                 str(path),
-                f"column {name!r} holds {data[row, index]!r} in data row {row + 1}; "
+                f"column {name!r} holds {float(data[row, index])} in data row {row + 1}; "
                 "every value must be a finite number",
             )
 

@@ -216,7 +216,7 @@ def parse_quantity(text: str | float, kind: str, parameter: str) -> float:
         if key not in table:
             known = next((k for k, units in UNITS.items() if key in units), None)
             valid = (
-                f"is a {known}, not a {kind} (e.g. {example!r})"
+                f"is {_article(known)} {known}, not {_article(kind)} {kind} (e.g. {example!r})"
                 if known
                 else f"unknown {kind} unit {unit!r}; use e.g. {example!r} or "
                 + ", ".join(list(table)[:6])
@@ -224,6 +224,10 @@ def parse_quantity(text: str | float, kind: str, parameter: str) -> float:
             raise InputError(parameter, text, valid, _hint(stripped))
         factor = table[key]
     return _checked(mantissa * factor, text, parameter, kind, nonzero=_nonzero(match))
+
+
+def _article(word: str) -> str:
+    return "an" if word[:1] in "aeiou" else "a"
 
 
 def _hint(text: str) -> str:
