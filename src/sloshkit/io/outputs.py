@@ -211,7 +211,25 @@ def staged_folder(target: Path | str) -> Iterator[Path]:
 
 
 def mark_folder(folder: Path | str) -> None:
-    """Leave the `MARKER` in a folder sloshkit wrote (so a rerun may rewrite it)."""
+    """Leave the `MARKER` in a folder sloshkit wrote (so a rerun may rewrite it).
+
+    Parameters
+    ----------
+    folder : Path or str
+        The output folder (nothing happens if it does not exist).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> mark_folder(folder)
+    >>> (folder / MARKER).exists()
+    True
+    """
     marker = Path(folder) / MARKER
     if Path(folder).is_dir() and not marker.exists():
         marker.write_text("written by sloshkit; this folder may be rewritten\n")

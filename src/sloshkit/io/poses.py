@@ -42,6 +42,15 @@ MAX_POSITION_M = 1e6
 def split_column_name(name: str) -> tuple[str, str | None]:
     """(base name, unit) of a header cell: ``"x [mm]"`` -> ("x", "mm"), ``"t_ms"`` -> ("t", "ms").
 
+    Parameters
+    ----------
+    name : str
+        A header cell.
+
+    Returns
+    -------
+    tuple of (str, str or None)
+
     Examples
     --------
     >>> split_column_name("t [ms]"), split_column_name("roll_deg"), split_column_name("qw")

@@ -25,6 +25,24 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
     headers, vectors in parentheses) are read too: parentheses are dropped, vector components
     become separate columns, and a last comment line naming the columns is used as the header.
     Raises `InputError` for a missing or empty file or non-numeric cells.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (a UTF-8 byte-order mark is removed).
+
+    Returns
+    -------
+    tuple of (list of str, ndarray)
+        The column names and the data, one row per data line (empty cells are NaN).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> file = pathlib.Path(tempfile.mkdtemp()) / "a.csv"
+    >>> _ = file.write_text("t;x [mm]\\n0;1,5\\n")
+    >>> read_table(file)
+    (['t', 'x [mm]'], array([[0. , 1.5]]))
     """
     source = Path(path)
     if not source.is_file():
@@ -77,7 +95,29 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
 
 
 def select_column(header: list[str], data: FloatArray, column: str, parameter: str) -> FloatArray:
-    """Column by name, or by 0-based index given as text; `InputError` lists the names."""
+    """Column by name, or by 0-based index given as text; `InputError` lists the names.
+
+    Parameters
+    ----------
+    header : list of str
+        The column names.
+    data : ndarray
+        The table.
+    column : str
+        A name or an index (``"1"``, ``"-1"``).
+    parameter : str
+        The option that named the column, for the message.
+
+    Returns
+    -------
+    ndarray
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> select_column(["t", "x"], np.array([[0.0, 2.0]]), "1", "signal_column").tolist()
+    [2.0]
+    """
     if column in header:
         return np.asarray(data[:, header.index(column)], dtype=float)
     if column.lstrip("-").isdigit() and -len(header) <= int(column) < len(header):
@@ -86,7 +126,24 @@ def select_column(header: list[str], data: FloatArray, column: str, parameter: s
 
 
 def column_name(header: list[str], column: str) -> str:
-    """The header name of a column given by name or 0-based index."""
+    """The header name of a column given by name or 0-based index.
+
+    Parameters
+    ----------
+    header : list of str
+        The column names.
+    column : str
+        A name or an index.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> column_name(["t", "eta [mm]"], "1")
+    'eta [mm]'
+    """
     if column in header:
         return column
     if column.lstrip("-").isdigit() and -len(header) <= int(column) < len(header):
