@@ -247,7 +247,7 @@ def all_or_nothing(*paths: Path | str | None) -> Iterator[None]:
     A command that writes several files (a CSV, then a figure; an exported program, then its
     round-trip check) runs inside this block: on any exception (an `InputError` found late, an
     interruption) files that did not exist before are removed and files that did are restored
-    to their previous content (kept as a hard link beside them, so nothing is copied).
+    to their previous content (a copy kept beside them while the block runs).
 
     Parameters
     ----------
@@ -280,10 +280,8 @@ def all_or_nothing(*paths: Path | str | None) -> Iterator[None]:
                 handle, name = tempfile.mkstemp(prefix=f".{target.name}.keep-", dir=target.parent)
                 os.close(handle)
                 os.unlink(name)
-                try:
-                    os.link(target, name)
-                except OSError:  # no hard links here: keep a copy
-                    shutil.copy2(target, name)
+                # a copy, not a hard link: some writers (matplotlib) write in place
+                shutil.copy2(target, name)
                 backups[target] = Path(name)
         yield
     except BaseException:
