@@ -30,15 +30,14 @@ from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.checks import naming, require_finite_rows
 from sloshkit.io.models import write_model_file
+from sloshkit.io.motions import check_plausible_record, read_motion_file
 from sloshkit.io.outputs import check_file
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.tables import (
     TIME_NAMES,
-    check_plausible_record,
     column_name,
     column_si,
     find_column,
-    read_motion_file,
     read_table,
     select_column,
     unit_from_name,
