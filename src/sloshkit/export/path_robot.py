@@ -61,7 +61,7 @@ def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple
     --------
     >>> from sloshkit.export.kinematics import load_arm
     >>> arm = load_arm("ur5e")
-    >>> t = np.arange(51) * 0.02
+    >>> t = np.arange(11) * 0.1
     >>> x = -0.4 + 0.1 * (t / t[-1]) ** 2 * (3 - 2 * t / t[-1])
     >>> poses = PoseSamples(t, np.c_[x, -0.13 + 0 * t, 0.3 + 0 * t],
     ...                     np.tile([0.0, 0.0, 0.0, 1.0], (t.size, 1)))

@@ -380,7 +380,7 @@ def plan_path(
     >>> problem = sk.PathProblem(
     ...     sk.path_from_waypoints([[0, 0, 0], [0.3, 0, 0], [0.3, 0.2, 0]], blend_radius_m=0.05),
     ...     sk.CartesianLimits(2.0, 10.0, 100.0), sk.SpatialSloshLimits(0.01, 0.002), model,
-    ...     sample_period_s=0.01)
+    ...     sample_period_s=0.02)
     >>> result = sk.plan_path(problem, "shaped", verifier=linear_verifier)
     >>> result.feasible, result.chosen.method, float(result.columns()["y"][-1])
     (True, 'shaped', 0.2)
