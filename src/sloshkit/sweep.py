@@ -127,30 +127,12 @@ class SweepResult(ResultMixin):
         return mask
 
     def rows(self) -> list[dict[str, object]]:
-        """One dict per case with the CSV columns."""
-        safe = self.safe()
-        peak_deg, residual_deg = self.peak_angle_deg, self.residual_angle_deg
-        rows: list[dict[str, object]] = []
-        for i, law in enumerate(self.laws):
-            for j, height in enumerate(self.fill_heights_m):
-                for k in range(self.durations_s.shape[1]):
-                    rows.append(
-                        {
-                            "law": law,
-                            "fill_height_m": float(height),
-                            "duration_s": float(self.durations_s[i, k]),
-                            "omega_1_rad_s": float(self.omega_1_rad_s[j]),
-                            "peak_angle_deg": float(peak_deg[i, j, k]),
-                            "residual_angle_deg": float(residual_deg[i, j, k]),
-                            "peak_wall_elevation_m": float(self.peak_wall_elevation_m[i, j, k]),
-                            "residual_wall_elevation_m": float(
-                                self.residual_wall_elevation_m[i, j, k]
-                            ),
-                            "peak_acceleration_m_s2": float(self.peak_acceleration_m_s2[i, k]),
-                            "safe": bool(safe[i, j, k]),
-                        }
-                    )
-        return rows
+        """One dict per case with the CSV columns (Python floats, bools and strings)."""
+        columns = self.columns()
+        return [
+            dict(zip(columns, values, strict=True))
+            for values in zip(*(column.tolist() for column in columns.values()), strict=True)
+        ]
 
     def columns(self) -> dict[str, NDArray[Any]]:
         """The CSV columns as flat arrays, one entry per case (the order of `rows`)."""
@@ -174,9 +156,9 @@ class SweepResult(ResultMixin):
 
     def to_csv(self, path: str | Path) -> Path:
         """Write the cases as CSV (the columns of `rows`), atomically, from the arrays:
-        numbers in their shortest round-trip form, as `rows` would write them."""
+        numbers in their shortest round-trip form (``str`` of each value, as `rows` holds it)."""
         columns = self.columns()
-        text = [column.astype(str) for column in columns.values()]
+        text = [_as_text(column) for column in columns.values()]
         lines = [",".join(columns), *map(",".join, zip(*text, strict=True))]
         with atomic_open(path, "w") as stream:
             stream.write("\n".join(lines) + "\n")
@@ -191,18 +173,21 @@ class SweepResult(ResultMixin):
         return {**self.summary(), "rows": self.rows()}
 
     def shortest_safe(self) -> list[dict[str, object]]:
-        """Per fill height, the shortest safe duration over all laws (None if none is safe)."""
-        safe = self.safe()
+        """Per fill height, the shortest safe duration over all laws (None if none is safe);
+        of laws equally short, the first by name."""
+        masked = np.where(self.safe(), self.durations_s[:, None, :], np.inf).min(axis=2)
         best: list[dict[str, object]] = []
         for j, height in enumerate(self.fill_heights_m):
-            candidates = [
-                (float(self.durations_s[i, k]), law)
-                for i, law in enumerate(self.laws)
-                for k in range(self.durations_s.shape[1])
-                if safe[i, j, k]
-            ]
-            duration, law = min(candidates) if candidates else (None, None)
-            best.append({"fill_height_m": float(height), "duration_s": duration, "law": law})
+            shortest = float(masked[:, j].min())
+            found = math.isfinite(shortest)
+            law = min(law for i, law in enumerate(self.laws) if masked[i, j] == shortest)
+            best.append(
+                {
+                    "fill_height_m": float(height),
+                    "duration_s": shortest if found else None,
+                    "law": law if found else None,
+                }
+            )
         return best
 
     def summary(self) -> dict[str, object]:
@@ -430,6 +415,18 @@ def _check_sweep_size(
         3,
         "velocity samples per block",
     )
+
+
+def _as_text(column: NDArray[Any]) -> list[str]:
+    """``str`` of every value of ``column`` (as `SweepResult.rows` holds it), each distinct float
+    (bit pattern) formatted once: the fill heights, durations and accelerations repeat."""
+    if column.dtype.kind != "f":
+        return list(map(str, column.tolist()))
+    _, first, inverse = np.unique(column.view(np.int64), return_index=True, return_inverse=True)
+    if 2 * first.size > column.size:
+        return list(map(str, column.tolist()))
+    words = np.array(list(map(str, column[first].tolist())), dtype=object)
+    return list(words[inverse.ravel()])
 
 
 def linspace_inclusive(start: float, stop: float, count: int) -> FloatArray:
