@@ -44,7 +44,7 @@ PLOTS: dict[str, str] = {
     "sloshkit.sim.spatial_response.SpatialResponse": (
         "sloshkit.plotting.spatial:plot_spatial_response"
     ),
-    "sloshkit.sweep.SweepResult": "sloshkit.plotting.sweep:plot_sweep_map",
+    "sloshkit.sweep.result.SweepResult": "sloshkit.plotting.sweep:plot_sweep_map",
     "sloshkit.calibration.result.CalibrationResult": (
         "sloshkit.plotting.calibration:plot_calibration"
     ),

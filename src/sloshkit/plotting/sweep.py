@@ -49,8 +49,10 @@ def plot_sweep_map(
     Examples
     --------
     >>> import sloshkit as sk
-    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
-    >>> sweep = sk.run_sweep(model, ["quintic", "septic"], 0.1, [0.8, 1.2, 1.6])
+    >>> from sloshkit.model.modal import model_family
+    >>> family = model_family(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"))
+    >>> sweep = sk.run_sweep(family, ["quintic", "septic"], 0.1, [0.8, 1.2, 1.6],
+    ...                      fill_heights_m=[0.03, 0.04])
     >>> len(plot_sweep_map(sweep, "residual_angle_deg").axes)  # two panels and the colour bar
     3
     """
