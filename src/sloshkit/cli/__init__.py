@@ -8,7 +8,8 @@ Start-up stays short because nothing heavy is imported before it is needed: `mai
 the module of the command being run, and ``sloshkit --help`` is drawn from `COMMANDS` (the
 short help of every command, checked against the commands themselves by the tests) without
 importing any command module. ``from sloshkit.cli import app`` gives the full application (every
-command module imported), as the tests use it.
+command module imported), as the tests use it. `main` also lets option values that already have
+their option's plain type through without typer's pydantic validation (`pass_plain_values`).
 """
 
 from __future__ import annotations
@@ -100,8 +101,78 @@ def _help_app() -> Any:
     return stand_in
 
 
+def _plain_type(annotation: Any) -> type | None:
+    """``str``, ``int`` or ``float`` for an annotation that is one of them (or it | None)."""
+    import types
+    import typing
+
+    if typing.get_origin(annotation) in (typing.Union, types.UnionType):
+        rest = [arg for arg in typing.get_args(annotation) if arg is not type(None)]
+        annotation = rest[0] if len(rest) == 1 else None
+    return annotation if annotation in (str, int, float) else None
+
+
+def _needs_no_validation(parameter: Any, value: Any) -> bool:
+    """True when typer's validation would return ``value`` unchanged: an optional,
+    single-valued option without parser, bounds or choices whose value is None or already of
+    the option's plain type (a default, or the string given to a string option)."""
+    descriptor = getattr(parameter, "type_descriptor", None)
+    info = getattr(descriptor, "parameter_info", None)
+    if info is None or parameter.required or parameter.nargs != 1 or parameter.multiple:
+        return False
+    if getattr(info, "parser", None) is not None or getattr(info, "click_type", None) is not None:
+        return False
+    if getattr(info, "min", None) is not None or getattr(info, "max", None) is not None:
+        return False
+    return value is None or type(value) is _plain_type(descriptor.annotation)
+
+
+def pass_plain_values() -> bool:
+    """Let option values that need no validation through typer without pydantic.
+
+    typer validates every option value with a pydantic ``TypeAdapter`` built on first use;
+    importing pydantic and building the adapters is about a third of ``sloshkit model``. A
+    value that is None or already has its option's plain type (``str``, ``int``, ``float``),
+    such as a default or the text given to one of sloshkit's unit-bearing string options,
+    comes out of that validation unchanged, so it is passed through; every other value (a
+    number typed on the command line, a path, a choice) takes typer's own path, with its own
+    error messages.
+
+    Returns
+    -------
+    bool
+        Whether the pass-through is installed (False when this typer has no such validation).
+
+    Examples
+    --------
+    >>> pass_plain_values()
+    True
+    """
+    try:
+        from typer.core import _TyperParameter
+    except ImportError:  # pragma: no cover - typer without pydantic validation
+        return False
+    validate = _TyperParameter.__dict__.get("process_value")
+    if validate is None or not hasattr(_TyperParameter, "get_runtime_param"):
+        return False  # pragma: no cover - another typer: leave it alone
+    if getattr(validate, "passes_plain_values", False):
+        return True
+
+    def process_value(self: Any, ctx: Any, value: Any) -> Any:
+        if not _needs_no_validation(self, value):
+            return validate(self, ctx, value)
+        if self.callback is not None:
+            value = self.callback(ctx, self, value)
+        return value
+
+    process_value.passes_plain_values = True  # type: ignore[attr-defined]
+    _TyperParameter.process_value = process_value
+    return True
+
+
 def main() -> None:
     """Entry point: import the command being run (or none, for the root help) and run it."""
+    pass_plain_values()
     words = [word for word in sys.argv[1:] if not word.startswith("-")]
     if words and words[0] in COMMANDS:
         importlib.import_module(COMMANDS[words[0]][0])
@@ -113,4 +184,4 @@ def main() -> None:
         _app_module.main()
 
 
-__all__ = ["COMMANDS", "app", "load_commands", "main"]
+__all__ = ["COMMANDS", "app", "load_commands", "main", "pass_plain_values"]
