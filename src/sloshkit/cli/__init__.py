@@ -102,29 +102,44 @@ def _help_app() -> Any:
 
 
 def _plain_type(annotation: Any) -> type | None:
-    """``str``, ``int`` or ``float`` for an annotation that is one of them (or it | None)."""
+    """``str``, ``int``, ``float`` or ``Path`` for an annotation that is one of them (or it |
+    None)."""
     import types
     import typing
+    from pathlib import Path
 
     if typing.get_origin(annotation) in (typing.Union, types.UnionType):
         rest = [arg for arg in typing.get_args(annotation) if arg is not type(None)]
         annotation = rest[0] if len(rest) == 1 else None
-    return annotation if annotation in (str, int, float) else None
+    return annotation if annotation in (str, int, float, Path) else None
 
 
-def _needs_no_validation(parameter: Any, value: Any) -> bool:
-    """True when typer's validation would return ``value`` unchanged: an optional,
+def _validated_plainly(parameter: Any, ctx: Any, value: Any) -> tuple[bool, Any]:
+    """(True, what typer's validation returns) without pydantic, for an optional,
     single-valued option without parser, bounds or choices whose value is None or already of
-    the option's plain type (a default, or the string given to a string option)."""
+    the option's plain type (a default, or the text given to a string option), or a text given
+    to a path option (converted as pydantic does, ``Path(text)``, then typer's own path checks);
+    (False, None) for anything else."""
     descriptor = getattr(parameter, "type_descriptor", None)
     info = getattr(descriptor, "parameter_info", None)
     if info is None or parameter.required or parameter.nargs != 1 or parameter.multiple:
-        return False
+        return False, None
     if getattr(info, "parser", None) is not None or getattr(info, "click_type", None) is not None:
-        return False
+        return False, None
     if getattr(info, "min", None) is not None or getattr(info, "max", None) is not None:
-        return False
-    return value is None or type(value) is _plain_type(descriptor.annotation)
+        return False, None
+    plain = _plain_type(descriptor.annotation)
+    if value is None or (plain is not None and type(value) is plain):
+        return True, value
+    if plain is not None and plain.__name__ == "Path" and type(value) is str:
+        if getattr(info, "path_type", None) is not None:
+            return False, None
+        try:
+            from typer._param_types import coerce_cli_path
+        except ImportError:  # pragma: no cover - another typer
+            return False, None
+        return True, coerce_cli_path(plain(value), info, path_type=plain, param=parameter, ctx=ctx)
+    return False, None
 
 
 def pass_plain_values() -> bool:
@@ -134,9 +149,10 @@ def pass_plain_values() -> bool:
     importing pydantic and building the adapters is about a third of ``sloshkit model``. A
     value that is None or already has its option's plain type (``str``, ``int``, ``float``),
     such as a default or the text given to one of sloshkit's unit-bearing string options,
-    comes out of that validation unchanged, so it is passed through; every other value (a
-    number typed on the command line, a path, a choice) takes typer's own path, with its own
-    error messages.
+    comes out of that validation unchanged, so it is passed through; a path given as text is
+    converted as pydantic converts it (``Path(text)``) and checked by typer's own path checks.
+    Every other value (a number typed on the command line, a choice) takes typer's own path,
+    with its own error messages.
 
     Returns
     -------
@@ -159,8 +175,10 @@ def pass_plain_values() -> bool:
         return True
 
     def process_value(self: Any, ctx: Any, value: Any) -> Any:
-        if not _needs_no_validation(self, value):
+        plain, checked = _validated_plainly(self, ctx, value)
+        if not plain:
             return validate(self, ctx, value)
+        value = checked
         if self.callback is not None:
             value = self.callback(ctx, self, value)
         return value
