@@ -120,7 +120,7 @@ def _validated_plainly(parameter: Any, ctx: Any, value: Any) -> tuple[bool, Any]
     the option's plain type (a default, or the text given to a string option), or a text given
     to a path option (converted as pydantic does, ``Path(text)``, then typer's own path checks);
     (False, None) for anything else."""
-    descriptor = getattr(parameter, "type_descriptor", None)
+    descriptor: Any = getattr(parameter, "type_descriptor", None)
     info = getattr(descriptor, "parameter_info", None)
     if info is None or parameter.required or parameter.nargs != 1 or parameter.multiple:
         return False, None
@@ -184,7 +184,7 @@ def pass_plain_values() -> bool:
         return value
 
     process_value.passes_plain_values = True  # type: ignore[attr-defined]
-    _TyperParameter.process_value = process_value
+    setattr(_TyperParameter, "process_value", process_value)  # noqa: B010 - typed as a method
     return True
 
 
