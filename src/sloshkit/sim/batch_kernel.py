@@ -23,6 +23,7 @@ state at the first sample t >= T scaled back to T).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -212,12 +213,46 @@ def kernel_rows(model: SloshModel, sample_period_s: float) -> FloatArray:
     >>> kernel_rows(model, 1e-3).shape
     (3, 10)
     """
-    omega = np.array([mode.omega_rad_s for mode in model.modes])
-    zeta = np.array([mode.damping_ratio for mode in model.modes])
-    length = np.array([mode.length_m for mode in model.modes])
+    return kernel_rows_of([model], sample_period_s)[0]
+
+
+def kernel_rows_of(models: Sequence[SloshModel], sample_period_s: float) -> list[FloatArray]:
+    """`kernel_rows` of many models with one vectorised evaluation of all their exponentials
+    (a sweep's fill heights).
+
+    Parameters
+    ----------
+    models : sequence of SloshModel
+        The models.
+    sample_period_s : float
+        dt [s].
+
+    Returns
+    -------
+    list of numpy.ndarray
+        One (modes, 10) array per model, equal to ``kernel_rows(model, dt)``.
+
+    References
+    ----------
+    Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 3rd ed. (1998) §6.3.2.
+
+    Examples
+    --------
+    >>> from sloshkit import UprightCylinder, get_liquid
+    >>> from sloshkit.model.modal import model_family
+    >>> family = model_family(UprightCylinder(0.0205), get_liquid("water-25C"))
+    >>> [rows.shape for rows in kernel_rows_of([family(0.02), family(0.04)], 1e-3)]
+    [(3, 10), (3, 10)]
+    """
+    modes = [mode for model in models for mode in model.modes]
+    omega = np.array([mode.omega_rad_s for mode in modes])
+    zeta = np.array([mode.damping_ratio for mode in modes])
+    length = np.array([mode.length_m for mode in modes])
     phi, gamma, ramp = velocity_driven_discretisations(omega, zeta, length, sample_period_s)
-    factor = np.array([mode.wall_elevation_factor_m for mode in model.modes])
-    return np.column_stack((phi.reshape(-1, 4), gamma, ramp, factor, 1.0 / length))
+    factor = np.array([mode.wall_elevation_factor_m for mode in modes])
+    rows = np.column_stack((phi.reshape(-1, 4), gamma, ramp, factor, 1.0 / length))
+    bounds = np.cumsum([len(model.modes) for model in models])[:-1]
+    return [np.ascontiguousarray(part) for part in np.split(rows, bounds)]
 
 
 def law_metrics(
@@ -226,6 +261,7 @@ def law_metrics(
     durations_s: FloatArray,
     sample_period_s: float,
     chunk_cases: int = 65536,
+    rows: FloatArray | None = None,
 ) -> BatchMetrics:
     """Linear slosh metrics of one law time-scaled to many durations, sampling fused.
 
@@ -242,6 +278,8 @@ def law_metrics(
         dt [s].
     chunk_cases : int
         Cases per call of the kernel (bounds the temporary memory).
+    rows : numpy.ndarray, optional
+        ``kernel_rows(model, sample_period_s)`` when already computed (`kernel_rows_of`).
 
     Returns
     -------
@@ -273,7 +311,8 @@ def law_metrics(
     if not kernel:
         return _through_arrays(model, unit_law_velocity, durations, sample_period_s, chunk_cases)
     modes = len(model.modes)
-    rows = kernel_rows(model, sample_period_s)
+    if rows is None:
+        rows = kernel_rows(model, sample_period_s)
     breaks = np.ascontiguousarray(unit_law_velocity.x, dtype=float)
     coefficients = np.zeros((order, given.shape[1]))
     coefficients[order - given.shape[0] :] = given

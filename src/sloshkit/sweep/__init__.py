@@ -24,7 +24,7 @@ from sloshkit.errors import InputError, require_positive
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES, make_law
 from sloshkit.motion.scaling import unit_duration_shape
-from sloshkit.sim.batch_kernel import law_metrics
+from sloshkit.sim.batch_kernel import kernel_rows_of, law_metrics
 from sloshkit.sweep.result import SweepResult
 
 FloatArray = NDArray[np.float64]
@@ -171,10 +171,11 @@ def run_sweep(
     results = {key: np.zeros(shape) for key in ("peak", "residual", "wall", "wall_residual")}
     total = len(laws) * heights.size * grid.size
     done = 0
+    rows = kernel_rows_of(models, dt)
     for i, law_shape in enumerate(shapes):
         velocity_pp = law_shape.derivative_pp(1)
         for j, model in enumerate(models):
-            metrics = law_metrics(model, velocity_pp, durations[i], dt, chunk_cases)
+            metrics = law_metrics(model, velocity_pp, durations[i], dt, chunk_cases, rows[j])
             results["peak"][i, j] = metrics.peak_angle_rad
             results["residual"][i, j] = metrics.residual_angle_rad
             results["wall"][i, j] = metrics.peak_wall_elevation_m
