@@ -228,14 +228,50 @@ def _check_sweep_size(
 
 
 def linspace_inclusive(start: float, stop: float, count: int) -> FloatArray:
-    """START:STOP:COUNT with both ends included (a single value when COUNT is 1)."""
+    """START:STOP:COUNT with both ends included (a single value when COUNT is 1).
+
+    Parameters
+    ----------
+    start, stop : float
+        First and last value.
+    count : int
+        Number of values.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values.
+
+    Examples
+    --------
+    >>> linspace_inclusive(1.0, 2.0, 3).tolist(), linspace_inclusive(1.0, 2.0, 1).tolist()
+    ([1.0, 1.5, 2.0], [1.0])
+    """
     if count == 1:
         return np.array([start])
     return np.linspace(start, stop, count)
 
 
 def describe_rate(result: SweepResult) -> str:
-    """One line: cases, time and rate."""
+    """One line: cases, time and rate.
+
+    Parameters
+    ----------
+    result : SweepResult
+        A sweep.
+
+    Returns
+    -------
+    str
+        ``"<cases> cases in <s> s (<rate> cases/s)"``.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> describe_rate(sk.run_sweep(model, ["septic"], 0.1, [1.0, 2.0])).startswith("2 cases in")
+    True
+    """
     rate = result.cases / result.elapsed_s if result.elapsed_s > 0 else math.inf
     return f"{result.cases} cases in {result.elapsed_s:.2f} s ({rate:,.0f} cases/s)"
 
