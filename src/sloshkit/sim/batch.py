@@ -6,7 +6,7 @@ case) and a move duration. The first-order-hold discretisation of `sloshkit.sim.
 stepped for every mode and case in one compiled loop (numba) that keeps only the metrics: no
 time history is stored, and the loop over cases is innermost so that it vectorises. Without
 numba the same recursion runs through `scipy.signal.lfilter` (slower, same numbers to
-rounding).
+rounding). Only floating-point contraction (fused multiply-add) is allowed to the compiler.
 
 The metrics equal those of `sloshkit.sim.simulate.simulate(..., kind="linear")` for the same motion
 and sample period: peak |theta_1| and peak |wall elevation| over the samples t <= T, residual
@@ -65,7 +65,7 @@ def _compile_kernel() -> Any:
     except ImportError:  # pragma: no cover - numba is a dependency, but optional at run time
         return None
 
-    @njit(cache=True, fastmath=True)  # type: ignore[untyped-decorator]
+    @njit(cache=True, fastmath={"contract"})  # type: ignore[untyped-decorator]
     def kernel(velocity, last_move, first_after, phi, gamma, g1, factor):  # type: ignore[no-untyped-def]
         steps, cases = velocity.shape
         modes = phi.shape[0]
