@@ -76,6 +76,9 @@ def plot_sweep_map(
     norm = LogNorm(vmin=max(low, high * 1e-4), vmax=max(high, low * 10))
     limit = result.max_angle_deg if quantity == "peak_angle_deg" else result.max_residual_deg
     heights_mm = 1e3 * result.fill_heights_m
+    label = (
+        "peak slosh angle θ₁ [°]" if quantity == "peak_angle_deg" else "residual slosh angle θ₁ [°]"
+    )
     image = None
     for index, (law, axis) in enumerate(zip(result.laws, axes, strict=True)):
         x = (
@@ -89,15 +92,12 @@ def plot_sweep_map(
             )
             if limit is not None:
                 _hatch_violations(axis, x, heights_mm, values[index] <= limit)
-        else:
+        else:  # one fill height or one duration: the values as curves, one per fill height
             axis.plot(x, values[index].T, marker=".")
         axis.set_title(law)
         axis.set_xlabel("duration [s]" if result.axis == "duration" else "peak acceleration [m/s²]")
         if index % columns == 0:
-            axis.set_ylabel("fill height [mm]")
-    label = (
-        "peak slosh angle θ₁ [°]" if quantity == "peak_angle_deg" else "residual slosh angle θ₁ [°]"
-    )
+            axis.set_ylabel("fill height [mm]" if image is not None else label)
     if image is not None:
         if bar_axis is None:
             bar = figure.colorbar(image, ax=axes, label=label, shrink=0.9)
