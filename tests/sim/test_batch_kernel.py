@@ -130,3 +130,13 @@ def test_fused_kernel_memory_is_bounded_by_the_cases():
     finally:
         tracemalloc.stop()
     assert peak < 10e6
+
+
+@pytest.mark.parametrize("bad", [0.0, -1.0, np.inf, np.nan])
+def test_fused_kernel_refuses_durations_it_cannot_step(bad):
+    from sloshkit.errors import InputError
+
+    model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    shape = unit_duration_shape(make_law("quintic", 0.1, duration_s=1.0)).derivative_pp(1)
+    with pytest.raises(InputError, match="durations"):
+        law_metrics(model, shape, np.array([1.0, bad]), 1e-3)

@@ -303,8 +303,8 @@ def law_metrics(
     True
     """
     durations = np.ascontiguousarray(durations_s, dtype=float)
-    if durations.ndim != 1 or not np.all(durations > 0):
-        raise InputError("durations", durations.shape, "must be positive, one per case")
+    if durations.ndim != 1 or not np.all((durations > 0) & np.isfinite(durations)):
+        raise InputError("durations", durations.shape, "must be positive and finite, one per case")
     given = np.asarray(unit_law_velocity.c, dtype=float)
     order = -(-given.shape[0] // 4) * 4  # leading zeros up to a multiple of 4
     kernel = _kernel(order)
