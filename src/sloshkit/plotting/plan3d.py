@@ -1,6 +1,6 @@
 """Figure of a 3-D path plan: top view of the path and the slosh height of every candidate.
 
-Draws a `sloshkit.plan.path_planner.PathPlanResult` (registered for ``plot()``): the slosh
+Draws a `sloshkit.plan.path_result.PathPlanResult` (registered for ``plot()``): the slosh
 heights are those its verification simulated (nothing is simulated here).
 """
 
