@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -43,7 +44,12 @@ from sloshkit.plan.path_result import (
     verify,
 )
 from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
+from sloshkit.plan.path_search import (
+    fastest_capped,
+    slowed_until,
+    stretcher,
+    warped_candidates,
+)
 from sloshkit.plan.retime import (
     ShaperFactory,
     axis_shaped_samples,
@@ -57,6 +63,10 @@ from sloshkit.plan.transcription import transcribed_timing
 
 FloatArray = NDArray[np.float64]
 PATH_METHODS: tuple[str, ...] = ("auto", "retime", "shaped", "tilt")
+
+
+def _failed(method: str, started: float, message: str) -> PathCandidate:
+    return PathCandidate(method, None, None, time.perf_counter() - started, message)
 
 
 def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
@@ -101,13 +111,7 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
 
     found = fastest_capped(problem, passes, None, sampler=sampler)
     if found is None:
-        return PathCandidate(
-            "shaped",
-            None,
-            None,
-            time.perf_counter() - started,
-            "no per-axis shaped timing meets the limits",
-        )
+        return _failed("shaped", started, "no per-axis shaped timing meets the limits")
     cap, member = found
 
     def poses_for(factor: float) -> PoseSamples:
@@ -141,11 +145,15 @@ def plan_retime(
     verifier: Verifier = verify,
     transcription: bool = True,
     warm_starts: Sequence[Timing] = (),
+    seeds: Sequence[tuple[PathCandidate, Timing]] = (),
 ) -> PathCandidate:
     """The fastest acceleration cap of the family under the slosh screen (with the first-mode
     timing shaper, without, and on curved paths with `sloshkit.plan.retime.curve_shaper`),
     then, with ``transcription``, the minimum-time transcription warm-started from it;
-    verified. The container stays on the path.
+    verified. The verified family timing and every verified ``seeds`` timing are candidates
+    too, each improved by `sloshkit.plan.path_search.warp_search` and verified again; the
+    fastest verified one wins, so ``retime`` is never slower than a feasible seed. The
+    container stays on the path.
 
     Parameters
     ----------
@@ -157,6 +165,8 @@ def plan_retime(
         Also try `sloshkit.plan.transcription.transcribed_timing`.
     warm_starts : sequence of Timing
         Further warm starts for the transcription (e.g. the pose file's slowed timing).
+    seeds : sequence of (PathCandidate, Timing)
+        Verified candidates of the same path and their timings (e.g. ``uniform``).
 
     Returns
     -------
@@ -185,25 +195,27 @@ def plan_retime(
         duration = sample_path(problem.path, member, problem.sample_period_s).duration_s
         if best is None or duration < best[0]:
             best = (duration, cap, member, name)
-    if best is None:
-        return PathCandidate(
-            "retime",
-            None,
-            None,
-            time.perf_counter() - started,
-            "no acceleration cap down to 0.1 % of amax meets the slosh limits",
+    pool = [(replace(c, detail={**c.detail, "seed": c.method}), t) for c, t in seeds if c.feasible]
+    if best is None and not pool:
+        return _failed(
+            "retime", started, "no acceleration cap down to 0.1 % of amax meets the slosh limits"
         )
-    duration, cap, member, shaper_name = best
-    poses_for = stretcher(problem, member)
-    detail: dict[str, Any] = {"acceleration_cap_m_s2": cap, "shaper": shaper_name}
-    if transcription:
-        warm = min([member, *warm_starts], key=lambda timing: timing.duration_s)
-        refined = transcribed_timing(problem, warm)
-        if refined is not None and refined[0].duration_s < duration:
-            timing, status = refined
-            poses_for = stretcher(problem, timing)
-            detail = {**detail, "ipopt_status": status}
-    return verified_candidate("retime", problem, poses_for, 1.0, started, verifier, False, detail)
+    if best is not None:
+        duration, cap, timing, shaper_name = best
+        detail: dict[str, Any] = {"acceleration_cap_m_s2": cap, "shaper": shaper_name}
+        if transcription:
+            warm = min([timing, *warm_starts], key=lambda timing: timing.duration_s)
+            refined = transcribed_timing(problem, warm)
+            if refined is not None and refined[0].duration_s < duration:
+                timing, status = refined
+                detail = {**detail, "ipopt_status": status}
+        family = verified_candidate(
+            "retime", problem, stretcher(problem, timing), 1.0, started, verifier, False, detail
+        )
+        stretched = timing.stretched(float(family.detail["stretch"]))
+        pool.append((replace(family, detail={**family.detail, "seed": "family"}), stretched))
+    chosen = warped_candidates(problem, pool, verifier, started)
+    return replace(chosen, method="retime", compute_time_s=time.perf_counter() - started)
 
 
 def plan_tilt(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
@@ -264,9 +276,7 @@ def plan_tilt(problem: PathProblem, verifier: Verifier = verify) -> PathCandidat
         if best is None or duration < best[0]:
             best = (duration, cap, plain, name)
     if best is None:
-        return PathCandidate(
-            "tilt", None, None, time.perf_counter() - started, "no tilted timing meets the limits"
-        )
+        return _failed("tilt", started, "no tilted timing meets the limits")
     _, cap, plain, shaper_name = best
 
     def poses_for(factor: float) -> PoseSamples:
@@ -313,13 +323,7 @@ def plan_uniform(
     poses_for = stretcher(problem, reference)
     found = slowed_until(problem, poses_for, machine_stretch(problem, poses_for(1.0)))
     if found is None:
-        return PathCandidate(
-            "uniform",
-            None,
-            None,
-            time.perf_counter() - started,
-            "no uniform stretch up to 64x meets the slosh limits",
-        )
+        return _failed("uniform", started, "no uniform stretch up to 64x meets the slosh limits")
     return verified_candidate("uniform", problem, poses_for, found[0], started, verifier, False, {})
 
 
@@ -397,9 +401,10 @@ def plan_path(
             reference.stretched(float(uniform.detail["stretch"]))  # type: ignore[union-attr]
         ]
     )
+    seeds = [] if uniform is None or not uniform.feasible else [(uniform, warm_starts[0])]
     if method in ("auto", "retime"):
         say("retime: fastest acceleration cap under the slosh limits")
-        candidates.append(plan_retime(problem, verifier, transcription, warm_starts))
+        candidates.append(plan_retime(problem, verifier, transcription, warm_starts, seeds))
     if method in ("auto", "shaped"):
         say("shaped: per-axis input shaping")
         candidates.append(plan_shaped(problem, verifier))
