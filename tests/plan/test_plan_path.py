@@ -22,7 +22,8 @@ from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path import path_from_poses, path_from_waypoints
 from sloshkit.plan.path_limits import kinematics
 from sloshkit.plan.path_planner import linear_verifier, plan_path
-from sloshkit.plan.path_screen import linear_screen
+from sloshkit.plan.path_screen import linear_screen, screen_ok
+from sloshkit.plan.path_search import warp_search
 from sloshkit.plan.spatial import (
     CartesianLimits,
     PathProblem,
@@ -31,6 +32,7 @@ from sloshkit.plan.spatial import (
     sample_path,
 )
 from sloshkit.plan.tilt import tilt_compensated
+from sloshkit.plan.timing import Timing
 from sloshkit.sim.spatial import simulate_spatial
 from tests.conftest import run_entry_point
 
@@ -349,3 +351,51 @@ def test_curve_shaper_cancels_more_residual_on_a_circle(robot_vial: SloshModel) 
             residual[name].append(linear_screen([robot_vial], poses).residual_height_m)
     assert all(c < z for c, z in zip(residual["curve"], residual["zv"], strict=True))
     assert sum(residual["curve"]) < 0.5 * sum(residual["zv"])
+
+
+def test_retime_is_never_slower_than_uniform_scaling_of_the_reference(
+    robot_vial: SloshModel,
+) -> None:
+    """The verified uniform scaling of a reference timing is a seed of ``retime`` (and its
+    speed-scaling warp only keeps screened improvements), so ``retime`` is at least as fast;
+    its export meets the limits when simulated again with the nonlinear model."""
+    path = path_from_waypoints([[0, 0, 0], [0.25, 0, 0], [0.25, 0.15, 0]], blend_radius_m=0.04)
+    problem = PathProblem(
+        path, CartesianLimits(1.5, 8.0, 80.0), SpatialSloshLimits(0.012, 0.002), robot_vial
+    )
+    law = s_curve(path.length_m, 1.0, 4.0, 40.0)
+    t = np.linspace(0.0, law.duration_s, 201)
+    reference = Timing.from_samples("reference", t, law.position(t))
+    result = plan_path(problem, "retime", reference=reference)
+    found = {candidate.method: candidate for candidate in result.candidates}
+    assert found["uniform"].feasible and found["retime"].feasible
+    assert found["retime"].duration_s <= found["uniform"].duration_s
+    poses = found["retime"].poses
+    assert poses is not None
+    trajectory = PoseTrajectory(poses.time_s, poses.position_m, poses.quaternion_xyzw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        response = simulate_spatial(robot_vial, trajectory, nonlinear=True, cutoff_hz=None)
+    assert response.peak_slosh_height_m <= 0.012
+    assert response.residual_slosh_height_m <= 0.002
+
+
+def test_warp_search_keeps_the_screen_and_shortens_a_slow_seed(robot_vial: SloshModel) -> None:
+    path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
+    problem = PathProblem(
+        path, CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002), robot_vial
+    )
+    law = s_curve(0.3, 0.3, 1.0, 10.0)
+    t = np.linspace(0.0, law.duration_s, 201)
+    seed = Timing.from_samples("slow", t, law.position(t))
+    models = problem.models()
+
+    def passes(poses: PoseSamples) -> bool:
+        return screen_ok(problem, linear_screen(models, poses))
+
+    assert passes(sample_path(path, seed, problem.sample_period_s))
+    fast, screens = warp_search(problem, seed, passes, max_screens=60)
+    assert 0 < screens <= 60
+    assert fast.duration_s < 0.95 * seed.duration_s
+    assert passes(sample_path(path, fast, problem.sample_period_s))
+    assert np.isclose(float(fast.position(fast.duration_s)), 0.3)
