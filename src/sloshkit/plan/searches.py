@@ -19,7 +19,7 @@ from sloshkit.motion.profile import Motion
 from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv
-from sloshkit.plan.cost import work_limit
+from sloshkit.plan.cost import slosh_floor_s, work_limit
 from sloshkit.plan.problem import (
     SEARCH_MARGIN,
     SHAPERS,
@@ -92,7 +92,10 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
 
     started = time.perf_counter()
     shape = unit_duration_shape(make_law(law, problem.distance_m, duration_s=1.0))
-    floor = _machine_floor(shape, problem.machine)
+    # No move is shorter than the slosh bound (`sloshkit.plan.cost.slosh_floor_s`; 1 % below
+    # it, as the angle is checked at the samples only): under tight slosh limits the scan
+    # starts there instead of widening from the machine's floor.
+    floor = max(_machine_floor(shape, problem.machine), 0.99 * slosh_floor_s(problem))
     dt = problem.sample_period_s  # screen on the grid the verification uses
     velocity_pp = shape.derivative_pp(1)
     upper = floor
