@@ -42,9 +42,26 @@ SHAPED_CANDIDATES = 120
 class PlanCost:
     """Estimated planner work.
 
-    Attributes: ``floor_s`` the fastest rest-to-rest move the machine limits allow (a
-    trapezoid-like S-curve bound); ``terms`` its parts per parameter [s]; ``samples`` controller
-    samples of that move; ``work`` pendulum updates of the whole search.
+    Parameters
+    ----------
+    floor_s : float
+        Lower bound on the move duration (`duration_floor`: the machine's S-curve bound or
+        the slosh bound, whichever is larger) [s].
+    terms : dict of str to float
+        Its parts per option [s].
+    samples : float
+        Controller samples of that move.
+    work : float
+        Pendulum updates of the whole search.
+
+    Returns
+    -------
+    PlanCost
+
+    Examples
+    --------
+    >>> PlanCost(1.0, {"distance": 0.7, "amax": 0.3}, 250.0, 1e6).dominant
+    'distance'
     """
 
     floor_s: float
@@ -59,7 +76,18 @@ class PlanCost:
 
 
 def work_limit() -> float:
-    """The current limit on planner work (``SLOSHKIT_MAX_PLAN_WORK`` or the default)."""
+    """The current limit on planner work (``SLOSHKIT_MAX_PLAN_WORK`` or the default).
+
+    Returns
+    -------
+    float
+        Pendulum updates.
+
+    Examples
+    --------
+    >>> work_limit() > 0
+    True
+    """
     text = os.environ.get(WORK_VARIABLE)
     if not text:
         return DEFAULT_MAX_WORK
@@ -294,7 +322,20 @@ def check_cost(problem: PlanProblem, method: str = "auto") -> PlanCost:
     """`estimate_cost`, refusing (`InputError`) work above `work_limit`.
 
     The message names the parameter that makes the request expensive, the estimate and the
-    limit, and says what would make it cheaper.
+    limit, and says what would make it cheaper. With ``method="optimal"``, `optimal_refusal`
+    is raised too.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Distance, limits, model and sample period.
+    method : str
+        The planner method.
+
+    Returns
+    -------
+    PlanCost
+        The estimate, when within the limits.
 
     Examples
     --------

@@ -88,6 +88,30 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
 
     Laws with acceleration jumps have unbounded jerk: they are reported with the duration that
     meets the other limits, and flagged infeasible under a jerk limit.
+
+    Parameters
+    ----------
+    law : str
+        ``trapezoidal``, ``cubic``, ``quintic`` or ``septic``.
+    problem : PlanProblem
+        Distance, limits, model and sample period.
+    grid : int
+        Durations screened per scan.
+
+    Returns
+    -------
+    Candidate
+        The law at its shortest verified duration (or why none was found).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(0.1, sk.MachineLimits(1.0, 5.0, 200.0),
+    ...                          sk.SloshLimits(0.1, 0.01), model)
+    >>> plan_paper_law("quintic", problem, grid=50).feasible
+    True
     """
 
     started = time.perf_counter()
@@ -149,7 +173,27 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
 
 
 def shaper_for(name: str, model: SloshModel) -> Shaper:
-    """A shaper on the first mode (``zv``, ``zvd``, ``ei``) or ``zv2``: ZV on modes 1 and 2."""
+    """A shaper on the first mode (``zv``, ``zvd``, ``ei``) or ``zv2``: ZV on modes 1 and 2.
+
+    Parameters
+    ----------
+    name : str
+        ``zv``, ``zvd``, ``ei`` or ``zv2``.
+    model : SloshModel
+        The model whose modes it cancels.
+
+    Returns
+    -------
+    Shaper
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> shaper_for("zv2", model).amplitudes.size
+    4
+    """
     first = model.modes[0]
     if name == "zv2":
         if len(model.modes) < 2:
@@ -165,7 +209,30 @@ def shaper_for(name: str, model: SloshModel) -> Shaper:
 def plan_shaped(problem: PlanProblem, shapers: Sequence[str] = SHAPERS) -> Candidate:
     """Shaped S-curves: for each shaper, a grid over the S-curve's acceleration and jerk limits
     screened at once on the fast path, then a bisection on the acceleration; the fastest
-    verified result."""
+    verified result.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Distance, limits, model and sample period.
+    shapers : sequence of str
+        Shapers to try (`sloshkit.plan.problem.SHAPERS`).
+
+    Returns
+    -------
+    Candidate
+        The fastest verified shaped move (``detail`` lists every shaper tried).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(0.1, sk.MachineLimits(1.0, 5.0, 200.0),
+    ...                          sk.SloshLimits(0.1, 0.01), model)
+    >>> plan_shaped(problem, ("zv",)).feasible
+    True
+    """
     started = time.perf_counter()
     machine = problem.machine
     dt = problem.sample_period_s  # screen on the grid the verification uses
