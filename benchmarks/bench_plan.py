@@ -95,6 +95,7 @@ def _feasible(problem: PlanProblem, duration: float) -> bool:
     t_k = k Ts (k = 0..N; at rest from T on). The velocity at a sample is the polynomial of the
     piece it falls in; limits: velocity at the samples, acceleration at the nodes, jerk per
     piece, the angle at every sample, the residual circle relaxed to a circumscribed polygon.
+    The slosh rows share a slack s that the program minimises; the move exists when s <= 0.
     """
     ts = problem.sample_period_s
     machine, slosh = problem.machine, problem.slosh
@@ -166,6 +167,7 @@ def _feasible(problem: PlanProblem, duration: float) -> bool:
             ub += 1
     ub_rhs = [1.0] * ub
     x_bounds = []
+    polygon_rows: list[int] = []
     for index, model in enumerate(models):
         mode = model.modes[0]
         phi, hold, ramp = _hold_matrices(mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts)
@@ -191,22 +193,38 @@ def _feasible(problem: PlanProblem, duration: float) -> bool:
                 ub_rows.append(ub)
                 ub_cols.append(col)
                 ub_vals.append(val / slosh.max_residual_rad)
+            polygon_rows.append(ub)
             ub_rhs.append(1.0)
             ub += 1
-    bounds = np.array([(-1.0, 1.0)] * (3 * n) + [(None, None)] * (width - 3 * n), dtype=object)
-    for first, count in x_bounds:  # |theta_k| <= theta_max (scaled: |x0| <= 1)
+    # The slosh rows get a common slack s (minimised): the program is then always feasible
+    # when the machine limits are, and the move exists when s <= 0. (A plain feasibility
+    # program stalls HiGHS near the boundary.)
+    slack = width
+    for first, count in x_bounds:  # |theta_k| / theta_max - s <= 1
         for k in range(count + 1):
-            bounds[first + 2 * k] = (-1.0, 1.0)
+            for sign in (1.0, -1.0):
+                ub_rows.extend((ub, ub))
+                ub_cols.extend((first + 2 * k, slack))
+                ub_vals.extend((sign, -1.0))
+                ub_rhs.append(1.0)
+                ub += 1
+    for r in polygon_rows:  # facet - s <= 1
+        ub_rows.append(r)
+        ub_cols.append(slack)
+        ub_vals.append(-1.0)
+    bounds = [(-1.0, 1.0)] * (3 * n) + [(None, None)] * (width - 3 * n) + [(-0.5, None)]
+    cost = np.zeros(width + 1)
+    cost[slack] = 1.0
     result = linprog(
-        np.zeros(width),
-        A_ub=sparse.csr_matrix((ub_vals, (ub_rows, ub_cols)), shape=(ub, width)),
+        cost,
+        A_ub=sparse.csr_matrix((ub_vals, (ub_rows, ub_cols)), shape=(ub, width + 1)),
         b_ub=np.array(ub_rhs),
-        A_eq=sparse.csr_matrix((eq_vals, (eq_rows, eq_cols)), shape=(row, width)),
+        A_eq=sparse.csr_matrix((eq_vals, (eq_rows, eq_cols)), shape=(row, width + 1)),
         b_eq=np.array(eq_rhs),
-        bounds=[tuple(b) for b in bounds],
+        bounds=bounds,
         method="highs",
     )
-    return bool(result.status == 0)
+    return bool(result.status == 0 and result.x[slack] <= 0.0)
 
 
 def reference_minimum(problem: PlanProblem, low: float, high: float) -> Reference:
