@@ -165,6 +165,34 @@ def test_smooth_variant_costs_its_stated_price_and_has_a_gentler_jerk():
     assert rate_smooth.sum() < 0.5 * rate_fast
 
 
+def test_smooth_variant_with_the_default_damping_through_the_cli():
+    """The correlation's damping (0.009): the smooth program's margin keeps the solver's
+    tolerances inside the limits, so the smooth move is the one returned and said so."""
+    proc = run_entry_point(
+        "plan",
+        "--distance",
+        "0.1m",
+        "--max-angle",
+        "5deg",
+        "--max-residual",
+        "0.25deg",
+        "--vmax",
+        "1.5m/s",
+        "--amax",
+        "20m/s^2",
+        "--jmax",
+        "500m/s^3",
+        "--method",
+        "optimal",
+        "--smooth",
+        "--json",
+    )
+    assert proc.returncode == 0, proc.stderr
+    payload = json.loads(proc.stdout)
+    assert payload["method"] == "optimal-smooth" and payload["variant"] == "smooth"
+    assert payload["feasible"] is True
+
+
 def test_plan_cli_csv_json_and_independent_resimulation(tmp_path):
     out = tmp_path / "traj.csv"
     result = CliRunner().invoke(

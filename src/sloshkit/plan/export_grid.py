@@ -45,6 +45,9 @@ __all__ = ["ExportGrid", "Limits", "Move", "Pendulum", "measure", "steps_for_dur
 #: (which allows 1e-7) never flags it.
 SAFETY_MARGIN = 1e-6
 
+#: Relative margin of the smooth variant from every limit (it is not scaled after the solve).
+SMOOTH_MARGIN = 1e-4
+
 #: Tangent lines of the residual polygon.
 FACETS = 256
 
@@ -217,7 +220,10 @@ class ExportGrid:
         n = self.steps
         matrix, row_lower, row_upper = self._matrix, self._row_lower.copy(), self._row_upper.copy()
         width = matrix.shape[1]
-        bound = 1.0 - SAFETY_MARGIN
+        bound = self._bound(smooth)
+        limited = np.isfinite(row_upper) & (row_upper > 0)  # limits (not equalities, distance)
+        row_upper[limited] *= bound / (1.0 - SAFETY_MARGIN)
+        row_lower[limited & np.isfinite(row_lower)] *= bound / (1.0 - SAFETY_MARGIN)
         col_lower = np.full(width, -np.inf)
         col_lower[: 3 * n] = -bound
         for index, pend in enumerate(self.pendulums):
@@ -264,14 +270,21 @@ class ExportGrid:
         solver.passModel(lp)
         return solver
 
-    def _set(self, solver: Any, effective_steps: int, tau: float, state: tuple[int, float]) -> None:
+    @staticmethod
+    def _bound(smooth: bool) -> float:
+        """Scaled limit of every quantity: the smooth move keeps `SMOOTH_MARGIN` (it cannot
+        be scaled afterwards, so the solver's 1e-7 tolerances must stay inside it)."""
+        return 1.0 - (SMOOTH_MARGIN if smooth else SAFETY_MARGIN)
+
+    def _set(
+        self, solver: Any, effective_steps: int, tau: float, state: tuple[int, float], bound: float
+    ) -> None:
         """Hold the first steps at rest and set the last step's coefficients (only what
-        changed since ``state``)."""
+        changed since ``state``); ``bound`` is the jerk bound of the moving steps."""
         n = self.steps
         if not 1 <= effective_steps <= n:
             raise ValueError(f"effective_steps must be in 1..{n}")
         idle = n - effective_steps
-        bound = 1.0 - SAFETY_MARGIN
         iu, ia, iv = self._columns()
         if idle != state[0]:
             low = np.where(iu < idle, 0.0, -bound)
@@ -316,7 +329,7 @@ class ExportGrid:
             self._highs = self._solver(smooth=False)
         solver = self._highs
         effective, tau = steps_for_duration(duration_s, self.limits.sample_period_s)
-        self._set(solver, effective, tau, self._state)
+        self._set(solver, effective, tau, self._state, self._bound(False))
         self._state = (self.steps - effective, tau)
         if self.programs == 0 and self.steps * len(self.pendulums) > IPM_SIZE:
             solver.setOptionValue("solver", "ipm")  # then crossover to a basis
@@ -357,7 +370,7 @@ class ExportGrid:
         if self.steps * len(self.pendulums) > IPM_SIZE:
             solver.setOptionValue("solver", "ipm")
         effective, tau = steps_for_duration(duration_s, self.limits.sample_period_s)
-        self._set(solver, effective, tau, (-1, -1.0))
+        self._set(solver, effective, tau, (-1, -1.0), self._bound(True))
         solver.run()
         self.programs += 1
         status = solver.modelStatusToString(solver.getModelStatus())
@@ -367,6 +380,6 @@ class ExportGrid:
         jerks = x[self.steps - effective : self.steps] * self.limits.max_jerk_m_s3
         jerks, distance, ratio = measure(jerks, tau, self.limits, self.pendulums)
         jerks *= self.limits.distance_m / distance
-        if ratio * self.limits.distance_m / distance > 1.0 - 0.1 * SAFETY_MARGIN:
+        if ratio * self.limits.distance_m / distance > 1.0 - SAFETY_MARGIN:
             return None
         return Move(jerks, duration_s, tau, self.limits.distance_m, status)

@@ -216,10 +216,15 @@ def plan_optimal(
     scale = problem.distance_m / fastest.distance_m
     jerks, last, variant = fastest.jerks_m_s3 * scale, fastest.last_step_s, "time-optimal"
     status = fastest.status
+    note = {}
     if smooth:
         duration = fastest.duration_s * (1.0 + SMOOTH_PRICE)
         smoothed = grid.smoothest(duration)
-        if smoothed is not None:
+        if smoothed is None:
+            note = {
+                "note": "the smooth program failed its check: the time-optimal move is returned"
+            }
+        else:
             jerks, last, variant, status = (
                 smoothed.jerks_m_s3,
                 smoothed.last_step_s,
@@ -241,6 +246,7 @@ def plan_optimal(
         simplex_iterations=iterations,
         solver="HiGHS " + status,
         model="linear",
+        **note,
     )
 
 
