@@ -33,6 +33,10 @@ OPTIMAL_WORK_VARIABLE = "SLOSHKIT_MAX_OPTIMAL_WORK"
 #: minimum time, so 2,200 keeps the optimal method within a few seconds.
 DEFAULT_MAX_OPTIMAL_WORK = 2200.0
 
+#: The CLI's default controller period [s]: a shorter one is named when it is what makes the
+#: optimal method expensive.
+DEFAULT_SAMPLE_PERIOD_S = 4e-3
+
 #: Candidates screened per paper law (scan grid) and per shaper (acceleration x jerk grid).
 LAW_CANDIDATES = 400
 SHAPED_CANDIDATES = 120
@@ -409,6 +413,10 @@ def optimal_refusal(problem: PlanProblem, raise_error: bool = False) -> str | No
     if samples * pendulums <= limit:
         return None
     name, shown = floor.dominant, floor.shown(problem)
+    if problem.sample_period_s < DEFAULT_SAMPLE_PERIOD_S and (
+        floor.duration_s / DEFAULT_SAMPLE_PERIOD_S * pendulums <= limit
+    ):  # the short controller period is what makes it expensive
+        name, shown = "sample_period", f"{problem.sample_period_s:.4g} s"
     why = (
         f"no move within the limits is shorter than {floor.duration_s:.4g} s "
         f"({samples:,.0f} samples at {problem.sample_period_s:.3g} s x {pendulums} pendulum"
@@ -417,6 +425,7 @@ def optimal_refusal(problem: PlanProblem, raise_error: bool = False) -> str | No
     hint = (
         "use --method auto or fast, a longer --sample-period"
         + (", a larger --max-angle" if name == "max_angle" else "")
+        + (", no --max-wall-elevation (it needs every mode)" if per_model > 1 else "")
         + f", or raise {OPTIMAL_WORK_VARIABLE}"
     )
     if raise_error:
