@@ -201,8 +201,8 @@ def plan_optimal(
         if found is not None:
             guess = found.duration_s
     fastest = None
-    for margin in (1.02, None):
-        longest = guess * margin * (1 + SMOOTH_PRICE if smooth else 1) if margin else MAX_STEPS * ts
+    for margin in (1.02, 1.5):  # the second only when the first range held no feasible move
+        longest = guess * margin * (1 + SMOOTH_PRICE if smooth else 1)
         shape = min(MAX_STEPS, math.ceil(longest / ts) + 4)
         grid = exact_grid_for(problem, shape)
         fastest = _minimum_time(grid, guess, floor.duration_s, DISTANCE_TOLERANCE)
@@ -210,15 +210,16 @@ def plan_optimal(
         if fastest is not None or shape == MAX_STEPS:
             break
     if fastest is None:
-        return _failed(
-            started, f"no feasible move up to {MAX_STEPS * ts:.4g} s ({MAX_STEPS:,} samples)"
-        )
+        return _failed(started, f"no feasible move up to {shape * ts:.4g} s ({shape:,} samples)")
     scale = problem.distance_m / fastest.distance_m
     jerks, last, variant = fastest.jerks_m_s3 * scale, fastest.last_step_s, "time-optimal"
     status = fastest.status
     note = {}
     if smooth:
         duration = fastest.duration_s * (1.0 + SMOOTH_PRICE)
+        needed = math.ceil(duration / ts) + 1
+        if needed > grid.steps:
+            grid = exact_grid_for(problem, needed)
         smoothed = grid.smoothest(duration)
         if smoothed is None:
             note = {
@@ -248,12 +249,6 @@ def plan_optimal(
         model="linear",
         **note,
     )
-
-
-def _shape(steps: int) -> int:
-    """Round a number of steps up (to a power of two times 1, 1.25, 1.5 or 1.75)."""
-    power = 2 ** max(4, math.floor(math.log2(max(steps, 1))) - 2)
-    return int(power * math.ceil(steps / power))
 
 
 def _minimum_time(grid: Any, guess_s: float, floor_s: float, tolerance: float) -> Any:
