@@ -38,6 +38,20 @@ FloatArray = NDArray[np.float64]
 def zeta_from_log_decrement(delta: float) -> float:
     """Exact damping ratio from the logarithmic decrement: delta / sqrt(4 pi^2 + delta^2).
 
+    Parameters
+    ----------
+    delta : float
+        Logarithmic decrement ln(Y_k / Y_{k+1}) of successive peaks.
+
+    Returns
+    -------
+    float
+        The damping ratio zeta.
+
+    References
+    ----------
+    Inman, D. J., *Engineering Vibration*, 4th ed. (2014) §1.6.
+
     Examples
     --------
     >>> round(zeta_from_log_decrement(0.163), 4)
@@ -48,6 +62,20 @@ def zeta_from_log_decrement(delta: float) -> float:
 
 def log_decrement_from_zeta(zeta: float) -> float:
     """Logarithmic decrement of a damping ratio: 2 pi zeta / sqrt(1 - zeta^2).
+
+    Parameters
+    ----------
+    zeta : float
+        Damping ratio (below 1).
+
+    Returns
+    -------
+    float
+        The logarithmic decrement delta.
+
+    References
+    ----------
+    Inman, D. J., *Engineering Vibration*, 4th ed. (2014) §1.6.
 
     Examples
     --------
@@ -63,6 +91,34 @@ class Estimate:
 
     ``failure`` holds the reason when the estimator could not produce a result; ``fitted`` the
     fit's curve over the window (with its offset and drift), for the fit only.
+
+    Attributes
+    ----------
+    method : str
+        fit, logdec, logdec-2peak or fft.
+    omega_n_rad_s, damping_ratio, damped_omega_rad_s : float or None
+        Natural frequency [rad/s], damping ratio and damped frequency [rad/s].
+    log_decrement : float or None
+        The logarithmic decrement delta.
+    n_peaks : int
+        Peaks used (decrement estimators).
+    residual_rms : float or None
+        RMS of the fit's residual (signal units).
+    omega_n_interval, damping_ratio_interval : tuple of float or None
+        95 % confidence intervals.
+    amplitude, offset : float or None
+        Amplitude of the first peak and the fitted offset (signal units).
+    note, failure : str
+        A remark on the estimate; why there is none.
+    fitted : numpy.ndarray or None
+        The fitted curve over the window (fit only).
+
+    Examples
+    --------
+    >>> Estimate("fft", 30.0, 0.02, 29.994).damping_ratio
+    0.02
+    >>> Estimate.failed("logdec", InputError("signal", "flat", "must oscillate")).failure
+    "signal = 'flat' is invalid: must oscillate"
     """
 
     method: str
@@ -97,7 +153,30 @@ def _decay_model(
 def spectral_guess(t: FloatArray, y: FloatArray) -> tuple[float, float]:
     """(omega_n, zeta) first guess from the spectrum alone: the spectral peak gives omega_d;
     zeta is the best of a logarithmic grid 3e-4...0.45 with the amplitude, offset and drift
-    solved by linear least squares for each value."""
+    solved by linear least squares for each value.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Uniform times [s] and the decaying signal.
+
+    Returns
+    -------
+    tuple of float
+        (omega_n [rad/s], zeta).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.window import prepare_signal
+    >>> t = np.arange(0.0, 4.0, 0.002)
+    >>> omega, zeta = 30.0, 0.02
+    >>> y = np.exp(-zeta * omega * t) * np.cos(omega * np.sqrt(1 - zeta**2) * t)
+    >>> prepared, _ = prepare_signal(t, y, start_s=0.0)
+    >>> omega_n, zeta_n = spectral_guess(prepared.time_s, prepared.values)
+    >>> round(omega_n, 1), round(zeta_n, 2)
+    (30.0, 0.02)
+    """
     frequency, _, _ = spectral_peak(t, sps.detrend(y))
     if not frequency > 0.0:
         raise InputError("signal", "no spectral peak", "has no oscillation in the window")
@@ -121,7 +200,29 @@ def spectral_guess(t: FloatArray, y: FloatArray) -> tuple[float, float]:
 def estimate_fit(prepared: PreparedSignal) -> Estimate:
     """Least-squares damped sinusoid plus offset and drift (fitted together, not detrended
     first: removing a line fitted to a decaying oscillation biases zeta), started from
-    `spectral_guess`, with 95 % confidence intervals."""
+    `spectral_guess`, with 95 % confidence intervals.
+
+    Parameters
+    ----------
+    prepared : PreparedSignal
+        The window of the free decay (`sloshkit.calibration.window.prepare_signal`).
+
+    Returns
+    -------
+    Estimate
+        Method ``fit``, with intervals and the fitted curve.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.window import prepare_signal
+    >>> t = np.arange(0.0, 4.0, 0.002)
+    >>> omega, zeta = 30.0, 0.02
+    >>> y = np.exp(-zeta * omega * t) * np.cos(omega * np.sqrt(1 - zeta**2) * t)
+    >>> prepared, _ = prepare_signal(t, y, start_s=0.0)
+    >>> found = estimate_fit(prepared)
+    >>> round(found.omega_n_rad_s, 3), round(found.damping_ratio, 4)
+    (30.0, 0.02)"""
     t = prepared.time_s - prepared.time_s[0]
     y = prepared.undetrended
     omega_guess, zeta_guess = spectral_guess(t, y)
@@ -239,7 +340,36 @@ def _from_decrement(
 
 def estimate_logdec_2peak(prepared: PreparedSignal, period_guess_s: float) -> Estimate:
     """The seed paper's form: delta = ln(Y_0 / Y_k) / k over the first and last usable peak;
-    the damped period is the mean peak spacing."""
+    the damped period is the mean peak spacing.
+
+    Parameters
+    ----------
+    prepared : PreparedSignal
+        The window of the free decay.
+    period_guess_s : float
+        Expected damped period [s] (spaces the peak search).
+
+    Returns
+    -------
+    Estimate
+        Method ``logdec-2peak``.
+
+    References
+    ----------
+    De Simone, M. C. et al., the seed paper, eqs. 11-12.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.window import prepare_signal
+    >>> t = np.arange(0.0, 4.0, 0.002)
+    >>> omega, zeta = 30.0, 0.02
+    >>> y = np.exp(-zeta * omega * t) * np.cos(omega * np.sqrt(1 - zeta**2) * t)
+    >>> prepared, _ = prepare_signal(t, y, start_s=0.0)
+    >>> found = estimate_logdec_2peak(prepared, 2 * np.pi / 30.0)
+    >>> round(found.damping_ratio, 3), found.n_peaks > 10
+    (0.02, True)
+    """
     times, heights, _ = _checked_peaks(prepared, period_guess_s)
     cycles = np.round((times[-1] - times[0]) / float(np.median(np.diff(times))))
     delta = math.log(heights[0] / heights[-1]) / max(1.0, float(cycles))
@@ -249,7 +379,39 @@ def estimate_logdec_2peak(prepared: PreparedSignal, period_guess_s: float) -> Es
 
 def estimate_logdec(prepared: PreparedSignal, period_guess_s: float) -> Estimate:
     """Regression of ln(swing) over all usable peaks (module docstring), with 95 % intervals
-    on zeta (from the decay rate) and omega_n (from the regression of peak time on cycle)."""
+    on zeta (from the decay rate) and omega_n (from the regression of peak time on cycle).
+
+    Parameters
+    ----------
+    prepared : PreparedSignal
+        The window of the free decay.
+    period_guess_s : float
+        Expected damped period [s] (spaces the peak search).
+
+    Returns
+    -------
+    Estimate
+        Method ``logdec``, with 95 % intervals.
+
+    References
+    ----------
+    Inman, D. J., *Engineering Vibration*, 4th ed. (2014) §1.6.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.window import prepare_signal
+    >>> t = np.arange(0.0, 4.0, 0.002)
+    >>> omega, zeta = 30.0, 0.02
+    >>> y = np.exp(-zeta * omega * t) * np.cos(omega * np.sqrt(1 - zeta**2) * t)
+    >>> prepared, _ = prepare_signal(t, y, start_s=0.0)
+    >>> found = estimate_logdec(prepared, 2 * np.pi / 30.0)
+    >>> round(found.omega_n_rad_s, 1), round(found.damping_ratio, 3)
+    (30.0, 0.02)
+    >>> low, high = found.damping_ratio_interval
+    >>> bool(low <= 0.02 <= high)
+    True
+    """
     times, heights, noise = _checked_peaks(prepared, period_guess_s)
     cycles = np.round((times - times[0]) / float(np.median(np.diff(times))))
     design = np.column_stack((np.ones_like(cycles), cycles))
@@ -304,7 +466,31 @@ def estimate_logdec(prepared: PreparedSignal, period_guess_s: float) -> Estimate
 
 
 def estimate_fft(prepared: PreparedSignal) -> Estimate:
-    """Spectral peak frequency; bandwidth damping only when it is resolved."""
+    """Spectral peak frequency; bandwidth damping only when it is resolved.
+
+    Parameters
+    ----------
+    prepared : PreparedSignal
+        The window of the free decay.
+
+    Returns
+    -------
+    Estimate
+        Method ``fft``; ``damping_ratio`` is None (with a note) when the half-power bandwidth
+        is not resolved.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.window import prepare_signal
+    >>> t = np.arange(0.0, 4.0, 0.002)
+    >>> omega, zeta = 30.0, 0.02
+    >>> y = np.exp(-zeta * omega * t) * np.cos(omega * np.sqrt(1 - zeta**2) * t)
+    >>> prepared, _ = prepare_signal(t, y, start_s=0.0)
+    >>> found = estimate_fft(prepared)
+    >>> round(found.damped_omega_rad_s, 1)
+    30.0
+    """
     t, y = prepared.time_s, prepared.values
     frequency, resolution, _ = spectral_peak(t, y)
     if not frequency > 0.0:
