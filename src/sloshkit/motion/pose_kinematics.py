@@ -67,6 +67,15 @@ class PoseKinematics:
     angular_velocity_body_rad_s, angular_acceleration_body_rad_s2 : container frame (M, 3)
     cutoff_hz : the filter's approximate 3-dB cut-off [Hz] (``inf`` without smoothing)
     window : Savitzky-Golay window length in samples (0 without smoothing)
+
+    Examples
+    --------
+    >>> from sloshkit.motion.laws import quintic
+    >>> from sloshkit.motion.poses import poses_from_law
+    >>> poses = poses_from_law(quintic(0.1, 0.5), sample_period_s=0.002)
+    >>> kinematics = pose_kinematics(poses, cutoff_hz=None)
+    >>> round(float(kinematics.velocity_m_s[:, 0].max()), 4)  # 15/8 d/T for a quintic
+    0.375
     """
 
     time_s: FloatArray
@@ -127,6 +136,25 @@ def savgol_half_width(cutoff_hz: float, sample_period_s: float, degree: int = SA
 
     Inverts f_c / f_Nyquist = (N + 1) / (3.2 M - 4.6) (Schafer 2011, eq. 11); at least
     degree/2 + 1 so that the window is longer than the polynomial.
+
+    Parameters
+    ----------
+    cutoff_hz : float
+        Wanted 3-dB cut-off [Hz].
+    sample_period_s : float
+        Sample period [s].
+    degree : int
+        Polynomial degree N.
+
+    Returns
+    -------
+    int
+        M (the window has 2 M + 1 samples).
+
+    References
+    ----------
+    Schafer, R. W., What is a Savitzky-Golay filter?, IEEE Signal Process. Mag. 28 (2011) 111,
+    doi:10.1109/MSP.2011.941097.
 
     Examples
     --------

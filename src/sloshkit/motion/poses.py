@@ -259,6 +259,21 @@ def poses_from_rpy(
     Fixed-axis (extrinsic x, then y, then z) roll-pitch-yaw as in Siciliano et al. (2009)
     §2.4.4; scipy's ``Rotation.from_euler("xyz", ...)`` with lower-case (extrinsic) axes.
 
+    Parameters
+    ----------
+    time_s : array_like
+        Time stamps (M,) [s].
+    position_m : array_like
+        Bottom-centre positions (M, 3) [m].
+    roll_rad, pitch_rad, yaw_rad : array_like
+        Angles (M,) [rad].
+    name : str
+        Name of the trajectory.
+
+    Returns
+    -------
+    PoseTrajectory
+
     Examples
     --------
     >>> import numpy as np
@@ -299,6 +314,10 @@ def poses_from_law(
     start_m : start position [m]
     orientation : constant container orientation (default upright)
 
+    Returns
+    -------
+    PoseTrajectory
+
     Examples
     --------
     >>> from sloshkit.motion.laws import quintic
@@ -332,6 +351,10 @@ def poses_from_path(
     motion : the timing law; only its normalised progress s(t)/s(T) is used
     sample_period_s : pose sample period [s]
     orientation : constant `Rotation`, or a function u -> `Rotation` (default upright)
+
+    Returns
+    -------
+    PoseTrajectory
 
     Examples
     --------
@@ -393,6 +416,10 @@ def poses_from_rotation(
         origin
     initial : the orientation at psi = 0 (default upright)
 
+    Returns
+    -------
+    PoseTrajectory
+
     Examples
     --------
     >>> import math
@@ -418,6 +445,17 @@ def concatenate(parts: Sequence[PoseTrajectory], name: str = "") -> PoseTrajecto
     Each part is shifted in time to start when the previous one ends, and moved as a rigid
     body (D = R_prev_end R_start^-1, p' = p_prev_end + D (p - p_start), R' = D R) so that its
     first pose coincides with the previous part's last pose; that first sample is dropped.
+
+    Parameters
+    ----------
+    parts : sequence of PoseTrajectory
+        The trajectories, in order.
+    name : str
+        Name of the result (default: the parts' names joined by +).
+
+    Returns
+    -------
+    PoseTrajectory
 
     Examples
     --------

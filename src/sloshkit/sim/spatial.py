@@ -95,6 +95,20 @@ class SpatialDrive:
     kinematics : the pose kinematics used
     rest_force_m_s2 : (modes + 1, 3) kappa_n g_vec in the container frame of the first pose:
         the drive of the container resting before the motion (initial equilibrium)
+
+    Examples
+    --------
+    A container at rest feels gravity only:
+
+    >>> import numpy as np
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> from sloshkit.motion.pose_kinematics import pose_kinematics
+    >>> from sloshkit.motion.poses import poses_from_rpy
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039, 1)
+    >>> rest = poses_from_rpy(np.linspace(0, 0.1, 11), np.zeros((11, 3)), *np.zeros((3, 11)))
+    >>> drive = spatial_drive(model, pose_kinematics(rest, cutoff_hz=None))
+    >>> drive.specific_force_m_s2.shape, drive.specific_force_m_s2[-1, 0].round(2).tolist()
+    ((2, 11, 3), [0.0, 0.0, -9.81])
     """
 
     time_s: FloatArray
