@@ -51,11 +51,27 @@ class ExportResult:
 
     Attributes
     ----------
-    format : one of `FORMATS`; path : the written file
-    samples : number of samples written; sample_period_s : their period [s]
-    joints : the joint path for joint formats (else None)
-    round_trip : the check (None when not run)
-    notes : remarks (e.g. why a check was not possible)
+    format : str
+        One of `FORMATS`.
+    path : pathlib.Path
+        The written file.
+    samples : int
+        Number of samples written.
+    sample_period_s : float
+        Their period [s].
+    joints : JointPath or None
+        The joint path for joint formats.
+    round_trip : RoundTrip or None
+        The check (None when not run).
+    notes : tuple of str
+        Remarks (e.g. why a check was not possible).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> result = ExportResult("pose-csv", Path("move.poses.csv"), 251, 0.004)
+    >>> result.to_dict()["samples"], result.to_dict()["format"]
+    (251, 'pose-csv')
     """
 
     format: str
@@ -86,7 +102,27 @@ class ExportResult:
 
 
 def model_summary(model: SloshModel) -> str:
-    """One-line description of a slosh model for file headers (SI)."""
+    """One-line description of a slosh model for file headers (SI).
+
+    Parameters
+    ----------
+    model : SloshModel
+        The model.
+
+    Returns
+    -------
+    str
+        A JSON object on one line.
+
+    Examples
+    --------
+    >>> import json
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> summary = json.loads(model_summary(model))
+    >>> summary["liquid"], round(summary["first_mode_frequency_hz"], 2)
+    ('water-25C', 4.72)
+    """
     first = model.modes[0]
     return json.dumps(
         {
@@ -101,7 +137,25 @@ def model_summary(model: SloshModel) -> str:
 
 
 def limits_summary(limits: SloshLimits) -> str:
-    """One-line description of slosh limits for file headers (degrees and metres, as named)."""
+    """One-line description of slosh limits for file headers (degrees and metres, as named).
+
+    Parameters
+    ----------
+    limits : SloshLimits
+        The limits.
+
+    Returns
+    -------
+    str
+        A JSON object on one line.
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit import SloshLimits
+    >>> limits_summary(SloshLimits(math.radians(10), math.radians(1)))
+    '{"max_angle_deg": 10.0, "max_residual_deg": 1.0, "max_wall_elevation_m": null}'
+    """
     return json.dumps(
         {
             "max_angle_deg": round(math.degrees(limits.max_angle_rad), 9),
@@ -282,6 +336,24 @@ def rebuild_container_poses(
     (forward kinematics and the mounting for joint formats; a cam table is put on ``axis``
     of the path frame from the path origin, upright).
 
+    Parameters
+    ----------
+    fmt : str
+        The file's format (`FORMATS`).
+    path : str or pathlib.Path
+        The file.
+    arm : Arm or None
+        The arm, for joint formats.
+    mounting : Mounting
+        Where the container sits in the flange and the path in the base.
+    axis : tuple of float
+        Direction of a cam table's move in the path frame.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Times (N,) [s] and poses (N, 4, 4).
+
     Examples
     --------
     >>> import tempfile, pathlib
@@ -314,6 +386,18 @@ def rebuild_container_poses(
 
 def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArray]:
     """Times [s] and joint positions (samples, joints) [rad] of a joint-format file.
+
+    Parameters
+    ----------
+    fmt : str
+        joint-csv, ros2 or urscript.
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Times [s] and joint positions [rad].
 
     Examples
     --------
