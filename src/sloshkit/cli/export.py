@@ -63,7 +63,35 @@ Check = Annotated[
 
 @dataclass(frozen=True)
 class ExportSettings:
-    """The export option group, parsed (SI): how to reach the controller."""
+    """The export option group, parsed (SI): how to reach the controller.
+
+    Attributes
+    ----------
+    robot : str or None
+        A built-in arm (``--robot``).
+    urdf : pathlib.Path or None
+        A URDF file (``--urdf``).
+    base_link, tip_link : str or None
+        The URDF links the chain runs between.
+    seed_rad : tuple of float or None
+        IK seed of the first sample [rad].
+    mounting : Mounting
+        Where the container sits in the flange and the path in the base.
+    axis : tuple of float
+        Direction of a 1-D move in the path frame.
+    lookahead_time_s, gain : float
+        URScript ``servoj`` parameters [s], [-].
+    check : bool
+        Parse the file back and re-simulate.
+
+    Examples
+    --------
+    >>> from sloshkit.export.frames import Mounting
+    >>> settings = ExportSettings(None, None, None, None, None, Mounting(), (1.0, 0.0, 0.0),
+    ...                           0.1, 300.0, True)
+    >>> settings.arm("pose-csv") is None  # joint formats load the arm (UR5e by default)
+    True
+    """
 
     robot: str | None
     urdf: Path | None
@@ -97,7 +125,29 @@ class ExportSettings:
 
 
 def parse_vector(text: str, kinds: tuple[str, ...], parameter: str) -> tuple[float, ...]:
-    """Comma-separated quantities with units (``0,0,100mm``; bare numbers in SI, radians)."""
+    """Comma-separated quantities with units (``0,0,100mm``; bare numbers in SI, radians).
+
+    Parameters
+    ----------
+    text : str
+        The option's value.
+    kinds : tuple of str
+        The quantity kind of each cell (length, angle, ...).
+    parameter : str
+        The option's name, for messages.
+
+    Returns
+    -------
+    tuple of float
+        SI values.
+
+    Examples
+    --------
+    >>> [round(v, 6) for v in parse_vector("0,0,100mm", ("length",) * 3, "tool_offset")]
+    [0.0, 0.0, 0.1]
+    >>> round(parse_vector("180deg", ("angle",), "roll")[0], 6)
+    3.141593
+    """
     cells = [cell.strip() for cell in text.split(",")]
     if len(cells) != len(kinds):
         raise InputError(parameter, text, f"needs {len(kinds)} comma-separated values")
@@ -182,7 +232,48 @@ def run_export(
     limits: Any,
     sample_period_s: float | None,
 ) -> Any:
-    """Export with the parsed settings (progress on stderr); returns the `ExportResult`."""
+    """Export with the parsed settings (progress on stderr); returns the `ExportResult`.
+
+    Parameters
+    ----------
+    plan : LinePlan or PoseStream
+        The plan to export.
+    fmt : str
+        The format (`sloshkit.export.exporter.FORMATS`).
+    out : pathlib.Path
+        The file to write.
+    settings : ExportSettings
+        The parsed export options.
+    model : SloshModel
+        The model the round trip re-simulates.
+    limits : SloshLimits or None
+        Limits the round trip checks.
+    sample_period_s : float or None
+        Controller period [s] (default: the plan's).
+
+    Returns
+    -------
+    ExportResult
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> import sloshkit as sk
+    >>> from sloshkit.export.frames import Mounting
+    >>> from sloshkit.export.plans import LinePlan
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(126) * 0.008
+    >>> s = t / t[-1]
+    >>> x = 0.1 * s**3 * (10 - 15 * s + 6 * s**2)
+    >>> plan = LinePlan(t, x, np.gradient(x, t), np.gradient(np.gradient(x, t), t))
+    >>> settings = ExportSettings(None, None, None, None, None, Mounting(), (1.0, 0.0, 0.0),
+    ...                           0.1, 300.0, True)
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "move.cam.csv"
+    >>> result = run_export(plan, "cam-table", out, settings, model, None, None)
+    >>> result.samples, result.round_trip.passed
+    (126, True)
+    """
     from sloshkit.export.exporter import FORMATS, export_plan
 
     if fmt not in FORMATS:
@@ -205,7 +296,20 @@ def run_export(
 
 
 def show_export(result: Any) -> None:
-    """The export's outcome as a table and a verdict line (stdout)."""
+    """The export's outcome as a table and a verdict line (stdout).
+
+    Parameters
+    ----------
+    result : ExportResult
+        The export.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from sloshkit.export.exporter import ExportResult
+    >>> show_export(ExportResult("cam-table", Path("move.cam.csv"), 126, 0.008))
+    wrote move.cam.csv (cam-table, 126 samples every 8 ms)
+    """
     stdout.print(
         f"wrote {result.path} ({result.format}, {result.samples} samples every "
         f"{1e3 * result.sample_period_s:g} ms)"
@@ -253,7 +357,23 @@ def show_export(result: Any) -> None:
 
 
 def slosh_limits(max_angle: str | None, max_residual: str | None) -> Any:
-    """`SloshLimits` from the two options, None when neither is given."""
+    """`SloshLimits` from the two options, None when neither is given.
+
+    Parameters
+    ----------
+    max_angle, max_residual : str or None
+        ``--max-angle`` and ``--max-residual`` (angles with units).
+
+    Returns
+    -------
+    SloshLimits or None
+
+    Examples
+    --------
+    >>> limits = slosh_limits("5deg", "0.5deg")
+    >>> round(limits.max_angle_rad, 6), slosh_limits(None, None)
+    (0.087266, None)
+    """
     from sloshkit.plan.problem import SloshLimits
 
     if max_angle is None and max_residual is None:
