@@ -25,12 +25,15 @@ def recording() -> Iterator[list[str]]:
 
     Examples
     --------
-    >>> import contextlib, io, warnings
-    >>> with contextlib.redirect_stderr(io.StringIO()), recording() as found:
-    ...     for _ in range(2):
-    ...         warnings.warn("fill below 0.2 R", ValidityWarning)
-    >>> found
-    ['fill below 0.2 R']
+    >>> import warnings
+    >>> shown = []
+    >>> with warnings.catch_warnings():
+    ...     warnings.showwarning = lambda message, *where: shown.append(str(message))
+    ...     with recording() as found:
+    ...         for _ in range(2):
+    ...             warnings.warn("fill below 0.2 R", ValidityWarning)
+    >>> found, shown
+    (['fill below 0.2 R'], ['fill below 0.2 R'])
     """
     RECORDED.clear()
     with warnings.catch_warnings():
