@@ -12,12 +12,11 @@
 from sloshkit.calibration.applied import AppliedMotion, applied_from_poses
 from sloshkit.calibration.backbone import Backbone, backbone
 from sloshkit.calibration.decay import FALLBACKS, METHODS, Method, calibrate
+from sloshkit.calibration.decrement import estimate_logdec, estimate_logdec_2peak
 from sloshkit.calibration.estimators import (
     Estimate,
     estimate_fft,
     estimate_fit,
-    estimate_logdec,
-    estimate_logdec_2peak,
     log_decrement_from_zeta,
     spectral_guess,
     zeta_from_log_decrement,

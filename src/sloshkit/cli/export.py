@@ -106,8 +106,8 @@ class ExportSettings:
 
     def arm(self, fmt: str) -> Any:
         """The arm for joint formats (UR5e unless ``--urdf`` or ``--robot`` says otherwise)."""
-        from sloshkit.export.exporter import JOINT_FORMATS
         from sloshkit.export.kinematics import load_arm
+        from sloshkit.export.readback import JOINT_FORMATS
 
         if fmt not in JOINT_FORMATS:
             return None

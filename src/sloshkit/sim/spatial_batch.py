@@ -26,7 +26,7 @@ from sloshkit.sim.metrics import (
     free_oscillation_components,
     wall_elevation_factors,
 )
-from sloshkit.sim.spatial import spatial_drive
+from sloshkit.sim.spatial_drive import spatial_drive
 from sloshkit.sim.spatial_kernels import kernels
 from sloshkit.sim.spatial_response import HEIGHT_MAPPINGS, HeightMapping, ellipse_semi_major
 

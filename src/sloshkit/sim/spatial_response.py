@@ -21,7 +21,7 @@ from sloshkit.results import ResultMixin
 from sloshkit.sim.metrics import free_oscillation_components, wall_elevation_factors
 
 if TYPE_CHECKING:
-    from sloshkit.sim.spatial import SpatialDrive
+    from sloshkit.sim.spatial_drive import SpatialDrive
 
 FloatArray = NDArray[np.float64]
 HeightMapping = Literal["modal", "planar"]
@@ -74,7 +74,7 @@ class SpatialResponse(ResultMixin):
     Attributes
     ----------
     model : the `SloshModel` simulated
-    drive : the `sloshkit.sim.spatial.SpatialDrive` (specific forces, tilt rates, spin angle)
+    drive : the `sloshkit.sim.spatial_drive.SpatialDrive` (specific forces, tilt rates, spin angle)
     pendulum : (modes, M, 3) hinge-to-bob unit vectors in N (nonlinear) or (theta_x, theta_y,
         -1) (linear)
     pendulum_rate : (modes, M, 3) their time derivatives in N
