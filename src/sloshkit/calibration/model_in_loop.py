@@ -10,6 +10,7 @@ the response to `sloshkit.calibration.simulated.identify_simulated`, which fits 
 from __future__ import annotations
 
 import warnings
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -54,6 +55,17 @@ def trial_model(model: SloshModel, omega_rad_s: float, damping_ratio: float) -> 
     for mode in trial.modes:
         trial = trial.with_mode(mode.n, damping_ratio=damping_ratio)
     return trial
+
+
+def _around_theory(model: SloshModel) -> dict[str, Any]:
+    """The search of `identify_simulated` centred on the model's first mode: omega_n within
+    0.7-1.4 of theory, zeta from the model's (at least 1e-3)."""
+    theory = model.modes[0]
+    return {
+        "omega_guess_rad_s": theory.omega_rad_s,
+        "zeta_guess": max(theory.damping_ratio, 1e-3),
+        "omega_range": (0.7, 1.4),
+    }
 
 
 def identify_line(
@@ -130,16 +142,13 @@ def identify_line(
         signal = response.wall_elevation_m if signal_kind == "height" else response.angle_rad[0]
         return response.time_s + file_start, signal
 
-    theory = model.modes[0]
     return identify_simulated(
         simulate_line,
         time_s,
         values,
-        omega_guess_rad_s=theory.omega_rad_s,
-        zeta_guess=max(theory.damping_ratio, 1e-3),
+        **_around_theory(model),
         delay_s=delay_s,
         fit_delay=True,
-        omega_range=(0.7, 1.4),
         signal_kind=signal_kind,
         motion_span_s=(file_start, file_start + applied.motion.duration_s),
         require_constrained=require_constrained,
@@ -216,16 +225,13 @@ def identify_spatial(
             )
         return response.time_s, response.slosh_height_m
 
-    theory = model.modes[0]
     return identify_simulated(
         simulate_height,
         time_s,
         values,
-        omega_guess_rad_s=theory.omega_rad_s,
-        zeta_guess=max(theory.damping_ratio, 1e-3),
+        **_around_theory(model),
         delay_s=delay_s,
         fit_delay=fit_delay,
-        omega_range=(0.7, 1.4),
         signal_kind="height",
         motion_span_s=(poses.start_s, poses.end_s),
         require_constrained=require_constrained,
