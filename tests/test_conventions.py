@@ -80,16 +80,7 @@ PENDING_OWNERS = frozenset(
         "sloshkit.plan.spatial",
         "sloshkit.cli.plan_path",
         "sloshkit.io.waypoints",
-        # harden
-        "sloshkit.io.units",
-        "sloshkit.io.outputs",
-        "sloshkit.files",
-        "sloshkit.cli.messages",
-        "sloshkit.cli.signals",
-        "sloshkit.budget",
-        "sloshkit.io.schema",
-        "sloshkit.io.poses",
-        "sloshkit.io.tables",
+        # (harden: merged, documented)
         # cfd
         "sloshkit.cli.cfd",
         "sloshkit.cli.cfd_sweep",
