@@ -6,7 +6,6 @@ writers are in `sloshkit.files`.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -312,22 +311,3 @@ def _is_numeric(cells: list[str]) -> bool:
     except ValueError:
         return False
     return True
-
-
-#: Motion-file readers moved to `sloshkit.io.motions`; still importable from here.
-_MOVED = (
-    "read_motion_file",
-    "check_plausible_move",
-    "check_plausible_record",
-    "PLAUSIBLE_MOVE",
-    "PLAUSIBLE_RECORD_S",
-    "REST_TOLERANCE",
-)
-
-
-def __getattr__(name: str) -> Any:
-    if name in _MOVED:
-        from sloshkit.io import motions
-
-        return getattr(motions, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
