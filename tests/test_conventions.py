@@ -52,15 +52,8 @@ def test_every_public_parameter_is_documented(name, obj):
 #: branches; TEMPORARY: the coordinator empties this set when those branches are merged.
 PENDING_OWNERS = frozenset(
     {
-        # kernel
-        "sloshkit.sim.batch",
-        "sloshkit.sim.batch_kernel",
-        "sloshkit.sweep",
-        "sloshkit.cli.sweep",
-        "sloshkit.cli",
+        # kernel (merged; the protocol class results.Result still has no example)
         "sloshkit.results",
-        "sloshkit.plotting",
-        "sloshkit.plotting.sweep",
         # optimum
         "sloshkit.plan.optimal",
         "sloshkit.plan.optimal_nonlinear",
@@ -147,6 +140,8 @@ def _docstring_problems(obj: object) -> list[str]:
         parameters = [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")]  # type: ignore[arg-type]
     except ValueError:  # no signature (a builtin-backed class)
         parameters = []
+    if getattr(obj, "_is_protocol", False):
+        parameters = []  # a protocol is never constructed: its members are its documentation
     missing = [p for p in parameters if p not in _documented(doc)]
     if missing:
         problems.append(f"undocumented parameters {missing}")
