@@ -70,7 +70,7 @@ from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.metrics import default_settle_time
 from sloshkit.sim.simulate import LARGE_ANGLE_DEG
 from sloshkit.sim.spatial_drive import SpatialDrive, spatial_drive
-from sloshkit.sim.spatial_pendulums import linear_pendulums, nonlinear_pendulums
+from sloshkit.sim.spatial_kernels import linear_pendulums, nonlinear_pendulums
 from sloshkit.sim.spatial_response import HEIGHT_MAPPINGS, HeightMapping, SpatialResponse
 
 FloatArray = NDArray[np.float64]
