@@ -53,7 +53,7 @@ PLOTS: dict[str, str] = {
         "sloshkit.plotting.calibration:plot_forced_identification"
     ),
     "sloshkit.plan.planner.PlanResult": "sloshkit.plotting.plan:plot_plan",
-    "sloshkit.plan.path_planner.PathPlanResult": "sloshkit.plotting.plan3d:plot_path_plan",
+    "sloshkit.plan.path_result.PathPlanResult": "sloshkit.plotting.plan3d:plot_path_plan",
 }
 
 PlotFunction = Callable[..., Any]
