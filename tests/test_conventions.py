@@ -64,15 +64,7 @@ PENDING_OWNERS = frozenset(
         "sloshkit.plan.searches",
         "sloshkit.plan.cost",
         "sloshkit.cli.plan",
-        # plan3d
-        "sloshkit.plan.path",
-        "sloshkit.plan.path_planner",
-        "sloshkit.plan.retime",
-        "sloshkit.plan.tilt",
-        "sloshkit.plan.transcription",
-        "sloshkit.plan.spatial",
-        "sloshkit.cli.plan_path",
-        "sloshkit.io.waypoints",
+        # (plan3d: merged, documented)
         # (harden: merged, documented)
         # cfd
         "sloshkit.cli.cfd",
