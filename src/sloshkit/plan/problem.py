@@ -181,6 +181,8 @@ class PlanStatus(enum.Enum):
     ----------
     value : str
         ``feasible``, ``infeasible`` or ``failed``.
+    names, module, qualname, type, start, boundary : optional
+        The arguments of Python's functional `enum.Enum` API (not used here).
 
     Returns
     -------
