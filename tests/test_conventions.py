@@ -52,16 +52,6 @@ def test_every_public_parameter_is_documented(name, obj):
 #: branches; TEMPORARY: the coordinator empties this set when those branches are merged.
 PENDING_OWNERS = frozenset(
     {
-        # optimum
-        "sloshkit.plan.optimal",
-        "sloshkit.plan.optimal_nonlinear",
-        "sloshkit.plan.export_grid",
-        "sloshkit.plan.planner",
-        "sloshkit.plan.problem",
-        "sloshkit.plan.verification",
-        "sloshkit.plan.searches",
-        "sloshkit.plan.cost",
-        "sloshkit.cli.plan",
         # (plan3d: merged, documented)
         # (harden: merged, documented)
         # cfd
