@@ -16,10 +16,10 @@ derivatives) and compared on peak and residual first-mode angle and slosh height
 
 The comparison passes when peak and residual first-mode angle and peak and residual wall
 elevation agree within `TOLERANCE` (2 %) relative to the plan's value, no slosh limit is
-broken, and the rebuilt container stays within `PATH_TOLERANCE_M` of the planned path and
-`ORIENTATION_TOLERANCE_RAD` of the planned orientation. A residual below `RESIDUAL_FLOOR` of
-the plan's peak (0.1 %) is compared against that floor instead: 2 % of a residual that is
-numerically zero is noise.
+broken (by more than `LIMIT_TOLERANCE`, 0.1 %, the check's own resolution), and the rebuilt
+container stays within `PATH_TOLERANCE_M` of the planned path and `ORIENTATION_TOLERANCE_RAD`
+of the planned orientation. A residual below `RESIDUAL_FLOOR` of the plan's peak (0.1 %) is
+compared against that floor instead: 2 % of a residual that is numerically zero is noise.
 """
 
 from __future__ import annotations
@@ -50,6 +50,13 @@ PATH_TOLERANCE_M = 1e-4
 ORIENTATION_TOLERANCE_RAD = 1e-3
 #: Residuals are compared relative to max(plan residual, this fraction of the plan's peak).
 RESIDUAL_FLOOR = 1e-3
+#: Relative margin over a slosh limit still counted as meeting it. The round trip rebuilds the
+#: motion from position samples by a spline, while the planner's verification uses the plan's
+#: exact piecewise-constant jerk; the two discretisations move the peak of a move that rides
+#: its limit by about (omega * sample_period)^2 / 24 (6e-4 for 4.7 Hz at 4 ms; measured
+#: 1.1e-4 on the README's 0.5 m plan). A limit exceeded by less than this is within the
+#: check's own resolution, not a broken limit.
+LIMIT_TOLERANCE = 1e-3
 
 METRICS = (
     "peak_angle_deg",
@@ -400,7 +407,7 @@ def _verdict(
             height = height or "peak_slosh_height_m"
             checks.append((height, limits.max_wall_elevation_m))
         for key, limit in checks:
-            if export_metrics[key] > limit * (1.0 + 1e-9):
+            if export_metrics[key] > limit * (1.0 + LIMIT_TOLERANCE):
                 violations.append(f"{key}: export {export_metrics[key]:.6g} > limit {limit:.6g}")
     return RoundTrip(
         plan_metrics, export_metrics, differences, position_error, turned, tuple(violations), method
