@@ -180,7 +180,7 @@ def vial() -> object:
 def pose_trajectories(draw: st.DrawFn, scale: float = 1.0) -> object:
     """A random smooth move: a translation, then a tilt and a spin (each may be absent),
     chained by `concatenate`; ``scale`` shrinks every amplitude (small motions)."""
-    from sloshkit.motion.poses import (
+    from sloshkit.motion.pose_builders import (
         concatenate,
         poses_from_law,
         poses_from_rotation,

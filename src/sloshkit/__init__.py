@@ -24,7 +24,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-__version__ = "0.1.0"
+from sloshkit.version import __version__
 
 #: Public name -> module that defines it.
 _API: dict[str, str] = {
@@ -56,7 +56,7 @@ _API: dict[str, str] = {
     "ei": "sloshkit.motion.shaping",
     "shape_motion": "sloshkit.motion.shaping",
     "PoseTrajectory": "sloshkit.motion.poses",
-    "poses_from_law": "sloshkit.motion.poses",
+    "poses_from_law": "sloshkit.motion.pose_builders",
     # simulation
     "simulate": "sloshkit.sim.simulate",
     "SloshResponse": "sloshkit.sim.response",
@@ -177,7 +177,8 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         septic,
         trapezoidal,
     )
-    from sloshkit.motion.poses import PoseTrajectory, poses_from_law
+    from sloshkit.motion.pose_builders import poses_from_law
+    from sloshkit.motion.poses import PoseTrajectory
     from sloshkit.motion.profile import Motion
     from sloshkit.motion.recorded import from_samples
     from sloshkit.motion.shaping import Shaper, ei, shape_motion, zv, zvd

@@ -62,7 +62,20 @@ _PLOTTERS: dict[type, PlotFunction] = {}
 
 @runtime_checkable
 class Result(Protocol):
-    """What every sloshkit result offers (structural type of `ResultMixin`)."""
+    """What every sloshkit result offers (structural type of `ResultMixin`).
+
+    Examples
+    --------
+    A simulation result satisfies the protocol:
+
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> response = sk.simulate(model, sk.quintic(0.1, 0.5), sample_period_s=2e-3)
+    >>> all(hasattr(response, name) for name in ("to_dict", "to_pandas", "to_csv", "plot"))
+    True
+    >>> sorted(response.columns())[:2]
+    ['acceleration_m_s2', 'angle_1_rad']
+    """
 
     def columns(self) -> Mapping[str, ArrayLike]:
         """Named, equal-length 1-D arrays (SI units in the names)."""

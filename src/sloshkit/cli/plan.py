@@ -70,7 +70,7 @@ def plan_command(
         bool,
         typer.Option(
             "--smooth",
-            help="Optimal method: the smooth variant (2 % longer, least jerk rate) instead of "
+            help="Optimal method: the smooth variant (2 % longer, least jerk variation) instead of "
             "the time-optimal move.",
         ),
     ] = False,

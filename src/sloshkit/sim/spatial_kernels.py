@@ -1,6 +1,6 @@
 """Compiled (numba) integrators of the 3-D slosh pendulums in the container's non-spinning frame.
 
-Both kernels take the drive of `sloshkit.sim.spatial.spatial_drive` per mode: the specific
+Both kernels take the drive of `sloshkit.sim.spatial_drive.spatial_drive` per mode: the specific
 force f (3 components, non-spinning frame N), and the lateral angular velocity Omega = (p, q)
 of N and its derivative.
 
@@ -48,7 +48,19 @@ def _compile() -> dict[str, Any]:
 
 
 def kernels() -> dict[str, Any]:
-    """The compiled kernels (compiled on first use, cached on disk by numba)."""
+    """The compiled kernels (compiled on first use, cached on disk by numba).
+
+    Returns
+    -------
+    dict
+        linear, linear_batch, nonlinear and step: the numba functions behind
+        `linear_pendulums`, `nonlinear_pendulums` and `sloshkit.sim.spatial_batch`.
+
+    Examples
+    --------
+    >>> sorted(kernels())
+    ['linear', 'linear_batch', 'nonlinear', 'step']
+    """
     if not _KERNELS:
         _KERNELS.update(_compile())
     return _KERNELS
@@ -71,6 +83,44 @@ def linear_pendulums(
 
     The stiffness is floored at 1e-3 omega_n^2 (apparent gravity along the axis reversed or
     nearly zero: the caller warns, the model is not valid there).
+
+    Parameters
+    ----------
+    force : numpy.ndarray
+        Specific force at each mode's hinge (modes, steps, 3) in the non-spinning frame
+        [m/s^2] (`sloshkit.sim.spatial_drive.SpatialDrive`).
+    rest_force : numpy.ndarray
+        The same at rest in the first pose (modes, 3).
+    tilt_rate, tilt_accel : numpy.ndarray
+        Lateral angular velocity (steps, 2) [rad/s] and its derivative [rad/s^2].
+    length, omega, zeta : numpy.ndarray
+        The modes' L_n [m], omega_n [rad/s] and damping ratios.
+    sample_period_s : float
+        Step [s].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Angles [rad] and rates [rad/s].
+
+    References
+    ----------
+    The equations: `sloshkit.sim.spatial`; the exact discretisation of the linear oscillator:
+    `sloshkit.sim.discretisation`.
+
+    Examples
+    --------
+    A constant lateral acceleration a = 0.1 g tilts the pendulum to theta = -a/g:
+
+    >>> import numpy as np
+    >>> steps, g = 1000, 9.81
+    >>> force = np.tile([-0.1 * g, 0.0, -g], (1, steps, 1))
+    >>> still = np.zeros((steps, 2))
+    >>> angle, rate = linear_pendulums(force, np.array([[0.0, 0.0, -g]]), still, still,
+    ...                                np.array([0.01]), np.array([np.sqrt(g / 0.01)]),
+    ...                                np.array([0.3]), 1e-3)
+    >>> angle[0, -1].round(4).tolist()
+    [-0.1, 0.0]
     """
     floor = 1e-3 * np.asarray(omega, dtype=float) ** 2
     angle, rate = kernels()["linear"](
@@ -97,7 +147,47 @@ def nonlinear_pendulums(
     zeta: FloatArray,
     sample_period_s: float,
 ) -> tuple[FloatArray, FloatArray]:
-    """Spherical pendulums: unit vectors u and u' (modes, steps, 3), drive on the half grid."""
+    """Spherical pendulums: unit vectors u and u' (modes, steps, 3), drive on the half grid.
+
+    Parameters
+    ----------
+    force_half : numpy.ndarray
+        Specific force at each mode's hinge on the half-step grid (modes, 2 steps - 1, 3)
+        [m/s^2].
+    rest_force : numpy.ndarray
+        The same at rest in the first pose (modes, 3).
+    tilt_rate_half, tilt_accel_half : numpy.ndarray
+        Lateral angular velocity (2 steps - 1, 2) [rad/s] and its derivative, half-step grid.
+    length, omega, zeta : numpy.ndarray
+        The modes' L_n [m], omega_n [rad/s] and damping ratios.
+    sample_period_s : float
+        Step [s] (classical Runge-Kutta).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Unit vectors along the pendulums and their rates [1/s].
+
+    References
+    ----------
+    The equations: `sloshkit.sim.spatial`.
+
+    Examples
+    --------
+    A constant lateral acceleration 0.1 g: the large-angle pendulum hangs along the apparent
+    gravity, at atan(0.1) from the axis.
+
+    >>> import numpy as np
+    >>> steps, g = 1000, 9.81
+    >>> force = np.tile([-0.1 * g, 0.0, -g], (1, 2 * steps - 1, 1))
+    >>> still = np.zeros((2 * steps - 1, 2))
+    >>> unit, rate = nonlinear_pendulums(force, np.array([[0.0, 0.0, -g]]), still, still,
+    ...                                  np.array([0.01]), np.array([np.sqrt(g / 0.01)]),
+    ...                                  np.array([0.3]), 1e-3)
+    >>> swing = float(np.arctan2(-unit[0, -1, 0], -unit[0, -1, 2]))
+    >>> round(swing, 4), round(float(np.arctan(0.1)), 4)
+    (0.0997, 0.0997)
+    """
     unit, velocity = kernels()["nonlinear"](
         np.ascontiguousarray(force_half),
         np.ascontiguousarray(rest_force),
