@@ -53,6 +53,38 @@ def reference_timing(
     return Timing.from_samples("measured", t, s[start:][moving] / s[-1] * length_m)
 
 
+def height_bound_s(problem: PathProblem) -> float:
+    """Lower bound on the duration of any timing of the path (container upright on it) that
+    keeps the first mode's wall height under the height limit, from the linear pendulum model.
+
+    The first mode is a pendulum of length L and frequency w whose bob, at y, obeys
+    y'' = w^2 (q - y) (damping neglected, zeta = 0.0066 here), q the bob's rest point on the
+    container's axis (Abramson, NASA SP-106 (1966) ch. 6). A wall height e |phi| <= h keeps
+    |y - q| <= d = L h / e, so |y''| <= a = w^2 d and the bob passes within d of every point of
+    the path in order: it travels at least l = sum (|q_i+1 - q_i| - 2 d)+ over any ordered
+    checkpoints (the largest over several spacings is taken; the last within d too). From rest
+    at |acceleration| <= a to a final speed <= v_f = w L r / e (the residual limit r), that
+    takes at least (2 sqrt(a l + v_f^2 / 2) - v_f) / a. Horizontal components only; it ignores
+    the other modes (which can add to or cancel the first at the wall) and the container's
+    tilts (LE tilts it), so it is a bound for the upright RD and TRD moves only.
+    """
+    mode = problem.model.modes[0]
+    omega, length, wall = mode.omega_rad_s, mode.length_m, mode.wall_elevation_factor_m
+    reach = length * problem.slosh.max_height_m / wall
+    bob_acceleration = omega**2 * reach
+    final_speed = omega * length * problem.slosh.max_residual_height_m / wall
+    s = np.linspace(0.0, problem.path.length_m, 4001)
+    axis = problem.path.orientation(s).apply([0.0, 0.0, 1.0])
+    rest = (problem.path.position(s) + mode.bob_height_m * axis)[:, :2]
+    travel = 0.0
+    for stride in (1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 4000):
+        points = rest[np.unique(np.append(np.arange(0, s.size, stride), s.size - 1))]
+        steps = np.linalg.norm(np.diff(points, axis=0), axis=1) - 2.0 * reach
+        travel = max(travel, float(np.sum(np.maximum(steps, 0.0))) - reach)
+    peak = np.sqrt(bob_acceleration * max(travel, 0.0) + 0.5 * final_speed**2)
+    return float((2.0 * peak - final_speed) / bob_acceleration)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--transcription", action="store_true")
@@ -67,8 +99,9 @@ def main() -> None:
         manifest = {row["name"]: row for row in csv.DictReader(stream)}
     rows = [
         "| path | height limit | measured run | uniform scaling | retime | shaped | tilt "
-        "| retime vs uniform | tilt vs uniform | compute retime / shaped / tilt |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        "| retime vs uniform | tilt vs uniform | height bound | uniform / bound "
+        "| compute retime / shaped / tilt |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for name in SERIES:
         trajectory = read_pose_file(DATA / "poses" / f"{name}.csv")
@@ -103,6 +136,11 @@ def main() -> None:
                     return "-"
                 return f"{base.duration_s / other.duration_s:.2f}x"
 
+            bound = height_bound_s(problem)
+            uniform = found.get("uniform")
+            uniform_over_bound = (
+                f"{uniform.duration_s / bound:.2f}x" if uniform and uniform.feasible else "-"
+            )
             compute = " / ".join(
                 f"{found[m].compute_time_s:.1f}" if m in found else "-"
                 for m in ("retime", "shaped", "tilt")
@@ -111,7 +149,7 @@ def main() -> None:
                 f"| {name.split('_')[0]} | {1e3 * measured * fraction:.1f} mm "
                 f"| {float(manifest[name]['motion_duration_s']):.2f} s | {show('uniform')} "
                 f"| {show('retime')} | {show('shaped')} | {show('tilt')} | {ratio('retime')} "
-                f"| {ratio('tilt')} | {compute} s |"
+                f"| {ratio('tilt')} | {bound:.2f} s | {uniform_over_bound} | {compute} s |"
             )
             print(rows[-1], f"({time.perf_counter() - started:.0f} s)", flush=True)
     # 20 waypoints: a zig-zag in the plane with a rise, 30 mm blends.

@@ -3,8 +3,8 @@
 All methods use the timing family of `sloshkit.plan.retime` (acceleration-capped time-optimal
 speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the timing):
 
-- ``retime``: the largest acceleration cap whose member passes the linear slosh screen
-  (bisection), with and without shaping, the faster one;
+- ``retime``: the largest cap whose member passes the linear screen (with and without shaping),
+  and the verified ``uniform`` timing, each warped locally (`path_search.warp_search`);
 - ``shaped``: per-axis input shaping of the members (each Cartesian axis convolved with the
   ZV/ZVD shaper of the first mode, which cancels its residual for every lateral direction), the
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the

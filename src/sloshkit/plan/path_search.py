@@ -6,7 +6,9 @@ Slosh is not monotone in the cap A (the residual oscillates with the move's dura
 bisection towards the next larger (failing) grid value, also bisects over the whole range (it
 can land in a passing pocket between grid values), and keeps the larger passing cap. A uniform
 stretch in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative
-the planner compares with.
+the planner compares with. `warp_search` improves a feasible timing locally by a piecewise
+(B-spline) speed scaling under the screen, and `warped_candidates` verifies the improvements of
+verified seeds and keeps the fastest, so ``retime`` is never slower than its seeds.
 """
 
 from __future__ import annotations
@@ -255,7 +257,7 @@ WARP_KNOTS = 12
 #: Largest number of linear screens one `warp_search` spends.
 WARP_SCREENS = 250
 #: Verify-and-tighten rounds of `warped_candidates` per seed.
-WARP_ROUNDS = 3
+WARP_ROUNDS = 5
 #: Smallest warp factor (time may run at most 10x faster than in the seed locally).
 WARP_FLOOR = 0.1
 
