@@ -31,6 +31,11 @@ def children_cpu_s() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
+def result_wall_cell(case: Path) -> float:
+    """The radial size of the wall cells of a written case [m]."""
+    return float(json.loads((case / "sloshkit-case.json").read_text())["wall_cell_m"])
+
+
 def bench(
     case: Path,
     cells_per_radius: int,
@@ -41,6 +46,8 @@ def bench(
     max_alpha_courant: float,
     pressure_correctors: int = RECOMMENDED["pressure_correctors"],
     adjust_time_step: bool = True,
+    wall_grading: float = 1.0,
+    radial_cells: int | None = None,
 ) -> dict[str, object]:
     """Run one free decay and return its timings and calibration."""
     model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
@@ -55,6 +62,8 @@ def bench(
         max_alpha_courant=max_alpha_courant,
         pressure_correctors=pressure_correctors,
         adjust_time_step=adjust_time_step,
+        wall_grading=wall_grading,
+        radial_cells=radial_cells,
     )
     load_before = os.getloadavg()
     cpu_before = children_cpu_s()
@@ -81,6 +90,9 @@ def bench(
         "max_alpha_courant": max_alpha_courant,
         "pressure_correctors": pressure_correctors,
         "adjust_time_step": adjust_time_step,
+        "wall_grading": wall_grading,
+        "radial_cells": radial_cells,
+        "wall_cell_m": result_wall_cell(case),
         "time_steps": steps,
         "wall_clock_s": wall,
         "cpu_s": cpu,

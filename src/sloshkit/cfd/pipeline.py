@@ -1,12 +1,15 @@
 """CFD pipeline: case from a model, run, signals, calibration, and comparison with the
-equivalent pendulum for the same motion (the seed paper's Table 4 and Figs. 5 and 9)."""
+equivalent pendulum for the same motion (the seed paper's Table 4 and Figs. 5 and 9).
+
+The calibration of a finished case lives in `sloshkit.cfd.analysis` (`analyse`, re-exported
+here), the comparison's result object in `sloshkit.cfd.validation`.
+"""
 
 from __future__ import annotations
 
 import json
 import time
 import warnings
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -14,6 +17,12 @@ import numpy as np
 from scipy.special import j1
 
 from sloshkit.calibration import CalibrationResult, calibrate
+from sloshkit.cfd.analysis import (
+    CfdAnalysis,
+    analyse,
+    excitation_end,
+    read_finished_signals,
+)
 from sloshkit.cfd.case import (
     CaseSpec,
     Excitation,
@@ -22,7 +31,6 @@ from sloshkit.cfd.case import (
     MotionExcitation,
     PoseExcitation,
 )
-from sloshkit.cfd.results import CfdSignals, read_signals
 from sloshkit.cfd.run import (
     RunResult,
     check_processes,
@@ -32,10 +40,25 @@ from sloshkit.cfd.run import (
     run_case,
     write_case,
 )
+from sloshkit.cfd.validation import CfdValidation, comparison_row
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.recorded import from_samples
 from sloshkit.sim.simulate import simulate
+
+__all__ = [
+    "RECOMMENDED",
+    "CfdAnalysis",
+    "analyse",
+    "case_spec",
+    "describe",
+    "excitation_end",
+    "excitation_from_options",
+    "model_wall_elevation",
+    "read_finished_signals",
+    "run",
+    "validate",
+]
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).
 RECOMMENDED: dict[str, Any] = {
@@ -63,6 +86,8 @@ def case_spec(
     adjust_time_step: bool = True,
     probe_angles: int = 0,
     pressure_correctors: int = RECOMMENDED["pressure_correctors"],
+    wall_grading: float = 1.0,
+    radial_cells: int | None = None,
 ) -> CaseSpec:
     """A case for ``model``'s container, fill and liquid.
 
@@ -86,6 +111,8 @@ def case_spec(
         max_alpha_courant=max_alpha_courant,
         probe_angles=probe_angles,
         pressure_correctors=pressure_correctors,
+        wall_grading=wall_grading,
+        radial_cells=radial_cells,
     )
 
 
@@ -125,83 +152,6 @@ def _check_and_write(spec: CaseSpec, case: Path, resume: bool, overwrite: bool) 
         write_case(spec, case, overwrite=overwrite)
 
 
-def excitation_end(summary: dict[str, Any]) -> float:
-    """When the container stops moving in this case [s] (0 for a free decay)."""
-    excitation = summary["excitation"]
-    if excitation["type"] == "Harmonic":
-        return float(excitation["duration_s"])
-    if excitation["type"] in ("MotionExcitation", "PoseExcitation"):
-        return float(excitation.get("duration_s", 0.0))
-    return 0.0
-
-
-@dataclass(frozen=True, eq=False)
-class CfdAnalysis:
-    """A case's signals and their calibration."""
-
-    case: Path
-    signals: CfdSignals
-    calibration: CalibrationResult
-    run_record: dict[str, Any]
-
-    def to_dict(self) -> dict[str, Any]:
-        """The calibrate keys plus cells, simulated_s and wall_clock_s."""
-        payload = self.calibration.to_dict()
-        payload.update(
-            cells=self.signals.summary["cells"],
-            simulated_s=float(self.signals.time_s[-1]),
-            wall_clock_s=self.run_record.get("wall_clock_s"),
-            processes=self.run_record.get("processes"),
-            case=str(self.case),
-        )
-        return payload
-
-
-def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> CfdAnalysis:
-    """Calibrate frequency and damping from the antisymmetric wall elevation of a case, over
-    the free decay (after the excitation, or from the largest peak).
-
-    Raises `InputError` for a folder that is not a sloshkit case and for an unfinished run
-    (saying how far it got), rather than calibrating a truncated record.
-    """
-    signals = read_finished_signals(case)
-    if start_s is None:
-        end = excitation_end(dict(signals.summary))
-        start_s = end if end > 0 else None
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
-        result = calibrate(
-            signals.time_s,
-            signals.elevation_m,
-            method=method,  # type: ignore[arg-type]
-            start_s=start_s,
-            source=f"{case} (CFD wall elevation)",
-        )
-    record_path = case / "sloshkit-run.json"
-    record = json.loads(record_path.read_text(encoding="utf-8")) if record_path.is_file() else {}
-    return CfdAnalysis(case, signals, result, record)
-
-
-def read_finished_signals(case: Path) -> CfdSignals:
-    """The signals of a finished case; `InputError` when the case is missing or unfinished."""
-    summary_path = case / "sloshkit-case.json"
-    if not summary_path.is_file():
-        raise InputError("case", str(case), "is not a sloshkit CFD case (no sloshkit-case.json)")
-    summary = json.loads(summary_path.read_text(encoding="utf-8"))
-    end = float(summary["end_time_s"])
-    resume = f"continue it with: sloshkit cfd run --case {case} --resume"
-    if not (case / "postProcessing" / "wallProbes").is_dir():
-        raise InputError("case", str(case), f"is unfinished (simulated 0 of {end:g} s)", resume)
-    signals = read_signals(case)
-    simulated = float(signals.time_s[-1])
-    step = float(summary.get("delta_t_s", 0.0))
-    if simulated < end - max(1.5 * step, 1e-6):
-        raise InputError(
-            "case", str(case), f"is unfinished (simulated {simulated:.4g} of {end:g} s)", resume
-        )
-    return signals
-
-
 def model_wall_elevation(
     model: SloshModel, time_s: np.ndarray, acceleration: np.ndarray, x_over_r: float = 0.98
 ) -> np.ndarray:
@@ -217,57 +167,106 @@ def model_wall_elevation(
     return np.asarray(np.interp(time_s, response.time_s, elevation), dtype=float)
 
 
-def validate(case: Path, model: SloshModel) -> dict[str, Any]:
-    """Compare a finished case with the pendulum model for the same motion: frequency,
-    damping, peak elevation during the excitation and residual amplitude after it."""
-    analysis = analyse(case)
-    signals = analysis.signals
+def validate(model: SloshModel, case: Path) -> CfdValidation:
+    """Compare a finished case with the pendulum model for the same motion.
+
+    The model is driven by the container acceleration the case was driven with (read back
+    from its table) and read at the probes' radius through the linear mode shapes; both
+    records are calibrated the same way (`analyse`). A forced run that ends too soon after
+    its excitation still compares the peak elevation during it, with ``None`` for frequency,
+    damping and residual amplitude and a `ValidityWarning`.
+
+    Parameters
+    ----------
+    model : SloshModel
+        The equivalent pendulum model of the same container, fill and liquid.
+    case : Path
+        A finished case (``sloshkit cfd run`` or ``cfd validate``).
+
+    Returns
+    -------
+    CfdValidation
+        ``comparison`` rows ``omega_n_rad_s``, ``damping_ratio``, ``peak_elevation_m`` (during
+        the excitation) and ``residual_elevation_m`` (fitted amplitude after it), the
+        correlation of the two wall elevations, and both series.
+
+    Raises
+    ------
+    InputError
+        Not a finished sloshkit case.
+
+    References
+    ----------
+    De Simone et al. (2024), the seed paper, Table 4 and Fig. 9.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> validate(model, Path("no-such-case"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
+    """
+    signals = read_finished_signals(case)
     summary = dict(signals.summary)
     t = signals.time_s
     acceleration = _excitation_acceleration(case, t)
     predicted = model_wall_elevation(model, t, acceleration)
     end = excitation_end(summary)
     during = t <= max(end, t[0])
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
-        model_fit = calibrate(
-            t, predicted, start_s=end if end > 0 else None, source="pendulum model"
+    cfd_fit: CalibrationResult | None = None
+    model_fit: CalibrationResult | None = None
+    try:
+        cfd_fit = analyse(case).calibration
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            model_fit = calibrate(
+                t, predicted, forcing_end_s=end if end > 0 else None, source="pendulum model"
+            )
+    except InputError as error:
+        warnings.warn(
+            f"no free decay to compare (frequency, damping, residual): {error}",
+            ValidityWarning,
+            stacklevel=2,
         )
-    cfd_fit = analysis.calibration
 
-    def amplitude(result: CalibrationResult) -> float | None:
-        fit = result.estimates["fit"]
-        return None if fit.amplitude is None else float(fit.amplitude)
+    def value(result: CalibrationResult | None, key: str) -> float | None:
+        if result is None:
+            return None
+        if key == "amplitude":
+            amplitude = result.estimates["fit"].amplitude
+            return None if amplitude is None else float(amplitude)
+        return float(getattr(result, key))
 
-    rows = {
-        "omega_n_rad_s": (cfd_fit.omega_n_rad_s, model_fit.omega_n_rad_s),
-        "damping_ratio": (cfd_fit.damping_ratio, model_fit.damping_ratio),
-        "peak_elevation_m": (
+    comparison = {
+        "omega_n_rad_s": comparison_row(
+            value(cfd_fit, "omega_n_rad_s"), value(model_fit, "omega_n_rad_s")
+        ),
+        "damping_ratio": comparison_row(
+            value(cfd_fit, "damping_ratio"), value(model_fit, "damping_ratio")
+        ),
+        "peak_elevation_m": comparison_row(
             float(np.max(np.abs(signals.elevation_m[during]))) if end > 0 else None,
             float(np.max(np.abs(predicted[during]))) if end > 0 else None,
         ),
-        "residual_elevation_m": (amplitude(cfd_fit), amplitude(model_fit)),
+        "residual_elevation_m": comparison_row(
+            value(cfd_fit, "amplitude"), value(model_fit, "amplitude")
+        ),
     }
-    comparison = {}
-    for key, (cfd_value, model_value) in rows.items():
-        difference = None
-        if cfd_value is not None and model_value not in (None, 0.0):
-            difference = (cfd_value - model_value) / model_value  # type: ignore[operator]
-        comparison[key] = {
-            "cfd": cfd_value,
-            "model": model_value,
-            "relative_difference": difference,
-        }
     correlation = float(np.corrcoef(signals.elevation_m, predicted)[0, 1])
-    return {
-        "case": str(case),
-        "comparison": comparison,
-        "correlation": correlation,
-        "time_s": t,
-        "cfd_elevation_m": signals.elevation_m,
-        "model_elevation_m": predicted,
-        "excitation_end_s": end,
-    }
+    return CfdValidation(
+        case=str(case),
+        comparison=comparison,
+        correlation=correlation,
+        time_s=np.asarray(t, dtype=float),
+        cfd_elevation_m=np.asarray(signals.elevation_m, dtype=float),
+        model_elevation_m=np.asarray(predicted, dtype=float),
+        excitation_end_s=end,
+    )
 
 
 def _excitation_acceleration(case: Path, t: np.ndarray) -> np.ndarray:

@@ -10,7 +10,8 @@ from rich.table import Table
 from rich.text import Text
 
 from sloshkit.cli.app import stderr, stdout
-from sloshkit.cli.cfd import _cfd_spec, cfd_app, cfd_options
+from sloshkit.cli.cfd import cfd_app
+from sloshkit.cli.cfd_options import cfd_options, spec_from_options
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
@@ -84,7 +85,7 @@ def cfd_sweep_command(
         for fill in fill_list:
             model = equivalent_model(slosh_model.container, liquid, fill)
             for cells in mesh_list:
-                spec = _cfd_spec(model, {**case_options, "cells_per_radius": cells})
+                spec = spec_from_options(model, {**case_options, "cells_per_radius": cells})
                 name = f"{liquid.name}-h{fill * 1e3:g}mm-n{cells}"
                 cases.append(CampaignCase(name, spec, model.modes[0].frequency_hz))
     with Progress(

@@ -1,0 +1,89 @@
+"""Richardson study of the CFD damping of the seed paper's vial in mesh AND time step.
+
+Runs 2 s of free decay (3 deg tilt, fixed Euler step, serial) on three uniform O-grids
+(`MESHES` cells per radius, refinement ratio about 1.37) at three steps (`STEPS`), one row per
+run in docs/cfd-damping-study.json (resumable: finished rows are kept). ``--analyse`` then
+extrapolates (`sloshkit.cfd.convergence`) and writes the damping section of docs/cfd.md
+between its markers, and the figure docs/figures/cfd_damping_study.png.
+
+Run: PYTHONPATH=src python benchmarks/cfd_damping_study.py [--analyse-only]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from bench_cfd_speed import bench  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+MESHES = (8, 11, 15)
+STEPS_MS = (2.0, 1.0, 0.5)
+#: cheapest first, so that an interrupted study has complete coarse levels
+PLAN = sorted(
+    ((n, dt) for n in MESHES for dt in STEPS_MS), key=lambda row: row[0] ** 2 / row[1]
+)
+
+
+#: Wall-graded meshes that stay stable (docs/cfd-wall-grading.json): a wall annulus of
+#: `radial_cells` graded 0.1 (wall cells 0.121, 0.093, 0.069 mm; the Stokes layer is 0.25 mm),
+#: every cell count scaled by about 4/3 from one level to the next.
+GRADED_WALL = 0.1
+GRADED_MESHES = {9: 6, 12: 8, 16: 11}  # cells per radius -> annulus cells
+#: (cells per radius, step [ms]), in the order run
+GRADED_PLAN = [(12, 2.0), (12, 1.0), (9, 2.0), (9, 1.0), (16, 2.0), (16, 1.0), (9, 0.5)]
+
+
+def run_plan(out: Path, work: Path, end_time_s: float, graded: bool = False) -> None:
+    """Run every (mesh, step) of `PLAN` (or of the graded mesh) not in ``out`` yet."""
+    rows = json.loads(out.read_text()) if out.is_file() else []
+    done = {(r["cells_per_radius"], round(r["max_step_s"] * 1e3, 6)) for r in rows}
+    for cells_per_radius, step_ms in GRADED_PLAN if graded else PLAN:
+        if (cells_per_radius, step_ms) in done:
+            continue
+        extra: dict[str, float] = {}
+        if graded:
+            extra = {
+                "radial_cells": GRADED_MESHES[cells_per_radius],
+                "wall_grading": GRADED_WALL,
+            }
+        row = bench(
+            work / f"n{cells_per_radius}-dt{step_ms:g}ms{'-graded' if graded else ''}",
+            cells_per_radius,
+            1,
+            end_time_s,
+            step_ms * 1e-3,
+            0.5,
+            0.5,
+            adjust_time_step=False,
+            **extra,  # type: ignore[arg-type]
+        )
+        rows.append(row)
+        print(json.dumps(row), flush=True)
+        out.write_text(json.dumps(rows, indent=2) + "\n", encoding="utf-8")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--analyse-only", action="store_true")
+    parser.add_argument("--end-time", type=float, default=2.0)
+    parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-damping"))
+    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-damping-study.json")
+    parser.add_argument(
+        "--graded-out", type=Path, default=ROOT / "docs" / "cfd-damping-graded.json"
+    )
+    parser.add_argument("--graded", action="store_true", help="run the wall-graded mesh")
+    args = parser.parse_args()
+    if not args.analyse_only:
+        if args.graded:
+            run_plan(args.graded_out, args.work, args.end_time, graded=True)
+        else:
+            run_plan(args.out, args.work, args.end_time)
+
+
+if __name__ == "__main__":
+    main()
