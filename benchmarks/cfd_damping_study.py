@@ -18,15 +18,13 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from bench_cfd_speed import bench  # noqa: E402
+from bench_cfd_speed import bench
 
 ROOT = Path(__file__).resolve().parent.parent
 MESHES = (8, 11, 15)
 STEPS_MS = (2.0, 1.0, 0.5)
 #: cheapest first, so that an interrupted study has complete coarse levels
-PLAN = sorted(
-    ((n, dt) for n in MESHES for dt in STEPS_MS), key=lambda row: row[0] ** 2 / row[1]
-)
+PLAN = sorted(((n, dt) for n in MESHES for dt in STEPS_MS), key=lambda row: row[0] ** 2 / row[1])
 
 
 #: Wall-graded meshes that stay stable (docs/cfd-wall-grading.json): a wall annulus of

@@ -3,6 +3,7 @@ numpydoc docstring with Parameters (every parameter), Returns and Examples."""
 
 from __future__ import annotations
 
+import enum
 import importlib
 import inspect
 import pkgutil
@@ -28,7 +29,7 @@ def _public() -> list[tuple[str, object]]:
             if name.startswith("_") or getattr(obj, "__module__", None) != module_name:
                 continue
             if inspect.isfunction(obj) or inspect.isclass(obj):
-                found.append((f"{module_name}.{name}", obj))
+                found.append((f"{module_name}.{name}", inspect.unwrap(obj)))
     return found
 
 
@@ -48,12 +49,12 @@ def missing_sections(obj: object) -> list[str]:
         parameters = [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")]
     except (TypeError, ValueError):
         parameters = []
-    if isinstance(obj, type) and issubclass(obj, BaseException):
-        parameters = []  # exceptions document their message
+    # Exceptions document their message, enumerations their members: only Examples needed.
+    plain = isinstance(obj, type) and issubclass(obj, BaseException | enum.Enum)
     undocumented = [p for p in parameters if p not in _documented(doc)]
-    if undocumented:
+    if undocumented and not plain:
         problems.append(f"parameters {undocumented}")
-    if not (doc["Returns"] or doc["Yields"]):
+    if not (doc["Returns"] or doc["Yields"] or plain):
         problems.append("Returns")
     if not doc["Examples"]:
         problems.append("Examples")

@@ -15,7 +15,24 @@ from sloshkit.errors import InputError, ValidityWarning
 
 
 def excitation_end(summary: dict[str, Any]) -> float:
-    """When the container stops moving in this case [s] (0 for a free decay)."""
+    """When the container stops moving in this case [s] (0 for a free decay).
+
+    Parameters
+    ----------
+    summary : dict
+        The case's ``sloshkit-case.json``.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> excitation_end({"excitation": {"type": "Harmonic", "duration_s": 2.0}})
+    2.0
+    >>> excitation_end({"excitation": {"type": "FreeDecay", "tilt_deg": 3.0}})
+    0.0
+    """
     excitation = summary["excitation"]
     if excitation["type"] == "Harmonic":
         return float(excitation["duration_s"])
@@ -26,7 +43,37 @@ def excitation_end(summary: dict[str, Any]) -> float:
 
 @dataclass(frozen=True, eq=False)
 class CfdAnalysis:
-    """A case's signals and their calibration."""
+    """A case's signals and their calibration.
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+    signals : CfdSignals
+        Its signals.
+    calibration : CalibrationResult
+        Frequency and damping of its free decay.
+    run_record : dict
+        ``sloshkit-run.json`` (wall clock, processes), or empty.
+
+    Returns
+    -------
+    CfdAnalysis
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pathlib import Path
+    >>> from sloshkit.calibration import calibrate
+    >>> from sloshkit.cfd.results import CfdSignals
+    >>> t = np.arange(0.0, 3.0, 0.002)
+    >>> y = 1e-3 * np.exp(-0.15 * t) * np.cos(29.66 * t)
+    >>> signals = CfdSignals(t, np.column_stack((y, -y)), np.array([0.0, np.pi]), 0 * t, 0 * t,
+    ...                      {"cells": 100})
+    >>> analysis = CfdAnalysis(Path("c"), signals, calibrate(t, y, start_s=0.0), {})
+    >>> round(analysis.to_dict()["damping_ratio"], 4), analysis.to_dict()["cells"]
+    (0.0051, 100)
+    """
 
     case: Path
     signals: CfdSignals
@@ -117,7 +164,30 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
 
 
 def read_finished_signals(case: Path) -> CfdSignals:
-    """The signals of a finished case; `InputError` when the case is missing or unfinished."""
+    """The signals of a finished case; `InputError` when the case is missing or unfinished.
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+
+    Returns
+    -------
+    CfdSignals
+
+    Raises
+    ------
+    InputError
+        Not a sloshkit case, or unfinished (saying how far it got and how to continue).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> read_finished_signals(Path("no-such-case"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
+    """
     summary_path = case / "sloshkit-case.json"
     if not summary_path.is_file():
         raise InputError("case", str(case), "is not a sloshkit CFD case (no sloshkit-case.json)")

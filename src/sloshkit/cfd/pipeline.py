@@ -93,6 +93,50 @@ def case_spec(
 
     With ``adjust_time_step`` the step follows the Courant limits and never exceeds
     ``delta_t_s``; otherwise it is fixed at ``delta_t_s``.
+
+    Parameters
+    ----------
+    model : SloshModel
+        Container, fill and liquid.
+    excitation : Excitation
+        The container motion.
+    cells_per_radius : int
+        Mesh resolution.
+    end_time_s, delta_t_s : float
+        Simulated time and largest (or fixed) step [s].
+    ddt_scheme : str
+        Time scheme.
+    processes : int
+        MPI processes.
+    surface_tension : bool
+        Include surface tension.
+    max_courant, max_alpha_courant : float
+        Courant limits of the adaptive step.
+    adjust_time_step : bool
+        Adaptive (else fixed) step.
+    probe_angles : int
+        Probe columns around the wall (0: two on the x axis).
+    pressure_correctors : int
+        PIMPLE pressure correctors.
+    wall_grading : float
+        Wall refinement (1: uniform; see `CaseSpec`).
+    radial_cells : int, optional
+        Cells across the ring blocks or the graded wall annulus.
+
+    Returns
+    -------
+    CaseSpec
+
+    Examples
+    --------
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> spec = case_spec(model, FreeDecay(0.05), cells_per_radius=12, wall_grading=0.1,
+    ...                  radial_cells=8)
+    >>> spec.fill_height_m, spec.wall_grading
+    (0.039, 0.1)
     """
     return CaseSpec(
         radius_m=model.radius_m,
@@ -123,6 +167,46 @@ def run(
 
     Everything that can be checked before writing is checked first (OpenFOAM and mpirun
     present, a sensible --np), so a refused run leaves no files behind.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+    case : Path
+        Its folder.
+    resume : bool
+        Continue an interrupted run.
+    overwrite : bool
+        Replace an existing sloshkit case.
+    progress : callable, optional
+        Progress callback (see `sloshkit.cfd.run.run_case`).
+
+    Returns
+    -------
+    RunResult
+
+    Raises
+    ------
+    InputError
+        Bad --np, or a folder that cannot be written.
+    CfdError
+        OpenFOAM missing or failing.
+
+    Examples
+    --------
+    >>> import shutil
+    >>> from pathlib import Path
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), processes=64)
+    >>> if shutil.which("interFoam"):  # refused before any file is written
+    ...     try:
+    ...         run(spec, Path("never-written"))
+    ...     except InputError as error:
+    ...         print(error.parameter)
+    ... else:
+    ...     print("np")
+    np
     """
     require_openfoam(spec.processes)
     with interruptible([], [0.0]):
@@ -156,7 +240,41 @@ def model_wall_elevation(
     model: SloshModel, time_s: np.ndarray, acceleration: np.ndarray, x_over_r: float = 0.98
 ) -> np.ndarray:
     """The pendulum model's wall elevation at x = x_over_r R for a sampled container
-    acceleration: each mode scaled by J1(xi_n x/R)/J1(xi_n) (the linear mode shape)."""
+    acceleration: each mode scaled by J1(xi_n x/R)/J1(xi_n) (the linear mode shape).
+
+    Parameters
+    ----------
+    model : SloshModel
+        The pendulum model.
+    time_s : ndarray
+        Sample times [s].
+    acceleration : ndarray
+        Container acceleration along x at those times [m/s^2].
+    x_over_r : float
+        Where the elevation is read, as a fraction of the radius.
+
+    Returns
+    -------
+    ndarray
+        Wall elevation [m].
+
+    References
+    ----------
+    Ibrahim, *Liquid Sloshing Dynamics* (2005), §2.3 (mode shapes J1(xi_n r/R) of the upright
+    cylinder).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(0.0, 0.5, 0.002)
+    >>> elevation = model_wall_elevation(model, t, np.where(t < 0.1, 1.0, 0.0))
+    >>> bool(np.abs(elevation).max() > 0.0), elevation.shape
+    (True, (250,))
+    """
 
     motion = from_samples(time_s, acceleration_m_s2=acceleration, name="cfd excitation")
     dt = float(np.median(np.diff(time_s)))
@@ -287,7 +405,35 @@ def excitation_from_options(
     motion: Any = None,
     poses: Any = None,
 ) -> Excitation:
-    """Build the excitation named on the command line."""
+    """Build the excitation named on the command line.
+
+    Parameters
+    ----------
+    kind : str
+        ``free-decay``, ``harmonic``, ``law`` or ``poses``.
+    tilt_rad : float
+        Initial tilt of a free decay [rad].
+    amplitude_m, frequency_hz, excite_time_s : float
+        The harmonic excitation.
+    motion : Any, optional
+        A motion law (``law``).
+    poses : PoseTrajectory, optional
+        A pose trajectory (``poses``).
+
+    Returns
+    -------
+    Excitation
+
+    Raises
+    ------
+    InputError
+        An unknown kind, or a missing motion or pose file.
+
+    Examples
+    --------
+    >>> excitation_from_options("harmonic", 0.05, 0.01, 1.0, 2.0)
+    Harmonic(amplitude_m=0.01, frequency_hz=1.0, duration_s=2.0)
+    """
     if kind == "poses":
         if poses is None:
             raise InputError("excitation", kind, "needs --pose-file")
@@ -304,7 +450,23 @@ def excitation_from_options(
 
 
 def describe(record: dict[str, Any]) -> str:
-    """One line about a run's cost."""
+    """One line about a run's cost.
+
+    Parameters
+    ----------
+    record : dict
+        ``sloshkit-run.json``.
+
+    Returns
+    -------
+    str
+        Empty when the record lacks the numbers.
+
+    Examples
+    --------
+    >>> describe({"wall_clock_s": 34.4, "simulated_s": 2.0})
+    '2 s simulated in 34 s wall clock (17 s per simulated second)'
+    """
     wall = record.get("wall_clock_s")
     simulated = record.get("simulated_s")
     if not wall or not simulated:

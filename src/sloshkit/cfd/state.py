@@ -7,11 +7,13 @@
 
 from __future__ import annotations
 
+import enum
 import math
 import os
 import re
 import shutil
 import warnings
+from dataclasses import dataclass
 from pathlib import Path
 
 from sloshkit.errors import InputError, ValidityWarning
@@ -35,11 +37,105 @@ FOAM_FILE_END = b"// ****"
 
 
 class CfdError(RuntimeError):
-    """OpenFOAM is missing, a tool failed, or the solver stopped early."""
+    """OpenFOAM is missing, a tool failed, or the solver stopped early.
+
+    Examples
+    --------
+    >>> raise CfdError("interFoam stopped at t = 0.1 s")
+    Traceback (most recent call last):
+    ...
+    sloshkit.cfd.state.CfdError: interFoam stopped at t = 0.1 s
+    """
+
+
+class CfdInterrupted(Exception):
+    """The run was stopped by a signal (the tools are stopped too; ``--resume`` continues).
+
+    Parameters
+    ----------
+    signum : int
+        The signal.
+    simulated_s : float
+        Simulated time reached [s].
+
+    Examples
+    --------
+    >>> str(CfdInterrupted(15, 0.25))
+    'interrupted by signal 15 at t = 0.25 s'
+    """
+
+    def __init__(self, signum: int, simulated_s: float) -> None:
+        self.signum = signum
+        self.simulated_s = simulated_s
+        super().__init__(f"interrupted by signal {signum} at t = {simulated_s:.6g} s")
+
+
+class RunStatus(enum.Enum):
+    """Outcome of a CFD run.
+
+    Examples
+    --------
+    >>> RunStatus("completed") is RunStatus.COMPLETED
+    True
+    """
+
+    COMPLETED = "completed"
+    FAILED = "failed"
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """A finished run: the case, how far it got, and how long it took.
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+    status : RunStatus
+        The outcome.
+    simulated_s, wall_clock_s : float
+        Simulated time reached and wall clock of the run [s].
+    processes, cells : int
+        MPI processes and mesh cells.
+
+    Returns
+    -------
+    RunResult
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> RunResult(Path("c"), RunStatus.COMPLETED, 2.0, 34.4, 2, 15004).status.value
+    'completed'
+    """
+
+    case: Path
+    status: RunStatus
+    simulated_s: float
+    wall_clock_s: float
+    processes: int
+    cells: int
 
 
 def tail(text: str, lines: int = 25) -> str:
-    """The last ``lines`` lines of a log."""
+    r"""The last ``lines`` lines of a log.
+
+    Parameters
+    ----------
+    text : str
+        A log.
+    lines : int
+        How many lines.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> tail("a\nb\nc", 2)
+    'b\nc'
+    """
     return "\n".join(text.splitlines()[-lines:])
 
 
@@ -49,6 +145,32 @@ def check_processes(processes: int, cells: int, cores: int | None = None) -> Non
     More than `MAX_PROCESSES_PER_CORE` processes per core, or fewer than
     `MIN_CELLS_PER_PROCESS` cells per process, only slow a run down (communication dominates);
     more processes than cores runs, with a `ValidityWarning`.
+
+    Parameters
+    ----------
+    processes : int
+        Requested MPI processes.
+    cells : int
+        Cells of the mesh.
+    cores : int, optional
+        Cores of the machine (default: ``os.cpu_count()``).
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    InputError
+        Too many processes for the cores or the mesh.
+
+    Examples
+    --------
+    >>> check_processes(2, 15004, cores=2)
+    >>> check_processes(64, 15004, cores=2)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: np = 64 is invalid: must be between 1 and 8 here ...
     """
     cores = cores or os.cpu_count() or 1
     limit = max(1, min(MAX_PROCESSES_PER_CORE * cores, cells // MIN_CELLS_PER_PROCESS))
@@ -132,6 +254,27 @@ def check_mesh_quality(log: str) -> dict[str, float]:
 
 
 def time_folders(folder: Path) -> dict[float, Path]:
+    """The time folders in ``folder`` (names that are numbers).
+
+    Parameters
+    ----------
+    folder : Path
+        A case, processor or function-object folder.
+
+    Returns
+    -------
+    dict of float to Path
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> case = Path(tempfile.mkdtemp())
+    >>> for name in ("0", "0.5", "system"):
+    ...     (case / name).mkdir()
+    >>> sorted(time_folders(case))
+    [0.0, 0.5]
+    """
     times = {}
     if folder.is_dir():
         for entry in folder.iterdir():
@@ -165,12 +308,56 @@ def _roots(case: Path, processes: int) -> list[Path]:
 
 
 def latest_time(case: Path, processes: int) -> float:
-    """The latest time folder, complete or not, of a (possibly decomposed) case [s]."""
+    """The latest time folder, complete or not, of a (possibly decomposed) case [s].
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+    processes : int
+        Its MPI processes (1: not decomposed).
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> case = Path(tempfile.mkdtemp())
+    >>> for name in ("0", "0.5", "1"):
+    ...     (case / name).mkdir()
+    >>> latest_time(case, 1)
+    1.0
+    """
     return max(time_folders(_roots(case, processes)[0]), default=0.0)
 
 
 def latest_complete_time(case: Path, processes: int) -> float | None:
-    """The latest time whose fields are complete in every processor folder [s], or None."""
+    """The latest time whose fields are complete in every processor folder [s], or None.
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+    processes : int
+        Its MPI processes (1: not decomposed).
+
+    Returns
+    -------
+    float or None
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> case = Path(tempfile.mkdtemp())
+    >>> for name in ("0", "0.5", "1"):
+    ...     (case / name).mkdir()
+    >>> latest_complete_time(case, 1) is None  # no fields written
+    True
+    """
     roots = _roots(case, processes)
     candidates = sorted(time_folders(roots[0]), reverse=True)
     for value in candidates:
@@ -182,7 +369,32 @@ def latest_complete_time(case: Path, processes: int) -> float | None:
 
 def discard_after(case: Path, processes: int, start: float) -> None:
     """Remove time folders after ``start`` (half-written or stale) and the function-object
-    output that begins at or after it (interFoam writes it again from ``start``)."""
+    output that begins at or after it (interFoam writes it again from ``start``).
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+    processes : int
+        Its MPI processes (1: not decomposed).
+    start : float
+        The time the run restarts from [s].
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> case = Path(tempfile.mkdtemp())
+    >>> for name in ("0", "0.5", "1"):
+    ...     (case / name).mkdir()
+    >>> discard_after(case, 1, 0.5)
+    >>> sorted(time_folders(case))
+    [0.0, 0.5]
+    """
     for root in _roots(case, processes):
         for value, folder in time_folders(root).items():
             if value > start + 1e-12:

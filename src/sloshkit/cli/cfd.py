@@ -189,6 +189,36 @@ def cfd_run_command(
     Example:
 
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
+
+
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The container, fill and liquid (the model options).
+    case_options : dict
+        The values of `sloshkit.cli.cfd_options.cfd_options`.
+    case : Path
+        The case folder.
+    resume : bool
+        Continue an interrupted run.
+    overwrite : bool
+        Replace an existing sloshkit case.
+    model_file_out : Path, optional
+        Write the calibrated model.
+    plot : Path, optional
+        Calibration figure.
+    json_output : bool
+        Print JSON.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.cli.app import run
+    >>> run(["cfd", "run", "--case", "c", "--cells-per-radius", "2"])  # refused: nothing written
+    2
     """
     check_file(model_file_out, "model_file_out", "model")
     check_file(plot, "plot", "figure")
@@ -234,6 +264,32 @@ def cfd_analyse_command(
     Example:
 
       sloshkit cfd analyse vial-decay --json
+
+
+    Parameters
+    ----------
+    case : Path
+        A finished case.
+    method : str
+        The estimator reported.
+    start : str, optional
+        Window start (with its unit).
+    plot : Path, optional
+        Calibration figure.
+    csv : Path, optional
+        The CFD signals as CSV.
+    json_output : bool
+        Print JSON.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.cli.app import run
+    >>> run(["cfd", "analyse", "no-such-case"])  # one line on stderr
+    2
     """
     check_file(plot, "plot", "figure")
     check_file(csv, "csv")
@@ -285,6 +341,34 @@ def cfd_validate_command(
       sloshkit cfd validate --case vial-harmonic --excitation harmonic --np 2 --plot fig9.png
 
       sloshkit cfd validate --case vial-3d --excitation poses --pose-file move.csv --np 2
+
+
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The container, fill and liquid (the model options).
+    case_options : dict
+        The values of `sloshkit.cli.cfd_options.cfd_options`.
+    case : Path
+        The case folder.
+    reuse : bool
+        Compare the case's existing results (no run).
+    overwrite : bool
+        Replace an existing sloshkit case.
+    plot : Path, optional
+        CFD against the model (Fig. 9).
+    json_output : bool
+        Print JSON (the keys of `sloshkit.cfd.validation.CfdValidation.to_dict`).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.cli.app import run
+    >>> run(["cfd", "validate", "--case", "no-such-case", "--reuse"])  # one line on stderr
+    2
     """
     check_file(plot, "plot", "figure")
 

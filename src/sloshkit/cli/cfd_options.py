@@ -229,7 +229,7 @@ def spec_from_options(slosh_model: SloshModel, options: dict[str, Any]) -> CaseS
         end_time_s=parse_quantity(options["end_time"], "time", "end_time"),
         delta_t_s=parse_quantity(options["delta_t"], "time", "delta_t"),
         ddt_scheme=options["ddt"],
-        processes=options["np_"] or 1,
+        processes=1 if options["np_"] is None else options["np_"],
         surface_tension=options["cfd_surface_tension"],
         max_courant=options["max_courant"],
         max_alpha_courant=options["max_courant"],

@@ -64,6 +64,34 @@ def cfd_sweep_command(
     Example:
 
       sloshkit cfd sweep --out campaign --fills 30mm,39mm,45mm --meshes 8 --end-time 2s
+
+
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The container, fill and liquid (the model options).
+    case_options : dict
+        The values of `sloshkit.cli.cfd_options.cfd_options`.
+    out : Path
+        Campaign folder.
+    fills, liquids, meshes : str, optional
+        Comma-separated fill heights, liquid presets, cells per radius.
+    workers : int
+        Cases run at once.
+    scheduler : str, optional
+        Address of an existing Dask scheduler.
+    json_output : bool
+        Print JSON.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.cli.app import run
+    >>> run(["cfd", "sweep", "--workers", "0"])  # one line on stderr
+    2
     """
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
