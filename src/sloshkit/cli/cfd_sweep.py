@@ -134,7 +134,7 @@ def cfd_sweep_command(
             cases,
             out,
             workers=workers,
-            processes=case_options["np_"] or 1,
+            processes=1 if case_options["np_"] is None else case_options["np_"],
             scheduler=scheduler,
             progress=advance,
         )
