@@ -190,7 +190,7 @@ def cfd_run_command(
 
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
 
-
+    \f
     Parameters
     ----------
     slosh_model : SloshModel
@@ -265,7 +265,7 @@ def cfd_analyse_command(
 
       sloshkit cfd analyse vial-decay --json
 
-
+    \f
     Parameters
     ----------
     case : Path
@@ -342,7 +342,7 @@ def cfd_validate_command(
 
       sloshkit cfd validate --case vial-3d --excitation poses --pose-file move.csv --np 2
 
-
+    \f
     Parameters
     ----------
     slosh_model : SloshModel

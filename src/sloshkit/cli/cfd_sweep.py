@@ -65,7 +65,7 @@ def cfd_sweep_command(
 
       sloshkit cfd sweep --out campaign --fills 30mm,39mm,45mm --meshes 8 --end-time 2s
 
-
+    \f
     Parameters
     ----------
     slosh_model : SloshModel
