@@ -48,6 +48,7 @@ def bench(
     adjust_time_step: bool = True,
     wall_grading: float = 1.0,
     radial_cells: int | None = None,
+    ddt_scheme: str = "Euler",
 ) -> dict[str, object]:
     """Run one free decay and return its timings and calibration."""
     model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
@@ -64,6 +65,7 @@ def bench(
         adjust_time_step=adjust_time_step,
         wall_grading=wall_grading,
         radial_cells=radial_cells,
+        ddt_scheme=ddt_scheme,
     )
     load_before = os.getloadavg()
     cpu_before = children_cpu_s()
@@ -90,6 +92,7 @@ def bench(
         "max_alpha_courant": max_alpha_courant,
         "pressure_correctors": pressure_correctors,
         "adjust_time_step": adjust_time_step,
+        "ddt_scheme": ddt_scheme,
         "wall_grading": wall_grading,
         "radial_cells": radial_cells,
         "wall_cell_m": result_wall_cell(case),

@@ -36,21 +36,30 @@ GRADED_MESHES = {9: 6, 12: 8, 16: 11}  # cells per radius -> annulus cells
 GRADED_PLAN = [(12, 2.0), (12, 1.0), (9, 2.0), (9, 1.0), (16, 2.0), (16, 1.0), (9, 0.5)]
 
 
-def run_plan(out: Path, work: Path, end_time_s: float, graded: bool = False) -> None:
-    """Run every (mesh, step) of `PLAN` (or of the graded mesh) not in ``out`` yet."""
+#: The coarse uniform mesh with the second-order backward scheme for U (Euler for alpha).
+BACKWARD_PLAN = [(8, 2.0), (8, 1.0), (8, 0.5)]
+
+
+def run_plan(
+    out: Path, work: Path, end_time_s: float, graded: bool = False, backward: bool = False
+) -> None:
+    """Run every (mesh, step) of `PLAN` (or of the graded family, or `BACKWARD_PLAN`) not in
+    ``out`` yet."""
     rows = json.loads(out.read_text()) if out.is_file() else []
     done = {(r["cells_per_radius"], round(r["max_step_s"] * 1e3, 6)) for r in rows}
-    for cells_per_radius, step_ms in GRADED_PLAN if graded else PLAN:
+    plan = GRADED_PLAN if graded else BACKWARD_PLAN if backward else PLAN
+    for cells_per_radius, step_ms in plan:
         if (cells_per_radius, step_ms) in done:
             continue
-        extra: dict[str, float] = {}
+        extra: dict[str, object] = {"ddt_scheme": "backward"} if backward else {}
         if graded:
             extra = {
                 "radial_cells": GRADED_MESHES[cells_per_radius],
                 "wall_grading": GRADED_WALL,
             }
         row = bench(
-            work / f"n{cells_per_radius}-dt{step_ms:g}ms{'-graded' if graded else ''}",
+            work / f"n{cells_per_radius}-dt{step_ms:g}ms{'-graded' if graded else ''}"
+            f"{'-backward' if backward else ''}",
             cells_per_radius,
             1,
             end_time_s,
@@ -74,11 +83,17 @@ def main() -> None:
     parser.add_argument(
         "--graded-out", type=Path, default=ROOT / "docs" / "cfd-damping-graded.json"
     )
-    parser.add_argument("--graded", action="store_true", help="run the wall-graded mesh")
+    parser.add_argument("--graded", action="store_true", help="run the wall-graded meshes")
+    parser.add_argument("--backward", action="store_true", help="backward scheme for U")
+    parser.add_argument(
+        "--backward-out", type=Path, default=ROOT / "docs" / "cfd-damping-backward.json"
+    )
     args = parser.parse_args()
     if not args.analyse_only:
         if args.graded:
             run_plan(args.graded_out, args.work, args.end_time, graded=True)
+        elif args.backward:
+            run_plan(args.backward_out, args.work, args.end_time, backward=True)
         else:
             run_plan(args.out, args.work, args.end_time)
 

@@ -173,7 +173,8 @@ def control_dict(spec: CaseSpec) -> str:
 
 
 def fv_schemes(spec: CaseSpec) -> str:
-    """Schemes: bounded second-order convection, the chosen time scheme.
+    """Schemes: bounded second-order convection, the chosen time scheme (with ``backward``,
+    Euler for alpha, the only first-order choice MULES accepts).
 
     Parameters
     ----------
@@ -192,8 +193,13 @@ def fv_schemes(spec: CaseSpec) -> str:
     >>> "Gauss vanLeer" in fv_schemes(spec)
     True
     """
+    ddt = {"default": spec.ddt_scheme}
+    if spec.ddt_scheme == "backward":
+        # interFoam's MULES accepts only Euler and CrankNicolson for alpha ("Only Euler and
+        # CrankNicolson ddt schemes are supported", v1912 alphaEqn.H): backward is for U.
+        ddt["ddt(alpha)"] = "Euler"
     entries = {
-        "ddtSchemes": {"default": spec.ddt_scheme},
+        "ddtSchemes": ddt,
         "gradSchemes": {"default": "Gauss linear"},
         "divSchemes": {
             "div(rhoPhi,U)": "Gauss linearUpwind grad(U)",
