@@ -29,6 +29,7 @@ DOCS = ROOT / "docs"
 RADIUS_M, FILL_M, GRAVITY = 0.0205, 0.039, 9.81
 XI_1 = 1.8411837813406593  # first zero of J1'
 START, END = "<!-- damping-study:start -->", "<!-- damping-study:end -->"
+WALL_START, WALL_END = "<!-- wall-stability:start -->", "<!-- wall-stability:end -->"
 
 
 def stokes_layer_damping(radius_m: float, fill_m: float, nu_m2_s: float) -> dict[str, float]:
@@ -199,12 +200,40 @@ def main() -> None:
     (DOCS / "cfd-damping.json").write_text(json.dumps(document, indent=2) + "\n")
     figure(uniform, graded, theory)
     section = render(document)
+    grading = json.loads((DOCS / "cfd-wall-grading.json").read_text())
+    wall_section = render_stability(grading.get("instability_diagnosis", []))
     text = (DOCS / "cfd.md").read_text()
-    if START in text:
-        head, rest = text.split(START, 1)
-        text = head + START + "\n" + section + "\n" + END + rest.split(END, 1)[1]
+    for start, end, body in ((START, END, section), (WALL_START, WALL_END, wall_section)):
+        if start in text:
+            head, rest = text.split(start, 1)
+            text = head + start + "\n" + body + "\n" + end + rest.split(end, 1)[1]
     (DOCS / "cfd.md").write_text(text)
+    print(wall_section)
     print(section)
+
+
+def render_stability(rows: list[dict[str, Any]]) -> str:
+    """The table of the wall-stability experiments (benchmarks/cfd_wall_stability.py)."""
+    lines = [
+        "| experiment (what it tests) | wall cell | min. determinant | max. aspect ratio | "
+        "outcome | growth per step | largest Courant at the end |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for row in rows:
+        wall = row["wall_cell_mm"]
+        growth = row["growth_per_step"]
+        outcome = (
+            f"blew up after {row['steps_run']} steps"
+            if row["blew_up"]
+            else f"ran {row['steps_run']} steps"
+        )
+        lines.append(
+            f"| {row['experiment']} ({row['tests']}) | "
+            f"{'-' if wall is None else f'{wall:.3f} mm'} | {row['min_determinant']:.2g} | "
+            f"{row['max_aspect_ratio']:.3g} | {outcome} | "
+            f"{'-' if growth is None else f'{growth:.3g}'} | {row['courant_last']:.2g} |"
+        )
+    return "\n".join(lines)
 
 
 def _fmt(value: float | None, digits: int = 4) -> str:

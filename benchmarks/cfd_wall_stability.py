@@ -207,17 +207,17 @@ def tool(case: Path, *command: str) -> tuple[str, int]:
 
 def growth_per_step(courant: list[float]) -> float | None:
     """Geometric growth factor per step of the largest Courant number: least squares on its
-    logarithm from the first step above 1e-19 (round-off) to the first step above 0.1 (or the
+    logarithm from the first step above 1e-19 (round-off) to the first step above 1 (or the
     end; a record that starts above 0.1, after a tilted start, is fitted whole); below 1 it
-    decays. None with fewer than three such steps."""
+    decays. None with fewer than two such steps."""
     start = next((k for k, c in enumerate(courant) if c > 1e-19), None)
     if start is None:
         return None
     stop = len(courant) - 1
-    if courant[start] < 0.1:  # from round-off: up to order one
-        stop = next((k for k, c in enumerate(courant) if k > start and c > 0.1), stop)
+    if courant[start] < 0.1:  # from round-off or spurious currents: up to order one
+        stop = next((k for k, c in enumerate(courant) if k > start and c > 1.0), stop)
     window = [math.log(c) for c in courant[start : stop + 1] if c > 0.0]
-    if len(window) < 3:
+    if len(window) < 2:
         return None
     return float(math.exp(np.polyfit(np.arange(len(window)), window, 1)[0]))
 
@@ -275,9 +275,17 @@ def main() -> None:
     parser.add_argument("--only", nargs="*", default=None, help="experiment names")
     parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-stability"))
     parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-wall-grading.json")
+    parser.add_argument(
+        "--regrow", action="store_true", help="only recompute the growth from the stored series"
+    )
     args = parser.parse_args()
     document = json.loads(args.out.read_text()) if args.out.is_file() else {}
     rows = {row["experiment"]: row for row in document.get("instability_diagnosis", [])}
+    if args.regrow:
+        for row in rows.values():
+            row["growth_per_step"] = growth_per_step(row["max_courant_per_step"])
+        args.out.write_text(json.dumps(document, indent=2) + "\n", encoding="utf-8")
+        return
     for name in args.only or list(EXPERIMENTS):
         rows[name] = experiment(name, args.work)
         print(json.dumps(rows[name]), flush=True)

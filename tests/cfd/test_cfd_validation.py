@@ -99,7 +99,7 @@ def test_analyse_starts_one_period_after_the_excitation(tmp_path):
 
 def test_a_short_forced_run_says_it_is_too_short(tmp_path):
     case = synthetic_case(tmp_path / "c", 0.6)
-    with pytest.raises(InputError, match="too short to calibrate.*--end-time"):
+    with pytest.raises(InputError, match=r"too short to calibrate.*--end-time"):
         analyse(case)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
