@@ -37,7 +37,7 @@ GRADED_PLAN = [(12, 2.0), (12, 1.0), (9, 2.0), (9, 1.0), (16, 2.0), (16, 1.0), (
 
 
 #: The coarse uniform mesh with the second-order backward scheme for U (Euler for alpha).
-BACKWARD_PLAN = [(8, 2.0), (8, 1.0), (8, 0.5)]
+BACKWARD_PLAN = [(8, 2.0), (8, 1.0)]
 
 
 def run_plan(

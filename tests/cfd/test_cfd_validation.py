@@ -84,7 +84,7 @@ def test_validate_takes_model_then_case_and_returns_the_result_protocol(tmp_path
 
 def test_validate_with_the_arguments_swapped_fails_loudly(tmp_path):
     case = synthetic_case(tmp_path / "c", 1.0)
-    with pytest.raises((AttributeError, TypeError)):
+    with pytest.raises(TypeError, match="v1 order"):
         validate(case, MODEL)  # type: ignore[arg-type]
 
 

@@ -40,7 +40,7 @@ from sloshkit.cfd.run import (
     run_case,
     write_case,
 )
-from sloshkit.cfd.validation import CfdValidation, comparison_row
+from sloshkit.cfd.validation import CfdValidation, comparison_row, require_model_first
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.recorded import from_samples
@@ -329,6 +329,8 @@ def validate(model: SloshModel, case: Path) -> CfdValidation:
     ...
     sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
     """
+    require_model_first(model, case)
+    case = Path(case)
     signals = read_finished_signals(case)
     summary = dict(signals.summary)
     t = signals.time_s

@@ -15,7 +15,7 @@ import numpy as np
 
 from sloshkit.cfd.analysis import read_finished_signals
 from sloshkit.cfd.case import POSE_FILE
-from sloshkit.cfd.validation import CfdValidation, comparison_row
+from sloshkit.cfd.validation import CfdValidation, comparison_row, require_model_first
 from sloshkit.errors import InputError
 from sloshkit.io.poses import read_pose_file
 from sloshkit.model.modal import SloshModel
@@ -58,6 +58,8 @@ def validate_poses(model: SloshModel, case: Path) -> CfdValidation:
     ...
     sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
     """
+    require_model_first(model, case)
+    case = Path(case)
     signals = read_finished_signals(case)
     pose_path = case / POSE_FILE
     if not pose_path.is_file():

@@ -52,6 +52,38 @@ def comparison_row(cfd: float | None, model: float | None) -> dict[str, float | 
     return {"cfd": cfd, "model": model, "relative_difference": difference}
 
 
+def require_model_first(model: object, case: object) -> None:
+    """Refuse the v1 argument order ``(case, model)`` with a `TypeError` saying so.
+
+    Parameters
+    ----------
+    model : object
+        What was passed as the model.
+    case : object
+        What was passed as the case folder.
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    TypeError
+        ``model`` is a path (or ``case`` is not one).
+
+    Examples
+    --------
+    >>> require_model_first(Path("case"), None)
+    Traceback (most recent call last):
+    ...
+    TypeError: validate takes (model, case); got a path first (the v1 order was (case, model))
+    """
+    if isinstance(model, str | Path) or not isinstance(case, str | Path):
+        raise TypeError(
+            "validate takes (model, case); got a path first (the v1 order was (case, model))"
+        )
+
+
 @dataclass(frozen=True, eq=False)
 class CfdValidation(ResultMixin):
     """A finished CFD case against the equivalent pendulum model for the same motion.
