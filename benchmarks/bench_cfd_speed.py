@@ -15,6 +15,7 @@ import argparse
 import json
 import math
 import os
+import re
 import resource
 import time
 from pathlib import Path
@@ -47,6 +48,14 @@ def envelope_estimate(case: Path) -> dict[str, float]:
     omega = 2 * math.pi / float(np.mean(np.diff(t[peaks])))
     slope = float(np.polyfit(t[peaks], np.log(y[peaks]), 1)[0])
     return {"frequency_hz": omega / (2 * math.pi), "damping_ratio": -slope / omega}
+
+
+def late_courant(case: Path) -> float:
+    """Largest Courant number over the second half of the steps of a finished run (after the
+    start-up transient: parasitic currents show here)."""
+    text = (case / "log.interFoam").read_text()
+    values = [float(v) for v in re.findall(r"^Courant Number mean: \S+ max: (\S+)", text, re.M)]
+    return max(values[len(values) // 2 :]) if values else math.nan
 
 
 def result_wall_cell(case: Path) -> float:
@@ -119,6 +128,7 @@ def bench(
         "radial_cells": radial_cells,
         "wall_cell_m": result_wall_cell(case),
         "time_steps": steps,
+        "max_courant_late": late_courant(case),
         "wall_clock_s": wall,
         "cpu_s": cpu,
         "load_average_before": load_before,

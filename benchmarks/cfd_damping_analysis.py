@@ -94,9 +94,16 @@ def table(rows: list[dict[str, Any]]) -> dict[int, dict[float, dict[str, Any]]]:
     return result
 
 
+#: A run whose largest Courant number stays above this after the start-up transient carries
+#: parasitic currents (seen on the 9-cell graded mesh): excluded from the extrapolation.
+MAX_LATE_COURANT = 0.5
+
+
 def family(rows: list[dict[str, Any]], name: str) -> dict[str, Any]:
-    """Time-step and mesh extrapolation of one mesh family."""
-    runs = table(rows)
+    """Time-step and mesh extrapolation of one mesh family (runs with parasitic currents,
+    ``max_courant_late`` above `MAX_LATE_COURANT`, are listed and left out)."""
+    excluded = [r for r in rows if r.get("max_courant_late", 0.0) > MAX_LATE_COURANT]
+    runs = table([r for r in rows if r not in excluded])
     orders = {}
     for cells, by_step in runs.items():
         steps = sorted(by_step)
@@ -127,6 +134,15 @@ def family(rows: list[dict[str, Any]], name: str) -> dict[str, Any]:
         }
     result: dict[str, Any] = {
         "name": name,
+        "excluded": [
+            {
+                "cells_per_radius": r["cells_per_radius"],
+                "step_s": r["max_step_s"],
+                "max_courant_late": r["max_courant_late"],
+                "damping_ratio": r["damping_ratio"],
+            }
+            for r in excluded
+        ],
         "observed_step_orders": {str(k): v for k, v in orders.items()},
         "step_order_used": step_order_used,
         "meshes": {str(k): v for k, v in per_mesh.items()},
@@ -189,6 +205,8 @@ def main() -> None:
     }
     uniform = family(uniform_rows, "uniform")
     graded = family(graded_rows, "wall-graded")
+    backward_path = DOCS / "cfd-damping-backward.json"
+    backward = json.loads(backward_path.read_text()) if backward_path.is_file() else []
     document = {
         "case": "seed vial R 20.5 mm, h 39 mm, water 25 C / air, 3 deg tilt, 2 s free decay, "
         "Euler, fixed step, 3 pressure correctors, serial",
@@ -196,6 +214,16 @@ def main() -> None:
         "boundary_layer_terms": layer,
         "uniform": uniform,
         "graded": graded,
+        "backward": [
+            {
+                "cells_per_radius": r["cells_per_radius"],
+                "step_s": r["max_step_s"],
+                "damping_ratio": r["damping_ratio"],
+                "frequency_hz": r["frequency_hz"],
+                "calibration_error": r.get("calibration_error"),
+            }
+            for r in backward
+        ],
     }
     (DOCS / "cfd-damping.json").write_text(json.dumps(document, indent=2) + "\n")
     figure(uniform, graded, theory)
@@ -271,6 +299,13 @@ def render(document: dict[str, Any]) -> str:
         "",
     ]
     for study in (document["uniform"], document["graded"]):
+        for run in study["excluded"]:
+            out.append(
+                f"- Excluded ({study['name']}, {run['cells_per_radius']}/radius, "
+                f"{1e3 * run['step_s']:g} ms): largest Courant number "
+                f"{run['max_courant_late']:.2f} after the start (parasitic currents; "
+                f"limit {MAX_LATE_COURANT})."
+            )
         orders = ", ".join(
             f"{_fmt(v, 2)} ({k}/radius)" for k, v in study["observed_step_orders"].items()
         )
@@ -290,6 +325,15 @@ def render(document: dict[str, Any]) -> str:
                 f"{'contains' if result['contains_richardson'] else 'does NOT contain'} the "
                 "Richardson value)."
             )
+    if document["backward"]:
+        values = "; ".join(
+            f"{1e3 * r['step_s']:g} ms: ζ = {r['damping_ratio']:.4f}"
+            + (" (amplitude grows: no free decay)" if r["calibration_error"] else "")
+            for r in document["backward"]
+        )
+        out.append(
+            f"- **backward** (second order for U, Euler for alpha; uniform 8/radius): {values}."
+        )
     return "\n".join(out)
 
 

@@ -9,14 +9,9 @@ from __future__ import annotations
 
 import json
 import time
-import warnings
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-from scipy.special import j1
-
-from sloshkit.calibration import CalibrationResult, calibrate
 from sloshkit.cfd.analysis import (
     CfdAnalysis,
     analyse,
@@ -40,11 +35,9 @@ from sloshkit.cfd.run import (
     run_case,
     write_case,
 )
-from sloshkit.cfd.validation import CfdValidation, comparison_row, require_model_first
-from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.cfd.validation import model_wall_elevation, validate
+from sloshkit.errors import InputError
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.recorded import from_samples
-from sloshkit.sim.simulate import simulate
 
 __all__ = [
     "RECOMMENDED",
@@ -234,168 +227,6 @@ def _check_and_write(spec: CaseSpec, case: Path, resume: bool, overwrite: bool) 
     else:
         check_processes(spec.processes, expected_cells(spec))
         write_case(spec, case, overwrite=overwrite)
-
-
-def model_wall_elevation(
-    model: SloshModel, time_s: np.ndarray, acceleration: np.ndarray, x_over_r: float = 0.98
-) -> np.ndarray:
-    """The pendulum model's wall elevation at x = x_over_r R for a sampled container
-    acceleration: each mode scaled by J1(xi_n x/R)/J1(xi_n) (the linear mode shape).
-
-    Parameters
-    ----------
-    model : SloshModel
-        The pendulum model.
-    time_s : ndarray
-        Sample times [s].
-    acceleration : ndarray
-        Container acceleration along x at those times [m/s^2].
-    x_over_r : float
-        Where the elevation is read, as a fraction of the radius.
-
-    Returns
-    -------
-    ndarray
-        Wall elevation [m].
-
-    References
-    ----------
-    Ibrahim, *Liquid Sloshing Dynamics* (2005), §2.3 (mode shapes J1(xi_n r/R) of the upright
-    cylinder).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
-    >>> t = np.arange(0.0, 0.5, 0.002)
-    >>> elevation = model_wall_elevation(model, t, np.where(t < 0.1, 1.0, 0.0))
-    >>> bool(np.abs(elevation).max() > 0.0), elevation.shape
-    (True, (250,))
-    """
-
-    motion = from_samples(time_s, acceleration_m_s2=acceleration, name="cfd excitation")
-    dt = float(np.median(np.diff(time_s)))
-    response = simulate(model, motion, sample_period_s=dt, settle_time_s=0.0)
-    shape = np.array([j1(m.bessel_root * x_over_r) / j1(m.bessel_root) for m in model.modes])
-    factors = np.array([m.wall_elevation_factor_m for m in model.modes]) * shape
-    elevation = factors @ response.angle_rad
-    return np.asarray(np.interp(time_s, response.time_s, elevation), dtype=float)
-
-
-def validate(model: SloshModel, case: Path) -> CfdValidation:
-    """Compare a finished case with the pendulum model for the same motion.
-
-    The model is driven by the container acceleration the case was driven with (read back
-    from its table) and read at the probes' radius through the linear mode shapes; both
-    records are calibrated the same way (`analyse`). A forced run that ends too soon after
-    its excitation still compares the peak elevation during it, with ``None`` for frequency,
-    damping and residual amplitude and a `ValidityWarning`.
-
-    Parameters
-    ----------
-    model : SloshModel
-        The equivalent pendulum model of the same container, fill and liquid.
-    case : Path
-        A finished case (``sloshkit cfd run`` or ``cfd validate``).
-
-    Returns
-    -------
-    CfdValidation
-        ``comparison`` rows ``omega_n_rad_s``, ``damping_ratio``, ``peak_elevation_m`` (during
-        the excitation) and ``residual_elevation_m`` (fitted amplitude after it), the
-        correlation of the two wall elevations, and both series.
-
-    Raises
-    ------
-    InputError
-        Not a finished sloshkit case.
-
-    References
-    ----------
-    De Simone et al. (2024), the seed paper, Table 4 and Fig. 9.
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
-    >>> validate(model, Path("no-such-case"))  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
-    """
-    require_model_first(model, case)
-    case = Path(case)
-    signals = read_finished_signals(case)
-    summary = dict(signals.summary)
-    t = signals.time_s
-    acceleration = _excitation_acceleration(case, t)
-    predicted = model_wall_elevation(model, t, acceleration)
-    end = excitation_end(summary)
-    during = t <= max(end, t[0])
-    cfd_fit: CalibrationResult | None = None
-    model_fit: CalibrationResult | None = None
-    try:
-        cfd_fit = analyse(case).calibration
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", ValidityWarning)
-            model_fit = calibrate(
-                t, predicted, forcing_end_s=end if end > 0 else None, source="pendulum model"
-            )
-    except InputError as error:
-        warnings.warn(
-            f"no free decay to compare (frequency, damping, residual): {error}",
-            ValidityWarning,
-            stacklevel=2,
-        )
-
-    def value(result: CalibrationResult | None, key: str) -> float | None:
-        if result is None:
-            return None
-        if key == "amplitude":
-            amplitude = result.estimates["fit"].amplitude
-            return None if amplitude is None else float(amplitude)
-        return float(getattr(result, key))
-
-    comparison = {
-        "omega_n_rad_s": comparison_row(
-            value(cfd_fit, "omega_n_rad_s"), value(model_fit, "omega_n_rad_s")
-        ),
-        "damping_ratio": comparison_row(
-            value(cfd_fit, "damping_ratio"), value(model_fit, "damping_ratio")
-        ),
-        "peak_elevation_m": comparison_row(
-            float(np.max(np.abs(signals.elevation_m[during]))) if end > 0 else None,
-            float(np.max(np.abs(predicted[during]))) if end > 0 else None,
-        ),
-        "residual_elevation_m": comparison_row(
-            value(cfd_fit, "amplitude"), value(model_fit, "amplitude")
-        ),
-    }
-    correlation = float(np.corrcoef(signals.elevation_m, predicted)[0, 1])
-    return CfdValidation(
-        case=str(case),
-        comparison=comparison,
-        correlation=correlation,
-        time_s=np.asarray(t, dtype=float),
-        cfd_elevation_m=np.asarray(signals.elevation_m, dtype=float),
-        model_elevation_m=np.asarray(predicted, dtype=float),
-        excitation_end_s=end,
-    )
-
-
-def _excitation_acceleration(case: Path, t: np.ndarray) -> np.ndarray:
-    """The container acceleration the case was driven with, read back from its table [m/s^2]."""
-    text = (case / "constant" / "acceleration.dat").read_text(encoding="utf-8")
-    rows = [line for line in text.splitlines() if line.startswith("(") and "((" in line]
-    times = np.array([float(row[1:].split()[0]) for row in rows])
-    values = np.array([float(row.split("((")[1].split()[0]) for row in rows]) / 1000.0
-    return np.asarray(np.interp(t, times, values), dtype=float)
 
 
 def excitation_from_options(
