@@ -20,6 +20,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_cfd_speed import bench
 
+from sloshkit.cfd.state import CfdError
+
 ROOT = Path(__file__).resolve().parent.parent
 MESHES = (8, 11, 15)
 STEPS_MS = (2.0, 1.0, 0.5)
@@ -34,16 +36,8 @@ PLAN = sorted(((n, dt) for n in MESHES for dt in STEPS_MS), key=lambda row: row[
 GRADED_WALL = 0.1
 GRADED_MESHES = {9: 6, 10: 7, 12: 8, 16: 11}  # cells per radius -> annulus cells
 #: (cells per radius, step [ms]), in the order run
-GRADED_PLAN = [
-    (12, 2.0),
-    (12, 1.0),
-    (9, 2.0),
-    (10, 2.0),
-    (10, 1.0),
-    (16, 2.0),
-    (16, 1.0),
-    (10, 0.5),
-]
+GRADED_PLAN = [(12, 2.0), (12, 1.0), (9, 2.0), (10, 2.0), (10, 1.0), (16, 2.0), (12, 0.5)]
+#: Run one plan entry only (parallel processes): ``--only 16 2``.
 
 
 #: The coarse uniform mesh with the second-order backward scheme for U (Euler for alpha).
@@ -51,7 +45,12 @@ BACKWARD_PLAN = [(8, 2.0), (8, 1.0)]
 
 
 def run_plan(
-    out: Path, work: Path, end_time_s: float, graded: bool = False, backward: bool = False
+    out: Path,
+    work: Path,
+    end_time_s: float,
+    graded: bool = False,
+    backward: bool = False,
+    only: tuple[int, float] | None = None,
 ) -> None:
     """Run every (mesh, step) of `PLAN` (or of the graded family, or `BACKWARD_PLAN`) not in
     ``out`` yet."""
@@ -59,7 +58,7 @@ def run_plan(
     done = {(r["cells_per_radius"], round(r["max_step_s"] * 1e3, 6)) for r in rows}
     plan = GRADED_PLAN if graded else BACKWARD_PLAN if backward else PLAN
     for cells_per_radius, step_ms in plan:
-        if (cells_per_radius, step_ms) in done:
+        if (cells_per_radius, step_ms) in done or (only and (cells_per_radius, step_ms) != only):
             continue
         extra: dict[str, object] = {"ddt_scheme": "backward"} if backward else {}
         if graded:
@@ -67,18 +66,27 @@ def run_plan(
                 "radial_cells": GRADED_MESHES[cells_per_radius],
                 "wall_grading": GRADED_WALL,
             }
-        row = bench(
-            work / f"n{cells_per_radius}-dt{step_ms:g}ms{'-graded' if graded else ''}"
-            f"{'-backward' if backward else ''}",
-            cells_per_radius,
-            1,
-            end_time_s,
-            step_ms * 1e-3,
-            0.5,
-            0.5,
-            adjust_time_step=False,
-            **extra,  # type: ignore[arg-type]
-        )
+        try:
+            row = bench(
+                work / f"n{cells_per_radius}-dt{step_ms:g}ms{'-graded' if graded else ''}"
+                f"{'-backward' if backward else ''}",
+                cells_per_radius,
+                1,
+                end_time_s,
+                step_ms * 1e-3,
+                0.5,
+                0.5,
+                adjust_time_step=False,
+                **extra,  # type: ignore[arg-type]
+            )
+        except CfdError as error:  # a run that blows up is a result too
+            row = {
+                "cells_per_radius": cells_per_radius,
+                "max_step_s": step_ms * 1e-3,
+                **extra,
+                "failed": str(error).splitlines()[0],
+            }
+        rows = json.loads(out.read_text()) if out.is_file() else []  # other processes' rows
         rows.append(row)
         print(json.dumps(row), flush=True)
         out.write_text(json.dumps(rows, indent=2) + "\n", encoding="utf-8")
@@ -117,6 +125,7 @@ def main() -> None:
         "--backward-out", type=Path, default=ROOT / "docs" / "cfd-damping-backward.json"
     )
     parser.add_argument("--backfill", action="store_true", help="add late Courant numbers")
+    parser.add_argument("--only", nargs=2, type=float, default=None, help="CELLS STEP_MS")
     args = parser.parse_args()
     if args.backfill:
         backfill(args.out, args.work)
@@ -125,7 +134,8 @@ def main() -> None:
         return
     if not args.analyse_only:
         if args.graded:
-            run_plan(args.graded_out, args.work, args.end_time, graded=True)
+            only = None if args.only is None else (int(args.only[0]), args.only[1])
+            run_plan(args.graded_out, args.work, args.end_time, graded=True, only=only)
         elif args.backward:
             run_plan(args.backward_out, args.work, args.end_time, backward=True)
         else:
