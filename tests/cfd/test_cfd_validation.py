@@ -128,10 +128,13 @@ def test_mesh_limit_is_the_measured_determinant_not_checkmesh_s_own():
         "Failed 1 mesh checks.",
     )
     assert check_mesh_quality(stable)["min_determinant"] == pytest.approx(9.4e-4)
-    unstable = CHECKMESH.format(aspect=27.0, determinant=2.3e-4, flag="")
+    unstable = CHECKMESH.format(aspect=19.0, determinant=2.3e-4, flag="")
     assert 2.3e-4 < MIN_DETERMINANT < 9.4e-4
     with pytest.raises(CfdError, match="determinant"):
         check_mesh_quality(unstable)
+    thin = CHECKMESH.format(aspect=29.6, determinant=1.4e-3, flag="")
+    with pytest.raises(CfdError, match="aspect ratio"):
+        check_mesh_quality(thin)
     other = CHECKMESH.format(aspect=2.0, determinant=0.3, flag=" ***Zero or negative cell volume")
     with pytest.raises(CfdError, match="failed mesh checks"):
         check_mesh_quality(other)
