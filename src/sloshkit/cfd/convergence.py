@@ -157,9 +157,10 @@ def richardson(
 ) -> Convergence:
     """Richardson extrapolation of two or three solutions and the GCI of the finest.
 
-    With three monotonic solutions the order is observed (`observed_order`, kept within
-    [``min_order``, ``max_order``]) and the safety factor is 1.25; with two solutions, or
-    when ``order`` is given, the order is assumed and the factor is 3. Three oscillatory
+    With three monotonic solutions the order is observed (`observed_order`) and the safety
+    factor is 1.25; an observed order outside [``min_order``, ``max_order``] is replaced by the
+    nearer bound and counts as assumed. With two solutions, or when ``order`` is given, the
+    order is assumed and the factor is 3. Three oscillatory
     solutions (the differences change sign) have no Richardson estimate: the uncertainty is
     then the safety factor 3 times half their range, about the finest value.
 
@@ -222,8 +223,10 @@ def richardson(
                 SAFETY_ASSUMED,
             )
         if p is None:
-            p = min(max(observed_order(f, r), min_order), max_order)
-            observed = True
+            measured = observed_order(f, r)
+            p = min(max(measured, min_order), max_order)
+            # An order outside the plausible range is not credible: treat it as assumed.
+            observed = min_order <= measured <= max_order
     if p is None:
         raise InputError("order", None, "must be given for two solutions")
     safety = SAFETY_OBSERVED if observed else SAFETY_ASSUMED
