@@ -102,7 +102,7 @@ def test_random_s_curves_simulate_without_nan(
     assert all(math.isfinite(v) for v in response.metrics().values())
 
 
-@settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     st.floats(0.008, 0.05),
     st.floats(0.5, 2.0),
@@ -163,3 +163,123 @@ def test_any_text_is_parsed_or_refused_quickly(text: str, kind: str) -> None:
     else:
         assert math.isfinite(value)
     assert time.perf_counter() - started < 0.05
+
+
+# -- 3-D: random pose trajectories and path plans ------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def vial() -> object:
+    """The measured series' cylinder: R = 49 mm, h = 80 mm, water, zeta = 0.0066."""
+    return equivalent_model(
+        UprightCylinder(0.049), get_liquid("water-20C"), 0.08, damping_ratio=0.0066
+    )
+
+
+@st.composite
+def pose_trajectories(draw: st.DrawFn, scale: float = 1.0) -> object:
+    """A random smooth move: a translation, then a tilt and a spin (each may be absent),
+    chained by `concatenate`; ``scale`` shrinks every amplitude (small motions)."""
+    from sloshkit.motion.poses import (
+        concatenate,
+        poses_from_law,
+        poses_from_rotation,
+    )
+
+    period = 0.002
+    law = draw(st.sampled_from(["quintic", "septic", "cubic"]))
+    parts = []
+    direction = draw(st.tuples(*[st.floats(-1.0, 1.0)] * 3).filter(lambda v: math.hypot(*v) > 0.1))
+    distance = scale * draw(st.floats(0.01, 0.3))
+    parts.append(
+        poses_from_law(
+            make_law(law, distance, duration_s=draw(st.floats(0.4, 1.5))),
+            direction,
+            sample_period_s=period,
+        )
+    )
+    tilt = scale * math.radians(draw(st.floats(0.0, 20.0)))
+    if tilt > 1e-6:
+        axis = draw(st.sampled_from([(1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]))
+        motion = make_law(law, tilt, duration_s=draw(st.floats(0.4, 1.0)))
+        parts.append(poses_from_rotation(motion, axis, sample_period_s=period))
+    spin = scale * math.radians(draw(st.floats(0.0, 90.0)))
+    if spin > 1e-6:
+        motion = make_law(law, spin, duration_s=draw(st.floats(0.4, 1.0)))
+        parts.append(poses_from_rotation(motion, (0.0, 0.0, 1.0), sample_period_s=period))
+    return concatenate(parts, name="random") if len(parts) > 1 else parts[0]
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(poses=pose_trajectories(), nonlinear=st.booleans())
+def test_random_pose_trajectories_simulate_without_nan(
+    vial: object, poses: object, nonlinear: bool
+) -> None:
+    import numpy as np
+
+    from sloshkit.errors import ValidityWarning
+    from sloshkit.sim.spatial import simulate_spatial
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        response = simulate_spatial(vial, poses, nonlinear=nonlinear)  # type: ignore[arg-type]
+    assert np.all(np.isfinite(response.pendulum))
+    assert math.isfinite(response.peak_slosh_height_m)
+    assert math.isfinite(response.residual_slosh_height_m)
+
+
+@settings(max_examples=4, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(poses=pose_trajectories(scale=0.02))
+def test_linear_and_nonlinear_3d_models_agree_for_small_motions(
+    vial: object, poses: object
+) -> None:
+    from sloshkit.sim.spatial import simulate_spatial
+
+    linear = simulate_spatial(vial, poses)  # type: ignore[arg-type]
+    nonlinear = simulate_spatial(vial, poses, nonlinear=True)  # type: ignore[arg-type]
+    peak = linear.peak_slosh_height_m
+    assume(peak > 1e-7)  # a move too small to slosh measurably
+    assert abs(nonlinear.peak_slosh_height_m - peak) <= 0.03 * peak + 1e-7
+
+
+@settings(max_examples=3, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    first=st.floats(0.08, 0.25),
+    second=st.one_of(st.just(0.0), st.floats(0.08, 0.15)),  # straight, or a blended corner
+    rise=st.floats(-0.05, 0.05),
+)
+def test_random_short_path_plans_meet_their_limits_when_their_export_is_simulated(
+    vial: object, tmp_path_factory: pytest.TempPathFactory, first: float, second: float, rise: float
+) -> None:
+    from sloshkit.errors import ValidityWarning
+    from sloshkit.io.poses import read_pose_file
+    from sloshkit.plan.path import path_from_waypoints
+    from sloshkit.plan.path_planner import plan_path
+    from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits, kinematics
+    from sloshkit.sim.spatial import simulate_spatial
+
+    points = [[0.0, 0.0, 0.0], [first, 0.0, 0.0]]
+    if second > 0.0:  # an arc: a corner blended with a clothoid pair
+        points.append([first, second, rise])
+    limits = CartesianLimits(1.5, 8.0, 80.0)
+    problem = PathProblem(
+        path_from_waypoints(points, blend_radius_m=0.03),
+        limits,
+        SpatialSloshLimits(0.01, 0.002),
+        vial,  # type: ignore[arg-type]
+    )
+    result = plan_path(problem, "auto", transcription=False)
+    assume(result.feasible)
+    exported = result.to_csv(tmp_path_factory.mktemp("plan") / "plan.csv")
+    trajectory = read_pose_file(exported)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        response = simulate_spatial(vial, trajectory, nonlinear=True, cutoff_hz=None)  # type: ignore[arg-type]
+    assert response.peak_slosh_height_m <= 0.01 * 1.01
+    assert response.residual_slosh_height_m <= 0.002 * 1.01
+    assert result.chosen is not None and result.chosen.poses is not None
+    peaks = kinematics(result.chosen.poses)
+    assert peaks["velocity"] <= 1.5 * (1 + 1e-6)
+    assert peaks["acceleration"] <= 8.0 * (1 + 1e-6)
+    assert peaks["jerk"] <= 80.0 * (1 + 1e-6)
+    assert abs(trajectory.position_m[-1] - points[-1]).max() < 1e-6

@@ -74,7 +74,17 @@ def parse_bytes(text: str, parameter: str = "max_memory") -> int:
 
 
 def physical_memory() -> int | None:
-    """Installed memory in bytes, or None where the platform does not say."""
+    """Installed memory in bytes, or None where the platform does not say.
+
+    Returns
+    -------
+    int or None
+
+    Examples
+    --------
+    >>> (physical_memory() or 1) > 0
+    True
+    """
     try:
         return int(os.sysconf("SC_PHYS_PAGES")) * int(os.sysconf("SC_PAGE_SIZE"))
     except (AttributeError, ValueError, OSError):
@@ -104,6 +114,15 @@ def memory_limit() -> int:
 def format_bytes(count: float) -> str:
     """``count`` bytes in binary units, e.g. ``'64.0 GiB'``.
 
+    Parameters
+    ----------
+    count : float
+        A number of bytes.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> format_bytes(3 * 2**30)
@@ -128,6 +147,10 @@ def require_memory(parameter: str, value: object, estimated_bytes: float, what: 
         The estimate of the memory the request needs.
     what : str
         What would be allocated (e.g. ``"3e9 time samples x 12 columns"``).
+
+    Returns
+    -------
+    None
 
     Examples
     --------

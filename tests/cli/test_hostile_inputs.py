@@ -12,11 +12,13 @@ from __future__ import annotations
 import math
 import os
 import stat
+import subprocess
 import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
+from hostile_fixtures import make_spatial_fixtures
 
 from sloshkit.cli import load_commands
 from sloshkit.cli.app import run
@@ -178,9 +180,14 @@ def _make_fixtures(folder: Path) -> None:
     (folder / "invalid.toml").write_text("[container\nradius = \n")
     (folder / "huge.toml").write_text("# padding\n" * 600_000)
     _model_document_variants(folder)
+    make_spatial_fixtures(folder)
     for name, (old, new, extra) in SCENARIOS.items():
         text = SCENARIO.replace(old, new, 1) if old else SCENARIO
         (folder / f"s_{name}.toml").write_text(text + extra, encoding="utf-8")
+
+
+def _no_process(*args: object, **kwargs: object) -> None:
+    raise AssertionError(f"a hostile input started a process: {args[:1]}")
 
 
 def _snapshot(folder: Path) -> dict[str, tuple[int, int, int]]:
@@ -214,6 +221,8 @@ def test_the_table_is_large_and_unique() -> None:
     assert {"model", "simulate", "compare", "sweep", "calibrate", "plan", "export", "run"} <= (
         commands
     )
+    cfd = {case["args"][1] for case in CASES if case["args"][0] == "cfd"}
+    assert {"run", "sweep", "validate", "analyse"} <= cfd
 
 
 @pytest.mark.parametrize("case", CASES, ids=[case["id"] for case in CASES])
@@ -225,6 +234,8 @@ def test_hostile_input(
 ) -> None:
     monkeypatch.chdir(fixture_folder)
     monkeypatch.delenv("SLOSHKIT_MAX_MEMORY", raising=False)
+    # Every case must be refused before any work: none may start a process (interFoam, mpirun).
+    monkeypatch.setattr(subprocess, "Popen", _no_process)
     before = _snapshot(fixture_folder)
     code = run([str(arg) for arg in case["args"]])  # type: ignore[attr-defined]
     captured = capsys.readouterr()

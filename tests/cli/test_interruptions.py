@@ -160,3 +160,71 @@ def test_a_signal_after_the_command_finished_does_not_undo_it(signum):
     )
     assert finished.returncode == 0, finished.stderr
     assert "Traceback" not in finished.stderr
+
+
+def _pose_file(folder: Path, duration_s: float = 20.0) -> Path:
+    """A long 3-D move (a slow circle with a tilt) for the interruption tests."""
+    import numpy as np
+
+    t = np.arange(0.0, duration_s, 0.001)
+    phase = 2.0 * np.pi * t / duration_s
+    half = 0.5 * np.radians(10.0) * np.sin(phase)
+    rows = np.column_stack(
+        [t, 0.1 * np.sin(phase), 0.1 * (1 - np.cos(phase)), 0 * t, np.sin(half), 0 * t, 0 * t,
+         np.cos(half)]
+    )  # fmt: skip
+    folder.mkdir(exist_ok=True)
+    path = folder / "move.csv"
+    np.savetxt(path, rows, delimiter=",", header="t,x,y,z,qx,qy,qz,qw", comments="", fmt="%.9g")
+    return path
+
+
+def test_sigterm_during_a_pose_simulation_writes_no_csv_or_figure(tmp_path: Path) -> None:
+    poses = _pose_file(tmp_path / "in")
+    out = tmp_path / "run"
+    out.mkdir()
+    args = [
+        "simulate", "--pose-file", str(poses), "--model", "nonlinear",
+        "--csv", "slosh.csv", "--plot", "slosh.png",
+    ]  # fmt: skip
+    code, stderr = _interrupt(args, out, signal.SIGTERM, 1.0)
+    _assert_clean(out, code, 143, stderr)
+
+
+def test_sigint_during_a_path_plan_writes_no_poses(tmp_path: Path) -> None:
+    waypoints = tmp_path / "in" / "path.csv"
+    waypoints.parent.mkdir()
+    waypoints.write_text("x [mm],y [mm],z [mm]\n0,0,0\n300,0,0\n300,200,50\n0,200,50\n")
+    out = tmp_path / "run"
+    out.mkdir()
+    args = [
+        "plan", "--path", str(waypoints),
+        "--vmax", "1.5m/s", "--amax", "8m/s^2", "--jmax", "80m/s^3",
+        "--max-slosh-height", "10mm", "--max-residual-height", "2mm",
+        "--out", "poses.csv", "--plot", "plan.png",
+    ]  # fmt: skip
+    code, stderr = _interrupt(args, out, signal.SIGINT, 0.5)
+    _assert_clean(out, code, 130, stderr)
+
+
+def test_sigterm_during_a_joint_export_leaves_no_file(tmp_path: Path) -> None:
+    import numpy as np
+
+    t = np.arange(0.0, 2.0 + 1e-9, 0.004)
+    u = t / 2.0
+    columns = np.column_stack(
+        [t, 0.2 * (10 * u**3 - 15 * u**4 + 6 * u**5), 0.1 * (30 * u**2 - 60 * u**3 + 30 * u**4),
+         0.05 * (60 * u - 180 * u**2 + 120 * u**3)]
+    )  # fmt: skip
+    plan = tmp_path / "in" / "plan.csv"
+    plan.parent.mkdir()
+    header = "t_s,position_m,velocity_m_s,acceleration_m_s2"
+    np.savetxt(plan, columns, delimiter=",", header=header, comments="", fmt="%.10g")
+    out = tmp_path / "run"
+    out.mkdir()
+    args = [
+        "export", str(plan), "--format", "joint-csv", "--out", "joints.csv",
+        "--base-pose=-0.5m,-0.13m,0.39m", "--sample-period", "1ms",
+    ]  # fmt: skip
+    code, stderr = _interrupt(args, out, signal.SIGTERM, 0.3)
+    _assert_clean(out, code, 143, stderr)

@@ -12,7 +12,8 @@ from typer.testing import CliRunner
 
 from sloshkit.cli import app
 from sloshkit.errors import ValidityWarning
-from sloshkit.io.tables import base_name, read_motion_file, unit_from_name
+from sloshkit.io.motions import read_motion_file
+from sloshkit.io.tables import base_name, unit_from_name
 
 runner = CliRunner()
 

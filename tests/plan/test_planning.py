@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 
 from sloshkit.cli import app
 from sloshkit.errors import InputError
-from sloshkit.io.tables import read_motion_file
+from sloshkit.io.motions import read_motion_file
 from sloshkit.motion import s_curve
 from sloshkit.motion.shaping import ei, residual_vibration, shape_motion, zv, zvd
 from sloshkit.plan.optimal import plan_optimal

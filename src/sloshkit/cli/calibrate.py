@@ -28,15 +28,16 @@ from sloshkit.calibration.applied import POSE_COLUMNS
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.io.checks import naming, require_finite_rows
 from sloshkit.io.models import write_model_file
+from sloshkit.io.motions import check_plausible_record, read_motion_file
 from sloshkit.io.outputs import check_file
+from sloshkit.io.poses import read_pose_file
 from sloshkit.io.tables import (
     TIME_NAMES,
-    check_plausible_record,
     column_name,
     column_si,
     find_column,
-    read_motion_file,
     read_table,
     select_column,
     unit_from_name,
@@ -53,22 +54,27 @@ def _read_applied_motion(
 ) -> tuple[AppliedMotion, PoseTrajectory | None]:
     """A pose file (t,x,y,z,qx,qy,qz,qw) or a motion file, shifted by the clock offset; the
     poses too when the file has them."""
-    header, data = read_table(path)
+    with naming("motion_file", path):
+        header, data = read_table(path)
     index = [find_column(header, (name,)) for name in POSE_COLUMNS]
     if all(i is not None for i in index):
-        columns = typing.cast(list[int], index)
-        time = column_si(header, data, columns[0], "time")
-        position = np.column_stack([column_si(header, data, i, "length") for i in columns[1:4]])
-        quaternion = data[:, columns[4:8]]
-        applied = applied_from_poses(time, position, quaternion, axis, name=str(path))
-        poses = PoseTrajectory(time, position, quaternion, name=str(path))
+        # the pose-file reader checks rows, units, time and quaternions, naming --motion-file
+        poses = read_pose_file(path, name=str(path), parameter="motion_file")
+        time, position = poses.time_s, poses.position_m
+        with naming("motion_file", path, keep=("motion_axis",)):
+            applied = applied_from_poses(
+                time, position, poses.quaternion_xyzw, axis, name=str(path)
+            )
         return replace(applied, start_s=applied.start_s + offset_s), poses
     if axis is not None:
         raise InputError("motion_axis", axis, "applies to pose files (t,x,y,z,qx,qy,qz,qw) only")
-    time_index = find_column(header, TIME_NAMES)
-    start = float(column_si(header, data, 0 if time_index is None else time_index, "time")[0])
-    start += offset_s
-    return AppliedMotion(read_motion_file(path), start, (f"motion file {path}",)), None
+    with naming("motion_file", path):
+        time_index = find_column(header, TIME_NAMES)
+        time_column = 0 if time_index is None else time_index
+        require_finite_rows(data, {header[time_column]: time_column}, "motion_file", path)
+        start = float(column_si(header, data, time_column, "time")[0])
+        motion = read_motion_file(path)
+    return AppliedMotion(motion, start + offset_s, (f"motion file {path}",)), None
 
 
 def _identify_spatial(
@@ -296,6 +302,19 @@ def calibrate_command(
         if motion_file is None
         else _read_applied_motion(motion_file, motion_axis, offset)
     )
+    if (
+        applied is not None
+        and time.size
+        and not (
+            applied.start_s < float(np.nanmax(time)) and applied.end_s > float(np.nanmin(time))
+        )
+    ):
+        raise InputError(
+            "clock_offset",
+            clock_offset,
+            f"puts the motion at [{applied.start_s:.4g}, {applied.end_s:.4g}] s, outside the "
+            f"record [{float(np.nanmin(time)):.4g}, {float(np.nanmax(time)):.4g}] s",
+        )
     spatial = poses is not None and motion_axis is None and signal_kind == "height"
     if fit_clock_offset and (applied is None or signal_kind == "force"):
         raise InputError(

@@ -28,7 +28,7 @@ from sloshkit.cli.options import Json, print_json, with_model_options, with_opti
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
 from sloshkit.io.models import write_model_file
-from sloshkit.io.outputs import check_file
+from sloshkit.io.outputs import check_file, check_folder
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 
@@ -222,6 +222,7 @@ def cfd_run_command(
     """
     check_file(model_file_out, "model_file_out", "model")
     check_file(plot, "plot", "figure")
+    check_folder(case, "case", overwrite=True)  # a file, /proc, no permission: refused now
     with _clean_interruption(case):
         spec = spec_from_options(slosh_model, case_options)
         if resume:
@@ -371,7 +372,8 @@ def cfd_validate_command(
     2
     """
     check_file(plot, "plot", "figure")
-
+    if not reuse:
+        check_folder(case, "case", overwrite=True)
     with _clean_interruption(case):
         if not reuse:
             spec = spec_from_options(slosh_model, case_options)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+from contextlib import nullcontext
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -11,8 +13,9 @@ from sloshkit.cfd.pipeline import RECOMMENDED, case_spec, excitation_from_option
 from sloshkit.cfd.spec import CaseSpec
 from sloshkit.cli.moves import Distance, Duration, MoveRequest
 from sloshkit.errors import InputError
+from sloshkit.io.checks import naming
 from sloshkit.io.poses import read_pose_file
-from sloshkit.io.units import parse_quantity
+from sloshkit.io.units import parse_bounded, parse_quantity
 from sloshkit.model.modal import SloshModel
 
 CaseDir = Annotated[Path, typer.Option("--case", help="Case folder.")]
@@ -210,31 +213,37 @@ def spec_from_options(slosh_model: SloshModel, options: dict[str, Any]) -> CaseS
             options["distance"], options["duration"], None, None, None, None, None
         )
         motion = request.law(options["law"] or "quintic")
-    chosen = excitation_from_options(
-        options["excitation"],
-        parse_quantity(options["tilt"], "angle", "tilt"),
-        parse_quantity(options["amplitude"], "length", "amplitude"),
-        parse_quantity(options["frequency"], "frequency", "frequency"),
-        parse_quantity(options["excite_time"], "time", "excite_time"),
-        motion,
-        poses,
-    )
+    if options["np_"] is not None and options["np_"] < 1:
+        raise InputError("np", options["np_"], "must be at least 1 (1 runs serially)")
+    # ranges that keep a case meaningful: a tilt below 45 deg, an amplitude below 10 m
+    tilt = parse_bounded(options["tilt"], "angle", "tilt", 0.0, math.radians(45.0))
+    amplitude = parse_bounded(options["amplitude"], "length", "amplitude", 0.0, 10.0)
+    frequency = parse_bounded(options["frequency"], "frequency", "frequency", 0.0, 1e3)
+    excite_time = parse_bounded(options["excite_time"], "time", "excite_time", 0.0, 1e5)
+    with naming("pose_file", options["pose_file"]) if poses is not None else nullcontext():
+        chosen = excitation_from_options(
+            options["excitation"], tilt, amplitude, frequency, excite_time, motion, poses
+        )
     angles = options["probe_angles"]
     if angles is None:
         angles = 12 if poses is not None else 0
-    return case_spec(
-        slosh_model,
-        chosen,
-        cells_per_radius=options["cells_per_radius"],
-        end_time_s=parse_quantity(options["end_time"], "time", "end_time"),
-        delta_t_s=parse_quantity(options["delta_t"], "time", "delta_t"),
-        ddt_scheme=options["ddt"],
-        processes=1 if options["np_"] is None else options["np_"],
-        surface_tension=options["cfd_surface_tension"],
-        max_courant=options["max_courant"],
-        max_alpha_courant=options["max_courant"],
-        adjust_time_step=not options["fixed_step"],
-        probe_angles=angles,
-        wall_grading=options.get("wall_grading", 1.0),
-        radial_cells=options.get("radial_cells"),
-    )
+    end_time_s = parse_quantity(options["end_time"], "time", "end_time")
+    delta_t_s = parse_quantity(options["delta_t"], "time", "delta_t")
+    # a pose file too short or too long for the case's grid names --pose-file
+    with naming("pose_file", options["pose_file"]) if poses is not None else nullcontext():
+        return case_spec(
+            slosh_model,
+            chosen,
+            cells_per_radius=options["cells_per_radius"],
+            end_time_s=end_time_s,
+            delta_t_s=delta_t_s,
+            ddt_scheme=options["ddt"],
+            processes=1 if options["np_"] is None else options["np_"],
+            surface_tension=options["cfd_surface_tension"],
+            max_courant=options["max_courant"],
+            max_alpha_courant=options["max_courant"],
+            adjust_time_step=not options["fixed_step"],
+            probe_angles=angles,
+            wall_grading=options.get("wall_grading", 1.0),
+            radial_cells=options.get("radial_cells"),
+        )

@@ -13,8 +13,62 @@ from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.cfd import cfd_app
 from sloshkit.cli.cfd_options import cfd_options, spec_from_options
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
-from sloshkit.io.units import parse_quantity
+from sloshkit.errors import InputError
+from sloshkit.io.outputs import check_folder
+from sloshkit.io.units import parse_count, parse_quantity
 from sloshkit.model.modal import SloshModel
+
+#: Most cases of one campaign (each is a CFD run of minutes to hours).
+MAX_CASES = 500
+
+
+def check_scheduler(address: str, timeout_s: float = 5.0) -> str:
+    """Check a Dask scheduler address before any case is written: ``[tcp://|tls://]HOST:PORT``
+    with a port in 1..65535, and something accepting connections there.
+
+    Parameters
+    ----------
+    address : str
+        The ``--scheduler`` option as typed.
+    timeout_s : float
+        How long to wait for the connection [s].
+
+    Returns
+    -------
+    str
+        The address, unchanged.
+
+    Examples
+    --------
+    >>> from sloshkit.errors import InputError
+    >>> try:
+    ...     check_scheduler("tcp://scheduler:8786 x")
+    ... except InputError as error:
+    ...     print(error.valid)
+    must be [tcp://|tls://]HOST:PORT, e.g. tcp://10.0.0.5:8786
+    """
+    import re
+    import socket
+
+    match = re.fullmatch(
+        r"(?:(tcp|tls)://)?(\[[0-9a-fA-F:.]+\]|[A-Za-z0-9._-]+):([0-9]{1,5})", address
+    )
+    if match is None or not 1 <= int(match.group(3)) <= 65535:
+        raise InputError(
+            "scheduler", address, "must be [tcp://|tls://]HOST:PORT, e.g. tcp://10.0.0.5:8786"
+        )
+    host, port = match.group(2).strip("[]"), int(match.group(3))
+    try:
+        with socket.create_connection((host, port), timeout=timeout_s):
+            pass
+    except OSError as error:
+        raise InputError(
+            "scheduler",
+            address,
+            f"nothing accepts connections there ({error.strerror or error})",
+            "start the scheduler first, or leave --scheduler out for the local cluster",
+        ) from None
+    return address
 
 
 def _split(text: str) -> list[str]:
@@ -100,14 +154,24 @@ def cfd_sweep_command(
     from sloshkit.model.liquids import get_liquid
     from sloshkit.model.modal import equivalent_model
 
+    check_folder(out, "out", overwrite=True)  # a campaign folder is resumed, so may hold cases
+    if scheduler is not None:
+        check_scheduler(scheduler)
     require_in_range("workers", workers, 1, 64)
     fill_list = [parse_quantity(text, "length", "fills") for text in _split(fills or "")] or [
         slosh_model.fill_height_m
     ]
     liquid_list = [get_liquid(name) for name in _split(liquids or "")] or [slosh_model.liquid]
-    mesh_list = [
-        int(require_in_range("meshes", float(text), 3, 60)) for text in _split(meshes or "")
-    ] or [case_options["cells_per_radius"]]
+    mesh_list = [parse_count(text, "meshes", 3, 60) for text in _split(meshes or "")] or [
+        case_options["cells_per_radius"]
+    ]
+    count = len(fill_list) * len(liquid_list) * len(mesh_list)
+    if count > MAX_CASES:
+        raise InputError(
+            "cases",
+            f"{len(fill_list)} fills x {len(liquid_list)} liquids x {len(mesh_list)} meshes",
+            f"{count} CFD runs; at most {MAX_CASES} in one campaign (split it)",
+        )
     cases = []
     for liquid in liquid_list:
         for fill in fill_list:

@@ -15,12 +15,14 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cli import messages
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
-from sloshkit.errors import InputError
-from sloshkit.io.outputs import check_file
-from sloshkit.io.units import parse_quantity
+from sloshkit.errors import InputError, require_in_range
+from sloshkit.io.checks import naming
+from sloshkit.io.outputs import all_or_nothing, check_file
+from sloshkit.io.units import parse_bounded, parse_number, parse_quantity
 from sloshkit.model.modal import SloshModel
 
 FORMAT_HELP = "pose-csv, joint-csv, ros2, urscript or cam-table."
@@ -110,11 +112,11 @@ def _parse_axis(text: str) -> tuple[float, float, float]:
     named = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
     if text.strip().lower() in named:
         return named[text.strip().lower()]
-    try:
-        values = tuple(float(cell) for cell in text.split(","))
-    except ValueError:
-        raise InputError("axis", text, "must be x, y, z or three numbers vx,vy,vz") from None
-    if len(values) != 3 or not math.hypot(*values) > 0.0:
+    cells = text.split(",")
+    if len(cells) != 3:
+        raise InputError("axis", text, "must be x, y, z or three numbers vx,vy,vz")
+    values = tuple(parse_number(cell, "axis") for cell in cells)
+    if not math.hypot(*values) > 0.0:
         raise InputError("axis", text, "must be a non-zero direction")
     return (values[0], values[1], values[2])
 
@@ -148,8 +150,10 @@ def _settings(values: dict[str, Any]) -> ExportSettings:
             else (0.0, 0.0, 0.0),
         ),
         axis=_parse_axis(values["axis"]),
-        lookahead_time_s=parse_quantity(values["lookahead_time"], "time", "lookahead_time"),
-        gain=float(values["gain"]),
+        lookahead_time_s=parse_bounded(
+            values["lookahead_time"], "time", "lookahead_time", 0.03, 0.2, low_open=False
+        ),
+        gain=require_in_range("gain", values["gain"], 100.0, 2000.0),
         check=bool(values["check"]),
     )
 
@@ -187,7 +191,7 @@ def run_export(
 
     if fmt not in FORMATS:
         raise InputError("format", fmt, "must be one of " + ", ".join(FORMATS))
-    with stderr.status(f"exporting {fmt}"):
+    with stderr.status(f"exporting {fmt}"), all_or_nothing(out):
         return export_plan(
             plan,
             fmt,
@@ -249,7 +253,79 @@ def show_export(result: Any) -> None:
     if trip.passed:
         stdout.print("round trip: passed (within 2 %, no limit broken)")
     else:
-        stderr.print("[red]round trip failed:[/red] " + "; ".join(trip.violations))
+        messages.error(stderr, "round trip failed: " + "; ".join(trip.violations))
+
+
+def check_export_request(
+    fmt: str, target: Path, settings: ExportSettings, option: str = "format"
+) -> Any:
+    """Check an export before any work: the format, the output file, the arm (robot or URDF).
+
+    Parameters
+    ----------
+    fmt : str
+        The format name (`sloshkit.export.exporter.FORMATS`).
+    target : Path
+        The file the export will write.
+    settings : ExportSettings
+        The parsed export options.
+    option : str
+        The option that named the format (``format``; ``export`` for ``plan --export``).
+
+    Returns
+    -------
+    Arm or None
+        The arm for joint formats (loaded once here), else None.
+
+    Examples
+    --------
+    >>> settings = _settings({**{k: v for k, (_, v) in EXPORT_OPTIONS.items()}})
+    >>> check_export_request("pose-csv", Path("plan.poses.csv"), settings) is None
+    True
+    """
+    from sloshkit.export.exporter import FORMATS
+
+    if fmt not in FORMATS:
+        raise InputError(option, fmt, "must be one of " + ", ".join(FORMATS))
+    check_file(target, "out")
+    return settings.arm(fmt)
+
+
+def check_output_period(plan: Any, period_s: float, text: str) -> None:
+    """Refuse an output sample period that is not positive, leaves fewer than 3 samples of
+    the plan, or needs more memory than the limit (`sloshkit.budget`).
+
+    Parameters
+    ----------
+    plan : LinePlan or PoseStream
+        The plan read from its file.
+    period_s : float
+        The requested period [s].
+    text : str
+        The period as typed (for the message).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.export.plans import LinePlan
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 1.0, 251)
+    >>> check_output_period(LinePlan(t, t, t, t), 0.004, "4ms")
+    """
+    from sloshkit.budget import require_samples
+
+    if not period_s > 0.0:
+        raise InputError("sample_period", text, "must be > 0 s")
+    duration = float(plan.time_s[-1] - plan.time_s[0])
+    if period_s > duration / 2.0:
+        raise InputError(
+            "sample_period", text, f"must leave at least 3 samples of the {duration:.4g} s plan"
+        )
+    # poses, joints and the round-trip re-simulation: about 64 float64 columns per sample
+    require_samples("sample_period", text, duration / period_s, 64, "exported samples")
 
 
 def slosh_limits(max_angle: str | None, max_residual: str | None) -> Any:
@@ -300,16 +376,17 @@ def export_command(
     from sloshkit.export.exporter import SUFFIXES
 
     target = out if out is not None else plan_file.with_name(plan_file.stem + SUFFIXES.get(fmt, ""))
-    check_file(target, "out")
-    result = run_export(
-        plan_file,
-        fmt,
-        target,
-        export_settings,
-        slosh_model,
-        slosh_limits(max_angle, max_residual),
-        None if sample_period is None else parse_quantity(sample_period, "time", "sample_period"),
-    )
+    check_export_request(fmt, target, export_settings)
+    from sloshkit.export.plans import read_plan
+
+    limits = slosh_limits(max_angle, max_residual)
+    with naming("plan_file", plan_file):
+        plan = read_plan(plan_file)
+    period = None
+    if sample_period is not None:
+        period = parse_quantity(sample_period, "time", "sample_period")
+        check_output_period(plan, period, sample_period)
+    result = run_export(plan, fmt, target, export_settings, slosh_model, limits, period)
     if json_output:
         print_json(result.to_dict())
     else:

@@ -49,6 +49,15 @@ def console(stderr: bool = False) -> Console:
 def one_line(text: object) -> str:
     """``text`` as one line: line breaks and other control characters made visible.
 
+    Parameters
+    ----------
+    text : object
+        Any value (shown with ``str``).
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> one_line("a\\nb\\x1b[31m")
@@ -71,6 +80,19 @@ def one_line(text: object) -> str:
 def labelled(label: str, style: str, text: object) -> Text:
     """``label: text`` with only the label styled; ``text`` is taken literally.
 
+    Parameters
+    ----------
+    label : str
+        ``error``, ``warning``, ...
+    style : str
+        The rich style of the label.
+    text : object
+        The message (never interpreted as markup).
+
+    Returns
+    -------
+    rich.text.Text
+
     Examples
     --------
     >>> labelled("error", "red", "[/red]").plain
@@ -80,10 +102,46 @@ def labelled(label: str, style: str, text: object) -> Text:
 
 
 def error(target: Console, text: object) -> None:
-    """Print ``error: text`` (one line) on ``target``."""
+    """Print ``error: text`` (one line) on ``target``.
+
+    Parameters
+    ----------
+    target : rich.console.Console
+        Usually the CLI's stderr console.
+    text : object
+        The message (taken literally).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> error(console(), "radius = '[/red]' is invalid")
+    error: radius = '[/red]' is invalid
+    """
     target.print(labelled("error", "red", text))
 
 
 def warning(target: Console, text: object, label: str = "warning") -> None:
-    """Print ``warning: text`` (one line) on ``target``."""
+    """Print ``warning: text`` (one line) on ``target``.
+
+    Parameters
+    ----------
+    target : rich.console.Console
+        Usually the CLI's stderr console.
+    text : object
+        The message (taken literally).
+    label : str
+        The label (``warning``, or a warning class name).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> warning(console(), "motion file does not end at rest")
+    warning: motion file does not end at rest
+    """
     target.print(labelled(label, "yellow", text))

@@ -111,7 +111,7 @@ class MoveRequest:
 
     def law(self, name: str) -> Motion:
         """The motion law called ``name`` (or ``file:PATH``) for this move."""
-        from sloshkit.io.tables import read_motion_file
+        from sloshkit.io.motions import read_motion_file
         from sloshkit.motion.laws import comparison_s_curve_limits, make_law
 
         if name.startswith("file:"):

@@ -15,6 +15,7 @@ from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.export import (
     ExportSettings,
+    check_export_request,
     run_export,
     show_export,
     with_export_options,
@@ -151,6 +152,12 @@ def plan_command(
     """
     check_file(out, "out")
     check_file(plot, "plot", "figure")
+    if export is not None and path is None and path_from_poses is None:
+        from sloshkit.export.exporter import SUFFIXES
+
+        base = out if out is not None else Path("plan.csv")  # as _export_chosen names it
+        target = base.with_name(base.stem + SUFFIXES.get(export, ""))
+        check_export_request(export, target, export_settings, "export")  # before planning
     if path is not None or path_from_poses is not None:
         from sloshkit.cli.plan_path import run_path_plan
 

@@ -16,11 +16,13 @@ from rich import box
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.budget import require_samples
+from sloshkit.cli import messages
 from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.options import print_json
 from sloshkit.errors import InputError
 from sloshkit.io.poses import read_pose_file
-from sloshkit.io.units import parse_quantity
+from sloshkit.io.units import parse_bounded, parse_quantity
 from sloshkit.io.waypoints import read_waypoints
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
@@ -35,23 +37,17 @@ def _quantity(text: str | None, kind: str, name: str) -> float | None:
 
 def _angular(text: str | None, power: int, name: str) -> float | None:
     """``90deg/s``, ``2rad/s``, ``300deg/s^2`` (``s**2``, ``s2`` too) or a bare number in
-    rad/s^power."""
+    rad/s^power, in the strict unit grammar (`sloshkit.io.units`; finite, > 0)."""
     if text is None:
         return None
-    compact = text.replace(" ", "").replace("**", "^").lower()
-    seconds = ("/s",) if power == 1 else ("/s^2", "/s2")
-    for unit, factor in (("rad", 1.0), ("deg", math.pi / 180.0)):
-        for ending in (unit + suffix for suffix in seconds):
-            if compact.endswith(ending):
-                try:
-                    return float(compact[: -len(ending)]) * factor
-                except ValueError:
-                    break
+    kind = "angular_velocity" if power == 1 else "angular_acceleration"
     try:
-        return float(compact)
-    except ValueError:
+        return parse_bounded(text, kind, name, 0.0, math.inf)
+    except InputError as error:
         example = "90deg/s" if power == 1 else "300deg/s^2"
-        raise InputError(name, text, f"must be an angular rate, e.g. {example}") from None
+        raise InputError(
+            name, text, f"must be an angular rate > 0, e.g. {example}", error.valid
+        ) from None
 
 
 def _reference_timing(time_s: Any, positions: Any, quaternions: Any, length_m: float) -> Timing:
@@ -109,11 +105,19 @@ def run_path_plan(
         raise InputError("method", method, "with a path: auto, retime, shaped or tilt")
     reference: Timing | None = None
     if poses_file is not None:
-        trajectory = read_pose_file(poses_file)
+        trajectory = read_pose_file(poses_file, parameter="path_from_poses")
         time_s = trajectory.time_s
         positions, quaternions = trajectory.position_m, trajectory.quaternion_xyzw
         path = path_from_poses(positions, quaternions, name=poses_file.name)
         reference = _reference_timing(time_s, positions, quaternions, path.length_m)
+        # the planner samples (and may stretch) the file's own timing at the sample period
+        require_samples(
+            "path_from_poses",
+            f"{trajectory.duration_s:.4g} s at {sample_period}",
+            trajectory.duration_s / parse_quantity(sample_period, "time", "sample_period"),
+            64,
+            "path samples",
+        )
     else:
         assert path_file is not None
         points, yaw = read_waypoints(path_file)
@@ -159,9 +163,7 @@ def run_path_plan(
     else:
         _print_table(payload, path.length_m, out if result.feasible else None)
     if not result.feasible:
-        stderr.print(
-            f"[red]error:[/red] no method meets the limits ({result.reason()})", highlight=False
-        )
+        messages.error(stderr, f"no method meets the limits ({result.reason()})")
         raise typer.Exit(1)
 
 

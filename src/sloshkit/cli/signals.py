@@ -22,6 +22,17 @@ class Interrupted(KeyboardInterrupt):
 
     A `KeyboardInterrupt`, so code that cleans up on Ctrl-C (the CFD runner stops its MPI
     processes and reports how to ``--resume``) does the same on SIGTERM.
+
+    Parameters
+    ----------
+    signum : int
+        The signal number.
+
+    Examples
+    --------
+    >>> import signal
+    >>> Interrupted(signal.SIGTERM).exit_code
+    143
     """
 
     def __init__(self, signum: int) -> None:
@@ -45,30 +56,89 @@ def _handler(signum: int, frame: FrameType | None) -> None:
 
 
 def received() -> int | None:
-    """The first signal received since `install`, or None."""
+    """The first signal received since `installed`, or None.
+
+    Returns
+    -------
+    int or None
+        The signal number.
+
+    Examples
+    --------
+    >>> received() is None
+    True
+    """
     return _state["received"]  # type: ignore[no-any-return]
 
 
 def reported() -> None:
     """Say that the command has told the user about the interruption itself (e.g. how to
-    ``--resume``), so the entry point adds no second line."""
+    ``--resume``), so the entry point adds no second line.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> with installed():
+    ...     reported()
+    ...     was_reported()
+    True
+    """
     _state["reported"] = True
 
 
 def was_reported() -> bool:
-    """True when the command reported the interruption itself (see `reported`)."""
+    """True when the command reported the interruption itself (see `reported`).
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> was_reported()
+    False
+    """
     return bool(_state["reported"])
 
 
 def check() -> None:
-    """Raise `Interrupted` if a signal arrived (call between chunks of work)."""
+    """Raise `Interrupted` if a signal arrived (call between chunks of work).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> check()  # no signal: nothing happens
+    """
     if _state["received"] is not None:
         raise Interrupted(_state["received"])
 
 
 @contextlib.contextmanager
 def deferred() -> Iterator[None]:
-    """Record signals instead of raising them inside the block; raise on leaving it."""
+    """Record signals instead of raising them inside the block; raise on leaving it.
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> import os, signal
+    >>> with installed():
+    ...     try:
+    ...         with deferred():
+    ...             os.kill(os.getpid(), signal.SIGTERM)  # recorded, not raised here
+    ...             inside = "still running"
+    ...     except Interrupted as stop:
+    ...         print(inside, stop.exit_code)
+    still running 143
+    """
     _state["depth"] += 1
     try:
         yield
@@ -85,6 +155,22 @@ def installed(restore: bool = True) -> Iterator[None]:
     ignored on leaving instead: the command has finished and written its output, and a signal
     in the last milliseconds of interpreter shutdown must not turn it into a crash (Python
     re-raises an uncaught Ctrl-C as a death by SIGINT).
+
+    Parameters
+    ----------
+    restore : bool
+        Restore the previous handlers on leaving (else ignore SIGINT/SIGTERM from then on).
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> import signal
+    >>> with installed():
+    ...     signal.getsignal(signal.SIGTERM).__name__
+    '_handler'
     """
     import threading
 

@@ -29,7 +29,7 @@ from sloshkit.cli.spatial import (
 )
 from sloshkit.errors import InputError
 from sloshkit.files import write_json, write_rows_csv
-from sloshkit.io.outputs import check_file, check_folder, staged_folder
+from sloshkit.io.outputs import all_or_nothing, check_file, check_folder, staged_folder
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES
 from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison
@@ -70,6 +70,10 @@ def simulate_command(
     check_file(csv, "csv")
     check_file(plot, "plot", "figure")
     if pose_file is not None:
+        if law != "quintic":
+            raise InputError(
+                "law", law, "cannot be combined with --pose-file (the file is the move)"
+            )
         response_3d, messages = simulate_poses(
             slosh_model,
             pose_file,
@@ -79,17 +83,19 @@ def simulate_command(
             sample_period_explicit=simulation["sample_period"]
             != SIMULATION_OPTIONS["sample_period"][1],
         )
-        report_poses(response_3d, messages, csv=csv, plot=plot, json_output=json_output)
+        with all_or_nothing(csv, plot):  # a failing figure leaves no CSV behind
+            report_poses(response_3d, messages, csv=csv, plot=plot, json_output=json_output)
         return
     if tool_offset is not None:
         raise InputError("tool_offset", tool_offset, "needs --pose-file")
     motion = request.law(law)
     response = _simulate(motion, slosh_model, **simulation)
     model_kind = simulation["model_kind"]
-    if csv is not None:
-        response.to_csv(csv)
-    if plot is not None:
-        response.plot(plot)
+    with all_or_nothing(csv, plot):  # a failing figure leaves no CSV behind
+        if csv is not None:
+            response.to_csv(csv)
+        if plot is not None:
+            response.plot(plot)
     if json_output:
         print_json({"law": motion.name, "model": model_kind, **metrics_json(response)})
         return

@@ -264,8 +264,10 @@ def read_plan(path: str | Path) -> LinePlan | PoseStream:
     'PoseStream'
     """
     from sloshkit.export.tables import read_csv_table
+    from sloshkit.io.checks import require_finite_rows
 
     header, data = read_csv_table(path)
+    require_finite_rows(data, {name: k for k, name in enumerate(header)}, "plan", path)
     metadata = read_metadata(path)
     names = [name.strip().lower() for name in header]
     if all(column in names for column in POSE_COLUMNS):

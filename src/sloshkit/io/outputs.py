@@ -42,12 +42,28 @@ def _existing_ancestor(path: Path, parameter: str) -> Path:
 
 
 def _require_writable(folder: Path, path: Path, parameter: str) -> None:
+    """Refuse a folder nobody can write into: permissions, a read-only file system, or a
+    pseudo file system such as /proc or /sys (where ``os.access`` says yes to root).
+
+    The probe is an unnamed temporary file (``O_TMPFILE`` where the file system has it, else
+    a named one removed at once), so nothing is left in the folder.
+    """
     if not os.access(folder, os.W_OK | os.X_OK):
         raise InputError(
             parameter,
             str(path),
             f"folder {folder} is not writable (permissions or a read-only file system)",
         )
+    try:
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as error:
+        raise InputError(
+            parameter,
+            str(path),
+            f"folder {folder} does not take new files ({error.strerror or error}); "
+            "a read-only or virtual file system such as /proc or /sys",
+        ) from None
 
 
 def check_file(path: Path | str | None, parameter: str, kind: str = "file") -> Path | None:
@@ -195,7 +211,25 @@ def staged_folder(target: Path | str) -> Iterator[Path]:
 
 
 def mark_folder(folder: Path | str) -> None:
-    """Leave the `MARKER` in a folder sloshkit wrote (so a rerun may rewrite it)."""
+    """Leave the `MARKER` in a folder sloshkit wrote (so a rerun may rewrite it).
+
+    Parameters
+    ----------
+    folder : Path or str
+        The output folder (nothing happens if it does not exist).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> mark_folder(folder)
+    >>> (folder / MARKER).exists()
+    True
+    """
     marker = Path(folder) / MARKER
     if Path(folder).is_dir() and not marker.exists():
         marker.write_text("written by sloshkit; this folder may be rewritten\n")
@@ -204,3 +238,62 @@ def mark_folder(folder: Path | str) -> None:
 def _keep_mode(existing: Path, replacement: Path) -> None:
     with contextlib.suppress(OSError):
         os.chmod(replacement, os.stat(existing).st_mode & 0o7777)
+
+
+@contextlib.contextmanager
+def all_or_nothing(*paths: Path | str | None) -> Iterator[None]:
+    """Keep the files a command writes only if the whole command succeeds.
+
+    A command that writes several files (a CSV, then a figure; an exported program, then its
+    round-trip check) runs inside this block: on any exception (an `InputError` found late, an
+    interruption) files that did not exist before are removed and files that did are restored
+    to their previous content (a copy kept beside them while the block runs).
+
+    Parameters
+    ----------
+    *paths : Path, str or None
+        The output files of the command (None is skipped).
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "a.csv"
+    >>> try:
+    ...     with all_or_nothing(out):
+    ...         _ = out.write_text("half")
+    ...         raise ValueError("a late error")
+    ... except ValueError:
+    ...     pass
+    >>> out.exists()
+    False
+    """
+    targets = [Path(path) for path in paths if path is not None]
+    backups: dict[Path, Path | None] = {}
+    try:
+        for target in targets:
+            backups[target] = None
+            if target.is_file():
+                handle, name = tempfile.mkstemp(prefix=f".{target.name}.keep-", dir=target.parent)
+                os.close(handle)
+                os.unlink(name)
+                # a copy, not a hard link: some writers (matplotlib) write in place
+                shutil.copy2(target, name)
+                backups[target] = Path(name)
+        yield
+    except BaseException:
+        for target, backup in backups.items():
+            with contextlib.suppress(OSError):
+                if backup is not None:
+                    os.replace(backup, target)
+                elif target.is_file() or target.is_symlink():
+                    target.unlink()
+        raise
+    finally:
+        for backup in backups.values():
+            if backup is not None:
+                with contextlib.suppress(FileNotFoundError):
+                    backup.unlink()

@@ -18,6 +18,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.io.checks import (
+    naming,
+    require_bounded_rows,
+    require_finite_rows,
+    require_increasing_rows,
+)
 from sloshkit.io.tables import base_name, read_table, unit_from_name
 from sloshkit.io.units import parse_quantity
 from sloshkit.motion.poses import PoseTrajectory, poses_from_rpy
@@ -28,9 +34,22 @@ _TIME_NAMES = ("t", "time")
 _QUATERNION = ("qx", "qy", "qz", "qw")
 _RPY = ("roll", "pitch", "yaw")
 
+#: Largest position a pose file may hold [m]: beyond it the units are surely wrong, and the
+#: differentiation (squares of positions over squared steps) would overflow.
+MAX_POSITION_M = 1e6
+
 
 def split_column_name(name: str) -> tuple[str, str | None]:
     """(base name, unit) of a header cell: ``"x [mm]"`` -> ("x", "mm"), ``"t_ms"`` -> ("t", "ms").
+
+    Parameters
+    ----------
+    name : str
+        A header cell.
+
+    Returns
+    -------
+    tuple of (str, str or None)
 
     Examples
     --------
@@ -48,7 +67,11 @@ def _scale(unit: str | None, kind: str, column: str) -> float:
 
 
 def read_pose_file(
-    path: str | Path, *, tool_offset_m: Sequence[float] | None = None, name: str | None = None
+    path: str | Path,
+    *,
+    tool_offset_m: Sequence[float] | None = None,
+    name: str | None = None,
+    parameter: str = "pose_file",
 ) -> PoseTrajectory:
     """Read a pose trajectory from a table with a header.
 
@@ -63,6 +86,9 @@ def read_pose_file(
         (`sloshkit.motion.poses.PoseTrajectory.with_tool_offset`).
     name : str, optional
         Label of the trajectory (default: the file name without suffix).
+    parameter : str
+        The option that named the file; every error names it (``pose_file``,
+        ``motion_file``, ``path_from_poses``).
 
     Returns
     -------
@@ -71,8 +97,10 @@ def read_pose_file(
     Raises
     ------
     InputError
-        Missing file or columns, non-numeric cells, bad units, time not increasing, quaternions
-        that are not unit.
+        Missing file or columns, non-numeric cells, NaN or infinite values, bad units, fewer
+        than 2 rows, time not strictly increasing, positions beyond `MAX_POSITION_M`,
+        quaternions that are not unit (zero ones included); the message names ``parameter``,
+        the row and the column.
 
     Examples
     --------
@@ -84,6 +112,13 @@ def read_pose_file(
     >>> poses.time_s.tolist(), poses.position_m[1].tolist()
     ([0.0, 0.5], [0.1, 0.0, 0.0])
     """
+    with naming(parameter, path):
+        return _read_poses(path, tool_offset_m, name, parameter)
+
+
+def _read_poses(
+    path: str | Path, tool_offset_m: Sequence[float] | None, name: str | None, parameter: str
+) -> PoseTrajectory:
     header, data = read_table(path)
     if all(cell.isdigit() for cell in header):
         raise InputError(
@@ -98,7 +133,13 @@ def read_pose_file(
         for candidate in names:
             if candidate in columns:
                 index, unit = columns[candidate]
-                return np.asarray(data[:, index], dtype=float) * _scale(unit, kind, header[index])
+                require_finite_rows(data, {header[index]: index}, parameter, path)
+                values = np.asarray(data[:, index], dtype=float) * _scale(unit, kind, header[index])
+                if kind == "length":
+                    require_bounded_rows(
+                        values, header[index], MAX_POSITION_M, "m", parameter, path
+                    )
+                return values
         raise InputError(
             "pose_file",
             str(path),
@@ -106,6 +147,8 @@ def read_pose_file(
         )
 
     time = column(_TIME_NAMES, "time")
+    time_name = header[columns[next(n for n in _TIME_NAMES if n in columns)][0]]
+    require_increasing_rows(time, time_name, parameter, path)
     position = np.column_stack([column((axis,), "length") for axis in "xyz"])
     label = name if name is not None else Path(path).stem
     if all(key in columns for key in _QUATERNION):
@@ -128,6 +171,16 @@ def read_pose_file(
 
 def parse_tool_offset(text: str) -> tuple[float, float, float]:
     """``"X,Y,Z"`` with optional units per component (``"0,0,120mm"``) -> metres.
+
+    Parameters
+    ----------
+    text : str
+        Three lengths separated by commas (bare numbers are metres).
+
+    Returns
+    -------
+    tuple of 3 floats
+        The offset [m].
 
     Examples
     --------

@@ -98,6 +98,17 @@ def _bracket_depth(text: str) -> int:
 def where(table: str, key: str) -> str:
     """The name of a key with its table path: ``[container] radius`` (top level: ``key``).
 
+    Parameters
+    ----------
+    table : str
+        The table's name (``""`` at the top level).
+    key : str
+        The key.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> where("container", "radius"), where("", "name")
@@ -107,7 +118,24 @@ def where(table: str, key: str) -> str:
 
 
 def section(document: dict[str, Any], name: str) -> dict[str, Any]:
-    """The table ``[name]`` of ``document`` (empty if absent); `InputError` if not a table."""
+    """The table ``[name]`` of ``document`` (empty if absent); `InputError` if not a table.
+
+    Parameters
+    ----------
+    document : dict
+        The parsed document (`read_document`).
+    name : str
+        The table's name.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> section({"container": {"radius": "20mm"}}, "container")
+    {'radius': '20mm'}
+    """
     value = document.get(name, {})
     if not isinstance(value, dict):
         raise InputError(f"[{name}]", _shown(value), "must be a table")
@@ -115,7 +143,31 @@ def section(document: dict[str, Any], name: str) -> dict[str, Any]:
 
 
 def quantity(table: dict[str, Any], name: str, key: str, kind: str, default: Any = None) -> Any:
-    """A quantity with units (text like ``"20mm"``) or a bare SI number; None if absent."""
+    """A quantity with units (text like ``"20mm"``) or a bare SI number; None if absent.
+
+    Parameters
+    ----------
+    table : dict
+        The TOML table holding the key.
+    name : str
+        The table's name (``""`` at the top level), for the message.
+    key : str
+        The key.
+    kind : str
+        The quantity kind (`sloshkit.io.units.SI_UNITS`).
+    default : str or float, optional
+        Used when the key is absent (parsed the same way).
+
+    Returns
+    -------
+    float or None
+        The value in SI units.
+
+    Examples
+    --------
+    >>> quantity({"radius": "20mm"}, "container", "radius", "length")
+    0.02
+    """
     from sloshkit.io.units import parse_quantity
 
     if key not in table:
@@ -126,7 +178,30 @@ def quantity(table: dict[str, Any], name: str, key: str, kind: str, default: Any
 
 
 def integer(table: dict[str, Any], name: str, key: str, default: int, low: int, high: int) -> int:
-    """An integer in [low, high] (not a bool, not text, not a float)."""
+    """An integer in [low, high] (not a bool, not text, not a float).
+
+    Parameters
+    ----------
+    table : dict
+        The TOML table holding the key.
+    name : str
+        The table's name (``""`` at the top level), for the message.
+    key : str
+        The key.
+    default : int
+        Used when the key is absent.
+    low, high : int
+        The accepted range.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> integer({"modes": 3}, "model", "modes", 3, 1, 10)
+    3
+    """
     value = table.get(key, default)
     if isinstance(value, bool) or not isinstance(value, int):
         raise InputError(where(name, key), _shown(value), f"must be an integer in {low}..{high}")
@@ -138,7 +213,28 @@ def integer(table: dict[str, Any], name: str, key: str, default: int, low: int, 
 def number(
     table: dict[str, Any], name: str, key: str, default: float | None = None
 ) -> float | None:
-    """A finite float (int accepted, bool and text refused); None if absent and no default."""
+    """A finite float (int accepted, bool and text refused); None if absent and no default.
+
+    Parameters
+    ----------
+    table : dict
+        The TOML table holding the key.
+    name : str
+        The table's name (``""`` at the top level), for the message.
+    key : str
+        The key.
+    default : float, optional
+        Used when the key is absent.
+
+    Returns
+    -------
+    float or None
+
+    Examples
+    --------
+    >>> number({"damping_ratio": 0.01}, "model", "damping_ratio")
+    0.01
+    """
     if key not in table:
         return default
     value = table[key]
@@ -150,7 +246,28 @@ def number(
 
 
 def boolean(table: dict[str, Any], name: str, key: str, default: bool = False) -> bool:
-    """A TOML boolean (``true``/``false``); text and numbers refused."""
+    """A TOML boolean (``true``/``false``); text and numbers refused.
+
+    Parameters
+    ----------
+    table : dict
+        The TOML table holding the key.
+    name : str
+        The table's name (``""`` at the top level), for the message.
+    key : str
+        The key.
+    default : bool
+        Used when the key is absent.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> boolean({"robust": True}, "limits", "robust")
+    True
+    """
     value = table.get(key, default)
     if not isinstance(value, bool):
         raise InputError(where(name, key), _shown(value), "must be true or false")
@@ -158,7 +275,28 @@ def boolean(table: dict[str, Any], name: str, key: str, default: bool = False) -
 
 
 def text(table: dict[str, Any], name: str, key: str, default: str | None = None) -> str | None:
-    """A string (numbers and tables refused); None if absent and no default."""
+    """A string (numbers and tables refused); None if absent and no default.
+
+    Parameters
+    ----------
+    table : dict
+        The TOML table holding the key.
+    name : str
+        The table's name (``""`` at the top level), for the message.
+    key : str
+        The key.
+    default : str, optional
+        Used when the key is absent.
+
+    Returns
+    -------
+    str or None
+
+    Examples
+    --------
+    >>> text({"preset": "water-25C"}, "liquid", "preset")
+    'water-25C'
+    """
     value = table.get(key, default)
     if value is None:
         return None
@@ -170,7 +308,28 @@ def text(table: dict[str, Any], name: str, key: str, default: str | None = None)
 def text_list(
     table: dict[str, Any], name: str, key: str, default: list[str] | tuple[str, ...]
 ) -> tuple[str, ...]:
-    """A list of strings, e.g. ``laws = ["quintic", "septic"]``; a lone string is refused."""
+    """A list of strings, e.g. ``laws = ["quintic", "septic"]``; a lone string is refused.
+
+    Parameters
+    ----------
+    table : dict
+        The TOML table holding the key.
+    name : str
+        The table's name (``""`` at the top level), for the message.
+    key : str
+        The key.
+    default : list or tuple of str
+        Used when the key is absent.
+
+    Returns
+    -------
+    tuple of str
+
+    Examples
+    --------
+    >>> text_list({"laws": ["quintic"]}, "move", "laws", ())
+    ('quintic',)
+    """
     value = table.get(key, list(default))
     if isinstance(value, str):
         raise InputError(
@@ -179,6 +338,94 @@ def text_list(
     if not isinstance(value, list) or not all(isinstance(item, str) for item in value):
         raise InputError(where(name, key), _shown(value), "must be a list of names in quotes")
     return tuple(value)
+
+
+def number_list(
+    table: dict[str, Any], name: str, key: str, length: int | None = None
+) -> list[float] | None:
+    """A list of finite numbers (ints or floats; bools, text and NaN refused); None if absent.
+
+    Parameters
+    ----------
+    table : dict
+        The table holding the key.
+    name : str
+        The table's name (``""`` at the top level), for the message.
+    key : str
+        The key.
+    length : int, optional
+        Required number of items.
+
+    Returns
+    -------
+    list of float or None
+
+    Examples
+    --------
+    >>> number_list({"yaw_deg": [0, 90.0]}, "", "yaw_deg")
+    [0.0, 90.0]
+    """
+    if key not in table:
+        return None
+    value = table[key]
+    if not isinstance(value, list):
+        raise InputError(where(name, key), _shown(value), "must be a list of numbers")
+    if length is not None and len(value) != length:
+        raise InputError(where(name, key), _shown(value), f"must hold {length} numbers")
+    numbers = []
+    for index, item in enumerate(value):
+        if isinstance(item, bool) or not isinstance(item, int | float):
+            raise InputError(
+                f"{where(name, key)} item {index + 1}", _shown(item), "must be a number"
+            )
+        if not math.isfinite(item):
+            raise InputError(f"{where(name, key)} item {index + 1}", item, "must be finite")
+        numbers.append(float(item))
+    return numbers
+
+
+def number_rows(
+    table: dict[str, Any], name: str, key: str, width: int, most: int = 100_000
+) -> list[list[float]] | None:
+    """A list of rows of ``width`` finite numbers, e.g. ``waypoints = [[0, 0, 0], ...]``.
+
+    Parameters
+    ----------
+    table : dict
+        The table holding the key.
+    name : str
+        The table's name (``""`` at the top level).
+    key : str
+        The key.
+    width : int
+        Numbers per row.
+    most : int
+        Largest number of rows accepted.
+
+    Returns
+    -------
+    list of list of float or None
+        None if the key is absent.
+
+    Examples
+    --------
+    >>> number_rows({"waypoints": [[0, 0, 0], [0.1, 0, 0]]}, "", "waypoints", 3)
+    [[0.0, 0.0, 0.0], [0.1, 0.0, 0.0]]
+    """
+    if key not in table:
+        return None
+    value = table[key]
+    if not isinstance(value, list):
+        raise InputError(where(name, key), _shown(value), f"must be a list of [{width} numbers]")
+    if len(value) > most:
+        raise InputError(where(name, key), f"{len(value)} rows", f"at most {most:,} rows")
+    rows = []
+    for index, row in enumerate(value):
+        label = f"{where(name, key)} row {index + 1}"
+        if not isinstance(row, list) or len(row) != width:
+            raise InputError(label, _shown(row), f"must be a list of {width} numbers")
+        rows.append(number_list({key: row}, name, key, width) or [])
+    return rows
 
 
 def _scalar(value: Any, name: str, key: str, expected: str) -> Any:

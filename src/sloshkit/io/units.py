@@ -30,6 +30,8 @@ SI_UNITS: dict[str, str] = {
     "acceleration": "m/s^2",
     "jerk": "m/s^3",
     "angle": "rad",
+    "angular_velocity": "rad/s",
+    "angular_acceleration": "rad/s^2",
     "frequency": "Hz",
     "density": "kg/m^3",
     "viscosity": "Pa*s",
@@ -78,6 +80,19 @@ UNITS: dict[str, dict[str, float]] = {
         "°": math.pi / 180.0,
         "arcmin": math.pi / 10800.0,
     },
+    "angular_velocity": {
+        "rad/s": 1.0,
+        "deg/s": math.pi / 180.0,
+        "°/s": math.pi / 180.0,
+        "rpm": 2.0 * math.pi / 60.0,
+    },
+    "angular_acceleration": {
+        "rad/s^2": 1.0,
+        "rad/s2": 1.0,
+        "deg/s^2": math.pi / 180.0,
+        "deg/s2": math.pi / 180.0,
+        "°/s^2": math.pi / 180.0,
+    },
     "frequency": {"Hz": 1.0, "mHz": 1e-3, "kHz": 1e3, "rpm": 1.0 / 60.0},
     "density": {
         "kg/m^3": 1.0,
@@ -110,6 +125,8 @@ _EXAMPLES: dict[str, str] = {
     "acceleration": "5m/s^2",
     "jerk": "50m/s^3",
     "angle": "5deg",
+    "angular_velocity": "180deg/s",
+    "angular_acceleration": "1000deg/s^2",
     "frequency": "4.7Hz",
     "density": "997kg/m^3",
     "viscosity": "0.89mPa*s",
@@ -199,7 +216,7 @@ def parse_quantity(text: str | float, kind: str, parameter: str) -> float:
         if key not in table:
             known = next((k for k, units in UNITS.items() if key in units), None)
             valid = (
-                f"is a {known}, not a {kind} (e.g. {example!r})"
+                f"is {_article(known)} {known}, not {_article(kind)} {kind} (e.g. {example!r})"
                 if known
                 else f"unknown {kind} unit {unit!r}; use e.g. {example!r} or "
                 + ", ".join(list(table)[:6])
@@ -207,6 +224,10 @@ def parse_quantity(text: str | float, kind: str, parameter: str) -> float:
             raise InputError(parameter, text, valid, _hint(stripped))
         factor = table[key]
     return _checked(mantissa * factor, text, parameter, kind, nonzero=_nonzero(match))
+
+
+def _article(word: str) -> str:
+    return "an" if word[:1] in "aeiou" else "a"
 
 
 def _hint(text: str) -> str:
@@ -244,6 +265,106 @@ def _shown(value: object) -> object:
     if isinstance(value, str | int | float):
         return value
     return f"<{type(value).__name__}>"
+
+
+def parse_bounded(
+    text: str | float, kind: str, parameter: str, low: float, high: float, low_open: bool = True
+) -> float:
+    """`parse_quantity`, then ``low < value <= high`` (``low <= value`` with ``low_open=False``).
+
+    Parameters
+    ----------
+    text : str or float
+        The quantity as typed.
+    kind : str
+        A key of `SI_UNITS`.
+    parameter : str
+        The option name, for the error message.
+    low, high : float
+        The accepted range in SI units.
+    low_open : bool
+        Exclude ``low`` itself (the default: "must be > 0").
+
+    Returns
+    -------
+    float
+        The value in SI units.
+
+    Examples
+    --------
+    >>> round(parse_bounded("3deg", "angle", "tilt", 0.0, 0.8), 6)
+    0.05236
+    """
+    value = parse_quantity(text, kind, parameter)
+    above = value > low if low_open else value >= low
+    if not (above and value <= high):
+        unit = SI_UNITS[kind]
+        opening = "(" if low_open else "["
+        raise InputError(
+            parameter, text, f"must be in {opening}{low:g}, {high:g}] {unit} (SI)".rstrip()
+        )
+    return value
+
+
+def parse_number(text: str | float, parameter: str) -> float:
+    """A plain finite number in the strict grammar (no unit, no arithmetic, no ``nan``/``inf``).
+
+    Parameters
+    ----------
+    text : str or float
+        The number as typed.
+    parameter : str
+        The option name, for the error message.
+
+    Returns
+    -------
+    float
+        The number: finite, 0 or a normal double.
+
+    Examples
+    --------
+    >>> parse_number(" -0.5 ", "axis")
+    -0.5
+    """
+    if isinstance(text, str):
+        stripped = text.strip()
+        match = _QUANTITY.fullmatch(stripped) if len(stripped) <= MAX_TEXT_LENGTH else None
+        if match is None or match.group("unit") is not None:
+            raise InputError(parameter, text, "must be a plain number, e.g. 0.5", _hint(stripped))
+        return _checked(float(match.group("number")), text, parameter, "fraction", _nonzero(match))
+    if isinstance(text, bool) or not isinstance(text, int | float):
+        raise InputError(parameter, _shown(text), "must be a number")
+    return _checked(float(text), text, parameter, "fraction")
+
+
+def parse_count(text: str | int, parameter: str, low: int, high: int) -> int:
+    """A whole number in [low, high] typed as text (``"12"``; no sign tricks, no floats).
+
+    Parameters
+    ----------
+    text : str or int
+        The count as typed.
+    parameter : str
+        The option name, for the error message.
+    low, high : int
+        The accepted range (ends included).
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> parse_count("12", "meshes", 3, 60)
+    12
+    """
+    shown = str(text).strip()
+    if isinstance(text, bool) or not re.fullmatch(r"\+?[0-9]{1,12}", shown):
+        raise InputError(parameter, text, f"must be a whole number in {low}..{high}")
+    count = int(shown)
+    if not low <= count <= high:
+        raise InputError(parameter, text, f"must be between {low} and {high}")
+    return count
 
 
 def parse_range(text: str, kind: str, parameter: str) -> tuple[float, float, int]:

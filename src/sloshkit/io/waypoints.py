@@ -15,6 +15,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.io.checks import naming, require_bounded_rows, require_finite_rows
+from sloshkit.io.schema import number_list, number_rows, read_document
 from sloshkit.io.tables import read_table, unit_from_name
 
 FloatArray = NDArray[np.float64]
@@ -59,17 +61,23 @@ def read_waypoints(path: str | FilePath) -> tuple[FloatArray, FloatArray | None]
     [0.3, 0.0, 0.0]
     """
     source = FilePath(path)
-    if source.suffix.lower() == ".toml":
-        import tomllib
+    with naming("path", source):
+        return _read_waypoints(source)
 
-        try:
-            document = tomllib.loads(source.read_text(encoding="utf-8"))
-        except (OSError, tomllib.TOMLDecodeError) as exc:
-            raise InputError("path", str(source), f"is not a readable TOML file ({exc})") from None
-        if "waypoints" not in document:
+
+#: Largest waypoint coordinate [m] (beyond it the units are surely wrong).
+MAX_COORDINATE_M = 1e6
+
+
+def _read_waypoints(source: FilePath) -> tuple[FloatArray, FloatArray | None]:
+    if source.suffix.lower() == ".toml":
+        document = read_document(source, "path")
+        rows = number_rows(document, "", "waypoints", 3)
+        if rows is None:
             raise InputError("path", str(source), "needs waypoints = [[x, y, z], ...] in m")
-        points = np.asarray(document["waypoints"], dtype=float)
-        yaw = document.get("yaw_deg")
+        points = np.asarray(rows, dtype=float).reshape(-1, 3)
+        yaw = number_list(document, "", "yaw_deg")
+        require_bounded_rows(points.reshape(-1), "waypoints", MAX_COORDINATE_M, "m", "path", source)
         return points, None if yaw is None else np.radians(np.asarray(yaw, dtype=float))
     header, data = read_table(source)
     names = [name.split("[")[0].split("(")[0].strip().lower() for name in header]
@@ -77,9 +85,17 @@ def read_waypoints(path: str | FilePath) -> tuple[FloatArray, FloatArray | None]
     if not all(axis in base for axis in "xyz"):
         raise InputError("path", str(source), "needs columns x, y, z (e.g. 'x [mm]')")
     columns = [base.index(axis) for axis in "xyz"]
+    used = {header[c]: c for c in columns}
+    if "yaw" in base:
+        used[header[base.index("yaw")]] = base.index("yaw")
+    require_finite_rows(data, used, "path", source)
     points = np.column_stack(
         [data[:, c] * _scale(header[c], "m", _LENGTH_UNITS, "path") for c in columns]
     )
+    for axis, c in zip("xyz", columns, strict=True):
+        require_bounded_rows(
+            points[:, "xyz".index(axis)], header[c], MAX_COORDINATE_M, "m", "path", source
+        )
     if "yaw" not in base:
         return points, None
     index = base.index("yaw")

@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import make_interp_spline
 from scipy.spatial.transform import Rotation, RotationSpline
 
+from sloshkit.budget import require_samples
 from sloshkit.errors import InputError, require_increasing, require_positive
 from sloshkit.motion.laws import Motion
 from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, PoseKinematics, pose_kinematics
@@ -82,7 +83,7 @@ class PoseTrajectory:
             raise InputError("quaternion", quaternion.shape, f"must have shape ({count}, 4)")
         for label, values in (("time", time), ("position", position), ("quaternion", quaternion)):
             if not np.all(np.isfinite(values)):
-                row = int(np.argmax(~np.isfinite(values.reshape(count, -1)).any(axis=1)))
+                row = int(np.argmax((~np.isfinite(values.reshape(count, -1))).any(axis=1)))
                 raise InputError(label, f"non-finite value at sample {row}", "must be finite")
         require_increasing("time", time)
         norm = np.linalg.norm(quaternion, axis=1)
@@ -194,7 +195,9 @@ class PoseTrajectory:
         """
         dt = require_positive("sample_period", sample_period_s, "s")
         stop = self.end_s if end_s is None else float(end_s)
-        count = math.floor((stop - self.start_s) / dt + 1e-9) + 1
+        samples = (stop - self.start_s) / dt + 1.0
+        require_samples("poses", f"{stop - self.start_s:.4g} s at {dt:.3g} s steps", samples, 16)
+        count = math.floor(samples - 1.0 + 1e-9) + 1
         times = self.start_s + np.arange(count, dtype=float) * dt
         return PoseTrajectory(times, *self.sample(times), name=self.name)
 

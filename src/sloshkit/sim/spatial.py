@@ -63,6 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.budget import require_samples
 from sloshkit.errors import InputError, require_positive, warn_validity
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, PoseKinematics, pose_kinematics
@@ -265,13 +266,22 @@ def simulate_spatial(
         dt = poses.sample_period_s if poses.is_uniform else 1e-3
     else:
         dt = require_positive("sample_period", sample_period_s, "s")
+    _check_step(model, poses, dt, sample_period_s is None)
     _warn_pose_range(poses)
     started = _time.perf_counter()
-    extended = poses.extended(settle, dt)
     # RK4 sub-steps keep omega_max h <= 0.5 (accurate, far inside RK4's stability limit 2.8);
     # the drive is sampled at half sub-steps
     substeps = max(1, math.ceil(max(m.omega_rad_s for m in model.modes) * dt / 0.5))
     grid_dt = dt / (2.0 * substeps) if nonlinear else dt
+    # size before allocation (sloshkit.budget): the drive, kinematics and states of every mode
+    require_samples(
+        "poses",
+        f"{poses.duration_s + settle:.4g} s at {grid_dt:.3g} s steps",
+        (poses.duration_s + settle) / grid_dt,
+        24 + 12 * len(model.modes),
+        "3-D time samples",
+    )
+    extended = poses.extended(settle, dt)
     kinematics = pose_kinematics(extended, grid_dt, cutoff_hz=cutoff_hz)
     drive = spatial_drive(model, kinematics)
     modes = model.modes
@@ -328,6 +338,19 @@ def simulate_spatial(
     )
     _warn_beyond_validity(response, wall_height_m)
     return response
+
+
+def _check_step(model: SloshModel, poses: PoseTrajectory, dt: float, from_poses: bool) -> None:
+    """Refuse a step that cannot resolve the fastest mode (more than half its period)."""
+    fastest = max(mode.omega_rad_s for mode in model.modes)
+    half_period = math.pi / fastest
+    if dt > half_period:
+        raise InputError(
+            "sample_period",
+            f"{dt:.4g} s" + (" (the pose file's own step)" if from_poses else ""),
+            f"must be below half the period of the fastest mode ({half_period:.4g} s)",
+            "give --sample-period, e.g. 1ms" if from_poses else "",
+        )
 
 
 def _warn_pose_range(poses: PoseTrajectory) -> None:
