@@ -140,6 +140,7 @@ def family(rows: list[dict[str, Any]], name: str, pooled_order: float) -> dict[s
             "steps_s": steps,
             "damping_ratios": values,
             "frequencies_hz": [by_step[s]["frequency_hz"] for s in steps],
+            "frequency_errors": [by_step[s]["frequency_error"] for s in steps],
             "cells": by_step[steps[0]]["cells"],
             "wall_cell_m": by_step[steps[0]].get("wall_cell_m"),
             "zero_step": study.to_dict(),
@@ -178,7 +179,12 @@ def family(rows: list[dict[str, Any]], name: str, pooled_order: float) -> dict[s
     return result
 
 
-def figure(uniform: dict[str, Any], graded: dict[str, Any], theory: dict[str, float]) -> None:
+def figure(
+    uniform: dict[str, Any],
+    graded: dict[str, Any],
+    theory: dict[str, float],
+    backward: list[dict[str, Any]],
+) -> None:
     """ζ against the step for every mesh, the zero-step values, and theory."""
     import matplotlib
 
@@ -191,11 +197,26 @@ def figure(uniform: dict[str, Any], graded: dict[str, Any], theory: dict[str, fl
             steps = [0.0, *(1e3 * s for s in mesh["steps_s"])]
             zeta = [mesh["zero_step"]["extrapolated"], *mesh["damping_ratios"]]
             label = f"{study['name']}, {cells} cells/radius ({mesh['cells']:,} cells)"
-            axis.plot(steps, zeta, style, label=label, markersize=5)
+            (line,) = axis.plot(steps, zeta, style, label=label, markersize=5)
+            axis.errorbar(
+                [0.0],
+                [mesh["zero_step"]["extrapolated"]],
+                yerr=[[mesh["zero_step"]["uncertainty"]], [mesh["zero_step"]["uncertainty"]]],
+                color=line.get_color(),
+                capsize=3,
+                alpha=0.5,
+            )
+    if backward:
+        axis.plot(
+            [1e3 * r["step_s"] for r in backward],
+            [r["damping_ratio"] for r in backward],
+            "kx",
+            label="backward for U, uniform 8 cells/radius",
+        )
     for key, colour in (("boundary_layer_theory", "k"), ("seed_eq2", "grey")):
         axis.axhline(theory[key], color=colour, linestyle=":", linewidth=1.2)
         axis.annotate(key.replace("_", " "), (2.05, theory[key]), fontsize=8, va="center")
-    axis.set_xlabel("time step [ms] (0: extrapolated)")
+    axis.set_xlabel("time step [ms] (0: extrapolated, with its GCI)")
     axis.set_ylabel("damping ratio ζ₁ [-]")
     axis.set_xlim(-0.1, 2.6)
     axis.grid(alpha=0.3)
@@ -245,7 +266,7 @@ def main() -> None:
         ],
     }
     (DOCS / "cfd-damping.json").write_text(json.dumps(document, indent=2) + "\n")
-    figure(uniform, graded, theory)
+    figure(uniform, graded, theory, document["backward"])
     section = render(document)
     grading = json.loads((DOCS / "cfd-wall-grading.json").read_text())
     wall_section = render_stability(grading.get("instability_diagnosis", []))
@@ -291,8 +312,9 @@ def render(document: dict[str, Any]) -> str:
     """The Markdown of the damping section (every number from ``document``)."""
     theory, layer = document["theory"], document["boundary_layer_terms"]
     lines = [
-        "| mesh | cells | wall cell | ζ at 2 / 1 / 0.5 ms | zero step (order, GCI) |",
-        "|---|---|---|---|---|",
+        "| mesh | cells | wall cell | f₁ vs theory (finest step) | ζ at 2 / 1 / 0.5 ms | "
+        "zero step (order, GCI) |",
+        "|---|---|---|---|---|---|",
     ]
     for study in (document["uniform"], document["graded"]):
         for cells, mesh in sorted(study["meshes"].items(), key=lambda kv: int(kv[0])):
@@ -301,9 +323,11 @@ def render(document: dict[str, Any]) -> str:
             values = " / ".join(_fmt(by_step.get(s)) for s in (0.002, 0.001, 0.0005))
             wall = mesh["wall_cell_m"]
             order = f"{zero['order']:.2f}" + ("" if zero["order_observed"] else " assumed")
+            error = mesh["frequency_errors"][0]
             lines.append(
                 f"| {study['name']} {cells}/radius | {mesh['cells']:,} | "
-                f"{'-' if wall is None else f'{1e3 * wall:.3f} mm'} | {values} | "
+                f"{'-' if wall is None else f'{1e3 * wall:.3f} mm'} | {100 * error:+.2f} % | "
+                f"{values} | "
                 f"{_fmt(zero['extrapolated'])} ± {_fmt(zero['uncertainty'])} ({order}) |"
             )
     out = [
