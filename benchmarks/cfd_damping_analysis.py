@@ -17,10 +17,13 @@ import statistics
 from pathlib import Path
 from typing import Any
 
+from cfd_damping_report import MAX_FREQUENCY_ERROR, MAX_LATE_COURANT, render, render_stability
 from scipy import integrate
 from scipy.special import j1, jvp
 
 from sloshkit.cfd.convergence import combined_uncertainty, observed_order, richardson
+from sloshkit.cfd.mesh import wall_cell_size_m
+from sloshkit.cfd.spec import CaseSpec
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.theory import damping_ratio_correlation
 
@@ -86,17 +89,27 @@ def stokes_layer_damping(radius_m: float, fill_m: float, nu_m2_s: float) -> dict
     }
 
 
+def wall_cell(row: dict[str, Any]) -> float:
+    """Radial size of the wall cells of a run's mesh [m] (recomputed for rows without it)."""
+    if row.get("wall_cell_m") is not None:
+        return float(row["wall_cell_m"])
+    spec = CaseSpec(
+        RADIUS_M,
+        FILL_M,
+        get_liquid("water-25C"),
+        cells_per_radius=int(row["cells_per_radius"]),
+        wall_grading=float(row.get("wall_grading") or 1.0),
+        radial_cells=row.get("radial_cells"),
+    )
+    return wall_cell_size_m(spec)
+
+
 def table(rows: list[dict[str, Any]]) -> dict[int, dict[float, dict[str, Any]]]:
     """Rows by cells per radius, then by step [s]."""
     result: dict[int, dict[float, dict[str, Any]]] = {}
     for row in rows:
         result.setdefault(int(row["cells_per_radius"]), {})[float(row["max_step_s"])] = row
     return result
-
-
-#: A run whose largest Courant number stays above this after the start-up transient carries
-#: parasitic currents (seen on the 9-cell graded mesh): excluded from the extrapolation.
-MAX_LATE_COURANT = 0.5
 
 
 def step_orders(rows: list[dict[str, Any]]) -> dict[int, float]:
@@ -111,15 +124,20 @@ def step_orders(rows: list[dict[str, Any]]) -> dict[int, float]:
 
 
 def usable(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Runs that finished without parasitic currents."""
+    """Runs that finished without parasitic currents (late Courant number within
+    `MAX_LATE_COURANT`, frequency within `MAX_FREQUENCY_ERROR` of theory)."""
     return [
-        r for r in rows if "failed" not in r and r.get("max_courant_late", 0.0) <= MAX_LATE_COURANT
+        r
+        for r in rows
+        if "failed" not in r
+        and r.get("max_courant_late", 0.0) <= MAX_LATE_COURANT
+        and abs(r["frequency_error"]) <= MAX_FREQUENCY_ERROR
     ]
 
 
 def family(rows: list[dict[str, Any]], name: str, pooled_order: float) -> dict[str, Any]:
-    """Time-step and mesh extrapolation of one mesh family (runs with parasitic currents,
-    ``max_courant_late`` above `MAX_LATE_COURANT`, are listed and left out)."""
+    """Time-step and mesh extrapolation of one mesh family (failed runs and runs with
+    parasitic currents, see `usable`, are listed and left out)."""
     good = usable(rows)
     excluded = [r for r in rows if r not in good]
     runs = table(good)
@@ -142,7 +160,7 @@ def family(rows: list[dict[str, Any]], name: str, pooled_order: float) -> dict[s
             "frequencies_hz": [by_step[s]["frequency_hz"] for s in steps],
             "frequency_errors": [by_step[s]["frequency_error"] for s in steps],
             "cells": by_step[steps[0]]["cells"],
-            "wall_cell_m": by_step[steps[0]].get("wall_cell_m"),
+            "wall_cell_m": wall_cell(by_step[steps[0]]),
             "zero_step": study.to_dict(),
         }
     result: dict[str, Any] = {
@@ -152,6 +170,7 @@ def family(rows: list[dict[str, Any]], name: str, pooled_order: float) -> dict[s
                 "cells_per_radius": r["cells_per_radius"],
                 "step_s": r["max_step_s"],
                 "max_courant_late": r.get("max_courant_late"),
+                "frequency_error": r.get("frequency_error"),
                 "damping_ratio": r.get("damping_ratio"),
                 "failed": r.get("failed"),
             }
@@ -278,111 +297,6 @@ def main() -> None:
     (DOCS / "cfd.md").write_text(text)
     print(wall_section)
     print(section)
-
-
-def render_stability(rows: list[dict[str, Any]]) -> str:
-    """The table of the wall-stability experiments (benchmarks/cfd_wall_stability.py)."""
-    lines = [
-        "| experiment (what it tests) | wall cell | min. determinant | max. aspect ratio | "
-        "outcome | growth per step | largest Courant at the end |",
-        "|---|---|---|---|---|---|---|",
-    ]
-    for row in rows:
-        wall = row["wall_cell_mm"]
-        growth = row["growth_per_step"]
-        outcome = (
-            f"blew up after {row['steps_run']} steps"
-            if row["blew_up"]
-            else f"ran {row['steps_run']} steps"
-        )
-        lines.append(
-            f"| {row['experiment']} ({row['tests']}) | "
-            f"{'-' if wall is None else f'{wall:.3f} mm'} | {row['min_determinant']:.2g} | "
-            f"{row['max_aspect_ratio']:.3g} | {outcome} | "
-            f"{'-' if growth is None else f'{growth:.3g}'} | {row['courant_last']:.2g} |"
-        )
-    return "\n".join(lines)
-
-
-def _fmt(value: float | None, digits: int = 4) -> str:
-    return "-" if value is None or not math.isfinite(value) else f"{value:.{digits}f}"
-
-
-def render(document: dict[str, Any]) -> str:
-    """The Markdown of the damping section (every number from ``document``)."""
-    theory, layer = document["theory"], document["boundary_layer_terms"]
-    lines = [
-        "| mesh | cells | wall cell | f₁ vs theory (finest step) | ζ at 2 / 1 / 0.5 ms | "
-        "zero step (order, GCI) |",
-        "|---|---|---|---|---|---|",
-    ]
-    for study in (document["uniform"], document["graded"]):
-        for cells, mesh in sorted(study["meshes"].items(), key=lambda kv: int(kv[0])):
-            zero = mesh["zero_step"]
-            by_step = dict(zip(mesh["steps_s"], mesh["damping_ratios"], strict=True))
-            values = " / ".join(_fmt(by_step.get(s)) for s in (0.002, 0.001, 0.0005))
-            wall = mesh["wall_cell_m"]
-            order = f"{zero['order']:.2f}" + ("" if zero["order_observed"] else " assumed")
-            error = mesh["frequency_errors"][0]
-            lines.append(
-                f"| {study['name']} {cells}/radius | {mesh['cells']:,} | "
-                f"{'-' if wall is None else f'{1e3 * wall:.3f} mm'} | {100 * error:+.2f} % | "
-                f"{values} | "
-                f"{_fmt(zero['extrapolated'])} ± {_fmt(zero['uncertainty'])} ({order}) |"
-            )
-    out = [
-        "Boundary-layer theory of a clean cylinder (Stokes layers on the side wall and the "
-        f"bottom, δ = {1e3 * layer['stokes_layer_thickness_m']:.3f} mm, plus the bulk): "
-        f"ζ = {layer['side_wall']:.5f} (side wall) + {layer['bottom']:.5f} (bottom) + "
-        f"{layer['bulk']:.5f} (bulk) = **{theory['boundary_layer_theory']:.4f}**; the "
-        f"correlations give {theory['seed_eq2']:.4f} (seed eq. 2), {theory['sp106']:.4f} "
-        f"(NASA SP-106) and {theory['stephens']:.4f} (Stephens et al.).",
-        "",
-        *lines,
-        "",
-    ]
-    for study in (document["uniform"], document["graded"]):
-        for run in study["excluded"]:
-            why = (
-                f"blew up ({run['failed']})"
-                if run["failed"]
-                else f"largest Courant number {run['max_courant_late']:.2f} after the start "
-                f"(parasitic currents; limit {MAX_LATE_COURANT}), ζ {run['damping_ratio']:.4f}"
-            )
-            out.append(
-                f"- Excluded: {study['name']} {run['cells_per_radius']}/radius at "
-                f"{1e3 * run['step_s']:g} ms: {why}."
-            )
-        orders = ", ".join(
-            f"{_fmt(v, 2)} ({k}/radius)" for k, v in study["observed_step_orders"].items()
-        )
-        out.append(
-            f"- **{study['name']}**: observed order in the time step {orders or 'not measured'}"
-            f" (two-step meshes use the median over both families, kept within [0.5, 4]: "
-            f"{study['step_order_used']:.2f})."
-        )
-        if "mesh" in study:
-            mesh, result = study["mesh"], study["damping_ratio"]
-            order = "observed" if mesh["order_observed"] else "assumed"
-            out.append(
-                f"  In the mesh: {mesh['behaviour']}, order {_fmt(mesh['order'], 2)} ({order}),"
-                f" Richardson value {_fmt(result['richardson'])}; damping "
-                f"**ζ = {_fmt(result['finest_mesh_zero_step'])} ± "
-                f"{_fmt(result['uncertainty'])}** (GCI in mesh and step, root-sum-square; "
-                f"interval {_fmt(result['interval'][0])}–{_fmt(result['interval'][1])}, "
-                f"{'contains' if result['contains_richardson'] else 'does NOT contain'} the "
-                "Richardson value)."
-            )
-    if document["backward"]:
-        values = "; ".join(
-            f"{1e3 * r['step_s']:g} ms: ζ = {r['damping_ratio']:.4f}"
-            + (" (amplitude grows: no free decay)" if r["calibration_error"] else "")
-            for r in document["backward"]
-        )
-        out.append(
-            f"- **backward** (second order for U, Euler for alpha; uniform 8/radius): {values}."
-        )
-    return "\n".join(out)
 
 
 if __name__ == "__main__":
