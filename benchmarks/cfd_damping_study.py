@@ -40,6 +40,9 @@ GRADED_PLAN = [(12, 2.0), (12, 1.0), (9, 2.0), (10, 2.0), (10, 1.0), (16, 2.0), 
 #: Run one plan entry only (parallel processes): ``--only 16 2``.
 
 
+#: Graded meshes that failed with a fixed step, run with sloshkit's default adaptive step
+#: (Courant limits 0.5, largest step 2 ms): does the Courant limit keep them stable?
+ADAPTIVE_PLAN = [(10, 2.0), (16, 2.0)]
 #: The coarse uniform mesh with the second-order backward scheme for U (Euler for alpha).
 BACKWARD_PLAN = [(8, 2.0), (8, 1.0)]
 
@@ -51,12 +54,15 @@ def run_plan(
     graded: bool = False,
     backward: bool = False,
     only: tuple[int, float] | None = None,
+    adaptive: bool = False,
 ) -> None:
     """Run every (mesh, step) of `PLAN` (or of the graded family, or `BACKWARD_PLAN`) not in
     ``out`` yet."""
     rows = json.loads(out.read_text()) if out.is_file() else []
     done = {(r["cells_per_radius"], round(r["max_step_s"] * 1e3, 6)) for r in rows}
     plan = GRADED_PLAN if graded else BACKWARD_PLAN if backward else PLAN
+    if adaptive:
+        plan, graded = ADAPTIVE_PLAN, True
     for cells_per_radius, step_ms in plan:
         if (cells_per_radius, step_ms) in done or (only and (cells_per_radius, step_ms) != only):
             continue
@@ -69,14 +75,14 @@ def run_plan(
         try:
             row = bench(
                 work / f"n{cells_per_radius}-dt{step_ms:g}ms{'-graded' if graded else ''}"
-                f"{'-backward' if backward else ''}",
+                f"{'-backward' if backward else ''}{'-adaptive' if adaptive else ''}",
                 cells_per_radius,
                 1,
                 end_time_s,
                 step_ms * 1e-3,
                 0.5,
                 0.5,
-                adjust_time_step=False,
+                adjust_time_step=adaptive,
                 **extra,  # type: ignore[arg-type]
             )
         except CfdError as error:  # a run that blows up is a result too
@@ -125,6 +131,10 @@ def main() -> None:
         "--backward-out", type=Path, default=ROOT / "docs" / "cfd-damping-backward.json"
     )
     parser.add_argument("--backfill", action="store_true", help="add late Courant numbers")
+    parser.add_argument("--adaptive", action="store_true", help="graded meshes, adaptive step")
+    parser.add_argument(
+        "--adaptive-out", type=Path, default=ROOT / "docs" / "cfd-damping-adaptive.json"
+    )
     parser.add_argument("--only", nargs=2, type=float, default=None, help="CELLS STEP_MS")
     args = parser.parse_args()
     if args.backfill:
@@ -133,7 +143,10 @@ def main() -> None:
         backfill(args.backward_out, args.work, backward=True)
         return
     if not args.analyse_only:
-        if args.graded:
+        if args.adaptive:
+            only = None if args.only is None else (int(args.only[0]), args.only[1])
+            run_plan(args.adaptive_out, args.work, args.end_time, adaptive=True, only=only)
+        elif args.graded:
             only = None if args.only is None else (int(args.only[0]), args.only[1])
             run_plan(args.graded_out, args.work, args.end_time, graded=True, only=only)
         elif args.backward:
