@@ -266,6 +266,8 @@ def main() -> None:
     graded = family(graded_rows, "wall-graded", pooled)
     backward_path = DOCS / "cfd-damping-backward.json"
     backward = json.loads(backward_path.read_text()) if backward_path.is_file() else []
+    adaptive_path = DOCS / "cfd-damping-adaptive.json"
+    adaptive = json.loads(adaptive_path.read_text()) if adaptive_path.is_file() else []
     document = {
         "case": "seed vial R 20.5 mm, h 39 mm, water 25 C / air, 3 deg tilt, 2 s free decay, "
         "Euler, fixed step, 3 pressure correctors, serial",
@@ -282,6 +284,14 @@ def main() -> None:
                 "calibration_error": r.get("calibration_error"),
             }
             for r in backward
+        ],
+        "adaptive": [
+            {
+                "cells_per_radius": r["cells_per_radius"],
+                "failed": r.get("failed"),
+                "damping_ratio": r.get("damping_ratio"),
+            }
+            for r in adaptive
         ],
     }
     (DOCS / "cfd-damping.json").write_text(json.dumps(document, indent=2) + "\n")

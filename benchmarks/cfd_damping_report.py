@@ -117,6 +117,18 @@ def render(document: dict[str, Any]) -> str:
         out.append(
             f"- **backward** (second order for U, Euler for alpha; uniform 8/radius): {values}."
         )
+    if document.get("adaptive"):
+        runs = "; ".join(
+            f"{r['cells_per_radius']}/radius: "
+            + (r["failed"].split(" (")[0] if r["failed"] else f"ζ = {r['damping_ratio']:.4f}")
+            for r in document["adaptive"]
+        )
+        out.append(
+            "- **adaptive step** (sloshkit's default: Courant limits 0.5, largest step 2 ms) on "
+            f"graded meshes that failed with a fixed step: {runs}. The Courant limit chases the "
+            "growing spurious velocity and the step collapses: an adaptive step does not "
+            "stabilise them either."
+        )
     out.extend(["", *conclusions(document)])
     return "\n".join(out)
 

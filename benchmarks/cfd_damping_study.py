@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -98,6 +99,30 @@ def run_plan(
         out.write_text(json.dumps(rows, indent=2) + "\n", encoding="utf-8")
 
 
+def record_stall(out: Path, work: Path, cells_per_radius: int) -> None:
+    """Record an adaptive graded run that was stopped because its step collapsed: the last
+    simulated time, step and Courant number from its log."""
+    case = work / f"n{cells_per_radius}-dt2ms-graded-adaptive"
+    text = (case / "log.interFoam").read_text()
+    times = re.findall(r"^Time = ([0-9.eE+-]+)", text, re.M)
+    steps = re.findall(r"^deltaT = ([0-9.eE+-]+)", text, re.M)
+    courant = re.findall(r"^Courant Number mean: \S+ max: (\S+)", text, re.M)
+    rows = json.loads(out.read_text()) if out.is_file() else []
+    rows.append(
+        {
+            "cells_per_radius": cells_per_radius,
+            "max_step_s": 2e-3,
+            "radial_cells": GRADED_MESHES[cells_per_radius],
+            "wall_grading": GRADED_WALL,
+            "adjust_time_step": True,
+            "failed": f"adaptive step collapsed to {float(steps[-1]):.3g} s at t = "
+            f"{float(times[-1]):.4g} s (largest Courant number {float(courant[-1]):.2f}); "
+            "stopped",
+        }
+    )
+    out.write_text(json.dumps(rows, indent=2) + "\n", encoding="utf-8")
+
+
 def backfill(out: Path, work: Path, graded: bool = False, backward: bool = False) -> None:
     """Add ``max_courant_late`` to rows run before it was recorded (from their case logs)."""
     from bench_cfd_speed import late_courant
@@ -132,11 +157,15 @@ def main() -> None:
     )
     parser.add_argument("--backfill", action="store_true", help="add late Courant numbers")
     parser.add_argument("--adaptive", action="store_true", help="graded meshes, adaptive step")
+    parser.add_argument("--record-stall", type=int, default=None, help="CELLS of a stalled run")
     parser.add_argument(
         "--adaptive-out", type=Path, default=ROOT / "docs" / "cfd-damping-adaptive.json"
     )
     parser.add_argument("--only", nargs=2, type=float, default=None, help="CELLS STEP_MS")
     args = parser.parse_args()
+    if args.record_stall is not None:
+        record_stall(args.adaptive_out, args.work, args.record_stall)
+        return
     if args.backfill:
         backfill(args.out, args.work)
         backfill(args.graded_out, args.work, graded=True)
