@@ -8,14 +8,17 @@ against uniform time scaling of the measured timing (the naive fix), and compute
 20-waypoint path for the compute-time target. Every duration is of a plan verified with the
 nonlinear 3-D model.
 
-Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--no-transcription] [--out table.md]``
-(minutes on a shared 2-core machine; not a timed test).
+Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--transcription] [--out table.md]
+[--docs docs/planning-3d.md]`` (minutes on a shared 2-core machine; not a timed test). With
+``--docs`` the tables replace the text between the ``<!-- bench_plan3d:start -->`` and
+``<!-- bench_plan3d:end -->`` markers of that file, so the docs carry no hand-typed figures.
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
+import os
 import time
 import warnings
 from pathlib import Path
@@ -29,8 +32,8 @@ from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
 from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
 from sloshkit.plan.path_planner import plan_path
-from sloshkit.plan.retime import Timing
 from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+from sloshkit.plan.timing import Timing
 
 DATA = Path(__file__).resolve().parents[1] / "tests" / "data" / "measured-3d"
 SERIES = ("LE_3D_0m_5.3s_900deg", "RD_2D_0.3m_6.5s_720deg", "TRD_2D_0.3m_2.4s_270deg")
@@ -52,8 +55,9 @@ def reference_timing(
 
 def main() -> None:
     parser = argparse.ArgumentParser()
-    parser.add_argument("--no-transcription", action="store_true")
+    parser.add_argument("--transcription", action="store_true")
     parser.add_argument("--out", type=Path, default=None)
+    parser.add_argument("--docs", type=Path, default=None)
     arguments = parser.parse_args()
     warnings.simplefilter("ignore", ValidityWarning)
     model = equivalent_model(
@@ -83,7 +87,7 @@ def main() -> None:
                 "auto",
                 reference=reference,
                 tilt=True,
-                transcription=not arguments.no_transcription,
+                transcription=arguments.transcription,
             )
             found = {c.method: c for c in result.candidates}
 
@@ -115,9 +119,14 @@ def main() -> None:
     problem = PathProblem(
         path_from_waypoints(points, 0.03), LIMITS, SpatialSloshLimits(0.015, RESIDUAL_M), model
     )
-    result = plan_path(problem, "auto", tilt=True, transcription=not arguments.no_transcription)
+    started, cpu = time.perf_counter(), time.process_time()
+    result = plan_path(problem, "auto", tilt=True, transcription=arguments.transcription)
+    total, cpu = time.perf_counter() - started, time.process_time() - cpu
     rows.append("")
-    rows.append("20 waypoints (zig-zag, 2.3 m, 30 mm blends), 15 mm / 2 mm limits:")
+    rows.append(
+        f"20 waypoints (zig-zag, {problem.path.length_m:.2f} m, 30 mm blends), 15 mm / 2 mm "
+        f"limits; `auto` with tilt took {total:.1f} s wall, {cpu:.1f} s CPU in all:"
+    )
     rows.append("")
     rows.append("| method | duration | feasible | compute |")
     rows.append("|---|---|---|---|")
@@ -126,10 +135,19 @@ def main() -> None:
             f"| {candidate.method} | {candidate.duration_s:.2f} s | {candidate.feasible} "
             f"| {candidate.compute_time_s:.1f} s |"
         )
+    load = os.getloadavg()[0]
+    rows.append("")
+    rows.append(f"(load average {load:.1f} on {os.cpu_count()} cores when the run ended)")
     text = "\n".join(rows)
     print(text)
     if arguments.out is not None:
         arguments.out.write_text(text + "\n")
+    if arguments.docs is not None:
+        document = arguments.docs.read_text()
+        start, end = "<!-- bench_plan3d:start -->", "<!-- bench_plan3d:end -->"
+        head, _, rest = document.partition(start)
+        _, _, tail = rest.partition(end)
+        arguments.docs.write_text(f"{head}{start}\n{text}\n{end}{tail}")
 
 
 if __name__ == "__main__":

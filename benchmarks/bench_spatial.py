@@ -27,8 +27,9 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.sim.spatial import simulate_spatial, spatial_drive
+from sloshkit.sim.spatial import simulate_spatial
 from sloshkit.sim.spatial_batch import spatial_batch_metrics
+from sloshkit.sim.spatial_drive import spatial_drive
 
 warnings.simplefilter("ignore", ValidityWarning)
 

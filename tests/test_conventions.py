@@ -5,9 +5,9 @@ from __future__ import annotations
 import ast
 import importlib
 import inspect
+import pkgutil
 import subprocess
 import sys
-import typing
 from pathlib import Path
 
 import pytest
@@ -48,43 +48,100 @@ def test_every_public_parameter_is_documented(name, obj):
     assert not TIME_STEP_ALIASES & set(parameters), f"sloshkit.{name}: say sample_period_s"
 
 
-#: Modules whose every public function and class follows the docstring convention too.
-DOCUMENTED_MODULES = (
-    "sloshkit.sim.equations",
-    "sloshkit.sim.metrics",
-    "sloshkit.sim.discretisation",
-    "sloshkit.sim.simulate",
-    "sloshkit.sim.response",
-    "sloshkit.motion.sampling",
-    "sloshkit.motion.scaling",
-    "sloshkit.results",
-    "sloshkit.files",
-    "sloshkit.io.requests",
-    "sloshkit.model.document",
+#: Modules whose owners (other developers of session 2) are adding their Examples on their own
+#: branches; TEMPORARY: the coordinator empties this set when those branches are merged.
+PENDING_OWNERS: frozenset[str] = frozenset(
+    {
+        # (plan3d: merged, documented)
+        # (harden: merged, documented)
+        # (cfd: merged, documented)
+    }
 )
 
 
-def _module_callables() -> list[tuple[str, object]]:
+def _is_pending(module_name: str) -> bool:
+    return module_name in PENDING_OWNERS
+
+
+def _command_callbacks() -> set[object]:
+    """The functions typer runs for a command: the CLI is documented by ``--help`` instead."""
+    from sloshkit.cli import load_commands
+
+    callbacks: set[object] = set()
+    groups = [load_commands()]
+    while groups:
+        group = groups.pop()
+        callbacks.update(c.callback for c in group.registered_commands)
+        callbacks.update(
+            g.typer_instance.registered_callback.callback
+            for g in group.registered_groups
+            if g.typer_instance.registered_callback
+        )
+        groups.extend(g.typer_instance for g in group.registered_groups)
+    return callbacks
+
+
+def _all_modules() -> list[str]:
+    modules = sorted(m.name for m in pkgutil.walk_packages(sloshkit.__path__, "sloshkit."))
+    return [*modules, "sloshkit"]
+
+
+def _module_callables(*, pending: bool) -> list[tuple[str, object]]:
+    """Every public module-level function and class of sloshkit, where it is defined."""
+    exempt = _command_callbacks()
     found = []
-    for module_name in DOCUMENTED_MODULES:
+    for module_name in _all_modules():
+        if _is_pending(module_name) != pending:
+            continue
         module = importlib.import_module(module_name)
         for name, obj in vars(module).items():
             if name.startswith("_") or getattr(obj, "__module__", None) != module_name:
                 continue
-            if inspect.isfunction(obj) or (inspect.isclass(obj) and obj.__doc__):
-                if inspect.isclass(obj) and issubclass(obj, typing.Protocol):  # type: ignore[arg-type]
-                    continue
+            if (inspect.isfunction(obj) or inspect.isclass(obj)) and obj not in exempt:
                 found.append((f"{module_name}.{name}", obj))
     return found
 
 
-@pytest.mark.parametrize(("name", "obj"), _module_callables())
-def test_touched_modules_are_documented(name, obj):
+def _returns_something(obj: object) -> bool:
+    if inspect.isclass(obj):
+        return False
+    annotation = inspect.signature(obj).return_annotation  # type: ignore[arg-type]
+    return annotation not in (None, "None", "NoReturn", "typing.NoReturn", inspect.Signature.empty)
+
+
+def _docstring_problems(obj: object) -> list[str]:
     doc = NumpyDocString(inspect.getdoc(obj) or "")
-    parameters = [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")]
+    problems = []
+    if not doc["Summary"]:
+        problems.append("no summary line")
+    try:
+        parameters = [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")]  # type: ignore[arg-type]
+    except ValueError:  # no signature (a builtin-backed class)
+        parameters = []
+    if getattr(obj, "_is_protocol", False):
+        parameters = []  # a protocol is never constructed: its members are its documentation
     missing = [p for p in parameters if p not in _documented(doc)]
-    assert not missing, f"{name}: undocumented parameters {missing}"
-    assert doc["Examples"], f"{name}: no Examples section"
+    if missing:
+        problems.append(f"undocumented parameters {missing}")
+    if _returns_something(obj) and not (doc["Returns"] or doc["Yields"]):
+        problems.append("no Returns section")
+    examples = "\n".join(doc["Examples"])
+    if ">>>" not in examples:
+        problems.append("no Examples section with a doctest")
+    if "+SKIP" in examples:
+        problems.append("an Examples section that is skipped")
+    return problems
+
+
+@pytest.mark.parametrize(("name", "obj"), _module_callables(pending=False))
+def test_every_public_definition_is_documented(name, obj):
+    problems = _docstring_problems(obj)
+    assert not problems, f"{name}: {'; '.join(problems)}"
+
+
+def test_pending_owners_are_modules_of_sloshkit():
+    # The temporary set names real modules, so emptying it at merge time is all that is needed.
+    assert PENDING_OWNERS <= set(_all_modules())
 
 
 def test_the_checker_fails_on_an_undocumented_parameter():

@@ -180,7 +180,7 @@ def vial() -> object:
 def pose_trajectories(draw: st.DrawFn, scale: float = 1.0) -> object:
     """A random smooth move: a translation, then a tilt and a spin (each may be absent),
     chained by `concatenate`; ``scale`` shrinks every amplitude (small motions)."""
-    from sloshkit.motion.poses import (
+    from sloshkit.motion.pose_builders import (
         concatenate,
         poses_from_law,
         poses_from_rotation,
@@ -254,8 +254,9 @@ def test_random_short_path_plans_meet_their_limits_when_their_export_is_simulate
     from sloshkit.errors import ValidityWarning
     from sloshkit.io.poses import read_pose_file
     from sloshkit.plan.path import path_from_waypoints
+    from sloshkit.plan.path_limits import kinematics
     from sloshkit.plan.path_planner import plan_path
-    from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits, kinematics
+    from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
     from sloshkit.sim.spatial import simulate_spatial
 
     points = [[0.0, 0.0, 0.0], [first, 0.0, 0.0]]

@@ -1,8 +1,8 @@
 """sloshkit: sloshing of liquids in moving containers.
 
-Model (`equivalent_model`), simulate (`simulate`), sweep (`run_sweep`), plan (`plan`) and
-calibrate (`calibrate`) the slosh of a liquid in an upright cylinder moved by a robot or a
-slide. SI units and radians throughout the Python API.
+Model (`equivalent_model`), simulate (`simulate`), sweep (`run_sweep`), plan (`plan`; 3-D
+paths: `plan_path`) and calibrate (`calibrate`) the slosh of a liquid in an upright cylinder
+moved by a robot or a slide. SI units and radians throughout the Python API.
 
 The names below are the curated public API; they are imported on first use, so
 ``import sloshkit`` stays cheap.
@@ -24,7 +24,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-__version__ = "0.1.0"
+from sloshkit.version import __version__
 
 #: Public name -> module that defines it.
 _API: dict[str, str] = {
@@ -56,7 +56,7 @@ _API: dict[str, str] = {
     "ei": "sloshkit.motion.shaping",
     "shape_motion": "sloshkit.motion.shaping",
     "PoseTrajectory": "sloshkit.motion.poses",
-    "poses_from_law": "sloshkit.motion.poses",
+    "poses_from_law": "sloshkit.motion.pose_builders",
     # simulation
     "simulate": "sloshkit.sim.simulate",
     "SloshResponse": "sloshkit.sim.response",
@@ -70,6 +70,13 @@ _API: dict[str, str] = {
     "PlanProblem": "sloshkit.plan.problem",
     "MachineLimits": "sloshkit.plan.problem",
     "SloshLimits": "sloshkit.plan.problem",
+    "plan_path": "sloshkit.plan.path_planner",
+    "PathPlanResult": "sloshkit.plan.path_result",
+    "PathProblem": "sloshkit.plan.spatial",
+    "CartesianLimits": "sloshkit.plan.spatial",
+    "SpatialSloshLimits": "sloshkit.plan.spatial",
+    "path_from_waypoints": "sloshkit.plan.path",
+    "path_from_poses": "sloshkit.plan.path",
     "calibrate": "sloshkit.calibration",
     "CalibrationResult": "sloshkit.calibration",
     # files and controller export
@@ -83,10 +90,13 @@ __all__ = [
     "LAW_NAMES",
     "LIQUIDS",
     "CalibrationResult",
+    "CartesianLimits",
     "InputError",
     "Liquid",
     "MachineLimits",
     "Motion",
+    "PathPlanResult",
+    "PathProblem",
     "PlanProblem",
     "PlanResult",
     "PoseTrajectory",
@@ -96,6 +106,7 @@ __all__ = [
     "SloshModel",
     "SloshResponse",
     "SpatialResponse",
+    "SpatialSloshLimits",
     "SweepResult",
     "UprightCylinder",
     "ValidityWarning",
@@ -109,7 +120,10 @@ __all__ = [
     "get_liquid",
     "make_law",
     "minimum_jerk",
+    "path_from_poses",
+    "path_from_waypoints",
     "plan",
+    "plan_path",
     "poses_from_law",
     "quintic",
     "read_model_file",
@@ -163,12 +177,17 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         septic,
         trapezoidal,
     )
-    from sloshkit.motion.poses import PoseTrajectory, poses_from_law
+    from sloshkit.motion.pose_builders import poses_from_law
+    from sloshkit.motion.poses import PoseTrajectory
     from sloshkit.motion.profile import Motion
     from sloshkit.motion.recorded import from_samples
     from sloshkit.motion.shaping import Shaper, ei, shape_motion, zv, zvd
+    from sloshkit.plan.path import path_from_poses, path_from_waypoints
+    from sloshkit.plan.path_planner import plan_path
+    from sloshkit.plan.path_result import PathPlanResult
     from sloshkit.plan.planner import PlanResult, plan
     from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+    from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
     from sloshkit.sim.response import SloshResponse
     from sloshkit.sim.simulate import simulate
     from sloshkit.sim.spatial import simulate_spatial

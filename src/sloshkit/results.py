@@ -3,9 +3,10 @@
 A result class inherits `ResultMixin` and implements one hook, `ResultMixin.columns` (named,
 equal-length 1-D arrays, SI units in the names); it may override `ResultMixin.to_dict` for a
 richer JSON document. ``plot`` delegates to a function of `sloshkit.plotting` registered for the
-result's class with `register_plot`, so the core never imports matplotlib: the first ``plot``
-call imports `sloshkit.plotting` (by name, through `importlib`), whose modules register their
-functions. See ``docs/conventions.md``.
+result's class with `register_plot`, so the core never imports matplotlib. `PLOTS` names that
+function as a ``"module:function"`` string per result class: the first ``plot`` call imports only
+that plotting module (by name, through `importlib`), not every figure of the package. See
+``docs/conventions.md``.
 
 Examples
 --------
@@ -33,8 +34,28 @@ from numpy.typing import ArrayLike
 
 from sloshkit.files import write_columns_csv
 
-#: The package whose import registers every plotting function.
+#: The package of the plotting functions; its ``load_all()`` imports (registers) every one.
 PLOTTING_PACKAGE = "sloshkit.plotting"
+
+#: Result class (``module.qualname``) -> ``"module:function"`` that draws it, resolved on the
+#: first ``plot()``: drawing a sweep imports neither the calibration figures nor scipy.signal.
+PLOTS: dict[str, str] = {
+    "sloshkit.sim.response.SloshResponse": "sloshkit.plotting.response:plot_response",
+    "sloshkit.sim.spatial_response.SpatialResponse": (
+        "sloshkit.plotting.spatial:plot_spatial_response"
+    ),
+    "sloshkit.sweep.result.SweepResult": "sloshkit.plotting.sweep:plot_sweep_map",
+    "sloshkit.calibration.result.CalibrationResult": (
+        "sloshkit.plotting.calibration:plot_calibration"
+    ),
+    "sloshkit.calibration.backbone.Backbone": "sloshkit.plotting.calibration:plot_backbone",
+    "sloshkit.calibration.forced.ForcedIdentification": (
+        "sloshkit.plotting.calibration:plot_forced_identification"
+    ),
+    "sloshkit.plan.planner.PlanResult": "sloshkit.plotting.plan:plot_plan",
+    "sloshkit.plan.path_result.PathPlanResult": "sloshkit.plotting.plan3d:plot_path_plan",
+    "sloshkit.cfd.validation.CfdValidation": "sloshkit.plotting.cfd:plot_cfd_validation",
+}
 
 PlotFunction = Callable[..., Any]
 _PLOTTERS: dict[type, PlotFunction] = {}
@@ -42,7 +63,20 @@ _PLOTTERS: dict[type, PlotFunction] = {}
 
 @runtime_checkable
 class Result(Protocol):
-    """What every sloshkit result offers (structural type of `ResultMixin`)."""
+    """What every sloshkit result offers (structural type of `ResultMixin`).
+
+    Examples
+    --------
+    A simulation result satisfies the protocol:
+
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> response = sk.simulate(model, sk.quintic(0.1, 0.5), sample_period_s=2e-3)
+    >>> all(hasattr(response, name) for name in ("to_dict", "to_pandas", "to_csv", "plot"))
+    True
+    >>> sorted(response.columns())[:2]
+    ['acceleration_m_s2', 'angle_1_rad']
+    """
 
     def columns(self) -> Mapping[str, ArrayLike]:
         """Named, equal-length 1-D arrays (SI units in the names)."""
@@ -100,6 +134,9 @@ def register_plot(result_type: type) -> Callable[[PlotFunction], PlotFunction]:
 def plotter_for(result_type: type) -> PlotFunction:
     """The plotting function registered for ``result_type`` (or one of its bases).
 
+    Looks in the registry, then in `PLOTS` (importing only the module named there), then imports
+    every plotting module (``sloshkit.plotting.load_all``) for a function registered elsewhere.
+
     Parameters
     ----------
     result_type : type
@@ -108,7 +145,7 @@ def plotter_for(result_type: type) -> PlotFunction:
     Returns
     -------
     callable
-        The registered function; `sloshkit.plotting` is imported first if nothing is registered.
+        The registered function.
 
     Raises
     ------
@@ -124,7 +161,13 @@ def plotter_for(result_type: type) -> PlotFunction:
     for klass in result_type.__mro__:
         if klass in _PLOTTERS:
             return _PLOTTERS[klass]
-    importlib.import_module(PLOTTING_PACKAGE)
+        target = PLOTS.get(f"{klass.__module__}.{klass.__qualname__}")
+        if target is not None:
+            module, _, name = target.partition(":")
+            function: PlotFunction = getattr(importlib.import_module(module), name)
+            _PLOTTERS.setdefault(klass, function)
+            return _PLOTTERS[klass]
+    importlib.import_module(PLOTTING_PACKAGE).load_all()
     for klass in result_type.__mro__:
         if klass in _PLOTTERS:
             return _PLOTTERS[klass]

@@ -167,3 +167,10 @@ def test_richardson_two_levels_oscillation_and_bad_input():
     with pytest.raises(InputError):
         richardson([0.005, 0.006], [2.0])
     assert combined_uncertainty(3.0, 4.0) == 5.0
+
+
+def test_a_case_with_empty_probe_files_is_unfinished(tmp_path):
+    case = synthetic_case(tmp_path / "c", 1.0)
+    (case / "postProcessing" / "wallProbes" / "0" / "alpha.water").write_text("# Probe 0\n")
+    with pytest.raises(InputError, match=r"is unfinished \(no probe data yet"):
+        analyse(case)

@@ -228,3 +228,29 @@ def test_sigterm_during_a_joint_export_leaves_no_file(tmp_path: Path) -> None:
     ]  # fmt: skip
     code, stderr = _interrupt(args, out, signal.SIGTERM, 0.3)
     _assert_clean(out, code, 143, stderr)
+
+
+def test_a_signal_inside_an_unraisable_callback_is_raised_again_at_a_safe_point():
+    """A signal landing in a weakref callback (seen in CI inside importlib's module-lock
+    callback) is not printed as "Exception ignored ... Traceback": it is delivered again and
+    stops the command at the next safe point."""
+    import gc
+    import weakref
+
+    from sloshkit.cli import signals
+
+    class Owner:
+        pass
+
+    def callback(_reference: object) -> None:
+        raise signals.Interrupted(signal.SIGTERM)
+
+    with signals.installed(), pytest.raises(signals.Interrupted) as stopped:
+        owner = Owner()
+        reference = weakref.ref(owner, callback)
+        del owner
+        gc.collect()
+        for _ in range(1000):  # the re-delivered signal is raised between bytecodes
+            time.sleep(0.001)
+    assert stopped.value.signum == signal.SIGTERM
+    assert reference() is None

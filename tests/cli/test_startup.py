@@ -46,7 +46,7 @@ def test_model_command_imports_neither_scipy_nor_the_other_commands():
         "try:\n    main()\nexcept SystemExit:\n    pass\n"
         "heavy = [m for m in ('scipy.special', 'scipy.signal', 'scipy.interpolate',"
         " 'scipy.integrate', 'scipy.optimize', 'casadi', 'matplotlib', 'numba', 'pandas',"
-        " 'sloshkit.cli.plan', 'sloshkit.cli.cfd') if m in sys.modules]\n"
+        " 'pydantic', 'sloshkit.cli.plan', 'sloshkit.cli.cfd') if m in sys.modules]\n"
         "print('HEAVY', heavy)\n"
     )
     result = subprocess.run(
@@ -54,6 +54,59 @@ def test_model_command_imports_neither_scipy_nor_the_other_commands():
     )
     assert "HEAVY []" in result.stdout, result.stdout[-500:]
     assert "omega" in result.stdout
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["model", "--json"],
+        ["model", "--modes", "4", "--fill-height", "30mm", "--damping-ratio", "0.02", "--json"],
+        ["model", "--modes", "three"],
+        ["model", "--model-file", "/nonexistent/model.toml"],
+        ["model", "--model-file", "."],
+    ],
+)
+def test_plain_values_pass_as_typer_would_validate_them(args):
+    """The pass-through of `sloshkit.cli.pass_plain_values` changes nothing a user sees: same
+    output, same errors, same exit code as typer's own (pydantic) validation."""
+    fast = "from sloshkit.cli import main; main()"
+    slow = "import sloshkit.cli as cli; cli.pass_plain_values = lambda: False; cli.main()"
+    runs = [
+        subprocess.run(
+            [sys.executable, "-c", code, *args], capture_output=True, text=True, timeout=120
+        )
+        for code in (fast, slow)
+    ]
+    assert runs[0].returncode == runs[1].returncode
+    assert runs[0].stdout == runs[1].stdout
+    assert runs[0].stderr == runs[1].stderr
+
+
+def test_plot_registry_names_every_figure_and_a_sweep_imports_only_its_own():
+    import importlib
+
+    from sloshkit.plotting import load_all
+    from sloshkit.results import _PLOTTERS, PLOTS
+
+    load_all()
+    for name, target in PLOTS.items():
+        module, _, klass = name.rpartition(".")
+        result_type = getattr(importlib.import_module(module), klass)
+        figure_module, _, function = target.partition(":")
+        assert _PLOTTERS[result_type] is getattr(importlib.import_module(figure_module), function)
+    registered = {
+        f"{k.__module__}.{k.__qualname__}" for k in _PLOTTERS if k.__module__.startswith("sloshkit")
+    }
+    assert registered <= set(PLOTS), "add the new figure to sloshkit.results.PLOTS"
+    code = (
+        "import sys, sloshkit as sk\n"
+        "m = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid('water-25C'), 0.039)\n"
+        "sk.run_sweep(m, ['septic'], 0.1, [1.0, 2.0]).plot()\n"
+        "print([n for n in ('sloshkit.plotting.calibration', 'scipy.signal', 'sloshkit.plan')"
+        " if n in sys.modules])\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
 
 
 @pytest.mark.parametrize("count", [1, 3, 10, 12])

@@ -17,7 +17,7 @@ import pytest
 import yaml
 
 from sloshkit.errors import InputError
-from sloshkit.export.exporter import FORMATS, SUFFIXES, export_plan, rebuild_container_poses
+from sloshkit.export.exporter import FORMATS, SUFFIXES, export_plan
 from sloshkit.export.formats.cam_table import read_cam_table
 from sloshkit.export.formats.joint_csv import read_joint_csv
 from sloshkit.export.formats.pose_csv import read_pose_csv
@@ -26,6 +26,7 @@ from sloshkit.export.formats.urscript import read_urscript, write_urscript
 from sloshkit.export.frames import Mounting
 from sloshkit.export.kinematics import load_arm
 from sloshkit.export.plans import LinePlan, PoseStream
+from sloshkit.export.readback import rebuild_container_poses
 
 GOLDEN = Path(__file__).parents[1] / "data" / "export"
 MOUNTING = Mounting(base_xyz_m=(-0.49, -0.13, 0.39))

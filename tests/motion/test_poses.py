@@ -10,15 +10,14 @@ from scipy.spatial.transform import Rotation
 
 from sloshkit.errors import InputError
 from sloshkit.motion.laws import septic
-from sloshkit.motion.pose_kinematics import pose_kinematics, savgol_half_width
-from sloshkit.motion.poses import (
-    PoseTrajectory,
+from sloshkit.motion.pose_builders import (
     concatenate,
     poses_from_law,
     poses_from_path,
     poses_from_rotation,
-    poses_from_rpy,
 )
+from sloshkit.motion.pose_kinematics import pose_kinematics, savgol_half_width
+from sloshkit.motion.poses import PoseTrajectory, poses_from_rpy
 from sloshkit.motion.quaternions import quaternion_matrix
 
 

@@ -138,13 +138,15 @@ def test_optimal_plan_is_verified_and_fastest():
     assert optimal.duration_s <= shaped.duration_s
     # The quasi-static bound: |a| <= g tan(5 deg) on average gives T >= 2 sqrt(D / (g tan 5)).
     assert optimal.duration_s > 2 * math.sqrt(0.5 / (9.81 * math.tan(math.radians(5.0)))) * 0.9
-    # Minimum time: 0.25 % faster (one sample period less) violates a slosh limit whatever
-    # the move: the slack of the best move with one step less is positive.
+    # The minimum time of an independent LP bisection and a separate casadi transcription
+    # (issue 19): 1.5663 s.
+    assert optimal.duration_s == pytest.approx(1.5663, rel=1e-4)
+    # Minimum: the longest move 0.01 % shorter (a linear program over every move of the
+    # class) does not reach the target.
     from sloshkit.plan.optimal import exact_grid_for
 
-    steps = optimal.detail["steps"]
-    grid = exact_grid_for(problem, steps + 8)
-    assert grid.solve(steps - 1, "time").slack > 0.0
+    grid = exact_grid_for(problem, optimal.detail["steps"] + 4)
+    assert grid.longest(optimal.duration_s * (1 - 1e-4)).distance_m < problem.distance_m
 
 
 def test_smooth_variant_costs_its_stated_price_and_has_a_gentler_jerk():
@@ -161,6 +163,34 @@ def test_smooth_variant_costs_its_stated_price_and_has_a_gentler_jerk():
     rate_fast = np.abs(np.diff(fastest.motion.jerk(t))).sum()
     rate_smooth = np.abs(np.diff(smooth.motion.jerk(t * smooth.duration_s / fastest.duration_s)))
     assert rate_smooth.sum() < 0.5 * rate_fast
+
+
+def test_smooth_variant_with_the_default_damping_through_the_cli():
+    """The correlation's damping (0.009): the smooth program's margin keeps the solver's
+    tolerances inside the limits, so the smooth move is the one returned and said so."""
+    proc = run_entry_point(
+        "plan",
+        "--distance",
+        "0.1m",
+        "--max-angle",
+        "5deg",
+        "--max-residual",
+        "0.25deg",
+        "--vmax",
+        "1.5m/s",
+        "--amax",
+        "20m/s^2",
+        "--jmax",
+        "500m/s^3",
+        "--method",
+        "optimal",
+        "--smooth",
+        "--json",
+    )
+    assert proc.returncode == 0, proc.stderr
+    payload = json.loads(proc.stdout)
+    assert payload["method"] == "optimal-smooth" and payload["variant"] == "smooth"
+    assert payload["feasible"] is True
 
 
 def test_plan_cli_csv_json_and_independent_resimulation(tmp_path):
@@ -286,3 +316,64 @@ def test_optimal_plan_with_a_wall_limit_keeps_every_mode():
     check = optimal.verification
     # The wall limit is the active one (5 deg alone would allow a higher wall).
     assert check.peak_wall_elevation_m == pytest.approx(0.0015, rel=1e-4)
+
+
+def _tight():
+    return _problem(slosh=SloshLimits(math.radians(0.05), math.radians(0.001)))
+
+
+def test_slosh_floor_bounds_every_plan_and_is_the_quasi_static_bound_within_sqrt2():
+    from sloshkit.plan.cost import slosh_floor_s
+
+    problem = _problem()
+    floor = slosh_floor_s(problem)
+    assert floor < plan_optimal(problem).duration_s
+    # Without damping and residual: T >= sqrt(2 D / (g theta)), sqrt(2) below the quasi-static
+    # 2 sqrt(D / (g theta)) of a move accelerating at g theta for half the time; the damping
+    # term (2 zeta w theta T, zeta = 0.03) lowers it by a few per cent.
+    mode = problem.model.modes[0]
+    g = mode.omega_rad_s**2 * mode.length_m
+    no_residual = _problem(slosh=SloshLimits(math.radians(5.0), 1e-12))
+    quasi_static = 2 * math.sqrt(0.5 / (g * math.radians(5.0)))
+    assert slosh_floor_s(no_residual) < quasi_static / math.sqrt(2)
+    assert slosh_floor_s(no_residual) == pytest.approx(quasi_static / math.sqrt(2), rel=0.05)
+
+
+def test_tight_slosh_limits_answer_quickly():
+    """0.05 deg peak / 0.001 deg residual over 0.5 m: no move is shorter than 10.8 s. The
+    optimal method is refused by name before any program (it used to spend 53 s and fail);
+    the paper laws start their scan at the slosh bound."""
+    import time
+
+    problem = _tight()
+    started = time.perf_counter()
+    with pytest.raises(InputError, match="max_angle") as error:
+        plan(problem, "optimal")
+    assert "10.81 s" in str(error.value)
+    quintic = plan_paper_law("quintic", problem)
+    assert quintic.feasible and 18.0 < quintic.duration_s < 19.0
+    assert time.perf_counter() - started < 10.0
+
+
+def test_tight_limits_cli_is_one_line_exit_2():
+    proc = run_entry_point(
+        "plan",
+        "--distance",
+        "0.5m",
+        "--max-angle",
+        "0.05deg",
+        "--max-residual",
+        "0.001deg",
+        "--vmax",
+        "1.5m/s",
+        "--amax",
+        "20m/s^2",
+        "--jmax",
+        "500m/s^3",
+        "--method",
+        "optimal",
+    )
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "max_angle" in lines[0] and "--max-angle" in lines[0]
+    assert "Traceback" not in proc.stderr

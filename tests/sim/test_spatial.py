@@ -16,13 +16,13 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import SloshModel, equivalent_model
 from sloshkit.motion.laws import quintic, septic, trapezoidal
-from sloshkit.motion.poses import (
-    PoseTrajectory,
+from sloshkit.motion.pose_builders import (
     concatenate,
     poses_from_law,
     poses_from_path,
     poses_from_rotation,
 )
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.simulate import simulate
 from sloshkit.sim.spatial import simulate_spatial
 

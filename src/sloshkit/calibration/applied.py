@@ -25,6 +25,23 @@ class AppliedMotion:
     """A rest-to-rest motion that starts at ``start_s`` in the record's clock.
 
     ``notes`` says how it was read (axis, ignored rotation).
+
+    Attributes
+    ----------
+    motion : Motion
+        The rest-to-rest motion in its own clock.
+    start_s : float
+        Its start in the record's clock [s].
+    notes : tuple of str
+        How it was read.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.motion import quintic
+    >>> applied = AppliedMotion(quintic(0.1, 0.5), start_s=2.0)
+    >>> applied.end_s, applied.velocity(np.array([1.0, 2.25, 3.0])).round(3).tolist()
+    (2.5, [0.0, 0.375, 0.0])
     """
 
     motion: Motion
@@ -67,6 +84,23 @@ def applied_from_poses(
     rotations are not part of the 1-D model and are reported in the notes above 2 deg. The
     motion starts at the first time stamp (``start_s``), so poses and a record written by the
     same controller share one clock.
+
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Time stamps [s].
+    position_m : numpy.ndarray
+        Positions (n, 3) [m].
+    quaternion_xyzw : numpy.ndarray, optional
+        Orientations (n, 4), scalar last.
+    axis : str, optional
+        x, y or z (default: the principal direction).
+    name : str
+        Name of the motion.
+
+    Returns
+    -------
+    AppliedMotion
 
     Examples
     --------

@@ -40,7 +40,32 @@ ZETA_CHANGE = 0.05
 
 @dataclass(frozen=True, eq=False)
 class Backbone(ResultMixin):
-    """Frequency and damping against amplitude along a free decay (arrays per window)."""
+    """Frequency and damping against amplitude along a free decay (arrays per window).
+
+    Attributes
+    ----------
+    time_s, amplitude, omega_n_rad_s, damping_ratio : numpy.ndarray
+        Per window: centre time [s], amplitude (signal units), omega_n [rad/s] and zeta.
+    small_amplitude_omega_n_rad_s, small_amplitude_damping_ratio : float
+        The weighted lines' values at zero amplitude.
+    omega_n_se_rad_s, damping_ratio_se : float
+        Their standard errors.
+    omega_slope_rad_s_per_amplitude2, zeta_slope_per_amplitude : float
+        Slopes of omega_n against amplitude^2 and of zeta against amplitude.
+    omega_dependent, zeta_dependent : bool
+        Whether the trend is significant (`SIGNIFICANCE`) and large (`OMEGA_CHANGE`,
+        `ZETA_CHANGE`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration import prepare_signal
+    >>> t = np.arange(0, 6, 0.002)
+    >>> prepared, _ = prepare_signal(t, np.exp(-0.6 * t) * np.cos(29.99 * t), start_s=0.0)
+    >>> found = backbone(prepared, 30.0, 0.02)
+    >>> found.omega_dependent, round(float(np.median(found.damping_ratio)), 3)
+    (False, 0.02)
+    """
 
     time_s: FloatArray
     amplitude: FloatArray

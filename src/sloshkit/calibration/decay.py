@@ -12,12 +12,11 @@ from numpy.typing import NDArray
 from scipy import stats
 
 from sloshkit.calibration.backbone import Backbone, backbone
+from sloshkit.calibration.decrement import estimate_logdec, estimate_logdec_2peak
 from sloshkit.calibration.estimators import (
     Estimate,
     estimate_fft,
     estimate_fit,
-    estimate_logdec,
-    estimate_logdec_2peak,
     log_decrement_from_zeta,
 )
 from sloshkit.calibration.result import CalibrationResult, disagreements

@@ -27,9 +27,9 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import signal as sps
 from scipy import stats
-from scipy.optimize import curve_fit, least_squares
+from scipy.optimize import curve_fit
 
-from sloshkit.calibration.signals import PreparedSignal, noise_level, spectral_peak, usable_peaks
+from sloshkit.calibration.signals import PreparedSignal, spectral_peak
 from sloshkit.errors import InputError
 
 FloatArray = NDArray[np.float64]
@@ -37,6 +37,20 @@ FloatArray = NDArray[np.float64]
 
 def zeta_from_log_decrement(delta: float) -> float:
     """Exact damping ratio from the logarithmic decrement: delta / sqrt(4 pi^2 + delta^2).
+
+    Parameters
+    ----------
+    delta : float
+        Logarithmic decrement ln(Y_k / Y_{k+1}) of successive peaks.
+
+    Returns
+    -------
+    float
+        The damping ratio zeta.
+
+    References
+    ----------
+    Inman, D. J., *Engineering Vibration*, 4th ed. (2014) §1.6.
 
     Examples
     --------
@@ -48,6 +62,20 @@ def zeta_from_log_decrement(delta: float) -> float:
 
 def log_decrement_from_zeta(zeta: float) -> float:
     """Logarithmic decrement of a damping ratio: 2 pi zeta / sqrt(1 - zeta^2).
+
+    Parameters
+    ----------
+    zeta : float
+        Damping ratio (below 1).
+
+    Returns
+    -------
+    float
+        The logarithmic decrement delta.
+
+    References
+    ----------
+    Inman, D. J., *Engineering Vibration*, 4th ed. (2014) §1.6.
 
     Examples
     --------
@@ -63,6 +91,34 @@ class Estimate:
 
     ``failure`` holds the reason when the estimator could not produce a result; ``fitted`` the
     fit's curve over the window (with its offset and drift), for the fit only.
+
+    Attributes
+    ----------
+    method : str
+        fit, logdec, logdec-2peak or fft.
+    omega_n_rad_s, damping_ratio, damped_omega_rad_s : float or None
+        Natural frequency [rad/s], damping ratio and damped frequency [rad/s].
+    log_decrement : float or None
+        The logarithmic decrement delta.
+    n_peaks : int
+        Peaks used (decrement estimators).
+    residual_rms : float or None
+        RMS of the fit's residual (signal units).
+    omega_n_interval, damping_ratio_interval : tuple of float or None
+        95 % confidence intervals.
+    amplitude, offset : float or None
+        Amplitude of the first peak and the fitted offset (signal units).
+    note, failure : str
+        A remark on the estimate; why there is none.
+    fitted : numpy.ndarray or None
+        The fitted curve over the window (fit only).
+
+    Examples
+    --------
+    >>> Estimate("fft", 30.0, 0.02, 29.994).damping_ratio
+    0.02
+    >>> Estimate.failed("logdec", InputError("signal", "flat", "must oscillate")).failure
+    "signal = 'flat' is invalid: must oscillate"
     """
 
     method: str
@@ -97,7 +153,30 @@ def _decay_model(
 def spectral_guess(t: FloatArray, y: FloatArray) -> tuple[float, float]:
     """(omega_n, zeta) first guess from the spectrum alone: the spectral peak gives omega_d;
     zeta is the best of a logarithmic grid 3e-4...0.45 with the amplitude, offset and drift
-    solved by linear least squares for each value."""
+    solved by linear least squares for each value.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Uniform times [s] and the decaying signal.
+
+    Returns
+    -------
+    tuple of float
+        (omega_n [rad/s], zeta).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.window import prepare_signal
+    >>> t = np.arange(0.0, 4.0, 0.002)
+    >>> omega, zeta = 30.0, 0.02
+    >>> y = np.exp(-zeta * omega * t) * np.cos(omega * np.sqrt(1 - zeta**2) * t)
+    >>> prepared, _ = prepare_signal(t, y, start_s=0.0)
+    >>> omega_n, zeta_n = spectral_guess(prepared.time_s, prepared.values)
+    >>> round(omega_n, 1), round(zeta_n, 2)
+    (30.0, 0.02)
+    """
     frequency, _, _ = spectral_peak(t, sps.detrend(y))
     if not frequency > 0.0:
         raise InputError("signal", "no spectral peak", "has no oscillation in the window")
@@ -121,7 +200,29 @@ def spectral_guess(t: FloatArray, y: FloatArray) -> tuple[float, float]:
 def estimate_fit(prepared: PreparedSignal) -> Estimate:
     """Least-squares damped sinusoid plus offset and drift (fitted together, not detrended
     first: removing a line fitted to a decaying oscillation biases zeta), started from
-    `spectral_guess`, with 95 % confidence intervals."""
+    `spectral_guess`, with 95 % confidence intervals.
+
+    Parameters
+    ----------
+    prepared : PreparedSignal
+        The window of the free decay (`sloshkit.calibration.window.prepare_signal`).
+
+    Returns
+    -------
+    Estimate
+        Method ``fit``, with intervals and the fitted curve.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.window import prepare_signal
+    >>> t = np.arange(0.0, 4.0, 0.002)
+    >>> omega, zeta = 30.0, 0.02
+    >>> y = np.exp(-zeta * omega * t) * np.cos(omega * np.sqrt(1 - zeta**2) * t)
+    >>> prepared, _ = prepare_signal(t, y, start_s=0.0)
+    >>> found = estimate_fit(prepared)
+    >>> round(found.omega_n_rad_s, 3), round(found.damping_ratio, 4)
+    (30.0, 0.02)"""
     t = prepared.time_s - prepared.time_s[0]
     y = prepared.undetrended
     omega_guess, zeta_guess = spectral_guess(t, y)
@@ -192,119 +293,32 @@ def estimate_fit(prepared: PreparedSignal) -> Estimate:
     )
 
 
-def _checked_peaks(
-    prepared: PreparedSignal, period_guess_s: float
-) -> tuple[FloatArray, FloatArray, float]:
-    t, y = prepared.time_s, prepared.values
-    noise = noise_level(y, period_guess_s / (t[1] - t[0]))
-    times, heights = usable_peaks(t, y, period_guess_s, noise)
-    if times.size < 3:
-        raise InputError(
-            "signal",
-            f"{times.size} peak(s) above the noise",
-            "needs at least 3 positive peaks in the window for a logarithmic decrement "
-            "(longer record, lower noise or less filtering)",
-        )
-    spacing = np.diff(times)
-    if np.std(spacing) > 0.2 * np.mean(spacing):
-        raise InputError(
-            "signal",
-            "irregular peaks",
-            f"peak spacing varies by {100 * np.std(spacing) / np.mean(spacing):.0f} %: not a "
-            "single free oscillation (noise, beating or forcing); low-pass or move --start",
-        )
-    return times, heights, noise
-
-
-def _from_decrement(
-    method: str, delta: float, damped: float, times: FloatArray, heights: FloatArray
-) -> Estimate:
-    if delta <= 0.0:
-        raise InputError(
-            "signal",
-            f"log decrement {delta:.3g}",
-            "the amplitude grows over the window: not a free decay",
-        )
-    zeta = zeta_from_log_decrement(delta)
-    return Estimate(
-        method=method,
-        omega_n_rad_s=damped / math.sqrt(1.0 - zeta**2),
-        damping_ratio=zeta,
-        damped_omega_rad_s=damped,
-        log_decrement=delta,
-        n_peaks=int(times.size),
-        amplitude=float(heights[0]),
-    )
-
-
-def estimate_logdec_2peak(prepared: PreparedSignal, period_guess_s: float) -> Estimate:
-    """The seed paper's form: delta = ln(Y_0 / Y_k) / k over the first and last usable peak;
-    the damped period is the mean peak spacing."""
-    times, heights, _ = _checked_peaks(prepared, period_guess_s)
-    cycles = np.round((times[-1] - times[0]) / float(np.median(np.diff(times))))
-    delta = math.log(heights[0] / heights[-1]) / max(1.0, float(cycles))
-    damped = 2.0 * math.pi * cycles / float(times[-1] - times[0])
-    return _from_decrement("logdec-2peak", delta, damped, times, heights)
-
-
-def estimate_logdec(prepared: PreparedSignal, period_guess_s: float) -> Estimate:
-    """Regression of ln(swing) over all usable peaks (module docstring), with 95 % intervals
-    on zeta (from the decay rate) and omega_n (from the regression of peak time on cycle)."""
-    times, heights, noise = _checked_peaks(prepared, period_guess_s)
-    cycles = np.round((times - times[0]) / float(np.median(np.diff(times))))
-    design = np.column_stack((np.ones_like(cycles), cycles))
-    (_, period), period_residual, *_ = np.linalg.lstsq(design, times, rcond=None)
-    n = times.size
-    dof = max(1, n - 2)
-    factor = float(stats.t.ppf(0.975, dof))
-    cycle_spread = float(np.sum((cycles - cycles.mean()) ** 2))
-    period_rss = float(period_residual[0]) if period_residual.size else 0.0
-    period_se = math.sqrt(period_rss / dof / cycle_spread) if cycle_spread > 0 else 0.0
-    # Standard deviation of ln(swing) for each peak: noise of a swing over the swing.
-    step = prepared.time_s[1] - prepared.time_s[0]
-    points = max(3, 2 * int(0.1 * period / step) + 1)
-    sigma_log = np.maximum(noise * math.sqrt(1.0 / points), 1e-12 * heights.max()) / heights
-    tau = times - times[0]
-
-    def residuals(p: FloatArray) -> FloatArray:
-        return np.asarray((np.log(heights) - (p[0] - p[1] * tau)) / sigma_log, dtype=float)
-
-    slope0 = -np.polyfit(tau, np.log(heights), 1, w=1.0 / sigma_log)[0]
-    solution = least_squares(residuals, [math.log(heights[0]), slope0], loss="soft_l1", f_scale=2.0)
-    rate = float(solution.x[1])
-    jac = solution.jac
-    rss = float(np.sum(solution.fun**2))
-    try:
-        covariance = np.linalg.inv(jac.T @ jac) * rss / dof
-        rate_se = math.sqrt(max(0.0, float(covariance[1, 1])))
-    except np.linalg.LinAlgError:
-        rate_se = math.inf
-    delta = rate * float(period)
-    estimate = _from_decrement("logdec", delta, 2.0 * math.pi / float(period), times, heights)
-    zeta = float(estimate.damping_ratio or 0.0)
-    omega = float(estimate.omega_n_rad_s or 0.0)
-    low_rate, high_rate = rate - factor * rate_se, rate + factor * rate_se
-    zeta_interval = (
-        zeta_from_log_decrement(max(0.0, low_rate * float(period))),
-        zeta_from_log_decrement(high_rate * float(period)),
-    )
-    relative = factor * period_se / float(period)
-    return Estimate(
-        method="logdec",
-        omega_n_rad_s=omega,
-        damping_ratio=zeta,
-        damped_omega_rad_s=estimate.damped_omega_rad_s,
-        log_decrement=delta,
-        n_peaks=n,
-        omega_n_interval=(omega * (1.0 - relative), omega * (1.0 + relative)),
-        damping_ratio_interval=zeta_interval,
-        amplitude=float(heights[0]),
-        residual_rms=float(np.sqrt(np.mean((solution.fun * sigma_log) ** 2))),
-    )
-
-
 def estimate_fft(prepared: PreparedSignal) -> Estimate:
-    """Spectral peak frequency; bandwidth damping only when it is resolved."""
+    """Spectral peak frequency; bandwidth damping only when it is resolved.
+
+    Parameters
+    ----------
+    prepared : PreparedSignal
+        The window of the free decay.
+
+    Returns
+    -------
+    Estimate
+        Method ``fft``; ``damping_ratio`` is None (with a note) when the half-power bandwidth
+        is not resolved.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.window import prepare_signal
+    >>> t = np.arange(0.0, 4.0, 0.002)
+    >>> omega, zeta = 30.0, 0.02
+    >>> y = np.exp(-zeta * omega * t) * np.cos(omega * np.sqrt(1 - zeta**2) * t)
+    >>> prepared, _ = prepare_signal(t, y, start_s=0.0)
+    >>> found = estimate_fft(prepared)
+    >>> round(found.damped_omega_rad_s, 1)
+    30.0
+    """
     t, y = prepared.time_s, prepared.values
     frequency, resolution, _ = spectral_peak(t, y)
     if not frequency > 0.0:

@@ -19,23 +19,22 @@ projection (Golub & Pereyra, Inverse Problems 19 (2003) R1, doi:10.1088/0266-561
 (omega_n, zeta) are found by a grid search and `scipy.optimize.least_squares`. 95 % intervals
 come from the Jacobian of all parameters at the solution (Gauss-Newton covariance scaled by the
 residual variance; residual correlation is ignored, so they are lower bounds when the model
-misses dynamics). A parameter whose interval is wider than `UNCONSTRAINED_OMEGA` (omega) or
-`UNCONSTRAINED_RELATIVE` (zeta, slosh mass) of its value is not constrained by the record.
+misses dynamics; `sloshkit.calibration.separable`). A parameter whose interval is too wide
+is not constrained by the record.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import stats
 from scipy.optimize import least_squares
 
 from sloshkit.calibration.applied import AppliedMotion
+from sloshkit.calibration.separable import FitStatistics, constraint_flags, fit_statistics
 from sloshkit.calibration.signals import uniform_signal
 from sloshkit.errors import InputError
 from sloshkit.model.modal import SloshModel
@@ -46,15 +45,52 @@ FloatArray = NDArray[np.float64]
 SignalKind = Literal["force", "height", "angle"]
 SIGNAL_KINDS: tuple[str, ...] = ("force", "height", "angle")
 
-#: omega_n is unconstrained when its 95 % half-interval exceeds this fraction of it.
-UNCONSTRAINED_OMEGA = 0.02
-#: zeta and the slosh mass are unconstrained beyond this fraction.
-UNCONSTRAINED_RELATIVE = 0.5
-
 
 @dataclass(frozen=True, eq=False)
 class ForcedIdentification(ResultMixin):
-    """omega_n, zeta (and the slosh mass for forces) identified from a forced response."""
+    """omega_n, zeta (and the slosh mass for forces) identified from a forced response.
+
+    Attributes
+    ----------
+    signal_kind : str
+        force, height or angle.
+    omega_n_rad_s, damping_ratio : float
+        The identified first mode [rad/s] and its damping ratio.
+    omega_n_interval, damping_ratio_interval : tuple of float
+        Their 95 % intervals.
+    r2, nrmse, slosh_r2 : float
+        Fit quality: R^2, RMS error over the record's range, and the part of what the nuisance
+        terms leave that the slosh response explains.
+    constrained : dict
+        Which parameters the record constrains.
+    linear, linear_intervals : dict
+        The linear coefficients (gain or slosh mass, offset, drift) and their intervals.
+    time_s, measured, predicted : numpy.ndarray
+        The record [s], its values and the model's prediction (signal units).
+    motion_span_s : tuple of float
+        Start and end of the motion in the record's clock [s].
+    source : str
+        Where the record came from.
+    notes, warnings : tuple of str
+        How the record was prepared; what the caller should know.
+    delay_s, delay_interval_s : float, tuple of float or None
+        Clock offset record - motion [s] and its interval (when fitted).
+
+    Examples
+    --------
+    See `identify_forced` and `ForcedIdentification.from_fit`; the result follows the result
+    protocol:
+
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 1.0, 5)
+    >>> fit = FitStatistics(np.array([2.0]), t, np.array([0.5, 0.01, 0.1]), 1.0, 0.0, 1.0)
+    >>> found = ForcedIdentification.from_fit(
+    ...     fit, t, t, signal_kind="height", omega_n_rad_s=20.0, damping_ratio=0.02,
+    ...     constrained={}, linear=fit.linear_parameters(["gain"], first=2),
+    ...     motion_span_s=(0.0, 0.5))
+    >>> sorted(found.columns()), round(found.to_dict()["frequency_hz"], 4)
+    (['measured', 'predicted', 'residual', 'time_s'], 3.1831)
+    """
 
     signal_kind: str
     omega_n_rad_s: float
@@ -76,6 +112,98 @@ class ForcedIdentification(ResultMixin):
     warnings: tuple[str, ...] = field(default=())
     delay_s: float | None = None
     delay_interval_s: tuple[float, float] | None = None
+
+    @classmethod
+    def from_fit(
+        cls,
+        fit: FitStatistics,
+        time_s: FloatArray,
+        measured: FloatArray,
+        *,
+        signal_kind: str,
+        omega_n_rad_s: float,
+        damping_ratio: float,
+        constrained: dict[str, bool],
+        linear: tuple[dict[str, float], dict[str, tuple[float, float]]],
+        motion_span_s: tuple[float, float],
+        source: str = "",
+        notes: tuple[str, ...] = (),
+        warnings: tuple[str, ...] = (),
+        delay_s: float | None = None,
+        delay_fitted: bool = False,
+    ) -> ForcedIdentification:
+        """The result of a separable fit whose nonlinear parameters are (omega_n, zeta[, tau]):
+        the one place that turns `FitStatistics` into intervals (nonlinear half-widths
+        first, as `fit_statistics` orders them; the clock offset's third when fitted).
+
+        Parameters
+        ----------
+        fit : FitStatistics
+            Statistics at the solution.
+        time_s, measured : numpy.ndarray
+            The record that was fitted (uniform time [s], signal units).
+        signal_kind : str
+            force, height or angle.
+        omega_n_rad_s, damping_ratio : float
+            The solution [rad/s] and [-].
+        constrained : dict
+            Which parameters the record constrains (`constraint_flags`).
+        linear : tuple of dict
+            The linear coefficients by name and their 95 % intervals
+            (`FitStatistics.linear_parameters`).
+        motion_span_s : tuple of float
+            Start and end of the motion on the record's clock [s].
+        source, notes, warnings : str, tuple of str
+            Provenance, notes on the record's preparation and warnings.
+        delay_s : float, optional
+            The clock offset between motion and record [s], when there is one.
+        delay_fitted : bool
+            ``delay_s`` was fitted: its interval comes from the third half-width.
+
+        Returns
+        -------
+        ForcedIdentification
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> t = np.linspace(0.0, 1.0, 5)
+        >>> fit = FitStatistics(np.array([2.0]), t, np.array([0.5, 0.01, 0.1]), 1.0, 0.0, 1.0)
+        >>> found = ForcedIdentification.from_fit(
+        ...     fit, t, t, signal_kind="height", omega_n_rad_s=20.0, damping_ratio=0.02,
+        ...     constrained={}, linear=fit.linear_parameters(["gain"], first=2),
+        ...     motion_span_s=(0.0, 0.5))
+        >>> found.omega_n_interval, found.damping_ratio_interval, found.linear_intervals
+        ((19.5, 20.5), (0.01, 0.03), {'gain': (1.9, 2.1)})
+        """
+        half = fit.half_width
+        return cls(
+            signal_kind=signal_kind,
+            omega_n_rad_s=omega_n_rad_s,
+            damping_ratio=damping_ratio,
+            omega_n_interval=(omega_n_rad_s - float(half[0]), omega_n_rad_s + float(half[0])),
+            damping_ratio_interval=(
+                max(0.0, damping_ratio - float(half[1])),
+                damping_ratio + float(half[1]),
+            ),
+            r2=fit.r2,
+            nrmse=fit.nrmse,
+            slosh_r2=fit.slosh_r2,
+            constrained=constrained,
+            linear=linear[0],
+            linear_intervals=linear[1],
+            time_s=time_s,
+            measured=measured,
+            predicted=fit.predicted,
+            motion_span_s=motion_span_s,
+            source=source,
+            notes=notes,
+            warnings=warnings,
+            delay_s=delay_s,
+            delay_interval_s=(delay_s - float(half[2]), delay_s + float(half[2]))
+            if delay_fitted and delay_s is not None
+            else None,
+        )
 
     @property
     def slosh_mass_kg(self) -> float | None:
@@ -134,89 +262,6 @@ class ForcedIdentification(ResultMixin):
                 mode.n, damping_ratio=self.damping_ratio, source=source
             )
         return calibrated
-
-
-@dataclass(frozen=True, eq=False)
-class FitStatistics:
-    """Linear coefficients, prediction, 95 % half-widths (nonlinear parameters first, then the
-    linear ones) and the fit quality of a separable least-squares solution."""
-
-    coefficients: FloatArray
-    predicted: FloatArray
-    half_width: FloatArray
-    r2: float
-    nrmse: float
-    slosh_r2: float
-
-
-def fit_statistics(
-    y: FloatArray, design_at: Callable[[FloatArray], FloatArray], nonlinear: FloatArray
-) -> FitStatistics:
-    """Statistics of y ~ design(p) c at the solution p = ``nonlinear``.
-
-    The Jacobian of the full model in every parameter (nonlinear ones by central differences,
-    linear ones exact) gives the Gauss-Newton covariance s^2 (J^T J)^-1 with s^2 the residual
-    variance, and Student-t 95 % half-widths (Ljung, *System Identification* (1999) §9.3).
-    ``slosh_r2`` is the fraction of what the nuisance terms (all columns but the first) leave
-    that the first column (the slosh response) explains.
-    """
-    design = design_at(nonlinear)
-    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
-    predicted = design @ coefficients
-    columns = []
-    for index, value in enumerate(nonlinear):
-        step = 1e-6 * max(abs(float(value)), 1e-3)
-        up, down = nonlinear.astype(float), nonlinear.astype(float)
-        up[index] += step
-        down[index] -= step
-        columns.append((design_at(up) @ coefficients - design_at(down) @ coefficients) / (2 * step))
-    jacobian = np.column_stack((*columns, design))
-    rest = y - predicted
-    dof = max(1, y.size - jacobian.shape[1])
-    covariance = np.linalg.pinv(jacobian.T @ jacobian) * float(rest @ rest) / dof
-    half = float(stats.t.ppf(0.975, dof)) * np.sqrt(np.clip(np.diag(covariance), 0.0, None))
-    target = coefficients[0] * design[:, 0] + rest
-    return FitStatistics(
-        coefficients=np.asarray(coefficients, dtype=float),
-        predicted=np.asarray(predicted, dtype=float),
-        half_width=np.asarray(half, dtype=float),
-        r2=1.0 - float(rest @ rest) / float(np.sum((y - y.mean()) ** 2)),
-        nrmse=math.sqrt(float(np.mean(rest**2))) / float(np.ptp(y)),
-        slosh_r2=1.0
-        - float(rest @ rest) / max(1e-300, float(np.sum((target - target.mean()) ** 2))),
-    )
-
-
-def constraint_flags(
-    omega: float,
-    zeta: float,
-    omega_half: float,
-    zeta_half: float,
-    scale_name: str,
-    scale: float,
-    scale_half: float,
-    require_constrained: bool,
-) -> tuple[dict[str, bool], str]:
-    """Which parameters the record constrains (`UNCONSTRAINED_OMEGA`,
-    `UNCONSTRAINED_RELATIVE`) and the warning; raises `InputError` when omega_n or zeta is
-    loose and ``require_constrained``."""
-    constrained = {
-        "omega_n": bool(omega_half <= UNCONSTRAINED_OMEGA * omega),
-        "damping_ratio": bool(zeta_half <= UNCONSTRAINED_RELATIVE * zeta and zeta > 1.1e-4),
-        scale_name: bool(scale_half <= UNCONSTRAINED_RELATIVE * abs(scale)),
-    }
-    loose = [name for name, ok in constrained.items() if not ok]
-    if not loose:
-        return constrained, ""
-    message = (
-        f"the record does not constrain {', '.join(loose)} (95 % intervals: omega_n "
-        f"{omega - omega_half:.4g}-{omega + omega_half:.4g} rad/s, zeta {zeta - zeta_half:.3g}-"
-        f"{zeta + zeta_half:.3g}): the motion barely excites the mode (too slow, or the "
-        "record is too short or too noisy)"
-    )
-    if require_constrained and ("omega_n" in loose or "damping_ratio" in loose):
-        raise InputError("record", "unconstrained", message)
-    return constrained, message
 
 
 def _slosh_columns(
@@ -371,16 +416,11 @@ def identify_forced(
         return _design(model, kind, t, velocity, acceleration, parameters[0], parameters[1])
 
     fit = fit_statistics(y, design_at, np.array([omega, zeta]))
-    coefficients, predicted, half = fit.coefficients, fit.predicted, fit.half_width
     names = ["gain" if kind != "force" else "slosh_mass_kg"]
     if kind == "force":
         names.append("rigid_force_per_acceleration_kg")
     names += ["offset", "drift_per_record"]
-    linear = {name: float(c) for name, c in zip(names, coefficients, strict=True)}
-    linear_intervals = {
-        name: (float(c - h), float(c + h))
-        for name, c, h in zip(names, coefficients, half[2:], strict=True)
-    }
+    linear, linear_intervals = fit.linear_parameters(names, first=2)
     warnings_out: list[str] = []
     if kind == "force":
         # A sensor that reports the force applied to the payload flips both signs.
@@ -397,26 +437,21 @@ def identify_forced(
             )
     scale_name = "slosh_mass" if kind == "force" else "gain"
     scale = linear["slosh_mass_kg"] if kind == "force" else linear["gain"]
+    half = fit.half_width
     constrained, message = constraint_flags(
         omega, zeta, half[0], half[1], scale_name, scale, half[2], require_constrained
     )
     if message:
         warnings_out.append(message)
-    return ForcedIdentification(
+    return ForcedIdentification.from_fit(
+        fit,
+        t,
+        y,
         signal_kind=kind,
         omega_n_rad_s=omega,
         damping_ratio=zeta,
-        omega_n_interval=(omega - half[0], omega + half[0]),
-        damping_ratio_interval=(max(0.0, zeta - half[1]), zeta + half[1]),
-        r2=fit.r2,
-        nrmse=fit.nrmse,
-        slosh_r2=fit.slosh_r2,
         constrained=constrained,
-        linear=linear,
-        linear_intervals=linear_intervals,
-        time_s=t,
-        measured=y,
-        predicted=np.asarray(predicted, dtype=float),
+        linear=(linear, linear_intervals),
         motion_span_s=(applied.start_s, applied.end_s),
         source=source,
         notes=tuple(notes) + applied.notes,

@@ -192,7 +192,27 @@ class CalibrationResult(ResultMixin):
 
 
 def relative_spread(estimates: dict[str, Estimate]) -> dict[str, float | None]:
-    """(max - min) / mean of omega_n and of zeta over the estimators that answered."""
+    """(max - min) / mean of omega_n and of zeta over the estimators that answered.
+
+    Parameters
+    ----------
+    estimates : dict
+        Estimator name -> `Estimate`.
+
+    Returns
+    -------
+    dict
+        ``omega_n_relative_spread`` and ``damping_ratio_relative_spread`` (None with fewer
+        than two answers).
+
+    Examples
+    --------
+    >>> from sloshkit.calibration.estimators import Estimate
+    >>> spread = relative_spread({"fit": Estimate("fit", 30.0, 0.02, 29.99),
+    ...                           "fft": Estimate("fft", 30.3, None, 30.3)})
+    >>> round(spread["omega_n_relative_spread"], 4), spread["damping_ratio_relative_spread"]
+    (0.01, None)
+    """
     omegas = [e.omega_n_rad_s for e in estimates.values() if e.omega_n_rad_s is not None]
     zetas = [e.damping_ratio for e in estimates.values() if e.damping_ratio is not None]
 
@@ -207,7 +227,28 @@ def relative_spread(estimates: dict[str, Estimate]) -> dict[str, float | None]:
 
 def disagreements(estimates: dict[str, Estimate]) -> list[str]:
     """Messages for a clear disagreement between ``fit`` and ``logdec``: relative differences
-    beyond `OMEGA_DISAGREEMENT` / `ZETA_DISAGREEMENT` whose 95 % intervals do not overlap."""
+    beyond `OMEGA_DISAGREEMENT` / `ZETA_DISAGREEMENT` whose 95 % intervals do not overlap.
+
+    Parameters
+    ----------
+    estimates : dict
+        Estimator name -> `Estimate`.
+
+    Returns
+    -------
+    list of str
+        One message per quantity on which the two disagree.
+
+    Examples
+    --------
+    >>> from sloshkit.calibration.estimators import Estimate
+    >>> fit = Estimate("fit", 30.0, 0.020, 30.0, damping_ratio_interval=(0.019, 0.021))
+    >>> logdec = Estimate("logdec", 30.0, 0.030, 30.0, damping_ratio_interval=(0.028, 0.032))
+    >>> [m[:32] for m in disagreements({"fit": fit, "logdec": logdec})]
+    ['estimators disagree on zeta: fit']
+    >>> disagreements({"fit": fit, "logdec": fit})
+    []
+    """
     fit, logdec = estimates.get("fit"), estimates.get("logdec")
     if fit is None or logdec is None or fit.failure or logdec.failure:
         return []

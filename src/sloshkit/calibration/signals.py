@@ -21,6 +21,27 @@ class PreparedSignal:
 
     ``raw_time_s``/``raw_values`` hold the whole (resampled, filtered) record, ``time_s``/``values``
     the detrended window and ``trend`` what detrending removed from it.
+
+    Attributes
+    ----------
+    time_s, values : numpy.ndarray
+        The detrended window [s] (signal units).
+    raw_time_s, raw_values : numpy.ndarray
+        The whole resampled, filtered record.
+    window_s : tuple of float
+        Start and end of the window [s].
+    notes : tuple of str
+        How the record was prepared.
+    trend : numpy.ndarray or None
+        What detrending removed from the window.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 1.0, 0.25)
+    >>> signal = PreparedSignal(t, np.ones(4), t, np.ones(4), (0.0, 0.75), trend=np.ones(4))
+    >>> signal.sample_period_s, signal.undetrended.tolist()
+    (0.25, [2.0, 2.0, 2.0, 2.0])
     """
 
     time_s: FloatArray
@@ -114,6 +135,16 @@ def spectral_peak(t: FloatArray, y: FloatArray) -> tuple[float, float, float]:
     Zero-padded, Hann-windowed spectrum with Gaussian (log-parabolic) interpolation of the peak
     (Gasior & Gonzalez, CERN-AB-2004-023).
 
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Uniform times [s] and the signal.
+
+    Returns
+    -------
+    tuple of float
+        (peak frequency [Hz], resolution [Hz], the peak's spectral height).
+
     Examples
     --------
     >>> import numpy as np
@@ -147,6 +178,18 @@ def noise_level(y: FloatArray, samples_per_period: float) -> float:
     centre weight) undoes the part of the noise the smoother keeps. Quantisation counts as
     noise (step / sqrt(12)).
 
+    Parameters
+    ----------
+    y : numpy.ndarray
+        Uniformly sampled oscillation.
+    samples_per_period : float
+        Samples in one period of the oscillation.
+
+    Returns
+    -------
+    float
+        The noise standard deviation (signal units).
+
     References
     ----------
     Rousseeuw & Croux, JASA 88 (1993) 1273, doi:10.1080/01621459.1993.10476408;
@@ -179,7 +222,32 @@ def interpolated_peaks(
     (3-point interpolation for 1); a wider parabola averages out noise on the peak.
 
     A peak must be the largest sample within +-``guard`` samples, all inside the record: at
-    the record's edges a decaying signal has a local maximum made by noise, not a peak."""
+    the record's edges a decaying signal has a local maximum made by noise, not a peak.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Uniform times [s] and the signal.
+    distance : int
+        Smallest distance between peaks [samples].
+    half_width : int
+        Half-width of the parabola [samples].
+    guard : int
+        Half-width of the neighbourhood a peak must dominate [samples].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Peak times [s] and heights.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 1.0, 0.01)
+    >>> times, heights = interpolated_peaks(t, np.cos(2 * np.pi * 3 * (t - 0.105)), 20)
+    >>> np.round(times, 3).tolist(), np.round(heights, 3).tolist()
+    ([0.105, 0.438, 0.772], [1.0, 1.0, 1.0])
+    """
     indices, _ = sps.find_peaks(y, distance=max(1, distance))
     half = max(1, half_width, guard)
     indices = indices[(indices >= half) & (indices < y.size - half)]
@@ -219,6 +287,30 @@ def usable_peaks(
     peaks picked from noise are biased upwards and would bias the decrement low. The floor does
     not depend on the largest swing, so a large forced motion before the window cannot hide
     the decay.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Uniform times [s] and the decay.
+    period_s : float
+        Damped period [s].
+    noise : float, optional
+        Noise standard deviation (default: `noise_level`).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Peak times [s] and swings.
+
+    Examples
+    --------
+    The swings of a decay with zeta = 0.02 fall by exp(2 pi zeta) per cycle:
+
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 2.0, 0.001)
+    >>> times, swings = usable_peaks(t, np.exp(-0.02 * 30 * t) * np.cos(30 * t), 2 * np.pi / 30)
+    >>> round(float(np.log(swings[0] / swings[1])), 3), round(2 * np.pi * 0.02, 3)
+    (0.126, 0.126)
     """
     step = t[1] - t[0]
     distance = int(0.6 * period_s / step)

@@ -22,7 +22,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
-from sloshkit.calibration.forced import ForcedIdentification, constraint_flags, fit_statistics
+from sloshkit.calibration.forced import ForcedIdentification
+from sloshkit.calibration.separable import constraint_flags, fit_statistics
 from sloshkit.calibration.signals import uniform_signal
 from sloshkit.errors import InputError
 
@@ -56,7 +57,8 @@ def identify_simulated(
     time_s, values : the record
     omega_guess_rad_s, zeta_guess : centre of the search (e.g. the model's theory)
     delay_s : record time minus motion time [s] (the clock offset)
-    fit_delay : fit the clock offset within +-``delay_range_s`` [s] of ``delay_s``
+    fit_delay : fit the clock offset within +-``delay_range_s`` of ``delay_s``
+    delay_range_s : half-width of the clock offset's search range [s]
     omega_range : search range as factors of ``omega_guess_rad_s``
     signal_kind : label of the signal (height, angle, force)
     motion_span_s : start and end of the motion on its clock [s] (default: the simulation's)
@@ -144,37 +146,28 @@ def identify_simulated(
     omega, zeta = float(solution.x[0]), float(solution.x[1])
     half = fit.half_width
     count = 3 if fit_delay else 2
-    names = ("gain", "offset", "drift_per_record")
-    linear = {name: float(c) for name, c in zip(names, fit.coefficients, strict=True)}
-    linear_intervals = {
-        name: (float(c - h), float(c + h))
-        for name, c, h in zip(names, fit.coefficients, half[count:], strict=True)
-    }
+    linear, linear_intervals = fit.linear_parameters(
+        ("gain", "offset", "drift_per_record"), first=count
+    )
     constrained, message = constraint_flags(
         omega, zeta, half[0], half[1], "gain", linear["gain"], half[count], require_constrained
     )
     delay = float(solution.x[2]) if fit_delay else delay_s
     sim_t, _ = response(omega, zeta)
     span = (float(sim_t[0]), float(sim_t[-1])) if motion_span_s is None else motion_span_s
-    return ForcedIdentification(
+    return ForcedIdentification.from_fit(
+        fit,
+        t,
+        y,
         signal_kind=signal_kind,
         omega_n_rad_s=omega,
         damping_ratio=zeta,
-        omega_n_interval=(omega - half[0], omega + half[0]),
-        damping_ratio_interval=(max(0.0, zeta - half[1]), zeta + half[1]),
-        r2=fit.r2,
-        nrmse=fit.nrmse,
-        slosh_r2=fit.slosh_r2,
         constrained=constrained,
-        linear=linear,
-        linear_intervals=linear_intervals,
-        time_s=t,
-        measured=y,
-        predicted=fit.predicted,
+        linear=(linear, linear_intervals),
         motion_span_s=(span[0] + delay, span[1] + delay),
         source=source,
         notes=tuple(prepared) + tuple(notes),
         warnings=(message,) if message else (),
         delay_s=delay,
-        delay_interval_s=(delay - half[2], delay + half[2]) if fit_delay else None,
+        delay_fitted=fit_delay,
     )

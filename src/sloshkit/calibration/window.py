@@ -54,6 +54,26 @@ class DecayWindow:
     ``source`` is ``"user"`` (``--start``), ``"motion"`` (end of a motion file + margin),
     ``"signal"`` (forcing end detected in the signal + margin) or ``"decay"`` (no forcing
     found: from the largest slosh envelope).
+
+    Attributes
+    ----------
+    start_s, end_s : float
+        The window [s].
+    source : str
+        user, motion, signal or decay.
+    reason : str
+        Why, in words.
+    forcing_end_s : float or None
+        Where the forcing ends [s], when known.
+    settle_s : float
+        Settling margin after the forcing [s].
+    frequency_hz : float or None
+        Slosh frequency used to find the window [Hz].
+
+    Examples
+    --------
+    >>> DecayWindow(1.0, 4.0, "user", "--start").to_dict()["start_s"]
+    1.0
     """
 
     start_s: float
@@ -78,7 +98,30 @@ class DecayWindow:
 
 def slosh_band(t: FloatArray, y: FloatArray, frequency_hz: float) -> tuple[FloatArray, FloatArray]:
     """(slosh-band part, everything else) of a uniform record: zero-phase 2nd-order
-    Butterworth band-pass 0.6-1.6 f (`scipy.signal.sosfiltfilt`)."""
+    Butterworth band-pass 0.6-1.6 f (`scipy.signal.sosfiltfilt`).
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Uniform times [s] and the record.
+    frequency_hz : float
+        Slosh frequency [Hz].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (slosh band, the rest).
+
+    Examples
+    --------
+    A slow drift and the slosh separate:
+
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 10.0, 0.01)
+    >>> slosh, rest = slosh_band(t, np.sin(2 * np.pi * 5 * t) + 0.5 * t, 5.0)
+    >>> round(float(np.std(slosh[200:-200])), 2)
+    0.71
+    """
     nyquist = 0.5 / (t[1] - t[0])
     low, high = 0.6 * frequency_hz / nyquist, min(0.95, 1.6 * frequency_hz / nyquist)
     if not 0.0 < low < high:
@@ -264,6 +307,26 @@ def prepare_signal(
 
     The window starts at ``start_s`` when given, else where `find_free_decay` puts it (after
     ``forcing_end_s`` when known). Raises `InputError` for bad records or an empty window.
+
+    Parameters
+    ----------
+    time_s, values : numpy.ndarray
+        The record [s] (signal units).
+    start_s, end_s : float, optional
+        The window [s] (default: found in the record; to its end).
+    detrend : str
+        mean, linear or none.
+    lowpass_hz : float, optional
+        Zero-phase low-pass cut-off [Hz].
+    forcing_end_s : float, optional
+        Where the forcing ends [s], when known.
+    settle_s : float, optional
+        Settling margin after the forcing [s] (default: `SETTLE_PERIODS` periods).
+
+    Returns
+    -------
+    tuple
+        (`PreparedSignal`, `DecayWindow`).
 
     Examples
     --------

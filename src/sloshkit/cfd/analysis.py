@@ -196,7 +196,15 @@ def read_finished_signals(case: Path) -> CfdSignals:
     resume = f"continue it with: sloshkit cfd run --case {case} --resume"
     if not (case / "postProcessing" / "wallProbes").is_dir():
         raise InputError("case", str(case), f"is unfinished (simulated 0 of {end:g} s)", resume)
-    signals = read_signals(case)
+    try:
+        signals = read_signals(case)
+    except InputError as error:  # probe files created but nothing written in them yet
+        raise InputError(
+            "case",
+            str(case),
+            f"is unfinished (no probe data yet; simulated 0 of {end:g} s)",
+            resume,
+        ) from error
     simulated = float(signals.time_s[-1])
     step = float(summary.get("delta_t_s", 0.0))
     if simulated < end - max(1.5 * step, 1e-6):

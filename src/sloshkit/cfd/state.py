@@ -81,6 +81,17 @@ class CfdInterrupted(Exception):
 class RunStatus(enum.Enum):
     """Outcome of a CFD run.
 
+    Parameters
+    ----------
+    value : str
+        ``completed`` or ``failed``.
+    names, module, qualname, type, start, boundary : optional
+        The arguments of Python's functional `enum.Enum` API (not used here).
+
+    Returns
+    -------
+    RunStatus
+
     Examples
     --------
     >>> RunStatus("completed") is RunStatus.COMPLETED

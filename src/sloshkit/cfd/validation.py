@@ -3,14 +3,13 @@
 `CfdValidation` follows the shared result protocol (`sloshkit.results.ResultMixin`):
 ``to_dict`` is the JSON document of ``sloshkit cfd validate --json``, ``columns`` /
 ``to_pandas`` / ``to_csv`` hold the two compared series, and ``plot`` draws the seed paper's
-Fig. 9 with `sloshkit.plotting.cfd.plot_cfd_validation` (registered here through
-`sloshkit.results.register_plot` and imported by name when a figure is drawn, so this module
-never imports matplotlib). `validate` (re-exported by `sloshkit.cfd.pipeline`) builds it.
+Fig. 9 with `sloshkit.plotting.cfd.plot_cfd_validation` (named in `sloshkit.results.PLOTS`
+and imported by name when a figure is drawn, so this module never imports matplotlib).
+`validate` (re-exported by `sloshkit.cfd.pipeline`) builds it.
 """
 
 from __future__ import annotations
 
-import importlib
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -25,7 +24,7 @@ from sloshkit.cfd.analysis import analyse, excitation_end, read_finished_signals
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.recorded import from_samples
-from sloshkit.results import ResultMixin, register_plot
+from sloshkit.results import ResultMixin
 from sloshkit.sim.simulate import simulate
 
 #: Kinds of comparison: the 1-D wall elevation, or the 3-D slosh height of a pose trajectory.
@@ -169,15 +168,6 @@ class CfdValidation(ResultMixin):
         payload.update(self.extra)
         payload["excitation_end_s"] = self.excitation_end_s
         return payload
-
-
-@register_plot(CfdValidation)
-def _plot_validation(
-    result: CfdValidation, ax: Any = None, path: str | Path | None = None, **options: Any
-) -> Any:
-    """Draw with `sloshkit.plotting.cfd` (imported by name: matplotlib stays in plotting/)."""
-    plotting = importlib.import_module("sloshkit.plotting.cfd")
-    return plotting.plot_cfd_validation(result, path, ax=ax, **options)
 
 
 def model_wall_elevation(

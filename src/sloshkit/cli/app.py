@@ -86,6 +86,26 @@ def run(
 
     Every failure ends in one line on stderr (see the module docstring for the codes); nothing
     raises out of here except on ``SLOSHKIT_DEBUG=1``.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The command line without the program name.
+    application : typer.Typer, optional
+        The application (default: `app` with the commands imported so far).
+    exiting : bool
+        The process exits afterwards (signal handlers are then left in place).
+
+    Returns
+    -------
+    int
+        The exit code: 0 success, 2 bad input, 1 I/O failure, 3 internal error, 128 + signal.
+
+    Examples
+    --------
+    >>> import sloshkit.cli.model  # registers the command
+    >>> run(["model", "--radius", "abc"])  # prints one error line on stderr
+    2
     """
     from sloshkit.budget import ENVIRONMENT_VARIABLE
 
@@ -164,5 +184,21 @@ def main(application: typer.Typer | None = None, argv: Sequence[str] | None = No
     """Run ``application`` (default `app`) and exit with its code (see `run`).
 
     `sloshkit.cli.main` is the entry point: it imports the command being run first.
+
+    Parameters
+    ----------
+    application : typer.Typer, optional
+        The application (default `app`).
+    argv : sequence of str, optional
+        The command line without the program name (default: ``sys.argv[1:]``).
+
+    Examples
+    --------
+    >>> import sloshkit.cli.model
+    >>> try:
+    ...     main(argv=["model", "--fill-height", "-1mm"])
+    ... except SystemExit as stop:
+    ...     print("exit", stop.code)
+    exit 2
     """
     sys.exit(run(argv, application, exiting=True))

@@ -22,9 +22,9 @@ from sloshkit.calibration import (
     applied_from_poses,
     calibrate,
     identify_forced,
-    identify_simulated,
 )
 from sloshkit.calibration.applied import POSE_COLUMNS
+from sloshkit.calibration.model_in_loop import identify_line, identify_spatial
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
@@ -45,8 +45,6 @@ from sloshkit.io.tables import (
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.sim.simulate import simulate
-from sloshkit.sim.spatial import simulate_spatial
 
 
 def _read_applied_motion(
@@ -75,100 +73,6 @@ def _read_applied_motion(
         start = float(column_si(header, data, time_column, "time")[0])
         motion = read_motion_file(path)
     return AppliedMotion(motion, start + offset_s, (f"motion file {path}",)), None
-
-
-def _identify_spatial(
-    model: SloshModel,
-    poses: PoseTrajectory,
-    time: typing.Any,
-    values: typing.Any,
-    *,
-    offset_s: float,
-    fit_offset: bool,
-    require_constrained: bool,
-    source: str,
-) -> typing.Any:
-    """The 3-D model along the poses against a slosh-height record (`identify_simulated`)."""
-    step = float(np.median(np.diff(time)))
-    sample_period = min(0.008, max(0.002, 0.5 * step))
-    settle = max(0.0, float(time[-1]) - offset_s - poses.end_s + 0.5)
-
-    def simulate_height(omega: float, zeta: float) -> tuple[typing.Any, typing.Any]:
-        trial = model.with_mode(1, omega_rad_s=omega)
-        for mode in trial.modes:
-            trial = trial.with_mode(mode.n, damping_ratio=zeta)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", ValidityWarning)
-            response = simulate_spatial(
-                trial, poses, settle_time_s=settle, sample_period_s=sample_period
-            )
-        return response.time_s, response.slosh_height_m
-
-    theory = model.modes[0]
-    return identify_simulated(
-        simulate_height,
-        time,
-        values,
-        omega_guess_rad_s=theory.omega_rad_s,
-        zeta_guess=max(theory.damping_ratio, 1e-3),
-        delay_s=offset_s,
-        fit_delay=fit_offset,
-        omega_range=(0.7, 1.4),
-        signal_kind="height",
-        motion_span_s=(poses.start_s, poses.end_s),
-        require_constrained=require_constrained,
-        source=source,
-        notes=(f"3-D slosh model along the poses of {poses.name}; slosh height = the largest "
-               "wall elevation over the circumference",),
-    )  # fmt: skip
-
-
-def _identify_line_with_offset(
-    model: SloshModel,
-    applied: AppliedMotion,
-    time: typing.Any,
-    values: typing.Any,
-    *,
-    offset_s: float,
-    signal_kind: str,
-    require_constrained: bool,
-    source: str,
-) -> typing.Any:
-    """The 1-D model along the motion, with the clock offset (record time minus motion-file
-    time) fitted around ``offset_s`` (`identify_simulated`)."""
-    file_start = applied.start_s - offset_s
-    step = float(np.median(np.diff(time)))
-    sample_period = min(0.004, max(0.001, 0.5 * step))
-    settle = max(0.0, float(time[-1]) - applied.end_s + 0.5)
-
-    def simulate_line(omega: float, zeta: float) -> tuple[typing.Any, typing.Any]:
-        trial = model.with_mode(1, omega_rad_s=omega)
-        for mode in trial.modes:
-            trial = trial.with_mode(mode.n, damping_ratio=zeta)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", ValidityWarning)
-            response = simulate(
-                trial, applied.motion, sample_period_s=sample_period, settle_time_s=settle
-            )
-        signal = response.wall_elevation_m if signal_kind == "height" else response.angle_rad[0]
-        return response.time_s + file_start, signal
-
-    theory = model.modes[0]
-    return identify_simulated(
-        simulate_line,
-        time,
-        values,
-        omega_guess_rad_s=theory.omega_rad_s,
-        zeta_guess=max(theory.damping_ratio, 1e-3),
-        delay_s=offset_s,
-        fit_delay=True,
-        omega_range=(0.7, 1.4),
-        signal_kind=signal_kind,
-        motion_span_s=(file_start, file_start + applied.motion.duration_s),
-        require_constrained=require_constrained,
-        source=source,
-        notes=applied.notes,
-    )
 
 
 @app.command("calibrate")
@@ -322,24 +226,24 @@ def calibrate_command(
         )
     forced = None
     if fit_clock_offset and not spatial and applied is not None:
-        forced = _identify_line_with_offset(
+        forced = identify_line(
             slosh_model,
             applied,
             time,
             values,
-            offset_s=offset,
+            delay_s=offset,
             signal_kind=signal_kind,
             require_constrained=method == "forced",
             source=str(data),
         )
     elif spatial and poses is not None:
-        forced = _identify_spatial(
+        forced = identify_spatial(
             slosh_model,
             poses,
             time,
             values,
-            offset_s=offset,
-            fit_offset=fit_clock_offset,
+            delay_s=offset,
+            fit_delay=fit_clock_offset,
             require_constrained=method == "forced",
             source=str(data),
         )

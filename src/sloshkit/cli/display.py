@@ -40,13 +40,49 @@ _SUFFIXES: tuple[tuple[str, str, float], ...] = (
 
 
 def label(key: str, *, with_unit: bool = True) -> str:
-    """The human label of a JSON key, with its unit in brackets: ``"peak jerk [m/s³]"``."""
+    """The human label of a JSON key, with its unit in brackets: ``"peak jerk [m/s³]"``.
+
+    Parameters
+    ----------
+    key : str
+        A JSON key with its unit suffix.
+    with_unit : bool
+        Append the unit in brackets.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> label("peak_jerk_m_s3"), label("peak_slosh_height_m"), label("duration_s", with_unit=False)
+    ('peak jerk [m/s³]', 'peak slosh height [mm]', 'duration')
+    """
     text, unit, _ = _describe(key)
     return f"{text} [{unit}]" if with_unit and unit else text
 
 
 def value(key: str, number: float | None, digits: int = 4) -> str:
-    """A number of ``key`` in the label's unit, without the unit (``None``/inf as ``∞``/``-``)."""
+    """A number of ``key`` in the label's unit, without the unit (``None``/inf as ``∞``/``-``).
+
+    Parameters
+    ----------
+    key : str
+        The JSON key (its suffix gives the unit).
+    number : float or None
+        The SI value.
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> value("peak_slosh_height_m", 0.0012345), value("peak_jerk_m_s3", None)
+    ('1.234', '∞')
+    """
     if number is None:
         return "∞" if "jerk" in key else "-"
     if not math.isfinite(number):

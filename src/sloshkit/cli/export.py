@@ -7,7 +7,6 @@ The export options (arm, mounting, servoj parameters, check) form one group, sha
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -17,164 +16,18 @@ from rich.text import Text
 
 from sloshkit.cli import messages
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.options import Json, print_json, with_model_options, with_options
+
+# The option group (``plan --export`` imports it from here too).
+from sloshkit.cli.export_options import FORMAT_HELP
+from sloshkit.cli.export_options import ExportSettings as ExportSettings
+from sloshkit.cli.export_options import with_export_options as with_export_options
+from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
-from sloshkit.errors import InputError, require_in_range
+from sloshkit.errors import InputError
 from sloshkit.io.checks import naming
 from sloshkit.io.outputs import all_or_nothing, check_file
-from sloshkit.io.units import parse_bounded, parse_number, parse_quantity
+from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
-
-FORMAT_HELP = "pose-csv, joint-csv, ros2, urscript or cam-table."
-
-Robot = Annotated[
-    str | None,
-    typer.Option("--robot", help="Built-in arm for joint formats: ur5e (the default)."),
-]
-Urdf = Annotated[Path | None, typer.Option("--urdf", help="URDF of the arm (instead of --robot).")]
-BaseLink = Annotated[str | None, typer.Option("--base-link", help="URDF link the chain starts at.")]
-TipLink = Annotated[str | None, typer.Option("--tip-link", help="URDF link of the flange.")]
-SeedJoints = Annotated[
-    str | None,
-    typer.Option("--seed-joints", help="IK start for the first sample, e.g. 0,-90deg,90deg,..."),
-]
-ToolOffset = Annotated[
-    str,
-    typer.Option("--tool-offset", help="Container bottom centre in the flange frame: x,y,z."),
-]
-ToolRotation = Annotated[
-    str,
-    typer.Option(
-        "--tool-rotation", help="Container frame in the flange frame: roll,pitch,yaw (xyz fixed)."
-    ),
-]
-BasePose = Annotated[
-    str,
-    typer.Option("--base-pose", help="Path frame in the robot base: x,y,z[,roll,pitch,yaw]."),
-]
-Axis = Annotated[str, typer.Option("--axis", help="Direction of a 1-D plan: x, y, z or vx,vy,vz.")]
-Lookahead = Annotated[
-    str, typer.Option("--lookahead-time", help="urscript servoj lookahead_time (30ms..200ms).")
-]
-Gain = Annotated[float, typer.Option("--gain", help="urscript servoj gain (100..2000).")]
-Check = Annotated[
-    bool,
-    typer.Option("--check/--no-check", help="Parse the file back and re-simulate the slosh."),
-]
-
-
-@dataclass(frozen=True)
-class ExportSettings:
-    """The export option group, parsed (SI): how to reach the controller."""
-
-    robot: str | None
-    urdf: Path | None
-    base_link: str | None
-    tip_link: str | None
-    seed_rad: tuple[float, ...] | None
-    mounting: Any
-    axis: tuple[float, float, float]
-    lookahead_time_s: float
-    gain: float
-    check: bool
-
-    def arm(self, fmt: str) -> Any:
-        """The arm for joint formats (UR5e unless ``--urdf`` or ``--robot`` says otherwise)."""
-        from sloshkit.export.exporter import JOINT_FORMATS
-        from sloshkit.export.kinematics import load_arm
-
-        if fmt not in JOINT_FORMATS:
-            return None
-        robot = self.robot if self.robot is not None or self.urdf is not None else "ur5e"
-        seed = None if self.seed_rad is None else tuple(self.seed_rad)
-        import numpy as np
-
-        return load_arm(
-            robot,
-            self.urdf,
-            self.base_link,
-            self.tip_link,
-            None if seed is None else np.asarray(seed),
-        )
-
-
-def parse_vector(text: str, kinds: tuple[str, ...], parameter: str) -> tuple[float, ...]:
-    """Comma-separated quantities with units (``0,0,100mm``; bare numbers in SI, radians)."""
-    cells = [cell.strip() for cell in text.split(",")]
-    if len(cells) != len(kinds):
-        raise InputError(parameter, text, f"needs {len(kinds)} comma-separated values")
-    return tuple(
-        parse_quantity(cell, kind, parameter) for cell, kind in zip(cells, kinds, strict=True)
-    )
-
-
-def _parse_axis(text: str) -> tuple[float, float, float]:
-    named = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
-    if text.strip().lower() in named:
-        return named[text.strip().lower()]
-    cells = text.split(",")
-    if len(cells) != 3:
-        raise InputError("axis", text, "must be x, y, z or three numbers vx,vy,vz")
-    values = tuple(parse_number(cell, "axis") for cell in cells)
-    if not math.hypot(*values) > 0.0:
-        raise InputError("axis", text, "must be a non-zero direction")
-    return (values[0], values[1], values[2])
-
-
-def _settings(values: dict[str, Any]) -> ExportSettings:
-    from sloshkit.export.frames import Mounting
-
-    base = values["base_pose"].split(",")
-    if len(base) not in (3, 6):
-        raise InputError("base_pose", values["base_pose"], "needs x,y,z or x,y,z,roll,pitch,yaw")
-    base_values = parse_vector(
-        values["base_pose"], ("length",) * 3 + ("angle",) * (len(base) - 3), "base_pose"
-    )
-    offset = parse_vector(values["tool_offset"], ("length",) * 3, "tool_offset")
-    rotation = parse_vector(values["tool_rotation"], ("angle",) * 3, "tool_rotation")
-    seed = values["seed_joints"]
-    return ExportSettings(
-        robot=values["robot"],
-        urdf=values["urdf"],
-        base_link=values["base_link"],
-        tip_link=values["tip_link"],
-        seed_rad=None
-        if seed is None
-        else tuple(parse_quantity(cell, "angle", "seed_joints") for cell in seed.split(",")),
-        mounting=Mounting(
-            tool_offset_m=(offset[0], offset[1], offset[2]),
-            tool_rpy_rad=(rotation[0], rotation[1], rotation[2]),
-            base_xyz_m=(base_values[0], base_values[1], base_values[2]),
-            base_rpy_rad=(base_values[3], base_values[4], base_values[5])
-            if len(base_values) == 6
-            else (0.0, 0.0, 0.0),
-        ),
-        axis=_parse_axis(values["axis"]),
-        lookahead_time_s=parse_bounded(
-            values["lookahead_time"], "time", "lookahead_time", 0.03, 0.2, low_open=False
-        ),
-        gain=require_in_range("gain", values["gain"], 100.0, 2000.0),
-        check=bool(values["check"]),
-    )
-
-
-EXPORT_OPTIONS: dict[str, tuple[Any, Any]] = {
-    "robot": (Robot, None),
-    "urdf": (Urdf, None),
-    "base_link": (BaseLink, None),
-    "tip_link": (TipLink, None),
-    "seed_joints": (SeedJoints, None),
-    "tool_offset": (ToolOffset, "0,0,100mm"),
-    "tool_rotation": (ToolRotation, "180deg,0deg,0deg"),
-    "base_pose": (BasePose, "0,0,0"),
-    "axis": (Axis, "x"),
-    "lookahead_time": (Lookahead, "50ms"),
-    "gain": (Gain, 500.0),
-    "check": (Check, True),
-}
-
-#: Give a command the export options; it receives the parsed ``export_settings``.
-with_export_options = with_options(EXPORT_OPTIONS, "export_settings", _settings)
 
 
 def run_export(
@@ -186,7 +39,48 @@ def run_export(
     limits: Any,
     sample_period_s: float | None,
 ) -> Any:
-    """Export with the parsed settings (progress on stderr); returns the `ExportResult`."""
+    """Export with the parsed settings (progress on stderr); returns the `ExportResult`.
+
+    Parameters
+    ----------
+    plan : LinePlan or PoseStream
+        The plan to export.
+    fmt : str
+        The format (`sloshkit.export.exporter.FORMATS`).
+    out : pathlib.Path
+        The file to write.
+    settings : ExportSettings
+        The parsed export options.
+    model : SloshModel
+        The model the round trip re-simulates.
+    limits : SloshLimits or None
+        Limits the round trip checks.
+    sample_period_s : float or None
+        Controller period [s] (default: the plan's).
+
+    Returns
+    -------
+    ExportResult
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> import sloshkit as sk
+    >>> from sloshkit.export.frames import Mounting
+    >>> from sloshkit.export.plans import LinePlan
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(126) * 0.008
+    >>> s = t / t[-1]
+    >>> x = 0.1 * s**3 * (10 - 15 * s + 6 * s**2)
+    >>> plan = LinePlan(t, x, np.gradient(x, t), np.gradient(np.gradient(x, t), t))
+    >>> settings = ExportSettings(None, None, None, None, None, Mounting(), (1.0, 0.0, 0.0),
+    ...                           0.1, 300.0, True)
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "move.cam.csv"
+    >>> result = run_export(plan, "cam-table", out, settings, model, None, None)
+    >>> result.samples, result.round_trip.passed
+    (126, True)
+    """
     from sloshkit.export.exporter import FORMATS, export_plan
 
     if fmt not in FORMATS:
@@ -209,7 +103,20 @@ def run_export(
 
 
 def show_export(result: Any) -> None:
-    """The export's outcome as a table and a verdict line (stdout)."""
+    """The export's outcome as a table and a verdict line (stdout).
+
+    Parameters
+    ----------
+    result : ExportResult
+        The export.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from sloshkit.export.exporter import ExportResult
+    >>> show_export(ExportResult("cam-table", Path("move.cam.csv"), 126, 0.008))
+    wrote move.cam.csv (cam-table, 126 samples every 8 ms)
+    """
     stdout.print(
         f"wrote {result.path} ({result.format}, {result.samples} samples every "
         f"{1e3 * result.sample_period_s:g} ms)"
@@ -279,7 +186,9 @@ def check_export_request(
 
     Examples
     --------
-    >>> settings = _settings({**{k: v for k, (_, v) in EXPORT_OPTIONS.items()}})
+    >>> from sloshkit.export.frames import Mounting
+    >>> settings = ExportSettings(None, None, None, None, None, Mounting(), (1.0, 0.0, 0.0),
+    ...                           0.05, 500.0, True)
     >>> check_export_request("pose-csv", Path("plan.poses.csv"), settings) is None
     True
     """
@@ -329,7 +238,23 @@ def check_output_period(plan: Any, period_s: float, text: str) -> None:
 
 
 def slosh_limits(max_angle: str | None, max_residual: str | None) -> Any:
-    """`SloshLimits` from the two options, None when neither is given."""
+    """`SloshLimits` from the two options, None when neither is given.
+
+    Parameters
+    ----------
+    max_angle, max_residual : str or None
+        ``--max-angle`` and ``--max-residual`` (angles with units).
+
+    Returns
+    -------
+    SloshLimits or None
+
+    Examples
+    --------
+    >>> limits = slosh_limits("5deg", "0.5deg")
+    >>> round(limits.max_angle_rad, 6), slosh_limits(None, None)
+    (0.087266, None)
+    """
     from sloshkit.plan.problem import SloshLimits
 
     if max_angle is None and max_residual is None:

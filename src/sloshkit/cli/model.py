@@ -14,7 +14,25 @@ from sloshkit.model.modal import SloshMode, SloshModel
 
 def model_table(model: SloshModel) -> Table:
     """A rich table of the equivalent model: one row per quantity (with its unit), one column
-    per mode, so it fits 80 columns for any number of modes up to about five."""
+    per mode, so it fits 80 columns for any number of modes up to about five.
+
+    Parameters
+    ----------
+    model : SloshModel
+        The model.
+
+    Returns
+    -------
+    rich.table.Table
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> table = model_table(model)
+    >>> len(table.columns), str(table.columns[1].header)
+    (4, 'mode 1')
+    """
     table = Table(
         title=(
             f"Equivalent sloshing model: R = {1e3 * model.radius_m:.2f} mm, "

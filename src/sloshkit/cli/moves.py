@@ -73,7 +73,25 @@ SettleTolerance = Annotated[
 
 @dataclass(frozen=True)
 class MoveRequest:
-    """Motion options parsed to SI."""
+    """Motion options parsed to SI.
+
+    Attributes
+    ----------
+    distance_m : float
+        Move distance [m].
+    duration_s, peak_velocity_m_s : float or None
+        Move duration [s] or peak velocity [m/s].
+    vmax, amax, jmax : float or None
+        Machine limits [m/s], [m/s^2], [m/s^3].
+    accel_fraction : float or None
+        The trapezoid's acceleration time over the move time.
+
+    Examples
+    --------
+    >>> request = MoveRequest.parse("200mm", "1.2s", None, None, None, None, None)
+    >>> request.distance_m, request.duration_s
+    (0.2, 1.2)
+    """
 
     distance_m: float
     duration_s: float | None
@@ -158,7 +176,24 @@ def _simulate(
 
 
 def move_options(peak_velocity: str | None = None) -> dict[str, tuple[Any, Any]]:
-    """The move and machine-limit options (one spelling everywhere)."""
+    """The move and machine-limit options (one spelling everywhere).
+
+    Parameters
+    ----------
+    peak_velocity : str, optional
+        Default of ``--peak-velocity``.
+
+    Returns
+    -------
+    dict
+        Option name -> (typer annotation, default).
+
+    Examples
+    --------
+    >>> options = move_options("0.5m/s")
+    >>> list(options)[:3], options["peak_velocity"][1]
+    (['distance', 'duration', 'peak_velocity'], '0.5m/s')
+    """
     return {
         "distance": (Distance, "0.5m"),
         "duration": (Duration, None),
@@ -181,7 +216,27 @@ SIMULATION_OPTIONS: dict[str, tuple[Any, Any]] = {
 def with_move_options(
     peak_velocity: str | None = None,
 ) -> Callable[[Callable[..., None]], Callable[..., None]]:
-    """The move options, parsed into ``request`` (a `MoveRequest`)."""
+    """The move options, parsed into ``request`` (a `MoveRequest`).
+
+    Parameters
+    ----------
+    peak_velocity : str, optional
+        Default of ``--peak-velocity``.
+
+    Returns
+    -------
+    callable
+        A decorator for a command with a ``request`` parameter.
+
+    Examples
+    --------
+    >>> @with_move_options()
+    ... def command(request: MoveRequest) -> None:
+    ...     print(request.distance_m, request.duration_s)
+    >>> command(distance="0.3m", duration="2s", peak_velocity=None, vmax=None, amax=None,
+    ...         jmax=None, accel_fraction=None)
+    0.3 2.0
+    """
     return with_options(
         move_options(peak_velocity), "request", lambda values: MoveRequest.parse(**values)
     )
@@ -192,7 +247,25 @@ with_simulation_options = with_options(SIMULATION_OPTIONS, "simulation", dict)
 
 
 def metrics_json(response: SloshResponse) -> dict[str, float | None]:
-    """The simulate JSON keys, with infinities as null."""
+    """The simulate JSON keys, with infinities as null.
+
+    Parameters
+    ----------
+    response : SloshResponse
+        The simulation.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> metrics = metrics_json(sk.simulate(model, sk.trapezoidal(0.1, 0.1)))
+    >>> metrics["peak_jerk_m_s3"], metrics["duration_s"] > 0
+    (None, True)
+    """
     return {key: json_number(value) for key, value in response.metrics().items()}
 
 

@@ -16,7 +16,25 @@ RECORDED: list[str] = []
 
 @contextmanager
 def recording() -> Iterator[list[str]]:
-    """Record (and still show, once each) every warning raised inside the block."""
+    """Record (and still show, once each) every warning raised inside the block.
+
+    Yields
+    ------
+    list of str
+        The messages (`RECORDED`), in order.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> shown = []
+    >>> with warnings.catch_warnings():
+    ...     warnings.showwarning = lambda message, *where: shown.append(str(message))
+    ...     with recording() as found:
+    ...         for _ in range(2):
+    ...             warnings.warn("fill below 0.2 R", ValidityWarning)
+    >>> found, shown
+    (['fill below 0.2 R'], ['fill below 0.2 R'])
+    """
     RECORDED.clear()
     with warnings.catch_warnings():
         warnings.simplefilter("always", ValidityWarning)
@@ -40,7 +58,24 @@ def recording() -> Iterator[list[str]]:
 
 
 def with_warnings(payload: object) -> object:
-    """A JSON object payload with the command's ``warnings`` list added (other payloads as is)."""
+    """A JSON object payload with the command's ``warnings`` list added (other payloads as is).
+
+    Parameters
+    ----------
+    payload : object
+        The command's JSON payload.
+
+    Returns
+    -------
+    object
+
+    Examples
+    --------
+    >>> RECORDED[:] = ["shallow fill"]
+    >>> with_warnings({"omega_rad_s": 29.7}), with_warnings([1, 2])
+    ({'omega_rad_s': 29.7, 'warnings': ['shallow fill']}, [1, 2])
+    >>> RECORDED.clear()
+    """
     if not isinstance(payload, dict):
         return payload
     earlier = [str(text) for text in payload.get("warnings", [])]
@@ -58,7 +93,27 @@ PLAUSIBLE_BARE_LENGTH_M: dict[str, float] = {
 
 def check_bare_length(text: str | None, value_m: float, parameter: str) -> None:
     """Warn when ``text`` is a bare number (read in metres) that is implausible for
-    ``parameter``, e.g. ``--radius 20.5`` (20.5 m): most likely millimetres were meant."""
+    ``parameter``, e.g. ``--radius 20.5`` (20.5 m): most likely millimetres were meant.
+
+    Parameters
+    ----------
+    text : str or None
+        The option as typed.
+    value_m : float
+        Its value [m].
+    parameter : str
+        The option's name (radius, fill_height, wall_height, distance).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     check_bare_length("20.5", 20.5, "radius")
+    ...     check_bare_length("20.5mm", 0.0205, "radius")
+    >>> [str(w.message)[:40] for w in caught]
+    ['--radius 20.5 has no unit and is read as']
+    """
     if text is None or parameter not in PLAUSIBLE_BARE_LENGTH_M:
         return
     try:

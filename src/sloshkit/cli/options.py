@@ -108,7 +108,24 @@ Json = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI un
 
 
 def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
-    """The container from the model options."""
+    """The container from the model options.
+
+    Parameters
+    ----------
+    radius : str
+        ``--radius`` (a length with its unit).
+    wall_height : str or None
+        ``--wall-height``.
+
+    Returns
+    -------
+    UprightCylinder
+
+    Examples
+    --------
+    >>> build_container("20.5mm", "60mm")
+    UprightCylinder(radius_m=0.0205, wall_height_m=0.06)
+    """
     container = container_request(radius, wall_height)
     check_bare_length(radius, container.radius_m, "radius")
     if wall_height is not None and container.wall_height_m is not None:
@@ -119,12 +136,45 @@ def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
 def build_liquid(
     liquid: str, density: str | None, viscosity: str | None, sigma: str | None
 ) -> Liquid:
-    """A preset liquid, with any of its properties overridden."""
+    """A preset liquid, with any of its properties overridden.
+
+    Parameters
+    ----------
+    liquid : str
+        The preset's name.
+    density, viscosity, sigma : str or None
+        Overrides with units.
+
+    Returns
+    -------
+    Liquid
+
+    Examples
+    --------
+    >>> liquid = build_liquid("water-25C", "1000kg/m^3", None, None)
+    >>> liquid.name, liquid.density_kg_m3
+    ('water-25C*', 1000.0)
+    """
     return liquid_request(liquid, density, viscosity, sigma, surface_tension_parameter="sigma")
 
 
 def check_damping_law(damping_law: str) -> DampingLaw:
-    """The damping-law name, or `InputError`."""
+    """The damping-law name, or `InputError`.
+
+    Parameters
+    ----------
+    damping_law : str
+        ``--damping-law``.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> check_damping_law("sp106")
+    'sp106'
+    """
     return damping_law_request(damping_law)
 
 
@@ -142,7 +192,36 @@ def build_model(
     damping_ratio: float | None,
     surface_tension_correction: bool,
 ) -> SloshModel:
-    """Turn the model options (text with units) into a `SloshModel`."""
+    """Turn the model options (text with units) into a `SloshModel`.
+
+    Parameters
+    ----------
+    radius, fill_height, fill_volume, wall_height : str or None
+        Lengths and volume with units (``fill_height`` or ``fill_volume``).
+    liquid : str
+        The preset's name.
+    density, viscosity, sigma : str or None
+        Overrides of the preset's properties.
+    modes : int
+        Number of modes.
+    damping_law : str
+        The damping correlation.
+    damping_ratio : float or None
+        A damping ratio that replaces the correlation.
+    surface_tension_correction : bool
+        Apply the capillary frequency correction.
+
+    Returns
+    -------
+    SloshModel
+
+    Examples
+    --------
+    >>> model = build_model("20.5mm", None, "51.5ml", None, "water-25C", None, None, None,
+    ...                     3, "seed", None, False)
+    >>> round(model.fill_height_m * 1e3, 1), round(model.modes[0].frequency_hz, 2)
+    (39.0, 4.72)
+    """
     container = build_container(radius, wall_height)
     height = fill_height_request(container, fill_height, fill_volume)
     if fill_volume is None:
@@ -160,7 +239,21 @@ def build_model(
 
 def print_json(payload: object) -> None:
     """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null),
-    with the command's ``warnings`` list."""
+    with the command's ``warnings`` list.
+
+    Parameters
+    ----------
+    payload : object
+        JSON-ready data.
+
+    Examples
+    --------
+    >>> print_json({"peak_jerk_m_s3": float("inf")})
+    {
+      "peak_jerk_m_s3": null,
+      "warnings": []
+    }
+    """
 
     from sloshkit.cli.notes import with_warnings
 
@@ -193,6 +286,34 @@ def with_options(
 
     The options are added to the command's signature (which typer reads), so every command
     spells and documents them identically.
+
+    Parameters
+    ----------
+    options : dict
+        Option name -> (typer annotation, default).
+    target : str
+        The command's parameter that receives the built value.
+    build : callable
+        Option values -> the value passed as ``target``.
+
+    Returns
+    -------
+    callable
+        The decorator.
+
+    Examples
+    --------
+    >>> import inspect
+    >>> from typing import Annotated
+    >>> import typer
+    >>> Scale = Annotated[float, typer.Option("--scale")]
+    >>> @with_options({"scale": (Scale, 2.0)}, "factor", lambda values: 10 * values["scale"])
+    ... def command(factor: float) -> None:
+    ...     print(factor)
+    >>> list(inspect.signature(command).parameters)
+    ['scale']
+    >>> command(scale=3.0)
+    30.0
     """
 
     def decorate(command: Callable[..., None]) -> Callable[..., None]:
@@ -242,10 +363,46 @@ def _model_from_options(values: dict[str, Any]) -> SloshModel:
     return build_model(**values)
 
 
-#: Give a command the shared model options; it receives the built ``slosh_model``.
-with_model_options = with_options(MODEL_OPTIONS, "slosh_model", _model_from_options)
+def with_model_options(command: Callable[..., None]) -> Callable[..., None]:
+    """Give a command the shared model options; it receives the built ``slosh_model``.
+
+    Parameters
+    ----------
+    command : callable
+        A command with a ``slosh_model`` parameter.
+
+    Returns
+    -------
+    callable
+        The command with the model options (`MODEL_OPTIONS`) in its signature.
+
+    Examples
+    --------
+    >>> @with_model_options
+    ... def command(slosh_model: SloshModel) -> None:
+    ...     print(round(slosh_model.modes[0].frequency_hz, 2))
+    >>> options = {name: default for name, (_, default) in MODEL_OPTIONS.items()}
+    >>> command(**{**options, "fill_height": "39mm"})
+    4.72
+    """
+    return with_options(MODEL_OPTIONS, "slosh_model", _model_from_options)(command)
 
 
 def json_number(value: float) -> float | None:
-    """JSON has no infinity: an unbounded value (a jerk impulse) is written as null."""
+    """JSON has no infinity: an unbounded value (a jerk impulse) is written as null.
+
+    Parameters
+    ----------
+    value : float
+        The number.
+
+    Returns
+    -------
+    float or None
+
+    Examples
+    --------
+    >>> json_number(2.5), json_number(float("inf"))
+    (2.5, None)
+    """
     return value if math.isfinite(value) else None

@@ -70,7 +70,7 @@ def plan_command(
         bool,
         typer.Option(
             "--smooth",
-            help="Optimal method: the smooth variant (2 % longer, least jerk rate) instead of "
+            help="Optimal method: the smooth variant (2 % longer, least jerk variation) instead of "
             "the time-optimal move.",
         ),
     ] = False,
@@ -116,12 +116,16 @@ def plan_command(
     ] = None,
     max_angular_velocity: Annotated[
         str | None,
-        typer.Option("--max-angular-velocity", help="3-D: container angular speed, e.g. 180deg/s."),
+        typer.Option(
+            "--max-angular-velocity",
+            help="3-D: container angular speed (default 180deg/s; 'none' for no limit).",
+        ),
     ] = None,
     max_angular_acceleration: Annotated[
         str | None,
         typer.Option(
-            "--max-angular-acceleration", help="3-D: angular acceleration, e.g. 1000deg/s^2."
+            "--max-angular-acceleration",
+            help="3-D: angular acceleration (default 1000deg/s^2; 'none' for no limit).",
         ),
     ] = None,
     tilt_compensation: Annotated[
@@ -187,6 +191,7 @@ def plan_command(
             out=out,
             plot=plot,
             json_output=json_output,
+            export_settings=export_settings,
         )
         return
 

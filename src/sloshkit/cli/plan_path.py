@@ -2,6 +2,15 @@
 
 Called by `sloshkit.cli.plan.plan_command` when a path is given; the 1-D ``plan --distance``
 is unchanged.
+
+Angular limits default to `DEFAULT_ANGULAR_VELOCITY` (180 deg/s, the joint speed limit of
+the UR5e's wrist joints and of most 5-10 kg collaborative arms: a container turning faster
+needs at least one joint faster than that) and `DEFAULT_ANGULAR_ACCELERATION` (1000 deg/s^2,
+that speed reached in 0.18 s); ``none`` lifts a limit. With ``--robot`` (or ``--urdf``) every
+candidate is also solved for the arm's joints as ``sloshkit export`` solves them, with the
+export's ``--base-pose``/``--tool-offset``/``--tool-rotation`` (`sloshkit.export.path_robot`):
+a plan the arm cannot run is not feasible (joint speeds too high are slowed down uniformly and
+verified again).
 """
 
 from __future__ import annotations
@@ -27,8 +36,14 @@ from sloshkit.io.waypoints import read_waypoints
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
 from sloshkit.plan.path_planner import plan_path
-from sloshkit.plan.retime import Timing
+from sloshkit.plan.path_result import verify
 from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+from sloshkit.plan.timing import Timing
+
+#: Default ``--max-angular-velocity`` (module docstring).
+DEFAULT_ANGULAR_VELOCITY = "180deg/s"
+#: Default ``--max-angular-acceleration`` (module docstring).
+DEFAULT_ANGULAR_ACCELERATION = "1000deg/s^2"
 
 
 def _quantity(text: str | None, kind: str, name: str) -> float | None:
@@ -37,8 +52,9 @@ def _quantity(text: str | None, kind: str, name: str) -> float | None:
 
 def _angular(text: str | None, power: int, name: str) -> float | None:
     """``90deg/s``, ``2rad/s``, ``300deg/s^2`` (``s**2``, ``s2`` too) or a bare number in
-    rad/s^power, in the strict unit grammar (`sloshkit.io.units`; finite, > 0)."""
-    if text is None:
+    rad/s^power, in the strict unit grammar (`sloshkit.io.units`; finite, > 0); ``none``: no
+    limit."""
+    if text is None or text.strip().lower() == "none":
         return None
     kind = "angular_velocity" if power == 1 else "angular_acceleration"
     try:
@@ -84,8 +100,66 @@ def run_path_plan(
     out: Path | None,
     plot: Path | None,
     json_output: bool,
+    export_settings: Any = None,
 ) -> None:
-    """Parse the 3-D options, plan, print and export (exit 1 when nothing is feasible)."""
+    """Parse the 3-D options, plan, print and export (exit 1 when nothing is feasible).
+
+    Parameters
+    ----------
+    model : SloshModel
+        The container model (from the model options).
+    path_file : Path or None
+        ``--path``: waypoints (CSV or TOML).
+    poses_file : Path or None
+        ``--path-from-poses``: a pose file whose geometry is re-timed.
+    blend_radius : str
+        ``--blend-radius`` (corner clothoids of waypoint paths).
+    max_slosh_height, max_residual_height : str
+        ``--max-slosh-height``, ``--max-residual-height`` (required).
+    max_surface_angle : str or None
+        ``--max-surface-angle``.
+    vmax, amax, jmax : str
+        ``--vmax``, ``--amax``, ``--jmax`` (required).
+    max_angular_velocity, max_angular_acceleration : str or None
+        ``--max-angular-velocity``, ``--max-angular-acceleration`` (None: the defaults
+        `DEFAULT_ANGULAR_VELOCITY`, `DEFAULT_ANGULAR_ACCELERATION`; ``none``: no limit).
+    tilt_compensation : bool
+        ``--tilt-compensation``: ``auto`` may tilt.
+    max_tilt, tilt_centre : str
+        ``--max-tilt``, ``--tilt-centre``.
+    method : str
+        ``--method``: auto, retime, shaped or tilt.
+    band : float
+        ``--robust`` as a fraction.
+    sample_period : str
+        ``--sample-period``.
+    out, plot : Path or None
+        ``--out`` pose CSV, ``--plot`` figure.
+    json_output : bool
+        ``--json``.
+    export_settings : ExportSettings, optional
+        The export option group; with ``--robot``/``--urdf`` every candidate is checked for the
+        arm's joints (`sloshkit.export.path_robot.robot_verifier`).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.errors import InputError
+    >>> try:
+    ...     run_path_plan(None, path_file=None, poses_file=None, blend_radius="50mm",
+    ...                   max_slosh_height="15mm", max_residual_height="2mm",
+    ...                   max_surface_angle=None, vmax="2m/s", amax="10m/s^2", jmax="100m/s^3",
+    ...                   max_angular_velocity=None, max_angular_acceleration=None,
+    ...                   tilt_compensation=False, max_tilt="30deg", tilt_centre="0mm",
+    ...                   method="auto", band=0.0, sample_period="4ms", out=None, plot=None,
+    ...                   json_output=True)
+    ... except InputError as error:
+    ...     print(error.parameter)
+    path
+    """
     if (path_file is None) == (poses_file is None):
         raise InputError("path", "both or none", "give exactly one of --path, --path-from-poses")
     missing = [
@@ -130,8 +204,18 @@ def run_path_plan(
             parse_quantity(str(vmax), "velocity", "vmax"),
             parse_quantity(str(amax), "acceleration", "amax"),
             parse_quantity(str(jmax), "jerk", "jmax"),
-            _angular(max_angular_velocity, 1, "max_angular_velocity"),
-            _angular(max_angular_acceleration, 2, "max_angular_acceleration"),
+            _angular(
+                DEFAULT_ANGULAR_VELOCITY if max_angular_velocity is None else max_angular_velocity,
+                1,
+                "max_angular_velocity",
+            ),
+            _angular(
+                DEFAULT_ANGULAR_ACCELERATION
+                if max_angular_acceleration is None
+                else max_angular_acceleration,
+                2,
+                "max_angular_acceleration",
+            ),
         ),
         slosh=SpatialSloshLimits(
             parse_quantity(str(max_slosh_height), "length", "max_slosh_height"),
@@ -144,12 +228,14 @@ def run_path_plan(
         max_tilt_rad=parse_quantity(max_tilt, "angle", "max_tilt"),
         tilt_centre_height_m=parse_quantity(tilt_centre, "length", "tilt_centre"),
     )
+    verifier = _robot_verifier(export_settings)
     with stderr.status("planning the path") as status:
         result = plan_path(
             problem,
             method,
             reference=reference,
             progress=lambda text: status.update(text),
+            verifier=verify if verifier is None else verifier,
             tilt=tilt_compensation or method == "tilt",
         )
     if result.feasible:
@@ -165,6 +251,18 @@ def run_path_plan(
     if not result.feasible:
         messages.error(stderr, f"no method meets the limits ({result.reason()})")
         raise typer.Exit(1)
+
+
+def _robot_verifier(settings: Any) -> Any:
+    """`sloshkit.export.path_robot.robot_verifier` when ``--robot`` or ``--urdf`` is given."""
+    if settings is None or (settings.robot is None and settings.urdf is None):
+        return None
+    from sloshkit.export.kinematics import load_arm
+    from sloshkit.export.path_robot import robot_verifier
+
+    seed = None if settings.seed_rad is None else np.asarray(settings.seed_rad)
+    arm = load_arm(settings.robot, settings.urdf, settings.base_link, settings.tip_link, seed)
+    return robot_verifier(arm, settings.mounting)
 
 
 def _print_table(payload: dict[str, Any], length_m: float, out: Path | None) -> None:

@@ -4,13 +4,19 @@ The handler raises `Interrupted` (a `KeyboardInterrupt`, so no ``except Exceptio
 ``finally`` blocks and the atomic writers then remove temporary files and staging folders.
 Inside `deferred` blocks (compiled numba kernels, which must not see an exception raised in the
 middle of a call) the signal is only recorded, and `check` raises it between chunks.
+A signal that lands inside a callback Python cannot propagate from (a weakref or import-lock
+callback, a ``__del__``) would only be printed as "Exception ignored ... Traceback"; the
+unraisable hook installed with the handlers swallows that print and re-delivers the signal to
+the main thread, so it is raised again at the next safe point.
 """
 
 from __future__ import annotations
 
+import _thread
 import contextlib
 import signal
-from collections.abc import Iterator
+import sys
+from collections.abc import Callable, Iterator
 from types import FrameType
 from typing import Any
 
@@ -147,6 +153,26 @@ def deferred() -> Iterator[None]:
     check()
 
 
+def _redeliver_unraisable(previous: Callable[[Any], object]) -> Callable[[Any], None]:
+    """An unraisable hook: an `Interrupted` raised where Python cannot propagate it is sent to
+    the main thread again (`_thread.interrupt_main`, 10 ms later from a timer thread) instead of
+    printed; other unraisable exceptions go to ``previous``."""
+
+    def hook(unraisable: Any) -> None:
+        if isinstance(unraisable.exc_value, Interrupted):
+            # From another thread, a moment later: delivered inside this hook, the handler's
+            # exception would be unraisable again.
+            import threading
+
+            later = threading.Timer(0.01, _thread.interrupt_main, (unraisable.exc_value.signum,))
+            later.daemon = True
+            later.start()
+            return
+        previous(unraisable)
+
+    return hook
+
+
 @contextlib.contextmanager
 def installed(restore: bool = True) -> Iterator[None]:
     """Install the handlers for the block (main thread only) and restore the previous ones.
@@ -178,12 +204,15 @@ def installed(restore: bool = True) -> Iterator[None]:
         yield
         return
     previous = {sig: signal.getsignal(sig) for sig in HANDLED}
+    previous_hook = sys.unraisablehook
     _state.update(received=None, depth=0, reported=False)
     for sig in HANDLED:
         signal.signal(sig, _handler)
+    sys.unraisablehook = _redeliver_unraisable(previous_hook)
     try:
         yield
     finally:
         for sig, handler in previous.items():
             signal.signal(sig, handler if restore else signal.SIG_IGN)
+        sys.unraisablehook = previous_hook
         _state.update(received=None, depth=0, reported=False)  # nothing leaks to a next run

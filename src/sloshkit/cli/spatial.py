@@ -58,7 +58,46 @@ def simulate_poses(
     height_mapping: str,
     sample_period_explicit: bool,
 ) -> tuple[SpatialResponse, list[str]]:
-    """Read the poses, simulate, and collect the validity warnings (also shown on stderr)."""
+    """Read the poses, simulate, and collect the validity warnings (also shown on stderr).
+
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The model.
+    pose_file : pathlib.Path
+        The pose file (``t,x,y,z,qx,qy,qz,qw``).
+    simulation : dict
+        The simulation options as typed (model_kind, sample_period, settle_time, ...).
+    tool_offset : str or None
+        ``--tool-offset``.
+    height_mapping : str
+        modal or planar.
+    sample_period_explicit : bool
+        ``--sample-period`` was given (else the poses' own period is used).
+
+    Returns
+    -------
+    tuple
+        (`SpatialResponse`, the validity warnings' messages).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(101) * 0.005
+    >>> s = t / t[-1]
+    >>> x = 0.05 * s**3 * (10 - 15 * s + 6 * s**2)
+    >>> rows = np.column_stack((t, x, 0 * t, 0 * t, 0 * t, 0 * t, 0 * t, 1 + 0 * t))
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "move.csv"
+    >>> np.savetxt(path, rows, delimiter=",", header="t,x,y,z,qx,qy,qz,qw", comments="")
+    >>> options = {"model_kind": "linear", "sample_period": "1ms", "settle_time": None}
+    >>> response, messages = simulate_poses(model, path, options, tool_offset=None,
+    ...                                     height_mapping="modal", sample_period_explicit=False)
+    >>> round(response.metrics()["duration_s"], 3), messages
+    (0.5, [])
+    """
     model_kind = simulation["model_kind"]
     if model_kind not in MODEL_KINDS:
         raise InputError("model", model_kind, "must be one of " + ", ".join(MODEL_KINDS))
@@ -88,7 +127,28 @@ def simulate_poses(
 
 
 def spatial_json(response: SpatialResponse, messages: list[str]) -> dict[str, Any]:
-    """The JSON of ``simulate --pose-file`` (SI, units in the keys)."""
+    """The JSON of ``simulate --pose-file`` (SI, units in the keys).
+
+    Parameters
+    ----------
+    response : SpatialResponse
+        The 3-D simulation.
+    messages : list of str
+        Its validity warnings.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> poses = sk.poses_from_law(sk.quintic(0.05, 0.5), sample_period_s=0.005)
+    >>> payload = spatial_json(sk.simulate_spatial(model, poses), ["a note"])
+    >>> payload["duration_s"], payload["warnings"]
+    (0.5, ['a note'])
+    """
     payload: dict[str, Any] = {}
     for key, value in response.metrics().items():
         payload[key] = json_number(value) if isinstance(value, float) else value
@@ -105,7 +165,33 @@ def report_poses(
     plot: Path | None,
     json_output: bool,
 ) -> None:
-    """Write the files and print the JSON or a table."""
+    """Write the files and print the JSON or a table.
+
+    Parameters
+    ----------
+    response : SpatialResponse
+        The 3-D simulation.
+    messages : list of str
+        Its validity warnings.
+    csv, plot : pathlib.Path or None
+        Where to write the time series and the figure.
+    json_output : bool
+        Print JSON instead of a table.
+
+    Examples
+    --------
+    >>> import contextlib, io, json, tempfile, pathlib
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> response = sk.simulate_spatial(model, sk.poses_from_law(sk.quintic(0.05, 0.5),
+    ...                                                         sample_period_s=0.005))
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "slosh.csv"
+    >>> printed = io.StringIO()
+    >>> with contextlib.redirect_stdout(printed):
+    ...     report_poses(response, [], csv=out, plot=None, json_output=True)
+    >>> json.loads(printed.getvalue())["duration_s"], out.read_text().startswith("t_s")
+    (0.5, True)
+    """
     if csv is not None:
         response.to_csv(csv)
     if plot is not None:

@@ -12,12 +12,12 @@ from sloshkit.export.exporter import (
     ExportResult,
     check_round_trip,
     export_plan,
-    rebuild_container_poses,
 )
 from sloshkit.export.frames import Mounting
 from sloshkit.export.ik import JointPath, solve_joint_path
 from sloshkit.export.kinematics import Arm, load_arm, robot_names
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
+from sloshkit.export.readback import rebuild_container_poses
 from sloshkit.export.roundtrip import RoundTrip
 
 __all__ = [

@@ -23,6 +23,7 @@ from sloshkit.export.frames import Mounting, invert, matrices_to_poses, poses_to
 from sloshkit.export.ik import JointPath, joint_limit_violations, solve_joint_path
 from sloshkit.export.kinematics import Arm
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
+from sloshkit.export.readback import JOINT_FORMATS, read_joint_samples, rebuild_container_poses
 from sloshkit.export.roundtrip import (
     RoundTrip,
     compare_line,
@@ -31,11 +32,11 @@ from sloshkit.export.roundtrip import (
 )
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.problem import SloshLimits
+from sloshkit.version import __version__
 
 FloatArray = NDArray[np.float64]
 
 FORMATS = ("pose-csv", "joint-csv", "ros2", "urscript", "cam-table")
-JOINT_FORMATS = ("joint-csv", "ros2", "urscript")
 SUFFIXES = {
     "pose-csv": ".poses.csv",
     "joint-csv": ".joints.csv",
@@ -51,11 +52,27 @@ class ExportResult:
 
     Attributes
     ----------
-    format : one of `FORMATS`; path : the written file
-    samples : number of samples written; sample_period_s : their period [s]
-    joints : the joint path for joint formats (else None)
-    round_trip : the check (None when not run)
-    notes : remarks (e.g. why a check was not possible)
+    format : str
+        One of `FORMATS`.
+    path : pathlib.Path
+        The written file.
+    samples : int
+        Number of samples written.
+    sample_period_s : float
+        Their period [s].
+    joints : JointPath or None
+        The joint path for joint formats.
+    round_trip : RoundTrip or None
+        The check (None when not run).
+    notes : tuple of str
+        Remarks (e.g. why a check was not possible).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> result = ExportResult("pose-csv", Path("move.poses.csv"), 251, 0.004)
+    >>> result.to_dict()["samples"], result.to_dict()["format"]
+    (251, 'pose-csv')
     """
 
     format: str
@@ -86,7 +103,27 @@ class ExportResult:
 
 
 def model_summary(model: SloshModel) -> str:
-    """One-line description of a slosh model for file headers (SI)."""
+    """One-line description of a slosh model for file headers (SI).
+
+    Parameters
+    ----------
+    model : SloshModel
+        The model.
+
+    Returns
+    -------
+    str
+        A JSON object on one line.
+
+    Examples
+    --------
+    >>> import json
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> summary = json.loads(model_summary(model))
+    >>> summary["liquid"], round(summary["first_mode_frequency_hz"], 2)
+    ('water-25C', 4.72)
+    """
     first = model.modes[0]
     return json.dumps(
         {
@@ -101,7 +138,25 @@ def model_summary(model: SloshModel) -> str:
 
 
 def limits_summary(limits: SloshLimits) -> str:
-    """One-line description of slosh limits for file headers (degrees and metres, as named)."""
+    """One-line description of slosh limits for file headers (degrees and metres, as named).
+
+    Parameters
+    ----------
+    limits : SloshLimits
+        The limits.
+
+    Returns
+    -------
+    str
+        A JSON object on one line.
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit import SloshLimits
+    >>> limits_summary(SloshLimits(math.radians(10), math.radians(1)))
+    '{"max_angle_deg": 10.0, "max_residual_deg": 1.0, "max_wall_elevation_m": null}'
+    """
     return json.dumps(
         {
             "max_angle_deg": round(math.degrees(limits.max_angle_rad), 9),
@@ -271,73 +326,6 @@ def check_round_trip(
     return trip, ""
 
 
-def rebuild_container_poses(
-    fmt: str,
-    path: str | Path,
-    arm: Arm | None,
-    mounting: Mounting,
-    axis: tuple[float, float, float] = (1.0, 0.0, 0.0),
-) -> tuple[FloatArray, FloatArray]:
-    """Times [s] and container poses in the base frame (N, 4, 4) parsed back from a file
-    (forward kinematics and the mounting for joint formats; a cam table is put on ``axis``
-    of the path frame from the path origin, upright).
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> t = np.arange(4) * 0.1
-    >>> stream = PoseStream(t, np.ones((4, 3)), np.tile([0, 0, 0, 1.0], (4, 1)))
-    >>> from sloshkit.export.formats.pose_csv import write_pose_csv
-    >>> out = write_pose_csv(pathlib.Path(tempfile.mkdtemp()) / "p.csv", stream, {})
-    >>> rebuild_container_poses("pose-csv", out, None, Mounting())[1][3, :3, 3]
-    array([1., 1., 1.])
-    """
-    from sloshkit.export.formats import cam_table, pose_csv
-
-    if fmt == "pose-csv":
-        stream = pose_csv.read_pose_csv(path)
-        return stream.time_s, poses_to_matrices(stream.position_m, stream.quaternion_xyzw)
-    if fmt == "cam-table":
-        line = cam_table.read_cam_table(path)
-        poses = np.broadcast_to(np.eye(4), (line.time_s.size, 4, 4)).copy()
-        direction = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
-        poses[:, :3, 3] = np.outer(line.position_m - line.position_m[0], direction)
-        return line.time_s, mounting.base_to_path[None] @ poses
-    if arm is None:
-        raise InputError("robot", None, f"format {fmt} needs an arm (--robot or --urdf)")
-    time, position = read_joint_samples(fmt, path)
-    if position.shape[1] != arm.dof:
-        raise InputError("file", str(path), f"has {position.shape[1]} joints, the arm {arm.dof}")
-    flange = arm.forward(position)
-    return time, flange @ mounting.flange_to_container[None]
-
-
-def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArray]:
-    """Times [s] and joint positions (samples, joints) [rad] of a joint-format file.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> from sloshkit.export.formats.joint_csv import write_joint_csv
-    >>> t = np.arange(3) * 0.1
-    >>> path = JointPath(t, t[:, None], 0 * t[:, None], 0 * t[:, None], ("j1",))
-    >>> out = write_joint_csv(pathlib.Path(tempfile.mkdtemp()) / "j.csv", path, {})
-    >>> read_joint_samples("joint-csv", out)[1][:, 0]
-    array([0. , 0.1, 0.2])
-    """
-    from sloshkit.export.formats import joint_csv, ros2, urscript
-
-    if fmt == "joint-csv":
-        joints = joint_csv.read_joint_csv(path)
-        return joints.time_s, joints.position_rad
-    if fmt == "ros2":
-        joints, _ = ros2.read_ros2_yaml(path)
-        return joints.time_s, joints.position_rad
-    if fmt == "urscript":
-        return urscript.read_urscript(path)
-    raise InputError("format", fmt, "is not a joint format: " + ", ".join(JOINT_FORMATS))
-
-
 def _output_period(fmt: str, stream: PoseStream, requested: float | None) -> float:
     from sloshkit.export.formats.urscript import UR_SAMPLE_PERIOD_S
 
@@ -357,8 +345,6 @@ def _metadata(
     mounting: Mounting,
     arm: Arm | None,
 ) -> dict[str, object]:
-    from sloshkit import __version__
-
     metadata: dict[str, object] = {
         "format": f"sloshkit {fmt}",
         "sloshkit_version": __version__,

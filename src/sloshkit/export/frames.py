@@ -33,6 +33,11 @@ class Mounting:
     The default hangs the container 100 mm below the flange with its axis opposite to the
     flange's z axis (a rotation of pi about the flange x axis), and takes the path's own
     coordinates as base coordinates.
+
+    Examples
+    --------
+    >>> Mounting().flange_to_container[:3, 3].round(6).tolist()
+    [0.0, 0.0, 0.1]
     """
 
     tool_offset_m: tuple[float, float, float] = (0.0, 0.0, 0.1)
@@ -89,7 +94,32 @@ def transform(xyz: Sequence[float], rpy: Sequence[float]) -> FloatArray:
 
 
 def poses_to_matrices(position_m: FloatArray, quaternion_xyzw: FloatArray) -> FloatArray:
-    """(N, 4, 4) transforms from positions (N, 3) [m] and quaternions (N, 4), scalar last."""
+    """(N, 4, 4) transforms from positions (N, 3) [m] and quaternions (N, 4), scalar last.
+
+    Parameters
+    ----------
+    position_m : numpy.ndarray
+        Positions (N, 3) [m].
+    quaternion_xyzw : numpy.ndarray
+        Unit quaternions (N, 4), scalar last.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, 4, 4).
+
+    Examples
+    --------
+    A quarter turn about z, then back to poses:
+
+    >>> import numpy as np
+    >>> q = np.array([[0.0, 0.0, np.sqrt(0.5), np.sqrt(0.5)]])
+    >>> matrix = poses_to_matrices(np.array([[1.0, 2.0, 3.0]]), q)
+    >>> matrix[0, :3, 0].round(6).tolist(), matrix[0, :3, 3].tolist()
+    ([0.0, 1.0, 0.0], [1.0, 2.0, 3.0])
+    >>> bool(np.allclose(matrices_to_poses(matrix)[1], q))
+    True
+    """
     count = position_m.shape[0]
     matrices = np.zeros((count, 4, 4))
     matrices[:, :3, :3] = Rotation.from_quat(quaternion_xyzw).as_matrix()
@@ -100,14 +130,50 @@ def poses_to_matrices(position_m: FloatArray, quaternion_xyzw: FloatArray) -> Fl
 
 def matrices_to_poses(matrices: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Positions (N, 3) [m] and unit quaternions (N, 4, scalar last, w >= 0 at the first
-    sample and sign-continuous after it) from (N, 4, 4) transforms."""
+    sample and sign-continuous after it) from (N, 4, 4) transforms.
+
+    Parameters
+    ----------
+    matrices : numpy.ndarray
+        Rigid transforms (N, 4, 4).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Positions (N, 3) [m] and quaternions (N, 4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> position, quaternion = matrices_to_poses(np.eye(4)[None])
+    >>> position.tolist(), quaternion.tolist()
+    ([[0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
+    """
     quaternion = Rotation.from_matrix(matrices[:, :3, :3]).as_quat()
     return np.array(matrices[:, :3, 3]), continuous_quaternions(quaternion)
 
 
 def continuous_quaternions(quaternion_xyzw: FloatArray) -> FloatArray:
     """Flip signs so that consecutive quaternions have a non-negative dot product (q and -q
-    are the same rotation), with w >= 0 at the first sample."""
+    are the same rotation), with w >= 0 at the first sample.
+
+    Parameters
+    ----------
+    quaternion_xyzw : numpy.ndarray
+        Quaternions (N, 4), scalar last.
+
+    Returns
+    -------
+    numpy.ndarray
+        The same rotations, sign-continuous.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> flipped = continuous_quaternions(np.array([[0, 0, 0, -1.0], [0, 0, 0.1, -0.995]]))
+    >>> (flipped + 0.0).tolist()  # + 0.0 turns -0.0 into 0.0
+    [[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, -0.1, 0.995]]
+    """
     quaternion = np.array(quaternion_xyzw, dtype=float)
     if quaternion.shape[0] and quaternion[0, 3] < 0.0:
         quaternion[0] = -quaternion[0]
@@ -118,7 +184,26 @@ def continuous_quaternions(quaternion_xyzw: FloatArray) -> FloatArray:
 
 
 def invert(matrix: FloatArray) -> FloatArray:
-    """Inverse of a rigid transform (4x4, or stacked (N, 4, 4))."""
+    """Inverse of a rigid transform (4x4, or stacked (N, 4, 4)).
+
+    Parameters
+    ----------
+    matrix : numpy.ndarray
+        Rigid transform(s) [R p; 0 1].
+
+    Returns
+    -------
+    numpy.ndarray
+        [R^T -R^T p; 0 1].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> shift = np.eye(4)
+    >>> shift[:3, 3] = [1.0, 2.0, 3.0]
+    >>> invert(shift)[:3, 3].tolist()
+    [-1.0, -2.0, -3.0]
+    """
     rotation = np.swapaxes(matrix[..., :3, :3], -1, -2)
     inverse = np.zeros_like(matrix)
     inverse[..., :3, :3] = rotation
@@ -128,7 +213,26 @@ def invert(matrix: FloatArray) -> FloatArray:
 
 
 def rotation_angle_rad(matrices_a: FloatArray, matrices_b: FloatArray) -> FloatArray:
-    """Angle of the rotation between two stacks of transforms or rotations [rad]."""
+    """Angle of the rotation between two stacks of transforms or rotations [rad].
+
+    Parameters
+    ----------
+    matrices_a, matrices_b : numpy.ndarray
+        (N, 4, 4) transforms or (N, 3, 3) rotations.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N,) angles in [0, pi].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> turned = Rotation.from_euler("z", [0.3]).as_matrix()
+    >>> rotation_angle_rad(np.eye(3)[None], turned).round(9).tolist()
+    [0.3]
+    """
     relative = np.einsum("...ji,...jk->...ik", matrices_a[..., :3, :3], matrices_b[..., :3, :3])
     trace = np.clip((np.trace(relative, axis1=-2, axis2=-1) - 1.0) / 2.0, -1.0, 1.0)
     # arccos loses precision near 0: use the skew part as well (atan2 of sin and cos).

@@ -53,6 +53,14 @@ class JointPath(ResultMixin):
     joint_names : the joints, base to tip
     max_condition_number : largest Jacobian condition number along the path [-]
     max_tip_error_m : largest distance between the IK tip and its target [m]
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(3) * 0.004
+    >>> path = JointPath(t, np.zeros((3, 1)), np.zeros((3, 1)), np.zeros((3, 1)), ("j1",))
+    >>> path.sample_period_s, sorted(path.columns())[:2]
+    (0.004, ['j1_rad', 'j1_rad_s'])
     """
 
     time_s: FloatArray

@@ -62,6 +62,12 @@ class Arm:
     home_rad : the IK seed of the first sample [rad]
     base_link, tip_link : the URDF links the chain runs between
     chain : the ikpy ``Chain`` (an origin link, then one link per URDF joint)
+
+    Examples
+    --------
+    >>> arm = load_arm("ur5e")
+    >>> arm.name, arm.dof, bool((arm.lower_rad < arm.home_rad).all())
+    ('ur5e', 6, True)
     """
 
     name: str
@@ -159,7 +165,17 @@ class Arm:
 
 
 def robot_names() -> tuple[str, ...]:
-    """Names of the built-in arms (``--robot``)."""
+    """Names of the built-in arms (``--robot``).
+
+    Returns
+    -------
+    tuple of str
+
+    Examples
+    --------
+    >>> "ur5e" in robot_names()
+    True
+    """
     return tuple(sorted(ROBOTS))
 
 

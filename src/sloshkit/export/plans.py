@@ -43,6 +43,14 @@ class LinePlan:
     time_s, position_m, velocity_m_s, acceleration_m_s2 : samples [s, m, m/s, m/s^2]
     source : where the plan came from (file name or description)
     metadata : ``key: value`` pairs carried to the exported files
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(3) * 0.5
+    >>> plan = LinePlan(t, 0.1 * t, 0.1 + 0 * t, 0 * t, source="demo")
+    >>> plan.sample_period_s, plan.duration_s
+    (0.5, 1.0)
     """
 
     time_s: FloatArray
@@ -123,6 +131,13 @@ class PoseStream:
     metadata : ``key: value`` pairs carried to the exported files
     line : the 1-D plan the stream was made from, if any
     axis : unit vector of the 1-D plan's direction in the path frame, if any
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> stream = PoseStream(np.arange(3) * 0.5, np.zeros((3, 3)), np.tile([0, 0, 0, 1.0], (3, 1)))
+    >>> stream.sample_period_s, stream.resample(0.25).time_s.tolist()
+    (0.5, [0.0, 0.25, 0.5, 0.75, 1.0])
     """
 
     time_s: FloatArray
@@ -229,7 +244,25 @@ def line_to_poses(
 
 
 def read_metadata(path: str | Path) -> dict[str, str]:
-    """``# key: value`` comment lines at the top of a sloshkit file, as a dict."""
+    r"""``# key: value`` comment lines at the top of a sloshkit file, as a dict.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    dict of str
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "plan.csv"
+    >>> _ = out.write_text("# law: quintic\n# distance_m: 0.2\nt_s,x_m\n0,0\n")
+    >>> read_metadata(out)
+    {'law': 'quintic', 'distance_m': '0.2'}
+    """
     metadata: dict[str, str] = {}
     for raw in Path(path).read_text(encoding="utf-8", errors="replace").splitlines():
         line = raw.strip()

@@ -16,10 +16,10 @@ derivatives) and compared on peak and residual first-mode angle and slosh height
 
 The comparison passes when peak and residual first-mode angle and peak and residual wall
 elevation agree within `TOLERANCE` (2 %) relative to the plan's value, no slosh limit is
-broken, and the rebuilt container stays within `PATH_TOLERANCE_M` of the planned path and
-`ORIENTATION_TOLERANCE_RAD` of the planned orientation. A residual below `RESIDUAL_FLOOR` of
-the plan's peak (0.1 %) is compared against that floor instead: 2 % of a residual that is
-numerically zero is noise.
+broken (by more than `LIMIT_TOLERANCE`, 0.1 %, the check's own resolution), and the rebuilt
+container stays within `PATH_TOLERANCE_M` of the planned path and `ORIENTATION_TOLERANCE_RAD`
+of the planned orientation. A residual below `RESIDUAL_FLOOR` of the plan's peak (0.1 %) is
+compared against that floor instead: 2 % of a residual that is numerically zero is noise.
 """
 
 from __future__ import annotations
@@ -50,6 +50,13 @@ PATH_TOLERANCE_M = 1e-4
 ORIENTATION_TOLERANCE_RAD = 1e-3
 #: Residuals are compared relative to max(plan residual, this fraction of the plan's peak).
 RESIDUAL_FLOOR = 1e-3
+#: Relative margin over a slosh limit still counted as meeting it. The round trip rebuilds the
+#: motion from position samples by a spline, while the planner's verification uses the plan's
+#: exact piecewise-constant jerk; the two discretisations move the peak of a move that rides
+#: its limit by about (omega * sample_period)^2 / 24 (6e-4 for 4.7 Hz at 4 ms; measured
+#: 1.1e-4 on the README's 0.5 m plan). A limit exceeded by less than this is within the
+#: check's own resolution, not a broken limit.
+LIMIT_TOLERANCE = 1e-3
 
 METRICS = (
     "peak_angle_deg",
@@ -70,6 +77,14 @@ class RoundTrip:
     max_position_error_m : largest distance of a rebuilt container position from the plan's
     max_orientation_error_rad : largest angle between rebuilt and planned container orientations
     violations : broken tolerances and limits, as sentences
+    method : how the slosh was simulated (1-D or 3-D model)
+
+    Examples
+    --------
+    >>> metrics = {"peak_angle_deg": 2.0}
+    >>> check = RoundTrip(metrics, metrics, {"peak_angle_deg": 0.0}, 1e-6, 1e-5)
+    >>> check.passed, check.to_dict()["max_position_error_m"]
+    (True, 1e-06)
     """
 
     plan_metrics: dict[str, float]
@@ -101,7 +116,30 @@ class RoundTrip:
 
 
 def container_poses_in_path(container_in_base: FloatArray, base_to_path: FloatArray) -> FloatArray:
-    """T_path_container = inv(T_base_path) T_base_container for (N, 4, 4) poses."""
+    """T_path_container = inv(T_base_path) T_base_container for (N, 4, 4) poses.
+
+    Parameters
+    ----------
+    container_in_base : numpy.ndarray
+        Container poses in the robot base frame (N, 4, 4).
+    base_to_path : numpy.ndarray
+        The path frame in the base frame (4, 4).
+
+    Returns
+    -------
+    numpy.ndarray
+        Container poses in the path frame (N, 4, 4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> path_frame = np.eye(4)
+    >>> path_frame[:3, 3] = [0.5, 0.0, 0.2]
+    >>> container = np.eye(4)[None].copy()
+    >>> container[0, :3, 3] = [0.6, 0.0, 0.2]
+    >>> container_poses_in_path(container, path_frame)[0, :3, 3].round(9).tolist()
+    [0.1, 0.0, 0.0]
+    """
     return np.asarray(invert(base_to_path)[None] @ container_in_base, dtype=float)
 
 
@@ -231,6 +269,23 @@ def spatial_metrics(
     ----------
     `sloshkit.sim.spatial.simulate_spatial` (linear spherical pendulums in the container
     frame), on exact (unsmoothed) pose derivatives.
+
+    Examples
+    --------
+    The 3-D model agrees with the 1-D one on a straight, upright move:
+
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> from sloshkit.export.frames import poses_to_matrices
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(101) * 0.004
+    >>> s = t / t[-1]
+    >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
+    >>> position = np.column_stack((x, 0 * x, 0 * x))
+    >>> poses = poses_to_matrices(position, np.tile([0, 0, 0, 1.0], (t.size, 1)))
+    >>> spatial = spatial_metrics(model, t, poses)["peak_angle_deg"]
+    >>> planar = line_metrics(model, t, x)["peak_angle_deg"]
+    >>> bool(abs(spatial - planar) < 0.02 * planar)
+    True
     """
     from sloshkit.export.frames import matrices_to_poses
     from sloshkit.motion.poses import PoseTrajectory
@@ -270,6 +325,23 @@ def compare_spatial(
     Returns
     -------
     RoundTrip
+
+    Examples
+    --------
+    Poses rebuilt exactly pass the round trip:
+
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> from sloshkit.export.frames import poses_to_matrices
+    >>> from sloshkit.export.plans import PoseStream
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> t = np.arange(101) * 0.004
+    >>> s = t / t[-1]
+    >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
+    >>> upright = np.tile([0, 0, 0, 1.0], (101, 1))
+    >>> plan = PoseStream(t, np.column_stack((x, 0 * x, 0 * x)), upright)
+    >>> check = compare_spatial(model, plan, t, poses_to_matrices(plan.position_m, upright))
+    >>> check.passed, check.max_position_error_m
+    (True, 0.0)
     """
     from sloshkit.export.frames import poses_to_matrices
 
@@ -335,7 +407,7 @@ def _verdict(
             height = height or "peak_slosh_height_m"
             checks.append((height, limits.max_wall_elevation_m))
         for key, limit in checks:
-            if export_metrics[key] > limit * (1.0 + 1e-9):
+            if export_metrics[key] > limit * (1.0 + LIMIT_TOLERANCE):
                 violations.append(f"{key}: export {export_metrics[key]:.6g} > limit {limit:.6g}")
     return RoundTrip(
         plan_metrics, export_metrics, differences, position_error, turned, tuple(violations), method

@@ -15,6 +15,16 @@ FloatArray = NDArray[np.float64]
 def read_csv_table(path: str | Path) -> tuple[list[str], FloatArray]:
     r"""A sloshkit CSV: ``#`` lines skipped, a header row, then numeric rows (2-D array).
 
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    tuple
+        (column names, values (rows, columns)).
+
     Examples
     --------
     >>> import tempfile, pathlib

@@ -50,7 +50,41 @@ _SCHEMA: dict[str, set[str]] = {
 
 @dataclass(frozen=True)
 class Scenario:
-    """A parsed scenario: SI values, the analyses to run, and the raw tables for the report."""
+    """A parsed scenario: SI values, the analyses to run, and the raw tables for the report.
+
+    Attributes
+    ----------
+    name, description : str
+        Title and description of the report.
+    model : SloshModel
+        The equivalent model of the container, liquid and fill.
+    distance_m : float
+        Move distance [m].
+    peak_velocity_m_s, duration_s : float or None
+        The move's peak velocity [m/s] or duration [s] (one of them).
+    laws : tuple of str
+        The laws compared.
+    move_limits : tuple
+        Velocity, acceleration and jerk limits of the compared move (None: unlimited).
+    plan_limits : dict
+        The planner's limits (SI; ``max_angle`` and ``max_residual`` in radians).
+    analyses : tuple of str
+        model, calibrate, compare, sweep, plan, cfd.
+    sweep, calibrate, cfd : dict
+        The options of those analyses.
+    paper_comparison : bool
+        Show the seed paper's printed values beside sloshkit's.
+    source : str
+        The scenario file ("" when built in).
+    raw : dict
+        The document as read, for the report.
+
+    Examples
+    --------
+    >>> scenario = parse_scenario(PAPER_SCENARIO)
+    >>> scenario.analyses, round(scenario.plan_limits["sample_period"], 6)
+    (('model', 'calibrate', 'compare', 'sweep', 'plan'), 0.004)
+    """
 
     name: str
     model: SloshModel
@@ -95,6 +129,31 @@ def parse_scenario(
 
     Every key is read with its TOML type checked (`sloshkit.io.schema`); errors name the key
     with its table, e.g. ``[container] radius``.
+
+    Parameters
+    ----------
+    document : dict
+        The TOML document.
+    source : str
+        Where it came from (file name), for messages and the report.
+    base : pathlib.Path, optional
+        Folder that relative data paths are read from.
+
+    Returns
+    -------
+    Scenario
+
+    Examples
+    --------
+    >>> scenario = parse_scenario({"analyses": ["model", "compare"],
+    ...                            "container": {"radius": "20.5mm"}, "fill": {"height": "39mm"},
+    ...                            "move": {"distance": "0.2m", "duration": "1s"}})
+    >>> round(scenario.model.modes[0].frequency_hz, 2), scenario.distance_m
+    (4.72, 0.2)
+    >>> parse_scenario({"container": {"radius": "abc"}})
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: [container] radius = ...
     """
     _check_keys(document, "")
     container_table = schema.section(document, "container")
@@ -233,7 +292,28 @@ def _column(table: dict[str, Any], key: str, default: str) -> str:
 
 
 def read_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario TOML file (see `sloshkit.io.schema.read_document`)."""
+    r"""Read and check a scenario TOML file (see `sloshkit.io.schema.read_document`).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The TOML file.
+
+    Returns
+    -------
+    Scenario
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "vial.toml"
+    >>> _ = path.write_text('name = "vial"\nanalyses = ["model"]\n[container]\nradius = "20.5mm"\n'
+    ...                     '[fill]\nheight = "39mm"\n[move]\ndistance = "0.2m"\n'
+    ...                     'duration = "1s"\n')
+    >>> scenario = read_scenario(path)
+    >>> scenario.name, scenario.source.endswith("vial.toml")
+    ('vial', True)
+    """
     source = Path(path)
     document = schema.read_document(source, "scenario")
     return parse_scenario(document, str(source), source.parent)

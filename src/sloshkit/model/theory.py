@@ -40,6 +40,21 @@ def bessel_roots(n_modes: int) -> np.ndarray:
     Functions* (1964) Table 9.5, to 16 digits as `scipy.special.jnp_zeros` gives them, which the
     tests check): importing scipy.special would double the start-up of every command. More
     modes are computed with `scipy.special.jnp_zeros`. Source: Abramson (1966) eq. 2.13.
+
+    Parameters
+    ----------
+    n_modes : int
+        How many roots.
+
+    Returns
+    -------
+    numpy.ndarray
+        xi_1 ... xi_n.
+
+    Examples
+    --------
+    >>> bessel_roots(3).round(6).tolist()
+    [1.841184, 5.331443, 8.536316]
     """
     count = int(require_in_range("modes", n_modes, 1, MAX_MODES))
     if count <= len(_J1_PRIME_ZEROS):
@@ -73,6 +88,29 @@ def natural_frequency(
     """Natural circular frequency omega_n = sqrt(g xi_n / R tanh(xi_n h / R)) [rad/s].
 
     Source: Abramson (1966) eq. 2.14; De Simone et al. (2024) eq. 1.
+
+    Parameters
+    ----------
+    radius_m, fill_height_m : float
+        Container radius R and fill height h [m].
+    xi : numpy.ndarray or float
+        Roots of J1' (`bessel_roots`).
+    gravity_m_s2 : float
+        Gravity [m/s^2].
+
+    Returns
+    -------
+    numpy.ndarray
+        omega_n [rad/s].
+
+    Examples
+    --------
+    The seed paper's vial: 4.72 Hz for the first mode.
+
+    >>> R, h = 0.0205, 0.039  # the seed paper's vial (De Simone et al. (2024) Table 3)
+    >>> omega = natural_frequency(R, h, bessel_roots(2))
+    >>> (omega / (2 * np.pi)).round(2).tolist()
+    [4.72, 8.04]
     """
     xi = np.asarray(xi, dtype=float)
     return np.sqrt(gravity_m_s2 * xi / radius_m * np.tanh(xi * fill_height_m / radius_m))
@@ -82,6 +120,26 @@ def slosh_mass_ratio(radius_m: float, fill_height_m: float, xi: np.ndarray | flo
     """Slosh mass over liquid mass, m_n / m_F = d tanh(2 xi_n h/d) / (xi_n (xi_n^2 - 1) h) [-].
 
     Source: Abramson (1966) §6.2; Dodge (2000) §3; De Simone et al. (2024) eq. 8 (d = 2R).
+
+    Parameters
+    ----------
+    radius_m, fill_height_m : float
+        Container radius R and fill height h [m].
+    xi : numpy.ndarray or float
+        Roots of J1' (`bessel_roots`).
+
+    Returns
+    -------
+    numpy.ndarray
+        m_n / m_F.
+
+    Examples
+    --------
+    Most of the liquid that sloshes does so in the first mode:
+
+    >>> R, h = 0.0205, 0.039  # the seed paper's vial (De Simone et al. (2024) Table 3)
+    >>> slosh_mass_ratio(R, h, bessel_roots(2)).round(3).tolist()
+    [0.238, 0.007]
     """
     xi = np.asarray(xi, dtype=float)
     d = 2.0 * radius_m
@@ -92,6 +150,29 @@ def pendulum_length(radius_m: float, fill_height_m: float, xi: np.ndarray | floa
     """Pendulum length L_n = d / (2 xi_n tanh(2 xi_n h / d)) = g / omega_n^2 [m].
 
     Source: Abramson (1966) §6.2; De Simone et al. (2024) eq. 9 (d = 2R).
+
+    Parameters
+    ----------
+    radius_m, fill_height_m : float
+        Container radius R and fill height h [m].
+    xi : numpy.ndarray or float
+        Roots of J1' (`bessel_roots`).
+
+    Returns
+    -------
+    numpy.ndarray
+        L_n [m].
+
+    Examples
+    --------
+    L_1 = g / omega_1^2:
+
+    >>> R, h = 0.0205, 0.039  # the seed paper's vial (De Simone et al. (2024) Table 3)
+    >>> xi = bessel_roots(1)
+    >>> length = float(pendulum_length(R, h, xi)[0])
+    >>> omega = float(natural_frequency(R, h, xi)[0])
+    >>> round(length * 1e3, 2), round(9.81 / omega**2 * 1e3, 2)
+    (11.15, 11.15)
     """
     xi = np.asarray(xi, dtype=float)
     d = 2.0 * radius_m
@@ -104,6 +185,26 @@ def bob_offset_from_cg(radius_m: float, fill_height_m: float, xi: np.ndarray | f
     H_n = h/2 - (d/xi_n) tanh(xi_n h / d), the spring-mass location of Dodge (2000) §3. The seed
     paper's Table 3 prints this value (-0.0015 m) as its "pendulum hinge location"; the pivot is
     in fact L_n above the bob (Dodge (2000) §3: the hinge of the equivalent pendulum).
+
+    Parameters
+    ----------
+    radius_m, fill_height_m : float
+        Container radius R and fill height h [m].
+    xi : numpy.ndarray or float
+        Roots of J1' (`bessel_roots`).
+
+    Returns
+    -------
+    numpy.ndarray
+        H_n [m].
+
+    Examples
+    --------
+    The seed paper's Table 3 value:
+
+    >>> R, h = 0.0205, 0.039  # the seed paper's vial (De Simone et al. (2024) Table 3)
+    >>> round(float(bob_offset_from_cg(R, h, bessel_roots(1))[0]), 4)
+    -0.0015
     """
     xi = np.asarray(xi, dtype=float)
     d = 2.0 * radius_m
@@ -117,6 +218,23 @@ def wall_elevation_factor(radius_m: float, xi: np.ndarray | float) -> np.ndarray
     motion, from matching the pendulum's moment to the linear mode shape J1(xi_n r/R) cos(phi)
     (Dodge 2000 §3; Ibrahim 2005 §6.2). Independent of h. The planar-surface mapping
     eta = R tan(theta) gives larger values for the same angle.
+
+    Parameters
+    ----------
+    radius_m : float
+        Container radius R [m].
+    xi : numpy.ndarray or float
+        Roots of J1' (`bessel_roots`).
+
+    Returns
+    -------
+    numpy.ndarray
+        eta_n / sin(theta_n) [m].
+
+    Examples
+    --------
+    >>> (wall_elevation_factor(0.0205, bessel_roots(2)) * 1e3).round(3).tolist()
+    [17.155, 1.495]
     """
     xi = np.asarray(xi, dtype=float)
     return 2.0 * radius_m / (xi**2 - 1.0)
@@ -128,7 +246,35 @@ def bond_number(
     surface_tension_n_m: float,
     gravity_m_s2: float = GRAVITY_M_S2,
 ) -> float:
-    """Bond number Bo = rho g R^2 / sigma [-] (gravity over capillary forces)."""
+    """Bond number Bo = rho g R^2 / sigma [-] (gravity over capillary forces).
+
+    Parameters
+    ----------
+    density_kg_m3 : float
+        Liquid density [kg/m^3].
+    radius_m : float
+        Container radius [m].
+    surface_tension_n_m : float
+        Surface tension [N/m].
+    gravity_m_s2 : float
+        Gravity [m/s^2].
+
+    Returns
+    -------
+    float
+
+    References
+    ----------
+    Ibrahim, R. A., *Liquid Sloshing Dynamics*, Cambridge (2005) §8.2,
+    doi:10.1017/CBO9780511536656.
+
+    Examples
+    --------
+    Water in the seed paper's vial: gravity dominates by far.
+
+    >>> round(bond_number(997.0, 0.0205, 0.072))
+    57
+    """
     return density_kg_m3 * gravity_m_s2 * radius_m**2 / surface_tension_n_m
 
 
@@ -137,6 +283,23 @@ def surface_tension_factor(xi: np.ndarray | float, bond: float) -> np.ndarray:
 
     Capillary correction for a free contact line with a flat static meniscus; source:
     Abramson (1966) ch. 11; Ibrahim (2005) §8.2.
+
+    Parameters
+    ----------
+    xi : numpy.ndarray or float
+        Roots of J1' (`bessel_roots`).
+    bond : float
+        Bond number (`bond_number`).
+
+    Returns
+    -------
+    numpy.ndarray
+        omega_sigma / omega.
+
+    Examples
+    --------
+    >>> surface_tension_factor(bessel_roots(2), 57.0).round(3).tolist()
+    [1.029, 1.224]
     """
     xi = np.asarray(xi, dtype=float)
     return np.sqrt(1.0 + xi**2 / bond)
@@ -163,6 +326,31 @@ def damping_ratio_correlation(
 
     These are fitted to tanks of decimetre size with clean walls; measured damping in small vials
     is often higher (contact-line and meniscus losses), so calibrate from data when you can.
+
+    Parameters
+    ----------
+    radius_m, fill_height_m : float
+        Container radius R and fill height h [m].
+    kinematic_viscosity_m2_s : float
+        nu [m^2/s].
+    law : str
+        seed, sp106 or stephens.
+    gravity_m_s2 : float
+        Gravity [m/s^2].
+
+    Returns
+    -------
+    float
+        zeta_1.
+
+    Examples
+    --------
+    Water (nu = 0.89e-6 m^2/s) in the seed paper's vial:
+
+    >>> R, h = 0.0205, 0.039  # the seed paper's vial (De Simone et al. (2024) Table 3)
+    >>> [round(damping_ratio_correlation(R, h, 0.89e-6, law), 4)
+    ...  for law in ("seed", "sp106", "stephens")]
+    [0.0092, 0.0079, 0.0081]
     """
     if law not in DAMPING_LAWS:
         raise InputError("damping_law", law, "must be one of " + ", ".join(DAMPING_LAWS))

@@ -337,7 +337,30 @@ def comparison_s_curve_limits(
     acceleration_fraction: float | None = None,
 ) -> tuple[float, float, float]:
     """S-curve limits for comparing laws at one peak velocity: the given limits, else the
-    trapezoid's peak velocity and acceleration and a jerk time of 0.1 s (j = 10 a per second)."""
+    trapezoid's peak velocity and acceleration and a jerk time of 0.1 s (j = 10 a per second).
+
+    Parameters
+    ----------
+    distance_m : float
+        Move distance [m].
+    peak_velocity_m_s : float
+        The peak velocity the laws share [m/s].
+    max_velocity_m_s, max_acceleration_m_s2, max_jerk_m_s3 : float, optional
+        Given limits [m/s], [m/s^2], [m/s^3].
+    acceleration_fraction : float, optional
+        The trapezoid's acceleration time over the move time (`trapezoidal`).
+
+    Returns
+    -------
+    tuple of float
+        (velocity [m/s], acceleration [m/s^2], jerk [m/s^3]).
+
+    Examples
+    --------
+    >>> v, a, j = comparison_s_curve_limits(0.2, 0.5)
+    >>> v, round(j / a, 9)
+    (0.5, 10.0)
+    """
     reference = trapezoidal(distance_m, peak_velocity_m_s, None, acceleration_fraction)
     velocity = max_velocity_m_s if max_velocity_m_s is not None else peak_velocity_m_s
     acceleration = (

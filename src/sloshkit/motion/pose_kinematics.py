@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -44,10 +44,31 @@ from scipy.spatial.transform import Rotation
 from sloshkit.errors import InputError, require_positive
 from sloshkit.motion.quaternions import quaternion_matrix, quaternion_rates, sign_continuous
 
-if TYPE_CHECKING:
-    from sloshkit.motion.poses import PoseTrajectory
-
 FloatArray = NDArray[np.float64]
+
+
+class _Poses(Protocol):
+    """What the kinematics read of sampled poses (`sloshkit.motion.poses.PoseTrajectory` is
+    one). Written as a protocol so that this module, which `PoseTrajectory.kinematics` uses,
+    does not import the trajectory's module back."""
+
+    @property
+    def time_s(self) -> FloatArray: ...
+
+    @property
+    def position_m(self) -> FloatArray: ...
+
+    @property
+    def quaternion_xyzw(self) -> FloatArray: ...
+
+    @property
+    def sample_period_s(self) -> float: ...
+
+    @property
+    def is_uniform(self) -> bool: ...
+
+    def resample(self, sample_period_s: float) -> _Poses: ...
+
 
 #: Default 3-dB cut-off of the differentiating filter [Hz].
 DEFAULT_CUTOFF_HZ = 25.0
@@ -67,6 +88,15 @@ class PoseKinematics:
     angular_velocity_body_rad_s, angular_acceleration_body_rad_s2 : container frame (M, 3)
     cutoff_hz : the filter's approximate 3-dB cut-off [Hz] (``inf`` without smoothing)
     window : Savitzky-Golay window length in samples (0 without smoothing)
+
+    Examples
+    --------
+    >>> from sloshkit.motion.laws import quintic
+    >>> from sloshkit.motion.pose_builders import poses_from_law
+    >>> poses = poses_from_law(quintic(0.1, 0.5), sample_period_s=0.002)
+    >>> kinematics = pose_kinematics(poses, cutoff_hz=None)
+    >>> round(float(kinematics.velocity_m_s[:, 0].max()), 4)  # 15/8 d/T for a quintic
+    0.375
     """
 
     time_s: FloatArray
@@ -128,6 +158,25 @@ def savgol_half_width(cutoff_hz: float, sample_period_s: float, degree: int = SA
     Inverts f_c / f_Nyquist = (N + 1) / (3.2 M - 4.6) (Schafer 2011, eq. 11); at least
     degree/2 + 1 so that the window is longer than the polynomial.
 
+    Parameters
+    ----------
+    cutoff_hz : float
+        Wanted 3-dB cut-off [Hz].
+    sample_period_s : float
+        Sample period [s].
+    degree : int
+        Polynomial degree N.
+
+    Returns
+    -------
+    int
+        M (the window has 2 M + 1 samples).
+
+    References
+    ----------
+    Schafer, R. W., What is a Savitzky-Golay filter?, IEEE Signal Process. Mag. 28 (2011) 111,
+    doi:10.1109/MSP.2011.941097.
+
     Examples
     --------
     >>> savgol_half_width(25.0, 0.002)
@@ -140,7 +189,7 @@ def savgol_half_width(cutoff_hz: float, sample_period_s: float, degree: int = SA
 
 
 def pose_kinematics(
-    poses: PoseTrajectory,
+    poses: _Poses,
     sample_period_s: float | None = None,
     *,
     cutoff_hz: float | None = DEFAULT_CUTOFF_HZ,
@@ -166,7 +215,7 @@ def pose_kinematics(
     --------
     >>> import numpy as np
     >>> from sloshkit.motion.laws import septic
-    >>> from sloshkit.motion.poses import poses_from_law
+    >>> from sloshkit.motion.pose_builders import poses_from_law
     >>> kin = pose_kinematics(poses_from_law(septic(0.5, 1.0), sample_period_s=0.002))
     >>> bool(abs(kin.acceleration_m_s2[:, 0].max() - septic(0.5, 1.0).peak(2)) < 0.01)
     True
@@ -208,7 +257,7 @@ def pose_kinematics(
     )
 
 
-def _spline_kinematics(grid: PoseTrajectory, dt: float) -> PoseKinematics:
+def _spline_kinematics(grid: _Poses, dt: float) -> PoseKinematics:
     """Derivatives of interpolating quintic splines (positions and quaternion components)."""
     time = grid.time_s
     degree = min(5, time.size - 1)

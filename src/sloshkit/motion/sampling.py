@@ -8,17 +8,31 @@ sample to floating-point rounding).
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from sloshkit.errors import require_positive
 
-if TYPE_CHECKING:
-    from sloshkit.motion.profile import Motion
-
 FloatArray = NDArray[np.float64]
+
+
+class _Law(Protocol):
+    """What sampling reads of a motion (`sloshkit.motion.profile.Motion` is one): its duration
+    and its derivatives at given times. Written as a protocol so that this module, which
+    `Motion.sample` uses, does not import the motion's module back."""
+
+    @property
+    def duration_s(self) -> float: ...
+
+    def position(self, time_s: ArrayLike) -> FloatArray: ...
+
+    def velocity(self, time_s: ArrayLike) -> FloatArray: ...
+
+    def acceleration(self, time_s: ArrayLike) -> FloatArray: ...
+
+    def jerk(self, time_s: ArrayLike) -> FloatArray: ...
 
 
 def steps_to_reach(duration_s: float, sample_period_s: float) -> int:
@@ -81,7 +95,7 @@ def _checked_steps(duration_s: float, sample_period_s: float) -> int:
     return steps_to_reach(duration_s, sample_period_s)
 
 
-def sample_motion(motion: Motion, sample_period_s: float) -> dict[str, FloatArray]:
+def sample_motion(motion: _Law, sample_period_s: float) -> dict[str, FloatArray]:
     """Samples of a motion at t = 0, Ts, 2 Ts, ..., with the last sample exactly at T.
 
     Parameters
@@ -114,7 +128,7 @@ def sample_motion(motion: Motion, sample_period_s: float) -> dict[str, FloatArra
     }
 
 
-def export_samples(motion: Motion, sample_period_s: float) -> dict[str, FloatArray]:
+def export_samples(motion: _Law, sample_period_s: float) -> dict[str, FloatArray]:
     """Controller samples: t = k Ts from 0 until the first sample at or after T, at rest on the
     target from T on.
 

@@ -240,7 +240,35 @@ def ei(omega_rad_s: float, damping_ratio: float, tolerance: float = 0.05) -> Sha
 
 
 def make_shaper(name: str, omega_rad_s: float, damping_ratio: float) -> Shaper:
-    """A shaper by name: ``zv``, ``zvd`` or ``ei``."""
+    """A shaper by name: ``zv``, ``zvd`` or ``ei``.
+
+    Parameters
+    ----------
+    name : str
+        zv, zvd or ei.
+    omega_rad_s : float
+        The mode's natural frequency [rad/s].
+    damping_ratio : float
+        Its damping ratio.
+
+    Returns
+    -------
+    Shaper
+
+    References
+    ----------
+    Singer, N. C. and Seering, W. P., Preshaping command inputs to reduce system vibration,
+    J. Dyn. Sys., Meas., Control 112 (1990) 76, doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    A ZV shaper's second impulse comes half a damped period later:
+
+    >>> import math
+    >>> shaper = make_shaper("zv", 2 * math.pi, 0.0)
+    >>> shaper.times_s.tolist(), shaper.amplitudes.tolist()
+    ([0.0, 0.5], [0.5, 0.5])
+    """
     if name == "zv":
         return zv(omega_rad_s, damping_ratio)
     if name == "zvd":
@@ -253,7 +281,36 @@ def make_shaper(name: str, omega_rad_s: float, damping_ratio: float) -> Shaper:
 def residual_vibration(shaper: Shaper, omega_rad_s: ArrayLike, damping_ratio: float) -> FloatArray:
     """Percentage residual vibration V (0..1) of a mode after the impulses, relative to a
     single unit impulse (Singer & Seering 1990 eq. 4):
-    V = exp(-zeta w t_N) sqrt((sum A_i e^{zeta w t_i} cos w_d t_i)^2 + (... sin ...)^2)."""
+    V = exp(-zeta w t_N) sqrt((sum A_i e^{zeta w t_i} cos w_d t_i)^2 + (... sin ...)^2).
+
+    Parameters
+    ----------
+    shaper : Shaper
+        The impulses.
+    omega_rad_s : array_like
+        Natural frequencies of the mode [rad/s].
+    damping_ratio : float
+        Its damping ratio.
+
+    Returns
+    -------
+    numpy.ndarray
+        V for each frequency.
+
+    References
+    ----------
+    Singer, N. C. and Seering, W. P., J. Dyn. Sys., Meas., Control 112 (1990) 76,
+    doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    Zero at the design frequency; a ZVD shaper is more robust to a 20 % error than a ZV:
+
+    >>> residual_vibration(zv(30.0, 0.02), [30.0, 36.0], 0.02).round(3).tolist()
+    [0.0, 0.297]
+    >>> residual_vibration(zvd(30.0, 0.02), [36.0], 0.02).round(3).tolist()
+    [0.089]
+    """
     omega = np.asarray(omega_rad_s, dtype=float)[..., None]
     damped = omega * math.sqrt(1.0 - damping_ratio**2)
     t = shaper.times_s

@@ -3,7 +3,8 @@
 - `sloshkit.plan.problem`: limits, `PlanProblem`, candidates.
 - `sloshkit.plan.verification`: every candidate re-simulated from its sampled export.
 - `sloshkit.plan.searches`: the paper's laws and shaped S-curves.
-- `sloshkit.plan.optimal`: minimum-time control (casadi/IPOPT).
+- `sloshkit.plan.optimal`: minimum-time control on the export grid (linear programs, HiGHS;
+  large-angle pendulums by casadi/IPOPT).
 - `sloshkit.plan.planner`: `plan` and `PlanResult`.
 
 The package itself is callable: ``sloshkit.plan(problem, ...)`` is

@@ -1,342 +1,385 @@
-"""The minimum-time problem transcribed on the controller's export grid (casadi/IPOPT).
+"""The minimum-time problem on the controller's export grid, as linear programs (HiGHS).
 
 The move is a piecewise-constant jerk on the export grid t_k = k Ts: N - 1 full steps and a
-last, shorter step of length tau in [0, Ts], so that T = (N - 1) Ts + tau is continuous. The
+last, shorter step of length tau in (0, Ts], so that T = (N - 1) Ts + tau is continuous. The
 slosh is what the verification simulates: the exported velocity samples v_k = v(k Ts) (v_N = 0,
 the move is over at the last sample) drive the exact first-order-hold discretisation of each
 pendulum (Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 3rd ed. (1998)
 §6.3.2): z_{k+1} = Phi z_k + Gamma v_k, theta_k = z_k + g1 v_k. The slosh limits are imposed at
 exactly the samples the verification checks, so the planned move passes it without tightening
-and solving again. Only the last step's kinematics are nonlinear (polynomial in tau); for a fixed
-duration the problem is convex (linear constraints, one second-order cone per model).
+and solving again.
 
-One NLP is built per shape (steps, pendulums, models, wall limit) and cached; the numbers (the
-discretisations, limits, distance, cost weights) are parameters, and the duration, the leading
-steps held at rest and the slack are bounds. Holding the first steps at rest shifts the move to
-fewer effective steps (the pendulums start from rest, so a delay changes nothing else): one
-solver serves every duration up to its shape. Variables are scaled by their limits.
+For a fixed duration every constraint is linear in the jerks and homogeneous (the move scaled
+by c in [0, 1] still meets every limit), except the residual circle, which is replaced by an
+inscribed-facet polygon (`FACETS` tangent lines, the amplitude checked afterwards and the move
+scaled down when the polygon's corners let it exceed the circle, at most
+1/cos(pi/FACETS) - 1 = 7.5e-5 relative). So the longest distance a move of duration T can
+travel, ``D*(T)``, is one sparse linear program (states and jerks as variables: Boyd &
+Vandenberghe, *Convex Optimization*, Cambridge (2004) §4.3; solved by HiGHS, Huangfu & Hall,
+Math. Prog. Comput. 10 (2018) 119-142, doi:10.1007/s12532-017-0130-5), and the minimum time
+is the root of D*(T) = D (`sloshkit.plan.optimal`). The move of distance D at that duration is
+the longest move scaled by D / D*.
 
-Three uses of the same solver (direct transcription: Betts, *Practical Methods for Optimal
-Control*, 2nd ed., SIAM (2010) ch. 4, doi:10.1137/1.9780898718577):
-
-- ``margin``: for a number of steps at tau = Ts, the largest uniform relative margin -s from
-  every limit (s <= 0: feasible);
-- ``time``: for a number of steps, the shortest last step tau with every limit met;
-- ``smooth``: at a given duration, the least integrated squared jerk rate.
+The smooth variant at a fixed, slightly longer duration minimises the total variation of the
+jerk (the L1 norm of its rate, sum |u_k - u_{k-1}|) over the same constraints with the
+distance fixed: another linear program (HiGHS's quadratic solver took seconds on the squared
+rate).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy import sparse
+
+from sloshkit.plan.grid_moves import Limits, Move, Pendulum, measure, steps_for_duration
 
 FloatArray = NDArray[np.float64]
 
-#: Relative margin the time-optimal and smooth moves keep from every limit, so that rounding in
-#: the verification (which allows 1e-7) never flags them.
+__all__ = ["ExportGrid", "Limits", "Move", "Pendulum", "measure", "steps_for_duration"]
+
+#: Relative margin every move keeps from every limit, so that rounding in the verification
+#: (which allows 1e-7) never flags it.
 SAFETY_MARGIN = 1e-6
 
-#: Parameters: 8 problem numbers, 3 cost weights, then 12 per pendulum.
-_HEAD, _WEIGHTS, _PER = 8, 3, 12
+#: Relative margin of the smooth variant from every limit (it is not scaled after the solve).
+SMOOTH_MARGIN = 1e-4
 
-_SOLVERS: dict[tuple[int, int, int, bool], tuple[Any, int]] = {}
+#: Tangent lines of the residual polygon.
+FACETS = 256
 
-
-@dataclass(frozen=True)
-class Pendulum:
-    """One mode of one model of the band, discretised on the export grid.
-
-    ``phi`` (2x2), ``gamma`` (2,), ``g1`` (2,) as returned by
-    `sloshkit.sim.discretisation.velocity_driven_discretisation`; the pendulums of a problem
-    are ordered model-major, and the first of each model is its first mode (angle and residual
-    limits).
-    """
-
-    phi: FloatArray
-    gamma: FloatArray
-    g1: FloatArray
-    omega_rad_s: float
-    damping_ratio: float
-    length_m: float
-    wall_factor_m: float
+#: Steps x pendulums above which the first solve is HiGHS's interior-point method with
+#: crossover (measured on the benchmark's problems: 0.67 s against the dual simplex's 1.0 s at
+#: 830 steps x 3 pendulums, 0.23 against 0.29 s at 441 x 3, 0.09 against 0.06 s at 392 x 1).
+IPM_SIZE = 1000
 
 
-@dataclass(frozen=True)
-class Limits:
-    """Distance, machine and slosh limits of one problem and the sample period (SI)."""
+class ExportGrid:
+    """The linear program of one problem on its export grid, built once and re-solved.
 
-    distance_m: float
-    max_velocity_m_s: float
-    max_acceleration_m_s2: float
-    max_jerk_m_s3: float
-    max_angle_rad: float
-    max_residual_rad: float
-    max_wall_elevation_m: float | None
-    sample_period_s: float
+    One HiGHS model of ``steps`` steps serves every duration up to ``steps`` sample periods:
+    the first steps are held at rest (the pendulums start from rest, so a delay changes
+    nothing else) and only the last step's few coefficients depend on tau. Each solve changes
+    those bounds and coefficients and restarts the simplex from the previous basis.
 
-
-@dataclass(frozen=True)
-class Solution:
-    """One solve: jerk of each effective step [m/s^3], duration T [s], last step [s], slack s
-    (the relative margin from the tightest limit is -s), IPOPT's return status and success."""
-
-    jerks_m_s3: FloatArray
-    duration_s: float
-    last_step_s: float
-    slack: float
-    status: str
-    success: bool
-
-
-def _build(ca: Any, steps: int, per_model: int, models: int, wall: bool) -> tuple[Any, int]:
-    """The NLP of one shape, every number a parameter, built from matrix expressions.
-
-    Returns (solver, number of equality rows, which come first in g).
-    """
-    n, count = steps, per_model * models
-    p = ca.SX.sym("p", _HEAD + _WEIGHTS + _PER * count)
-    active = ca.SX.sym("m", n + 1)  # 1 from the node where the move starts, 0 before
-    distance, vmax, amax, jmax, theta_max, residual_max, eta_max, ts = (p[i] for i in range(8))
-    w_slack, w_time, w_rate = p[8], p[9], p[10]
-    q = ca.reshape(p[_HEAD + _WEIGHTS :], _PER, count)  # one column per pendulum
-
-    kin = ca.SX.sym("k", 3, n + 1)  # position / D, velocity / vmax, acceleration / amax
-    z = ca.SX.sym("z", 2 * count, n + 1)  # scaled shifted pendulum states at the samples
-    jerk = ca.SX.sym("u", n)  # jerk / jmax of each step
-    tau = ca.SX.sym("tau")  # last step / Ts
-    slack = ca.SX.sym("s")
-
-    # Kinematics: constant jerk over each step, the last one tau Ts long.
-    h = ca.horzcat(ca.repmat(ts, 1, n - 1), tau * ts)
-    pos, vel, acc = distance * kin[0, :n], vmax * kin[1, :n], amax * kin[2, :n]
-    u = jmax * jerk.T
-    kinematics = ca.vertcat(
-        kin[0, 1:] - (pos + vel * h + acc * h**2 / 2 + u * h**3 / 6) / distance,
-        kin[1, 1:] - (vel + acc * h + u * h**2 / 2) / vmax,
-        kin[2, 1:] - (acc + u * h) / amax,
-    )
-    # Pendulums on the export grid: sample k < N is node k; sample N is at rest (v = 0).
-    scale = ca.vec(ca.vertcat(q[7, :], q[8, :]))  # (2 count): z0 and z1 scales interleaved
-    blocks = [ca.reshape(q[0:4, i], 2, 2).T for i in range(count)]
-    phi = ca.diagcat(*blocks)
-    gamma = ca.vec(q[4:6, :])
-    states = ca.repmat(scale, 1, n + 1) * z
-    pendulums = z[:, 1:] - (ca.mtimes(phi, states[:, :n]) + ca.mtimes(gamma, vel)) / ca.repmat(
-        scale, 1, n
-    )
-    equalities = ca.vertcat(ca.vec(kinematics), ca.vec(pendulums))
-    samples = ca.horzcat(vel[:, 1:], ca.SX(1, 1))  # v_1 .. v_{N-1}, 0
-    angles = states[0::2, 1:] + ca.mtimes(q[6, :].T, samples)  # (count, N): theta_1 .. theta_N
-
-    # Slack only where the move runs: rows of the idle steps would all read s >= -1.
-    # Velocity within each step: its Bernstein coefficients v_k, v_k + a_k h / 2, v_{k+1} bound
-    # the quadratic, so the midpoint row keeps the whole curve within the limit, not only the
-    # samples.
-    bernstein = (vel + acc * h / 2) / vmax
-    rows = [kin[1, 1:n].T, bernstein.T, kin[2, 1:n].T, jerk]
-    bounds = [1 + active[1:n] * slack, 1 + active[:n] * slack]
-    bounds += [1 + active[1:n] * slack, 1 + active[:n] * slack]
-    firsts = [m * per_model for m in range(models)]
-    rows += [angles[i, :].T / theta_max for i in firsts]
-    bounds += [1 + active[1:] * slack for _ in firsts]
-    bound = 1 + slack
-    residuals = []
-    for i in firsts:
-        omega, zeta = q[9, i], q[10, i]
-        end_angle, end_rate = angles[i, n - 1], states[2 * i + 1, n]  # y_N = theta'_N
-        # B of `sloshkit.sim.metrics.free_oscillation_components`, the damping a parameter here
-        quadrature = (end_rate + zeta * omega * end_angle) / (omega * ca.sqrt(1 - zeta**2))
-        residuals.append((end_angle**2 + quadrature**2) / residual_max**2 - bound**2)
-    if wall:
-        for m in range(models):
-            members = range(m * per_model, (m + 1) * per_model)
-            # sum f_n theta_n as `sloshkit.sim.metrics.wall_elevation`, whose factors must be
-            # numbers; here they are parameters of the solver.
-            eta = sum(q[11, i] * angles[i, :] for i in members) / eta_max
-            rows.append(eta.T)
-            bounds.append(1 + active[1:] * slack)
-    values, limits = ca.vertcat(*rows), ca.vertcat(*bounds)
-    inequalities = ca.vertcat(values - limits, -values - limits, *residuals)
-
-    rate = ca.sumsqr(jerk[1:] - jerk[:-1])
-    objective = w_slack * slack + w_time * tau + (w_rate * rate + 1e-9 * ca.sumsqr(jerk)) / n
-    variables = ca.vertcat(ca.vec(kin), ca.vec(z), jerk, tau, slack)
-    solver = ca.nlpsol(
-        "exact_grid",
-        "ipopt",
-        {
-            "x": variables,
-            "p": ca.vertcat(p, active),
-            "f": objective,
-            "g": ca.vertcat(equalities, inequalities),
-        },
-        {
-            "print_time": False,
-            "ipopt": {
-                "print_level": 0,
-                "sb": "yes",
-                "max_iter": 400,
-                "tol": 1e-7,
-                "constr_viol_tol": 1e-10,
-                "bound_relax_factor": 0.0,
-                "mu_strategy": "adaptive",
-            },
-        },
-    )
-    return solver, int(equalities.shape[0])
-
-
-class ExactGrid:
-    """The cached solver of one shape and the numbers of one problem.
+    The pendulum states (theta, theta' + v / L) at the samples are variables, so the angle
+    limits are bounds, not rows. A solution is never trusted as it stands: its end state is
+    projected onto rest (the solver meets equalities to 1e-7 only), and the move is simulated
+    again with the verification's discretisation; its reach is the distance divided by the
+    largest ratio of any quantity to its limit (every constraint is homogeneous).
 
     Parameters
     ----------
     limits : Limits
         Distance, limits and sample period.
     pendulums : list of Pendulum
-        The modes kept, model-major: ``per_model`` modes of model 0, then of model 1, ...
-    models : int
-        Number of models of the robustness band.
+        The modes kept (the first mode of each model carries the angle and residual limits;
+        the others only enter the wall elevation).
     steps : int
-        Largest number of steps N the solver can plan (its shape).
+        Largest number of steps N (the model's shape).
+
+    Returns
+    -------
+    ExportGrid
+
+    Examples
+    --------
+    >>> from sloshkit.sim.discretisation import velocity_driven_discretisation
+    >>> matrices = velocity_driven_discretisation(29.66, 0.03, 0.01115, 4e-3)
+    >>> grid = ExportGrid(Limits(0.05, 1.5, 20.0, 500.0, 0.0873, 0.00436, None, 4e-3),
+    ...                   [Pendulum(*matrices, 29.66, 0.03, 0.01115, 0.0, True, 0)], 100)
+    >>> round(grid.longest(0.4).distance_m, 4)
+    0.028
     """
 
-    def __init__(self, limits: Limits, pendulums: list[Pendulum], models: int, steps: int) -> None:
-        import casadi as ca
+    def __init__(self, limits: Limits, pendulums: list[Pendulum], steps: int) -> None:
+        self.limits, self.pendulums, self.steps = limits, pendulums, steps
+        self.programs = 0
+        self.iterations = 0
+        self._highs: Any = None
+        self._state: tuple[int, float] = (-1, -1.0)
+        self._matrix, self._row_lower, self._row_upper, self._cost = self._assemble(
+            limits.sample_period_s
+        )
 
-        self.limits, self.pendulums, self.models, self.steps = limits, pendulums, models, steps
-        wall = limits.max_wall_elevation_m is not None
-        key = (steps, len(pendulums) // models, models, wall)
-        if key not in _SOLVERS:
-            _SOLVERS[key] = _build(ca, *key)
-        self.solver, self.equalities = _SOLVERS[key]
-        lim = limits
-        head = [
-            lim.distance_m,
-            lim.max_velocity_m_s,
-            lim.max_acceleration_m_s2,
-            lim.max_jerk_m_s3,
-            lim.max_angle_rad,
-            lim.max_residual_rad,
-            lim.max_wall_elevation_m or 1.0,
-            lim.sample_period_s,
-        ]
-        rows: list[float] = []
-        for pend in pendulums:
-            rows += [*np.ravel(pend.phi), *pend.gamma, pend.g1[0]]
-            rows += [lim.max_angle_rad, lim.max_velocity_m_s / pend.length_m]
-            rows += [pend.omega_rad_s, pend.damping_ratio, pend.wall_factor_m]
-        self._head, self._rows = head, rows
-        self.width = 3 * (steps + 1) + 2 * len(pendulums) * (steps + 1) + steps + 2
+    # Layout: u (jerk / jmax) 0..N-1, a (/ amax) and v (/ vmax) at nodes 1..N, then per
+    # pendulum its states (theta / theta_max, y / (vmax / L)) at samples 1..N.
+    def _columns(self) -> tuple[Any, Any, Any]:
+        n = self.steps
+        steps = np.arange(n)
+        return steps, n + steps, 2 * n + steps
 
-    def solve(
-        self,
-        effective_steps: int,
-        mode: str,
-        last_step_s: float | None = None,
-        slack: float = -SAFETY_MARGIN,
-    ) -> Solution:
-        """Solve with ``effective_steps`` steps (the first ``steps - effective_steps`` held at
-        rest).
+    def _assemble(self, tau: float) -> tuple[Any, FloatArray, FloatArray, FloatArray]:
+        """Constraint matrix (CSC), row bounds and the distance / D per variable."""
+        lim, ts, n = self.limits, self.limits.sample_period_s, self.steps
+        h = np.full(n, ts)
+        h[-1] = tau
+        jmax, amax, vmax = lim.max_jerk_m_s3, lim.max_acceleration_m_s2, lim.max_velocity_m_s
+        width = 3 * n + 2 * len(self.pendulums) * n
+        steps = np.arange(n)
+        inner = steps[1:]
+        iu, ia, iv = self._columns()
+        rows: list[Any] = []
+        cols: list[Any] = []
+        vals: list[Any] = []
 
-        ``mode``: ``margin`` (tau = Ts, minimise the slack), ``time`` (slack fixed, minimise
-        tau) or ``smooth`` (slack and ``last_step_s`` fixed, minimise the jerk rate).
-        """
-        n, count, ts = self.steps, len(self.pendulums), self.limits.sample_period_s
-        idle = n - effective_steps
+        def put(row: Any, col: Any, val: Any) -> None:
+            row = np.asarray(row, dtype=np.int64)
+            rows.append(row)
+            cols.append(np.asarray(col, dtype=np.int64))
+            vals.append(np.broadcast_to(np.asarray(val, dtype=float), row.shape).copy())
+
+        # Kinematics, step k from node k to k + 1 (node 0 at rest: its terms drop).
+        put(steps, ia, 1.0)
+        put(inner, ia[:-1], -1.0)
+        put(steps, iu, -jmax * h / amax)
+        put(n + steps, iv, 1.0)
+        put(n + inner, iv[:-1], -1.0)
+        put(n + inner, ia[:-1], -amax * h[1:] / vmax)
+        put(n + steps, iu, -jmax * h**2 / (2 * vmax))
+        row = 2 * n
+        # Pendulums in s = z + g1 v: s_{k+1} = Phi s_k + g1 v_{k+1} + (Gamma - Phi g1) v_k,
+        # v_k the sample k = node k for k < N (and v_N = 0).
+        for index, pend in enumerate(self.pendulums):
+            scale = np.array([lim.max_angle_rad, vmax / pend.length_m])
+            phi = pend.phi * scale[None, :] / scale[:, None]
+            now = pend.g1 * vmax / scale
+            before = (pend.gamma - pend.phi @ pend.g1) * vmax / scale
+            base = 3 * n + 2 * n * index
+            for c in range(2):
+                here = row + 2 * steps + c
+                put(here, base + 2 * steps + c, 1.0)
+                put(here, iv, -now[c])
+                for d in range(2):
+                    put(here[1:], base + 2 * inner - 2 + d, -phi[c, d])
+                put(here[1:], iv[:-1], -before[c])
+            row += 2 * n
+        equalities = row
+        # Two-sided rows |row| <= 1: the velocity within each step (its Bernstein midpoint
+        # v_k + a_k h_k / 2 bounds the quadratic with v_k and v_{k+1}), the wall elevation.
+        mid = np.arange(n - 1)
+        put(row + mid, iv[mid], 1.0)
+        put(row + mid, ia[mid], amax * h[1:] / (2 * vmax))
+        row += n - 1
+        if lim.max_wall_elevation_m is not None:
+            for model in sorted({p.model for p in self.pendulums}):
+                for index, pend in enumerate(self.pendulums):
+                    if pend.model == model:
+                        base = 3 * n + 2 * n * index
+                        factor = pend.wall_factor_m * lim.max_angle_rad / lim.max_wall_elevation_m
+                        put(row + steps, base + 2 * steps, factor)
+                row += n
+        two_sided = row
+        # Residual polygon: cos(p) theta_N + sin(p) B_N <= r, B = (theta' + zeta w theta) / w_d
+        # (theta' = y at the last sample, where v = 0).
+        phases = np.linspace(0.0, 2 * math.pi, FACETS, endpoint=False)
+        for index, pend in enumerate(self.pendulums):
+            if pend.limited:
+                last = 3 * n + 2 * n * index + 2 * (n - 1)
+                damped = pend.omega_rad_s * math.sqrt(1.0 - pend.damping_ratio**2)
+                zeta_w = pend.damping_ratio * pend.omega_rad_s / damped
+                facet = row + np.arange(FACETS)
+                theta = lim.max_angle_rad / lim.max_residual_rad
+                rate = vmax / pend.length_m / lim.max_residual_rad / damped
+                put(
+                    facet, np.full(FACETS, last), theta * (np.cos(phases) + zeta_w * np.sin(phases))
+                )
+                put(facet, np.full(FACETS, last + 1), rate * np.sin(phases))
+                row += FACETS
+        # Distance travelled / D: sum over steps of v_k h + a_k h^2 / 2 + u_k h^3 / 6.
+        cost = np.zeros(width)
+        cost[iu] = jmax * h**3 / 6
+        cost[ia[:-1]] = amax * h[1:] ** 2 / 2
+        cost[iv[:-1]] = vmax * h[1:]
+        cost /= lim.distance_m
+        put(np.full(width, row), np.arange(width), cost)
+        row += 1
+        matrix = sparse.csc_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(row, width),
+        )
+        matrix.sum_duplicates()
+        bound = 1.0 - SAFETY_MARGIN
+        lower = np.zeros(row)
+        upper = np.zeros(row)
+        lower[equalities:two_sided], upper[equalities:two_sided] = -bound, bound
+        lower[two_sided:], upper[two_sided:] = -np.inf, bound
+        upper[-1] = np.inf
+        return matrix, lower, upper, cost
+
+    def _solver(self, smooth: bool) -> Any:
+        """A HiGHS instance holding the program: the longest move, or (``smooth``) the move
+        over the distance with the least total variation of the jerk, sum |u_k - u_{k-1}|
+        (jerk 0 before and after the move), through n + 1 extra variables d_k >= |u_k -
+        u_{k-1}| (an L1 cost on the jerk rate keeps the program linear)."""
+        import highspy
+
+        n = self.steps
+        matrix, row_lower, row_upper = self._matrix, self._row_lower.copy(), self._row_upper.copy()
+        width = matrix.shape[1]
+        bound = self._bound(smooth)
+        limited = np.isfinite(row_upper) & (row_upper > 0)  # limits (not equalities, distance)
+        row_upper[limited] *= bound / (1.0 - SAFETY_MARGIN)
+        row_lower[limited & np.isfinite(row_lower)] *= bound / (1.0 - SAFETY_MARGIN)
+        col_lower = np.full(width, -np.inf)
+        col_lower[: 3 * n] = -bound
+        for index, pend in enumerate(self.pendulums):
+            if pend.limited:  # |theta| <= theta_max at samples 1..N
+                col_lower[3 * n + 2 * n * index : 3 * n + 2 * n * (index + 1) : 2] = -bound
+        col_upper = -col_lower
+        _, ia, iv = self._columns()
+        col_lower[[ia[-1], iv[-1]]] = col_upper[[ia[-1], iv[-1]]] = 0.0  # at rest at node N
+        cost = self._cost
+        if smooth:
+            row_lower[-1] = row_upper[-1] = 1.0  # the distance is fixed
+            # The polygon inscribed in the residual circle (nothing is scaled afterwards).
+            row_upper[np.isneginf(row_lower)] *= math.cos(math.pi / FACETS)
+            jumps = n + 1
+            difference = sparse.diags([1.0, -1.0], [0, -1], shape=(jumps, n))  # u_k - u_{k-1}
+            pad = sparse.csc_matrix((jumps, width - n))
+            eye = sparse.identity(jumps)
+            extra = sparse.vstack(
+                (sparse.hstack((-difference, pad, eye)), sparse.hstack((difference, pad, eye)))
+            )
+            matrix = sparse.vstack(
+                (sparse.hstack((matrix, sparse.csc_matrix((matrix.shape[0], jumps)))), extra)
+            ).tocsc()
+            row_lower = np.concatenate((row_lower, np.zeros(2 * jumps)))
+            row_upper = np.concatenate((row_upper, np.full(2 * jumps, np.inf)))
+            col_lower = np.concatenate((col_lower, np.zeros(jumps)))
+            col_upper = np.concatenate((col_upper, np.full(jumps, np.inf)))
+            cost = np.concatenate((np.zeros(width), np.ones(jumps)))
+            width += jumps
+        lp = highspy.HighsLp()
+        lp.num_col_, lp.num_row_ = width, matrix.shape[0]
+        lp.col_cost_ = cost
+        lp.col_lower_, lp.col_upper_ = col_lower, col_upper
+        lp.row_lower_, lp.row_upper_ = row_lower, row_upper
+        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+        lp.a_matrix_.start_ = matrix.indptr.astype(np.int32)
+        lp.a_matrix_.index_ = matrix.indices.astype(np.int32)
+        lp.a_matrix_.value_ = matrix.data
+        lp.sense_ = highspy.ObjSense.kMinimize if smooth else highspy.ObjSense.kMaximize
+        solver = highspy.Highs()  # type: ignore[no-untyped-call]
+        solver.setOptionValue("output_flag", False)
+        solver.setOptionValue("threads", 1)
+        solver.setOptionValue("solver", "simplex")
+        solver.passModel(lp)
+        return solver
+
+    @staticmethod
+    def _bound(smooth: bool) -> float:
+        """Scaled limit of every quantity: the smooth move keeps `SMOOTH_MARGIN` (it cannot
+        be scaled afterwards, so the solver's 1e-7 tolerances must stay inside it)."""
+        return 1.0 - (SMOOTH_MARGIN if smooth else SAFETY_MARGIN)
+
+    def _set(
+        self, solver: Any, effective_steps: int, tau: float, state: tuple[int, float], bound: float
+    ) -> None:
+        """Hold the first steps at rest and set the last step's coefficients (only what
+        changed since ``state``); ``bound`` is the jerk bound of the moving steps."""
+        n = self.steps
         if not 1 <= effective_steps <= n:
             raise ValueError(f"effective_steps must be in 1..{n}")
-        weights = {"margin": [1.0, 0.0, 0.0], "time": [1e4, 1.0, 0.0], "smooth": [0.0, 0.0, 1.0]}
-        mask = (np.arange(n + 1) >= idle).astype(float)
-        params = np.concatenate((self._head, weights[mode], self._rows, mask))
-        low = np.full(self.width, -np.inf)
-        high = np.full(self.width, np.inf)
-        kin_end = 3 * (n + 1)
-        z_end = kin_end + 2 * count * (n + 1)
-        kin_low = low[:kin_end].reshape(n + 1, 3)  # column-major vec of (3, n+1)
-        kin_high = high[:kin_end].reshape(n + 1, 3)
-        kin_low[: idle + 1] = kin_high[: idle + 1] = 0.0  # at rest until the move starts
-        kin_low[n] = kin_high[n] = (1.0, 0.0, 0.0)  # at rest on the target
-        z_low = low[kin_end:z_end].reshape(n + 1, 2 * count)
-        z_high = high[kin_end:z_end].reshape(n + 1, 2 * count)
-        z_low[: idle + 1] = z_high[: idle + 1] = 0.0
-        jerk_low, jerk_high = low[z_end : z_end + n], high[z_end : z_end + n]
-        jerk_low[:idle] = jerk_high[:idle] = 0.0
-        tau_index, slack_index = z_end + n, z_end + n + 1
-        if mode == "margin":
-            low[tau_index] = high[tau_index] = 1.0
-            low[slack_index], high[slack_index] = -0.5, 1e3
-        elif mode == "time":  # an exact penalty on the slack: positive only when infeasible
-            low[tau_index], high[tau_index] = 0.0, 1.0
-            low[slack_index], high[slack_index] = slack, 1e3
-        else:
-            low[slack_index] = high[slack_index] = slack
-            if True:
-                assert last_step_s is not None
-                low[tau_index] = high[tau_index] = last_step_s / ts
-        guess = self._guess(effective_steps, low, high, tau_index, slack_index)
-        constraints = int(self.solver.size_out("g")[0])
-        lbg = np.full(constraints, -np.inf)
-        lbg[: self.equalities] = 0.0
-        ubg = np.zeros(constraints)
-        # The equations of the idle steps hold trivially (every variable fixed at rest): free
-        # them, so that IPOPT does not count them as constraints.
-        kinematic_rows = 3 * n
-        lbg[: 3 * idle] = -np.inf
-        ubg[: 3 * idle] = np.inf
-        lbg[kinematic_rows : kinematic_rows + 2 * count * idle] = -np.inf
-        ubg[kinematic_rows : kinematic_rows + 2 * count * idle] = np.inf
-        result = self.solver(x0=guess, p=params, lbx=low, ubx=high, lbg=lbg, ubg=ubg)
-        stats = self.solver.stats()
-        x = np.asarray(result["x"], dtype=float).ravel()
-        tau = float(x[tau_index]) * ts
-        jerks = x[z_end + idle : z_end + n] * self.limits.max_jerk_m_s3
-        status = str(stats.get("return_status", ""))
-        success = bool(stats.get("success", False)) or status == "Solved_To_Acceptable_Level"
-        return Solution(
-            jerks_m_s3=np.asarray(jerks, dtype=float),
-            duration_s=(effective_steps - 1) * ts + tau,
-            last_step_s=tau,
-            slack=float(x[slack_index]),
-            status=status,
-            success=success,
-        )
+        idle = n - effective_steps
+        iu, ia, iv = self._columns()
+        if idle != state[0]:
+            low = np.where(iu < idle, 0.0, -bound)
+            solver.changeColsBounds(n, iu.astype(np.int32), low, -low)
+        if tau != state[1]:
+            lim = self.limits
+            jmax, amax, vmax = lim.max_jerk_m_s3, lim.max_acceleration_m_s2, lim.max_velocity_m_s
+            last, before, distance_row = n - 1, n - 2, self._matrix.shape[0] - 1
+            bernstein = 2 * n + 2 * len(self.pendulums) * n + before
+            entries = [
+                (last, iu[last], -jmax * tau / amax),
+                (n + last, iu[last], -jmax * tau**2 / (2 * vmax)),
+            ]
+            costs = [(iu[last], jmax * tau**3 / 6)]
+            if n > 1:
+                entries += [
+                    (n + last, ia[before], -amax * tau / vmax),
+                    (bernstein, ia[before], amax * tau / (2 * vmax)),
+                ]
+                costs += [(ia[before], amax * tau**2 / 2), (iv[before], vmax * tau)]
+            for column, value in costs:
+                entries.append((distance_row, column, value / lim.distance_m))
+                if solver is self._highs:  # the longest move: the distance is the objective
+                    solver.changeColCost(int(column), value / lim.distance_m)
+            for r, column, value in entries:
+                solver.changeCoeff(int(r), int(column), value)
 
-    def _guess(
-        self, effective: int, low: FloatArray, high: FloatArray, tau_index: int, slack_index: int
-    ) -> FloatArray:
-        """A start point: a move along a smooth (septic) profile of the effective duration."""
-        n, ts = self.steps, self.limits.sample_period_s
-        guess = np.zeros(self.width)
-        idle = n - effective
-        duration = effective * ts
-        t = (np.arange(n + 1) - idle).clip(0) * ts / duration
-        t = t.clip(0.0, 1.0)
-        s = 35 * t**4 - 84 * t**5 + 70 * t**6 - 20 * t**7
-        v = (140 * t**3 - 420 * t**4 + 420 * t**5 - 140 * t**6) / duration
-        a = (420 * t**2 - 1680 * t**3 + 2100 * t**4 - 840 * t**5) / duration**2
-        lim = self.limits
-        kin = np.stack(
-            (
-                s,
-                v * lim.distance_m / lim.max_velocity_m_s,
-                a * lim.distance_m / lim.max_acceleration_m_s2,
-            ),
-            axis=1,
-        )
-        guess[: 3 * (n + 1)] = kin.ravel()
-        guess[tau_index] = 1.0
-        guess[slack_index] = 0.0
-        return np.clip(
-            guess, np.where(np.isfinite(low), low, -1e30), np.where(np.isfinite(high), high, 1e30)
-        )
+    def longest(self, duration_s: float) -> Move:
+        """The longest move of ``duration_s`` that meets every limit at every exported sample.
 
+        Parameters
+        ----------
+        duration_s : float
+            T [s], at most ``steps`` sample periods.
 
-def steps_for_duration(duration_s: float, sample_period_s: float) -> tuple[int, float]:
-    """(N, tau): the number of steps and the last step of a duration on the grid."""
-    steps = max(1, math.ceil(duration_s / sample_period_s - 1e-9))
-    return steps, duration_s - (steps - 1) * sample_period_s
+        Returns
+        -------
+        Move
+            Its jerks and the distance D*(T) it travels (measured by simulating it again).
+        """
+        if self._highs is None:
+            self._highs = self._solver(smooth=False)
+        solver = self._highs
+        effective, tau = steps_for_duration(duration_s, self.limits.sample_period_s)
+        self._set(solver, effective, tau, self._state, self._bound(False))
+        self._state = (self.steps - effective, tau)
+        if self.programs == 0 and self.steps * len(self.pendulums) > IPM_SIZE:
+            solver.setOptionValue("solver", "ipm")  # then crossover to a basis
+        solver.run()
+        if self.programs == 0:
+            # Later solves start from the first one's basis, where the primal simplex needs a
+            # few hundred cheap iterations (the dual simplex as many, each several times
+            # dearer, on these programs).
+            solver.setOptionValue("solver", "simplex")
+            solver.setOptionValue("presolve", "off")
+            solver.setOptionValue("simplex_strategy", 4)
+        self.programs += 1
+        self.iterations += int(solver.getInfo().simplex_iteration_count)
+        status = solver.modelStatusToString(solver.getModelStatus())
+        if status != "Optimal":
+            return Move(np.zeros(effective), duration_s, tau, 0.0, status)
+        x = np.asarray(solver.getSolution().col_value, dtype=float)
+        jerks = x[self.steps - effective : self.steps] * self.limits.max_jerk_m_s3
+        jerks, distance, ratio = measure(jerks, tau, self.limits, self.pendulums)
+        factor = (1.0 - SAFETY_MARGIN) / ratio
+        return Move(jerks * factor, duration_s, tau, distance * factor, status)
+
+    def smoothest(self, duration_s: float) -> Move | None:
+        """The move of ``duration_s`` over the distance with the least total variation of the
+        jerk that meets every limit (None when the solver or the check fails).
+
+        Parameters
+        ----------
+        duration_s : float
+            T [s], at most ``steps`` sample periods.
+
+        Returns
+        -------
+        Move or None
+            Its jerks (ending exactly at rest on the target).
+        """
+        solver = self._solver(smooth=True)
+        if self.steps * len(self.pendulums) > IPM_SIZE:
+            solver.setOptionValue("solver", "ipm")
+        effective, tau = steps_for_duration(duration_s, self.limits.sample_period_s)
+        self._set(solver, effective, tau, (-1, -1.0), self._bound(True))
+        solver.run()
+        self.programs += 1
+        status = solver.modelStatusToString(solver.getModelStatus())
+        if status != "Optimal":
+            return None
+        x = np.asarray(solver.getSolution().col_value, dtype=float)
+        jerks = x[self.steps - effective : self.steps] * self.limits.max_jerk_m_s3
+        jerks, distance, ratio = measure(jerks, tau, self.limits, self.pendulums)
+        jerks *= self.limits.distance_m / distance
+        if ratio * self.limits.distance_m / distance > 1.0 - SAFETY_MARGIN:
+            return None
+        return Move(jerks, duration_s, tau, self.limits.distance_m, status)

@@ -1,12 +1,17 @@
-"""Minimum-time control on the controller's export grid (casadi/IPOPT), and a smooth variant.
+"""Minimum-time control on the controller's export grid (linear programs), and a smooth variant.
 
 The linear problem is transcribed exactly on the grid the verification simulates (see
-`sloshkit.plan.export_grid`), so the move IPOPT returns meets the limits at every exported
-sample without tightening and solving again. The number of steps is searched with the margin
-problem (the largest uniform margin from every limit, a convex problem, bracketed by a secant
-on the number of steps), then the last step is shortened to the minimum time. The smooth
-variant takes a stated small price in time (`SMOOTH_PRICE`) and spends it on the least
-integrated squared jerk rate: no bang-bang jerk, no notches in the velocity.
+`sloshkit.plan.export_grid`), so the move returned meets the limits at every exported sample
+without tightening and solving again. For a duration T the longest feasible move D*(T) is one
+linear program (one HiGHS model per problem, re-solved from the previous basis with new bounds
+and coefficients); the minimum time is the root of D*(T) = D, found by a safeguarded secant on
+log D* against log T (the slosh of a time-scaled move grows like 1/T^2, the reach of a
+kinematic move like T to T^2), typically in 3 to 5 programs. The move of distance D is the
+longest move at that duration scaled by D / D* (every constraint is homogeneous).
+
+The smooth variant takes a stated small price in time (`SMOOTH_PRICE`) and spends it on the
+least total variation of the jerk (sum of |jerk jumps|, a linear program over the same
+constraints): a few jerk levels instead of bang-bang chattering, no notches in the velocity.
 
 Modes: the angle and residual limits concern the first mode only; higher modes enter the
 problem only through the wall elevation. Without a wall-elevation limit they are dropped (they
@@ -22,33 +27,63 @@ import time
 from dataclasses import replace
 from typing import Any
 
-import numpy as np
-
+from sloshkit.errors import warn_validity
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.profile import Motion, _piecewise_constant_jerk
+from sloshkit.plan.cost import duration_floor, optimal_refusal
 from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus
 from sloshkit.plan.verification import _candidate
 
 #: Relative price in time of the smooth variant: its duration is (1 + price) times the minimum.
 SMOOTH_PRICE = 0.02
 
-#: Largest shape planned at once (steps); longer moves fall back to a coarser grid is not done:
-#: the search reports failure instead.
-MAX_STEPS = 4000
+#: Longest move the search may try (export samples). Requests whose shortest possible move is
+#: already too long for the programs are refused earlier (`sloshkit.plan.cost.optimal_refusal`).
+MAX_STEPS = 8000
+
+#: The search stops when the longest move at the feasible end of the bracket exceeds the
+#: distance by less than this (relative): the duration is then within about half of it of the
+#: root.
+DISTANCE_TOLERANCE = 4e-5
 
 
 def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
-    """The `ExactGrid` solver of ``problem`` with room for ``steps`` steps (mode-1 pendulums
-    of every model of the band, all modes when the wall elevation is limited)."""
-    from sloshkit.plan.export_grid import ExactGrid, Limits, Pendulum
+    """The `ExportGrid` program of ``problem`` with room for ``steps`` steps.
+
+    The first mode of every model of the band carries the angle and residual limits; the
+    other modes are kept only when the wall elevation is limited (it sums every mode).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Distance, limits, model, band and sample period.
+    steps : int
+        Largest number of export steps.
+
+    Returns
+    -------
+    sloshkit.plan.export_grid.ExportGrid
+        The program, built once, re-solved for every duration up to ``steps`` periods.
+
+    Examples
+    --------
+    >>> import math
+    >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
+    >>> from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> problem = PlanProblem(0.1, MachineLimits(1.0, 10.0, 200.0),
+    ...     SloshLimits(math.radians(5), math.radians(0.5)), model, 4e-3)
+    >>> len(exact_grid_for(problem, 200).pendulums)
+    1
+    """
+    from sloshkit.plan.export_grid import ExportGrid, Limits, Pendulum
     from sloshkit.sim.discretisation import velocity_driven_discretisation
 
     slosh, machine, ts = problem.slosh, problem.machine, problem.sample_period_s
-    models = problem.models()
     keep_all = slosh.max_wall_elevation_m is not None
     pendulums = []
-    for model in models:
-        for mode in model.modes if keep_all else model.modes[:1]:
+    for index, model in enumerate(problem.models()):
+        for order, mode in enumerate(model.modes if keep_all else model.modes[:1]):
             phi, gamma, g1 = velocity_driven_discretisation(
                 mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts
             )
@@ -61,6 +96,8 @@ def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
                     mode.damping_ratio,
                     mode.length_m,
                     mode.wall_elevation_factor_m,
+                    order == 0,
+                    index,
                 )
             )
     limits = Limits(
@@ -73,14 +110,7 @@ def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
         slosh.max_wall_elevation_m,
         ts,
     )
-    return ExactGrid(limits, pendulums, len(models), steps)
-
-
-def _shape(steps: int) -> int:
-    """Round a shape up (to a power of two times 1, 1.25, 1.5 or 1.75) so that problems of
-    similar duration share one compiled solver."""
-    power = 2 ** max(4, math.floor(math.log2(max(steps, 1))) - 2)
-    return int(power * math.ceil(steps / power))
+    return ExportGrid(limits, pendulums, steps)
 
 
 def plan_optimal(
@@ -97,25 +127,27 @@ def plan_optimal(
     problem : PlanProblem
         Distance, limits, model, sample period.
     warm_start : Motion, optional
-        A feasible move (e.g. the shaped S-curve): its duration brackets the search.
+        A feasible move (e.g. the shaped S-curve): its duration is the first guess.
     nonlinear : bool
         Plan with the large-angle pendulums (`sloshkit.plan.optimal_nonlinear`).
     intervals : int, optional
         Only for ``nonlinear``: its number of shooting intervals.
     smooth : bool
-        Return the smooth variant ((1 + `SMOOTH_PRICE`) times the minimum time, least squared
-        jerk rate) instead of the time-optimal move.
+        Return the smooth variant ((1 + `SMOOTH_PRICE`) times the minimum time, least total
+        variation of the jerk) instead of the time-optimal move.
 
     Returns
     -------
     Candidate
         ``optimal`` (time-optimal) or ``optimal-smooth``; ``detail`` has ``variant``,
-        ``steps``, ``solves``, ``minimum_duration_s`` and IPOPT's status.
+        ``steps``, ``programs`` (linear programs solved), ``simplex_iterations``,
+        ``minimum_duration_s`` and ``solver``.
 
     References
     ----------
     Betts, *Practical Methods for Optimal Control*, 2nd ed., SIAM (2010) ch. 4,
-    doi:10.1137/1.9780898718577.
+    doi:10.1137/1.9780898718577; Huangfu & Hall, Math. Prog. Comput. 10 (2018) 119-142,
+    doi:10.1007/s12532-017-0130-5 (HiGHS dual simplex).
 
     Examples
     --------
@@ -134,61 +166,75 @@ def plan_optimal(
 
         return plan_optimal_nonlinear(problem, warm_start, True, intervals)
     started = time.perf_counter()
-    try:
-        import casadi  # noqa: F401
-    except ImportError:  # pragma: no cover - casadi is a dependency
-        return Candidate(
-            "optimal", PlanStatus.FAILED, message="casadi is not installed: pip install casadi"
-        )
-    from sloshkit.plan.export_grid import steps_for_duration
-
-    machine, ts = problem.machine, problem.sample_period_s
+    ts = problem.sample_period_s
+    floor = duration_floor(problem)
+    refusal = optimal_refusal(problem)
+    if refusal is not None:
+        warn_validity("optimal method skipped: " + refusal)
+        return _failed(started, refusal)
+    machine = problem.machine
     if warm_start is None:
         from sloshkit.plan.searches import plan_shaped
 
         warm_start = plan_shaped(problem, ("zv",)).motion
-    kinematic = s_curve(
-        problem.distance_m,
-        machine.max_velocity_m_s,
-        machine.max_acceleration_m_s2,
-        machine.max_jerk_m_s3,
-    ).duration_s
-    upper = warm_start.duration_s if warm_start is not None else 4.0 * kinematic
-    # A coarse grid (a few times the sample period) first: its minimum time is a cheap and
-    # close guess of the number of steps on the export grid.
-    factor = int(np.clip(steps_for_duration(upper, ts)[0] // 80, 1, 4))
-    guess_s = upper
-    solves = 0
+    if warm_start is not None and warm_start.duration_s / ts <= MAX_STEPS:
+        guess = warm_start.duration_s
+    else:
+        kinematic = s_curve(
+            problem.distance_m,
+            machine.max_velocity_m_s,
+            machine.max_acceleration_m_s2,
+            machine.max_jerk_m_s3,
+        ).duration_s
+        guess = max(kinematic, floor.duration_s) * 1.3
+    guess = min(guess, MAX_STEPS * ts)
+    # A coarse grid first (up to 4 sample periods per step, at least 100 steps: a small fraction
+    # of the work per program): its minimum time is within about a percent of the export
+    # grid's, so the programs on the export grid start next to the root.
+    factor = int(min(4, max(1, guess / ts // 100)))
+    programs = iterations = 0
     if factor > 1:
         coarse_problem = replace(problem, sample_period_s=factor * ts)
-        coarse_steps = steps_for_duration(upper, factor * ts)[0] + 1
-        coarse = exact_grid_for(coarse_problem, _shape(coarse_steps + 2))
-        found, count = _search(coarse, math.floor(0.9 * coarse_steps))
-        solves += count
+        coarse = exact_grid_for(coarse_problem, math.ceil(guess / (factor * ts)) + 2)
+        found = _minimum_time(coarse, guess, floor.duration_s, 1e-3)
+        programs, iterations = coarse.programs, coarse.iterations
         if found is not None:
-            guess_s = found.duration_s
-    steps = steps_for_duration(guess_s, ts)[0]
-    shape = _shape(math.ceil(max(steps * (1.0 + 2 * SMOOTH_PRICE), steps + 8)))
-    if shape > MAX_STEPS:
-        return _failed(started, f"the move needs more than {MAX_STEPS} samples")
-    grid = exact_grid_for(problem, shape)
-    fastest, count = _search(grid, steps - 1 if factor > 1 else math.floor(0.9 * steps))
-    solves += count
+            guess = found.duration_s
+    fastest = None
+    for margin in (1.02, 1.5):  # the second only when the first range held no feasible move
+        longest = guess * margin * (1 + SMOOTH_PRICE if smooth else 1)
+        shape = min(MAX_STEPS, math.ceil(longest / ts) + 4)
+        grid = exact_grid_for(problem, shape)
+        fastest = _minimum_time(grid, guess, floor.duration_s, DISTANCE_TOLERANCE)
+        programs, iterations = programs + grid.programs, iterations + grid.iterations
+        if fastest is not None or shape == MAX_STEPS:
+            break
     if fastest is None:
-        return _failed(started, "no feasible number of steps found")
-    chosen, variant = fastest, "time-optimal"
+        return _failed(started, f"no feasible move up to {shape * ts:.4g} s ({shape:,} samples)")
+    scale = problem.distance_m / fastest.distance_m
+    jerks, last, variant = fastest.jerks_m_s3 * scale, fastest.last_step_s, "time-optimal"
+    status = fastest.status
+    note = {}
     if smooth:
-        steps, last = steps_for_duration(fastest.duration_s * (1.0 + SMOOTH_PRICE), ts)
-        smoothed = grid.solve(steps, "smooth", last_step_s=last)
-        solves += 1
-        if smoothed.success:
-            chosen, variant = smoothed, "smooth"
+        duration = fastest.duration_s * (1.0 + SMOOTH_PRICE)
+        needed = math.ceil(duration / ts) + 1
+        if needed > grid.steps:
+            grid = exact_grid_for(problem, needed)
+        smoothed = grid.smoothest(duration)
+        if smoothed is None:
+            note = {
+                "note": "the smooth program failed its check: the time-optimal move is returned"
+            }
+        else:
+            jerks, last, variant, status = (
+                smoothed.jerks_m_s3,
+                smoothed.last_step_s,
+                "smooth",
+                smoothed.status,
+            )
     name = "optimal" if variant == "time-optimal" else "optimal-smooth"
-    count = chosen.jerks_m_s3.size
-    durations = [ts] * (count - 1) + [chosen.last_step_s]
-    motion = Motion(
-        name, _piecewise_constant_jerk(name, durations, list(chosen.jerks_m_s3)).position_pp
-    )
+    durations = [ts] * (jerks.size - 1) + [last]
+    motion = Motion(name, _piecewise_constant_jerk(name, durations, list(jerks)).position_pp)
     return _candidate(
         name,
         motion,
@@ -196,49 +242,66 @@ def plan_optimal(
         started,
         variant=variant,
         minimum_duration_s=fastest.duration_s,
-        steps=count,
-        solves=solves,
-        ipopt_status=chosen.status,
+        steps=int(jerks.size),
+        programs=programs + (1 if smooth else 0),
+        simplex_iterations=iterations,
+        solver="HiGHS " + status,
         model="linear",
+        **note,
     )
 
 
-def _search(grid: Any, steps: int) -> tuple[Any, int]:
-    """The shortest move on ``grid``: (its solution or None, number of solves).
+def _minimum_time(grid: Any, guess_s: float, floor_s: float, tolerance: float) -> Any:
+    """The longest move at the shortest duration T with D*(T) >= D (or None).
 
-    A "time" solve at N steps either finds the shortest last step (done), needs no last step
-    at all (the move fits in fewer steps) or violates the limits by a relative slack s (too
-    few steps; the slosh of a time-scaled move grows like 1/T^2, so sqrt(1 + s) times as many
-    steps is the next guess).
+    A safeguarded secant on log D* against log T, bracketed by the infeasible and feasible
+    durations found so far; without a lower bracket, the slosh-limited exponent 2 (a time-
+    scaled move's slosh grows like 1/T^2) gives the next guess, which lands beyond the root
+    whenever the true exponent is smaller. Stops when the feasible end's reach exceeds the
+    distance by less than ``tolerance`` (relative) or the bracket is that narrow.
     """
-    from sloshkit.plan.export_grid import SAFETY_MARGIN
+    target = grid.limits.distance_m
+    ts = grid.limits.sample_period_s
+    longest_s = grid.steps * ts
+    low: Any = None
+    high: Any = None
+    duration = min(guess_s, longest_s)
+    for _ in range(40):
+        move = grid.longest(duration)
+        if move.distance_m >= target:
+            high = move if high is None or move.duration_s < high.duration_s else high
+        elif low is None or move.duration_s > low.duration_s:
+            low = move
+        if high is not None and (
+            high.distance_m <= target * (1 + tolerance)
+            or (low is not None and high.duration_s - low.duration_s <= 1e-6 * high.duration_s)
+        ):
+            return high
+        duration = _next_duration(low, high, target * (1 + 0.5 * tolerance), floor_s, longest_s)
+        if duration is None:
+            return high
+    return high
 
-    tried: dict[int, Any] = {}
-    shape, ts = grid.steps, grid.limits.sample_period_s
-    steps = int(np.clip(steps, 2, shape))
-    for _ in range(16):
-        if steps not in tried:
-            tried[steps] = grid.solve(steps, "time")
-        result = tried[steps]
-        if not result.success and result.slack <= 0:
-            return None, len(tried)
-        if result.slack > SAFETY_MARGIN:  # too few steps
-            if steps == shape:
-                return None, len(tried)
-            above = [k for k, r in tried.items() if k > steps and r.slack <= 0]
-            if steps + 1 in above:
-                return tried[steps + 1], len(tried)
-            grown = math.ceil(steps * math.sqrt(1.0 + result.slack))
-            steps = min(min(above, default=shape), max(steps + 1, grown))
-        elif result.last_step_s <= 1e-6 * ts:  # the move fits in fewer steps
-            below = [k for k, r in tried.items() if k < steps and r.slack > SAFETY_MARGIN]
-            if steps - 1 in below:
-                return result, len(tried)
-            floor = max(below, default=math.floor(0.8 * steps))
-            steps = max(floor + 1, min(steps - 1, (floor + steps) // 2))
-        else:
-            return result, len(tried)
-    return None, len(tried)
+
+def _next_duration(low: Any, high: Any, aim: float, floor_s: float, longest_s: float) -> Any:
+    """The next duration to try from the bracket, aiming at the reach ``aim`` (None: nothing
+    left to try)."""
+    if high is None:  # every duration tried so far is too short
+        if low.duration_s >= longest_s:
+            return None
+        reach = max(low.distance_m, 1e-12 * aim)
+        return min(longest_s, low.duration_s * min(4.0, (aim / reach) ** 0.5) * 1.001)
+    if low is None:
+        step = (aim / high.distance_m) ** 0.5
+        return max(high.duration_s * step, 0.9 * floor_s, 1e-3 * high.duration_s)
+    if low.distance_m <= 0.0:
+        return 0.5 * (low.duration_s + high.duration_s)
+    # Secant on the logarithms, kept inside the bracket (at least 10 % from either end once
+    # the bracket is narrow enough that the secant is nearly exact).
+    slope = math.log(high.distance_m / low.distance_m) / math.log(high.duration_s / low.duration_s)
+    guess = high.duration_s * (aim / high.distance_m) ** (1.0 / max(slope, 0.5))
+    width = high.duration_s - low.duration_s
+    return min(max(guess, low.duration_s + 0.02 * width), high.duration_s - 0.02 * width)
 
 
 def _failed(started: float, message: str) -> Candidate:

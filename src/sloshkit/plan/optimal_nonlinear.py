@@ -45,7 +45,42 @@ def plan_optimal_nonlinear(
     """Minimum-time move by direct multiple shooting (RK4, 2 sub-steps, piecewise-constant
     jerk), solved by IPOPT. Path constraints hold at the nodes; if the verified export still
     violates a slosh limit, the limits are tightened by the violation and the problem solved
-    again (up to ``attempts`` times)."""
+    again (up to ``attempts`` times).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Distance, limits, model and sample period.
+    warm_start : Motion, optional
+        A feasible move to start from (default: the ZV-shaped S-curve).
+    nonlinear : bool
+        Large-angle pendulums (else the linear ones, on the shooting grid).
+    intervals : int, optional
+        Shooting intervals (default: one per sample period, 60 to 240).
+    attempts : int
+        Solves with tightened limits at most.
+
+    Returns
+    -------
+    Candidate
+        ``optimal``; ``detail`` has ``intervals``, ``ipopt_status``, ``model`` and
+        ``tightening``.
+
+    References
+    ----------
+    Betts, *Practical Methods for Optimal Control*, 2nd ed., SIAM (2010) ch. 4,
+    doi:10.1137/1.9780898718577.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(0.01, sk.MachineLimits(1.0, 5.0, 200.0),
+    ...                          sk.SloshLimits(0.1, 0.01), model, 0.02)
+    >>> plan_optimal_nonlinear(problem, sk.quintic(0.01, 0.5), intervals=8).method
+    'optimal'
+    """
     started = time.perf_counter()
     try:
         import casadi as ca

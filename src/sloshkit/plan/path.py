@@ -70,6 +70,8 @@ class Path:
     def __post_init__(self) -> None:
         object.__setattr__(self, "_position", CubicSpline(self.knots_m, self.positions_m))
         object.__setattr__(self, "_rotation", RotationSpline(self.knots_m, self.rotations))
+        turns = (self.rotations[0].inv() * self.rotations).magnitude()
+        object.__setattr__(self, "_fixed", bool(np.max(turns) < 1e-12))
 
     @property
     def length_m(self) -> float:
@@ -99,8 +101,12 @@ class Path:
 
     def orientation(self, s_m: ArrayLike) -> Rotation:
         """Container-to-world rotation R(s)."""
+        s = self._clip(s_m)
+        if self._fixed:  # type: ignore[attr-defined]
+            quaternion = self.rotations[0].as_quat()
+            return Rotation.from_quat(np.broadcast_to(quaternion, (*s.shape, 4)))
         spline: RotationSpline = self._rotation  # type: ignore[attr-defined]
-        return spline(self._clip(s_m))
+        return spline(s)
 
     def distance_to(self, points_m: ArrayLike) -> FloatArray:
         """Distance [m] of each point from the position curve: the nearest of 2e5 dense points,
@@ -126,8 +132,11 @@ class Path:
     def angular_rate(self, s_m: ArrayLike, order: int = 1) -> FloatArray:
         """d omega / ds (``order`` 1: the angular velocity per unit s [rad/m], world frame;
         ``order`` 2: its derivative [rad/m^2])."""
+        s = self._clip(s_m)
+        if self._fixed:  # type: ignore[attr-defined]
+            return np.zeros((*s.shape, 3))
         spline: RotationSpline = self._rotation  # type: ignore[attr-defined]
-        return np.asarray(spline(self._clip(s_m), order), dtype=float)
+        return np.asarray(spline(s, order), dtype=float)
 
 
 def _resampled(
@@ -148,7 +157,30 @@ def _resampled(
 def generalised_arc_length(
     positions_m: FloatArray, rotations: Rotation, rotation_length_m: float = ROTATION_LENGTH_M
 ) -> FloatArray:
-    """Cumulative s of pose samples: ds^2 = |dp|^2 + (rho dtheta)^2 [m]."""
+    """Cumulative path parameter of pose samples: ds^2 = |dp|^2 + (rho dtheta)^2 [m].
+
+    Parameters
+    ----------
+    positions_m : ndarray, shape (n, 3)
+        Positions [m].
+    rotations : scipy Rotation of length n
+        Orientations.
+    rotation_length_m : float
+        rho: the length one radian of rotation counts for [m].
+
+    Returns
+    -------
+    ndarray
+        s at each sample, from 0 [m].
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> s = generalised_arc_length(np.array([[0, 0, 0], [0.3, 0, 0], [0.3, 0, 0]]),
+    ...                            Rotation.from_euler("z", [[0.0], [0.0], [1.0]]))
+    >>> s.round(3).tolist()  # 0.3 m, then 1 rad counts 0.05 m
+    [0.0, 0.3, 0.35]
+    """
     steps = np.linalg.norm(np.diff(positions_m, axis=0), axis=1)
     turns = (rotations[1:] * rotations[:-1].inv()).magnitude()
     return np.concatenate(([0.0], np.cumsum(np.hypot(steps, rotation_length_m * turns))))

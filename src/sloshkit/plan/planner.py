@@ -7,10 +7,10 @@ Methods (all verified the same way, see `verify`):
 - ``shaped``: a time-optimal jerk-limited S-curve (ruckig) convolved with an input shaper (ZV,
   ZVD, EI on the first mode, or ZV on modes 1 and 2), whose acceleration and jerk limits are
   searched so that the shaped move meets every limit (a vectorised grid, then a bisection);
-- ``optimal``: minimum-time control in casadi/IPOPT, transcribed on the controller's export
-  grid (piecewise-constant jerk per sample period, the pendulums' exact discretisation, the
+- ``optimal``: minimum-time control as linear programs (HiGHS), transcribed on the controller's
+  export grid (piecewise-constant jerk per sample period, the pendulums' exact discretisation, the
   slosh limits at every exported sample, for each frequency of the robustness band), or its
-  smooth variant (``smooth=True``: 2 % longer, least squared jerk rate); large-angle
+  smooth variant (``smooth=True``: 2 % longer, least total variation of the jerk); large-angle
   pendulums by multiple shooting (Betts, *Practical Methods for Optimal Control*, 2nd ed.,
   SIAM (2010) ch. 4);
 - ``auto``: all of the above, the fastest that passes verification.
@@ -165,15 +165,15 @@ def plan(
         Distance, limits, model and controller period.
     method : str
         ``auto`` (everything), ``paper`` (the four laws), one law name, ``fast`` (a ZV-shaped
-        S-curve only), ``shaped`` (all shapers) or ``optimal`` (casadi/IPOPT, warm-started from
-        the shaped result).
+        S-curve only), ``shaped`` (all shapers) or ``optimal`` (linear programs on the export
+        grid, started from the shaped result).
     nonlinear_optimal : bool
         Optimise (and verify) with the large-angle pendulums.
     progress : callable, optional
         Called with a short message before each method.
     smooth : bool
         The optimal method returns its smooth variant (`sloshkit.plan.optimal.SMOOTH_PRICE`
-        longer than the minimum time, least squared jerk rate) instead of the time-optimal
+        longer than the minimum time, least total variation of the jerk) instead of the time-optimal
         move; ``PlanResult.to_dict()["variant"]`` says which.
 
     Returns
@@ -223,7 +223,7 @@ def plan(
         if method != "optimal":
             candidates.append(shaped)
     if method in ("auto", "optimal"):
-        say("solving the time-optimal control problem (IPOPT)")
+        say("solving the time-optimal control problem (linear programs, HiGHS)")
         warm = _fastest(candidates + ([shaped] if shaped else []))
         candidates.append(
             plan_optimal(

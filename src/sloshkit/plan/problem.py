@@ -147,13 +147,52 @@ class PlanProblem:
 
 
 def scale_frequencies(model: SloshModel, factor: float) -> SloshModel:
-    """``model`` with every mode's frequency multiplied by ``factor``."""
+    """``model`` with every mode's frequency multiplied by ``factor``.
+
+    Parameters
+    ----------
+    model : SloshModel
+        The equivalent model.
+    factor : float
+        Frequency factor (e.g. 0.9 and 1.1 for the edges of a +-10 % band).
+
+    Returns
+    -------
+    SloshModel
+        The same model, every omega scaled (lengths, masses and damping unchanged).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> round(scale_frequencies(model, 1.1).modes[0].frequency_hz / model.modes[0].frequency_hz, 6)
+    1.1
+    """
     modes = tuple(replace(mode, omega_rad_s=mode.omega_rad_s * factor) for mode in model.modes)
     return replace(model, modes=modes)
 
 
 class PlanStatus(enum.Enum):
-    """Outcome of one method."""
+    """Outcome of one method: ``FEASIBLE`` (verified), ``INFEASIBLE`` (a motion that violates
+    a limit) or ``FAILED`` (no motion).
+
+    Parameters
+    ----------
+    value : str
+        ``feasible``, ``infeasible`` or ``failed``.
+    names, module, qualname, type, start, boundary : optional
+        The arguments of Python's functional `enum.Enum` API (not used here).
+
+    Returns
+    -------
+    PlanStatus
+
+    Examples
+    --------
+    >>> PlanStatus("feasible") is PlanStatus.FEASIBLE
+    True
+    """
 
     FEASIBLE = "feasible"
     INFEASIBLE = "infeasible"
@@ -162,7 +201,32 @@ class PlanStatus(enum.Enum):
 
 @dataclass(frozen=True)
 class Verification:
-    """Metrics of a sampled export re-simulated (worst over the robustness band)."""
+    """Metrics of a sampled export re-simulated (worst over the robustness band).
+
+    Parameters
+    ----------
+    duration_s : float
+        Move duration [s].
+    peak_angle_rad, residual_angle_rad : float
+        Peak first-mode angle during the move and residual amplitude after it [rad].
+    peak_wall_elevation_m : float
+        Peak wall elevation (every mode) [m].
+    peak_velocity_m_s, peak_acceleration_m_s2, peak_jerk_m_s3 : float
+        Machine peaks (the jerk is inf when the acceleration jumps).
+    end_error_m : float
+        Distance from the target at the end [m].
+    violations : tuple of str
+        One line per violated limit.
+
+    Returns
+    -------
+    Verification
+
+    Examples
+    --------
+    >>> Verification(1.0, 0.01, 0.001, 0.001, 1.0, 5.0, 100.0, 0.0, ()).feasible
+    True
+    """
 
     duration_s: float
     peak_angle_rad: float
@@ -182,7 +246,34 @@ class Verification:
 
 @dataclass(frozen=True, eq=False)
 class Candidate:
-    """One method's best motion, its verification and its compute time."""
+    """One method's best motion, its verification and its compute time.
+
+    Parameters
+    ----------
+    method : str
+        The method's name (``quintic``, ``shaped-zv``, ``optimal``, ``optimal-smooth``, ...).
+    status : PlanStatus
+        Verified, violating or failed.
+    motion : Motion, optional
+        The motion (None when the method failed).
+    verification : Verification, optional
+        Its re-simulated metrics.
+    compute_time_s : float
+        Wall-clock time of the method [s].
+    message : str
+        ``verified``, the violations or why it failed.
+    detail : dict
+        Method-specific keys (merged into `to_dict`).
+
+    Returns
+    -------
+    Candidate
+
+    Examples
+    --------
+    >>> Candidate("optimal", PlanStatus.FAILED, message="no motion").duration_s
+    inf
+    """
 
     method: str
     status: PlanStatus

@@ -18,138 +18,29 @@ A timing of the family is built in three steps:
 
 The quasi-static slosh height grows with the acceleration the liquid feels (about
 0.94 R |a| / g for three modes), so the cap A is the one parameter that trades duration for
-slosh: `fastest_capped` bisects on A until the linear slosh screen passes. A uniform stretch in
-time t -> c t (`stretch_until`) is the naive alternative it is compared with.
+slosh: `sloshkit.plan.path_search.fastest_capped` searches A until the linear slosh screen passes;
+a uniform stretch in time t -> c t (`sloshkit.plan.path_search.stretch_until`) is the naive
+alternative it is compared with.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import CubicHermiteSpline, CubicSpline
+from numpy.typing import NDArray
+from scipy.interpolate import CubicHermiteSpline
 
-from sloshkit.errors import InputError
 from sloshkit.motion.shaping import Shaper, zv, zvd
 from sloshkit.plan.path import Path
-from sloshkit.plan.spatial import (
-    PathProblem,
-    PoseSamples,
-    _continuous,
-    linear_screen,
-    machine_violations,
-    sample_path,
-    screen_ok,
-)
+from sloshkit.plan.path_limits import machine_violations
+from sloshkit.plan.spatial import PathProblem, PoseSamples, _continuous, sample_path
+from sloshkit.plan.timing import Timing, _fine_grid, box_smoothed, shaped_timing
 
 FloatArray = NDArray[np.float64]
-#: Resolution of the fine time grid the composed timings are tabulated on [s].
-FINE_STEP_S = 5e-4
 #: Grid spacing of the speed-profile integration [m].
 PROFILE_STEP_M = 1e-3
-
-
-@dataclass(frozen=True, eq=False)
-class Timing:
-    """A rest-to-rest timing s(t) [m] of a path on [0, ``duration_s``], tabulated on a fine grid
-    and interpolated by a cubic spline (held at 0 before and at ``length_m`` after).
-
-    Examples
-    --------
-    >>> timing = Timing.from_samples("ramp", np.linspace(0, 1, 11), np.linspace(0, 1, 11) ** 2)
-    >>> round(float(timing.position(0.5)), 3), timing.duration_s
-    (0.25, 1.0)
-    """
-
-    name: str
-    time_s: FloatArray
-    s_m: FloatArray
-
-    @classmethod
-    def from_samples(cls, name: str, time_s: ArrayLike, s_m: ArrayLike) -> Timing:
-        """A timing through the samples (times increasing from 0)."""
-        t = np.asarray(time_s, dtype=float)
-        s = np.asarray(s_m, dtype=float)
-        if t.ndim != 1 or t.size < 2 or t[0] != 0.0 or np.any(np.diff(t) <= 0):
-            raise InputError("timing", t.size, "needs increasing times from 0")
-        return cls(name, t, s)
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "_spline", CubicSpline(self.time_s, self.s_m))
-
-    @property
-    def duration_s(self) -> float:
-        """Duration T [s]."""
-        return float(self.time_s[-1])
-
-    @property
-    def length_m(self) -> float:
-        """Final s [m]."""
-        return float(self.s_m[-1])
-
-    def position(self, time_s: ArrayLike) -> FloatArray:
-        """s(t) [m]."""
-        spline: CubicSpline = self._spline  # type: ignore[attr-defined]
-        t = np.asarray(time_s, dtype=float)
-        inside = np.asarray(spline(np.clip(t, 0.0, self.duration_s)), dtype=float)
-        return np.where(t <= 0.0, 0.0, np.where(t >= self.duration_s, self.length_m, inside))
-
-    def derivative(self, time_s: ArrayLike, order: int) -> FloatArray:
-        """d^k s / dt^k (0 outside the move)."""
-        spline: CubicSpline = self._spline  # type: ignore[attr-defined]
-        t = np.asarray(time_s, dtype=float)
-        inside = (t > 0.0) & (t < self.duration_s)
-        return np.where(inside, spline(np.clip(t, 0.0, self.duration_s), order), 0.0)
-
-    def velocity(self, time_s: ArrayLike) -> FloatArray:
-        """s' [m/s]."""
-        return self.derivative(time_s, 1)
-
-    def acceleration(self, time_s: ArrayLike) -> FloatArray:
-        """s'' [m/s^2]."""
-        return self.derivative(time_s, 2)
-
-    def jerk(self, time_s: ArrayLike) -> FloatArray:
-        """s''' [m/s^3]."""
-        return self.derivative(time_s, 3)
-
-    def stretched(self, factor: float) -> Timing:
-        """s(t / c): speeds / c, accelerations / c^2, jerks / c^3."""
-        return Timing(self.name, self.time_s * factor, self.s_m)
-
-
-def _fine_grid(duration_s: float) -> FloatArray:
-    count = max(8, math.ceil(duration_s / FINE_STEP_S))
-    return np.linspace(0.0, duration_s, count + 1)
-
-
-def box_smoothed(timing: Timing, width_s: float) -> Timing:
-    """(1/tau) integral_{t-tau}^{t} s(u) du: a jerk-limited timing, tau longer [s]."""
-    if width_s <= 0.0:
-        return timing
-    grid = _fine_grid(timing.duration_s + width_s)
-    step = grid[1] - grid[0]
-    values = timing.position(grid)
-    integral = np.concatenate(([0.0], np.cumsum(0.5 * (values[1:] + values[:-1]) * step)))
-    before = np.interp(grid - width_s, grid, integral, left=0.0)
-    smoothed = (integral - before) / width_s
-    smoothed[-1] = timing.length_m
-    return Timing(timing.name, grid, smoothed)
-
-
-def shaped_timing(timing: Timing, shaper: Shaper) -> Timing:
-    """sum_i A_i s(t - t_i) (duration T + t_N)."""
-    grid = _fine_grid(timing.duration_s + float(shaper.times_s[-1]))
-    values = sum(
-        amplitude * timing.position(grid - delay)
-        for amplitude, delay in zip(shaper.amplitudes, shaper.times_s, strict=True)
-    )
-    values = np.asarray(values, dtype=float)
-    values[-1] = timing.length_m
-    return Timing(timing.name, grid, values)
 
 
 def axis_shaped_samples(
@@ -158,7 +49,37 @@ def axis_shaped_samples(
     """Per-axis input shaping: positions sum_i A_i p(s(t - t_i)) (each Cartesian axis shaped,
     so the lateral forcing of every direction is shaped and the residual of the shaped mode
     cancels in the linear model), orientation R(sum_i A_i s(t - t_i)). Corners are cut: the
-    positions leave the path by up to about kappa (v t_N)^2 / 8."""
+    positions leave the path by up to about kappa (v t_N)^2 / 8.
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    timing : Timing
+        The timing before shaping.
+    shaper : Shaper
+        The shaper.
+    sample_period_s : float
+        Sample period of the export [s].
+
+    Returns
+    -------
+    PoseSamples
+
+    References
+    ----------
+    Singer & Seering (1990), doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    >>> from sloshkit.motion.shaping import zv
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
+    >>> ramp = Timing.from_samples("ramp", np.linspace(0, 1, 101), np.linspace(0, 0.3, 101))
+    >>> poses = axis_shaped_samples(path, ramp, zv(2 * np.pi, 0.0), 0.01)
+    >>> poses.duration_s, poses.position_m[-1].tolist()
+    (1.5, [0.3, 0.0, 0.0])
+    """
     count = math.ceil((timing.duration_s + float(shaper.times_s[-1])) / sample_period_s - 1e-9)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     positions = np.zeros((t.size, 3))
@@ -190,8 +111,39 @@ def _profile_geometry(path: Path) -> tuple[FloatArray, ...]:
 def speed_profile(
     path: Path, problem: PathProblem, acceleration_cap: float
 ) -> tuple[FloatArray, FloatArray]:
-    """Fastest s' (s) [m/s] with total acceleration <= ``acceleration_cap`` [m/s^2] (module
-    docstring, step 1), on a grid of s [m]; returns (s, s')."""
+    """Fastest s'(s) [m/s] with total acceleration <= ``acceleration_cap`` under the speed and
+    angular limits (module docstring, step 1).
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    problem : PathProblem
+        The Cartesian and angular limits.
+    acceleration_cap : float
+        Cap A on the total acceleration [m/s^2] (at most amax).
+
+    Returns
+    -------
+    tuple of ndarray
+        (s grid [m], s' [m/s]), zero at both ends.
+
+    References
+    ----------
+    Bobrow et al. (1985), doi:10.1177/027836498500400301; Pham (2014),
+    doi:10.1109/TRO.2014.2351113.
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> path = path_from_waypoints([[0, 0, 0], [1.0, 0, 0]])
+    >>> problem = PathProblem(path, CartesianLimits(0.5, 10.0, 100.0),
+    ...                       SpatialSloshLimits(0.01, 0.002), None)
+    >>> s, rate = speed_profile(path, problem, 1.0)
+    >>> round(float(rate.max()), 3)  # the speed limit
+    0.5
+    """
     machine = problem.machine
     s, speed, curvature, turn, turn_rate = _profile_geometry(path)
     step = s[1] - s[0]
@@ -250,7 +202,29 @@ _integrate_profile = _compiled_passes()
 
 
 def capped_timing(problem: PathProblem, acceleration_cap: float) -> Timing:
-    """The speed profile of `speed_profile` as a timing (C1 Hermite in time)."""
+    """The speed profile of `speed_profile` as a timing (C1 Hermite in time).
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path and limits.
+    acceleration_cap : float
+        Cap A on the total acceleration [m/s^2].
+
+    Returns
+    -------
+    Timing
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [1.0, 0, 0]]),
+    ...                       CartesianLimits(0.5, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None)
+    >>> round(capped_timing(problem, 1.0).duration_s, 2)  # 1 m at 0.5 m/s + 0.5 s ramps
+    2.5
+    """
     s, rate = speed_profile(problem.path, problem, acceleration_cap)
     durations = 2.0 * np.diff(s) / np.maximum(rate[1:] + rate[:-1], 1e-12)
     t = np.concatenate(([0.0], np.cumsum(durations)))
@@ -260,136 +234,151 @@ def capped_timing(problem: PathProblem, acceleration_cap: float) -> Timing:
 
 
 def first_mode_shaper(problem: PathProblem) -> Shaper:
-    """ZV on the nominal first mode, ZVD when a robustness band is asked for."""
+    """ZV on the nominal first mode, ZVD when a robustness band is asked for.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Model and slosh limits.
+
+    Returns
+    -------
+    Shaper
+
+    References
+    ----------
+    Singer & Seering (1990), doi:10.1115/1.2894142.
+
+    Examples
+    --------
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       model)
+    >>> first_mode_shaper(problem).name
+    'zv'
+    """
     first = problem.model.modes[0]
     make = zvd if problem.slosh.robustness > 0 else zv
     return make(first.omega_rad_s, first.damping_ratio)
 
 
-def family_member(problem: PathProblem, acceleration_cap: float, shaper: Shaper | None) -> Timing:
-    """The family member with cap A: the box width is the shortest of 2 A / jmax * 1.25^k
-    (k = 0..8) whose export meets every Cartesian and angular limit."""
+#: Largest notch offset of `curve_shaper`, as a fraction of the first mode's frequency.
+CURVE_SHAPER_MAX_OFFSET = 0.5
+ShaperFactory = Callable[[float], Shaper]
+
+
+def curve_shaper(problem: PathProblem) -> ShaperFactory:
+    """Timing shapers for curved paths: ZV notches at w and w (1 -+ r), r = Omega / w.
+
+    On a curve the direction of the lateral forcing turns at Omega = kappa v. Writing the
+    forcing as F(t) e^{i Phi(t)} (F in the path's own frame, Phi the heading), its spectrum at
+    the slosh frequency w comes from F at w - Omega and w + Omega, so a shaper that notches
+    only w (ZV on the timing) leaves a residual that grows with the turning rate (measured on
+    the series' paths: ZV on the timing leaves 4-7 mm where it cancels a straight move). Three
+    ZV shapers in series, at w and at w (1 -+ r), notch the band the turning spreads the
+    forcing over; with a cap A the centripetal acceleration kappa v^2 <= A bounds the turning
+    rate by Omega <= sqrt(kappa_max A), so r = min(`CURVE_SHAPER_MAX_OFFSET`,
+    sqrt(kappa_max A) / w). With a robustness band the centre notch is a ZVD. The result
+    depends on A, so this returns a function of the cap.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path (its largest curvature), model (first mode), robustness band.
+
+    Returns
+    -------
+    callable
+        A [m/s^2] -> Shaper (named ``curve``).
+
+    References
+    ----------
+    Singer & Seering (1990), doi:10.1115/1.2894142 (ZV shapers; shapers in series notch every
+    frequency of each); the spectral argument is this library's (docs/planning-3d.md).
+
+    Examples
+    --------
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0], [0.3, 0.3, 0]], blend_radius_m=0.1)
+    >>> problem = PathProblem(path, CartesianLimits(2.0, 10.0, 100.0),
+    ...                       SpatialSloshLimits(0.01, 0.002), model)
+    >>> shaper = curve_shaper(problem)(2.0)  # sqrt(10 /m * 2 m/s^2) = 4.5 rad/s
+    >>> shaper.name, shaper.amplitudes.size, round(float(shaper.times_s[-1]), 3)
+    ('curve', 8, 0.511)
+    """
+    first = problem.model.modes[0]
+    omega, zeta = first.omega_rad_s, first.damping_ratio
+    curvature = float(np.max(_profile_geometry(problem.path)[2]))
+    centre = (zvd if problem.slosh.robustness > 0 else zv)(omega, zeta)
+
+    def shaper(acceleration_cap: float) -> Shaper:
+        offset = min(CURVE_SHAPER_MAX_OFFSET, math.sqrt(curvature * acceleration_cap) / omega)
+        if offset < 1e-3:
+            return Shaper("curve", centre.amplitudes, centre.times_s)
+        amplitudes, times = centre.amplitudes, centre.times_s
+        for side in (zv(omega * (1.0 - offset), zeta), zv(omega * (1.0 + offset), zeta)):
+            amplitudes = np.outer(amplitudes, side.amplitudes).ravel()
+            times = np.add.outer(times, side.times_s).ravel()
+        order = np.argsort(times, kind="stable")
+        return Shaper("curve", amplitudes[order], times[order])
+
+    return shaper
+
+
+def family_member(
+    problem: PathProblem, acceleration_cap: float, shaper: Shaper | ShaperFactory | None
+) -> Timing:
+    """The family member with cap A: capped profile, box filter, optional timing shaper.
+
+    The box width is the shortest of 2 A / jmax * 1.25^k (k = 0..8) whose export meets every
+    Cartesian and angular limit.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path and limits.
+    acceleration_cap : float
+        Cap A [m/s^2].
+    shaper : Shaper, callable or None
+        Shaper of the timing, or a function of the cap A giving it (`curve_shaper`); None:
+        unshaped.
+
+    Returns
+    -------
+    Timing
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [1.0, 0, 0]]),
+    ...                       CartesianLimits(0.5, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None)
+    >>> round(family_member(problem, 1.0, None).duration_s, 2)  # + the 20 ms box
+    2.52
+    """
     base = capped_timing(problem, acceleration_cap)
     width = 2.0 * acceleration_cap / problem.machine.max_jerk_m_s3
     timing = base
     for _ in range(9):
         timing = box_smoothed(base, width)
         if shaper is not None:
-            timing = shaped_timing(timing, shaper)
+            timing = shaped_timing(
+                timing, shaper if isinstance(shaper, Shaper) else shaper(acceleration_cap)
+            )
         poses = sample_path(problem.path, timing, problem.sample_period_s)
         if not machine_violations(problem, poses, False):
             break
         width *= 1.25
     return timing
-
-
-def stretcher(problem: PathProblem, timing: Timing) -> Callable[[float], PoseSamples]:
-    """Sampled poses of ``timing`` stretched uniformly by a factor c."""
-
-    def poses_for(factor: float) -> PoseSamples:
-        return sample_path(problem.path, timing.stretched(factor), problem.sample_period_s)
-
-    return poses_for
-
-
-def _bisect(ok: Callable[[float], bool], low: float, high: float, steps: int = 14) -> float:
-    """Smallest c in [low, high] with ok(c) (ok assumed monotone; ok(high) True)."""
-    for _ in range(steps):
-        middle = math.sqrt(low * high)
-        if ok(middle):
-            high = middle
-        else:
-            low = middle
-        if high / low < 1.0 + 1e-3:
-            break
-    return high
-
-
-def stretch_until(
-    ok: Callable[[float], bool], start: float = 1.0, limit: float = 64.0
-) -> float | None:
-    """Smallest stretch c >= ``start`` with ok(c): doubling, then bisection; None when nothing
-    up to ``limit`` passes."""
-    if ok(start):
-        return start
-    low, high = start, 2.0 * start
-    while not ok(high):
-        low, high = high, 2.0 * high
-        if high > limit:
-            return None
-    return _bisect(ok, low, high)
-
-
-def slowed_until(
-    problem: PathProblem, poses_for: Callable[[float], PoseSamples], start: float = 1.0
-) -> tuple[float, PoseSamples] | None:
-    """Smallest uniform stretch c >= ``start`` at which ``poses_for(c)`` passes the linear
-    slosh screen, and its poses (None when none up to 64x passes)."""
-    models = problem.models()
-    factor = stretch_until(lambda c: screen_ok(problem, linear_screen(models, poses_for(c))), start)
-    return None if factor is None else (factor, poses_for(factor))
-
-
-def fastest_capped(
-    problem: PathProblem,
-    passes: Callable[[PoseSamples], bool],
-    shaper: Shaper | None,
-    low_fraction: float = 1e-3,
-    sampler: Callable[[Timing], PoseSamples] | None = None,
-) -> tuple[float, Timing] | None:
-    """The largest acceleration cap A between ``low_fraction`` amax and amax whose family
-    member's export (``sampler``, default `sample_path`) passes ``passes``: a descending scan
-    of 20 log-spaced caps, then a bisection; (A, the member's timing) or None."""
-    amax = problem.machine.max_acceleration_m_s2
-
-    def ok(member: Timing) -> bool:
-        if sampler is not None:
-            return passes(sampler(member))
-        return passes(sample_path(problem.path, member, problem.sample_period_s))
-
-    # Slosh is not monotone in A (the residual oscillates with the move's duration): a
-    # descending scan finds the largest passing grid cap and a bisection towards the next
-    # larger (failing) grid value refines it; a plain bisection over the whole range can land
-    # in a passing pocket between grid values; the larger of the two caps wins.
-    caps = np.geomspace(amax, low_fraction * amax, 20)
-    passing = None
-    for position, cap in enumerate(caps):
-        member = family_member(problem, float(cap), shaper)
-        if ok(member):
-            passing = position
-            break
-    if passing is None:
-        return None
-    scanned = _refine(
-        problem, ok, shaper, float(caps[passing]), member, float(caps[max(passing - 1, 0)])
-    )
-    bisected = _refine(problem, ok, shaper, float(caps[-1]), None, amax)
-    if scanned is None or (bisected is not None and bisected[0] > scanned[0]):
-        return bisected
-    return scanned
-
-
-def _refine(
-    problem: PathProblem,
-    ok: Callable[[Timing], bool],
-    shaper: Shaper | None,
-    low: float,
-    member: Timing | None,
-    high: float,
-) -> tuple[float, Timing] | None:
-    """Bisection in log A between a passing ``low`` (its member, if known) and ``high``."""
-    if member is None:
-        member = family_member(problem, low, shaper)
-        if not ok(member):
-            return None
-    found = (low, member)
-    for _ in range(10):
-        if high / low < 1.02:
-            break
-        middle = math.sqrt(low * high)
-        candidate = family_member(problem, middle, shaper)
-        if ok(candidate):
-            low, found = middle, (middle, candidate)
-        else:
-            high = middle
-    return found

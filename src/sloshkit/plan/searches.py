@@ -19,7 +19,7 @@ from sloshkit.motion.profile import Motion
 from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv
-from sloshkit.plan.cost import work_limit
+from sloshkit.plan.cost import slosh_floor_s, work_limit
 from sloshkit.plan.problem import (
     SEARCH_MARGIN,
     SHAPERS,
@@ -88,11 +88,38 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
 
     Laws with acceleration jumps have unbounded jerk: they are reported with the duration that
     meets the other limits, and flagged infeasible under a jerk limit.
+
+    Parameters
+    ----------
+    law : str
+        ``trapezoidal``, ``cubic``, ``quintic`` or ``septic``.
+    problem : PlanProblem
+        Distance, limits, model and sample period.
+    grid : int
+        Durations screened per scan.
+
+    Returns
+    -------
+    Candidate
+        The law at its shortest verified duration (or why none was found).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(0.1, sk.MachineLimits(1.0, 5.0, 200.0),
+    ...                          sk.SloshLimits(0.1, 0.01), model)
+    >>> plan_paper_law("quintic", problem, grid=50).feasible
+    True
     """
 
     started = time.perf_counter()
     shape = unit_duration_shape(make_law(law, problem.distance_m, duration_s=1.0))
-    floor = _machine_floor(shape, problem.machine)
+    # No move is shorter than the slosh bound (`sloshkit.plan.cost.slosh_floor_s`; 1 % below
+    # it, as the angle is checked at the samples only): under tight slosh limits the scan
+    # starts there instead of widening from the machine's floor.
+    floor = max(_machine_floor(shape, problem.machine), 0.99 * slosh_floor_s(problem))
     dt = problem.sample_period_s  # screen on the grid the verification uses
     velocity_pp = shape.derivative_pp(1)
     upper = floor
@@ -146,7 +173,27 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
 
 
 def shaper_for(name: str, model: SloshModel) -> Shaper:
-    """A shaper on the first mode (``zv``, ``zvd``, ``ei``) or ``zv2``: ZV on modes 1 and 2."""
+    """A shaper on the first mode (``zv``, ``zvd``, ``ei``) or ``zv2``: ZV on modes 1 and 2.
+
+    Parameters
+    ----------
+    name : str
+        ``zv``, ``zvd``, ``ei`` or ``zv2``.
+    model : SloshModel
+        The model whose modes it cancels.
+
+    Returns
+    -------
+    Shaper
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> shaper_for("zv2", model).amplitudes.size
+    4
+    """
     first = model.modes[0]
     if name == "zv2":
         if len(model.modes) < 2:
@@ -162,7 +209,30 @@ def shaper_for(name: str, model: SloshModel) -> Shaper:
 def plan_shaped(problem: PlanProblem, shapers: Sequence[str] = SHAPERS) -> Candidate:
     """Shaped S-curves: for each shaper, a grid over the S-curve's acceleration and jerk limits
     screened at once on the fast path, then a bisection on the acceleration; the fastest
-    verified result."""
+    verified result.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Distance, limits, model and sample period.
+    shapers : sequence of str
+        Shapers to try (`sloshkit.plan.problem.SHAPERS`).
+
+    Returns
+    -------
+    Candidate
+        The fastest verified shaped move (``detail`` lists every shaper tried).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(0.1, sk.MachineLimits(1.0, 5.0, 200.0),
+    ...                          sk.SloshLimits(0.1, 0.01), model)
+    >>> plan_shaped(problem, ("zv",)).feasible
+    True
+    """
     started = time.perf_counter()
     machine = problem.machine
     dt = problem.sample_period_s  # screen on the grid the verification uses

@@ -1,24 +1,16 @@
-"""3-D path planning: the problem, sampled pose exports, a fast linear screen and verification.
+"""3-D path planning: the problem (path, limits, model) and sampled pose exports.
 
 The planner's methods (`sloshkit.plan.retime`, `sloshkit.plan.tilt`) search with a fast linear
-model of the lateral modes along the sampled export (`linear_screen`); nothing is called
-feasible before the export has been simulated with the nonlinear 3-D model of
-`sloshkit.sim.spatial` for every frequency of the robustness band (`verify`).
-
-Linear screen (Abramson, NASA SP-106 (1966) ch. 6; Dodge (2000) ch. 3): each mode n is a
-spherical pendulum of length L_n whose small deflection phi_n (2-vector, relative to the
-container axis) obeys phi'' + 2 zeta w phi' + w^2 phi = f_lat / L_n, with f = g - a_B the
-specific force at the container-fixed point B_n where the bob rests (its acceleration includes
-the Euler and centripetal terms of the container's rotation), taken in the container's frame
-with its spin about the own axis removed (an ideal liquid does not spin with the container).
-A static tilt psi gives phi = sin(psi): the surface stays level. Wall height: |sum_n e_n phi_n|,
-e_n = 2R/(xi_n^2 - 1) (the model's ``wall_elevation_factor_m``).
+model of the lateral modes along the sampled export (`sloshkit.plan.path_screen`) and check
+the kinematic limits (`sloshkit.plan.path_limits`); nothing is called feasible before the
+export has been simulated with the nonlinear 3-D model of `sloshkit.sim.spatial` for every
+frequency of the robustness band (`sloshkit.plan.path_result.verify`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -36,9 +28,26 @@ SEARCH_MARGIN = 0.03
 
 @dataclass(frozen=True)
 class CartesianLimits:
-    """Limits of the reference point (path speed [m/s], acceleration incl. centripetal
-    [m/s^2], jerk [m/s^3]) and optionally of the container's angular velocity [rad/s] and
-    angular acceleration [rad/s^2]."""
+    """Limits of the container's reference point and rotation.
+
+    Parameters
+    ----------
+    max_velocity_m_s : float
+        Path speed [m/s].
+    max_acceleration_m_s2 : float
+        Acceleration, tangential and centripetal together [m/s^2].
+    max_jerk_m_s3 : float
+        Jerk [m/s^3].
+    max_angular_velocity_rad_s : float, optional
+        Angular speed of the container [rad/s] (None: no limit).
+    max_angular_acceleration_rad_s2 : float, optional
+        Angular acceleration of the container [rad/s^2] (None: no limit).
+
+    Examples
+    --------
+    >>> CartesianLimits(2.0, 10.0, 100.0, max_angular_velocity_rad_s=3.14).max_jerk_m_s3
+    100.0
+    """
 
     max_velocity_m_s: float
     max_acceleration_m_s2: float
@@ -57,9 +66,24 @@ class CartesianLimits:
 
 @dataclass(frozen=True)
 class SpatialSloshLimits:
-    """Peak slosh height during the move and residual slosh height after it [m], optionally
-    the peak first-mode surface angle [rad]; ``robustness``: relative frequency band (0.1 for
-    +-10 %) over which they must hold."""
+    """Slosh limits of a 3-D move.
+
+    Parameters
+    ----------
+    max_height_m : float
+        Peak slosh height during the move [m].
+    max_residual_height_m : float
+        Residual slosh height after it [m].
+    max_surface_angle_rad : float, optional
+        Peak first-mode surface angle [rad].
+    robustness : float
+        Relative frequency band over which the limits must hold (0.1 for +-10 %).
+
+    Examples
+    --------
+    >>> SpatialSloshLimits(0.015, 0.002, robustness=0.1).robustness
+    0.1
+    """
 
     max_height_m: float
     max_residual_height_m: float
@@ -76,11 +100,37 @@ class SpatialSloshLimits:
 
 @dataclass(frozen=True, eq=False)
 class PathProblem:
-    """A path, its limits, the container model (any object with ``modes`` and ``radius_m``,
-    see `sloshkit.model.modal.SloshModel`), the controller sample period [s], the largest tilt
-    [rad] the ``tilt`` method may use, the height of its rotation centre above the container
-    bottom on the axis [m], and the largest distance from the path [m] the ``shaped`` method
-    may leave (per-axis shaping cuts corners)."""
+    """A path, its limits, the container model and the controller's sample period.
+
+    Parameters
+    ----------
+    path : Path
+        The geometry (`sloshkit.plan.path`).
+    machine : CartesianLimits
+        Cartesian and angular limits.
+    slosh : SpatialSloshLimits
+        Slosh limits.
+    model : SloshModel
+        The container model (any object with ``modes`` and ``radius_m``).
+    sample_period_s : float
+        Controller sample period of the export [s].
+    max_tilt_rad : float
+        Largest tilt from vertical the ``tilt`` method may use [rad].
+    tilt_centre_height_m : float
+        Height of the tilt's rotation centre above the container bottom, on its axis [m].
+    max_path_deviation_m : float
+        Largest distance from the path the ``shaped`` method may leave [m] (per-axis shaping
+        cuts corners).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None)
+    >>> problem.sample_period_s, round(problem.path.length_m, 3)
+    (0.004, 0.3)
+    """
 
     path: Path
     machine: CartesianLimits
@@ -110,8 +160,24 @@ def _scaled(model: Any, factor: float) -> Any:
 
 @dataclass(frozen=True, eq=False)
 class PoseSamples:
-    """A sampled pose trajectory on a uniform grid: times [s], reference-point positions [m]
-    (n, 3), container-to-world quaternions (n, 4, scalar last). Starts and ends at rest."""
+    """A sampled pose trajectory on a uniform grid, at rest at both ends.
+
+    Parameters
+    ----------
+    time_s : ndarray
+        Sample times [s] from 0, uniform.
+    position_m : ndarray, shape (n, 3)
+        Reference-point (container bottom centre) positions, world frame [m].
+    quaternion_xyzw : ndarray, shape (n, 4)
+        Container-to-world unit quaternions, scalar last.
+
+    Examples
+    --------
+    >>> t = np.arange(3) * 0.1
+    >>> poses = PoseSamples(t, np.zeros((3, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (3, 1)))
+    >>> poses.duration_s, sorted(poses.columns())[:3]
+    (0.2, ['qw', 'qx', 'qy'])
+    """
 
     time_s: FloatArray
     position_m: FloatArray
@@ -145,8 +211,32 @@ class PoseSamples:
 
 
 def sample_path(path: Path, timing: Any, sample_period_s: float) -> PoseSamples:
-    """Sample ``path`` along the timing s(t) (a `sloshkit.motion.laws.Motion` whose position is
-    s [m]) at t = k Ts until the first sample at or after the end; quaternions sign-continuous."""
+    """Sample ``path`` along the timing s(t) at t = k Ts until the first sample at or after the
+    end; quaternions sign-continuous.
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    timing : Timing or Motion
+        Anything with ``duration_s`` and ``position(t)`` giving s [m].
+    sample_period_s : float
+        Ts [s].
+
+    Returns
+    -------
+    PoseSamples
+        The export, ending exactly on the path's last pose.
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.motion.laws import s_curve
+    >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
+    >>> poses = sample_path(path, s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
+    >>> poses.position_m[-1].tolist()
+    [0.5, 0.0, 0.0]
+    """
     count = math.ceil(timing.duration_s / sample_period_s - 1e-9)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     s = np.clip(timing.position(np.minimum(t, timing.duration_s)), 0.0, path.length_m)
@@ -166,225 +256,3 @@ def _second_difference(values: FloatArray, step: float) -> FloatArray:
     """Central second difference along axis 0, the ends held at rest."""
     padded = np.concatenate((values[:1], values, values[-1:]))
     return np.asarray((padded[2:] - 2 * padded[1:-1] + padded[:-2]) / step**2)
-
-
-@dataclass(frozen=True)
-class ScreenResult:
-    """Linear-screen metrics (worst over the band): peak and residual slosh height [m],
-    peak first-mode surface angle [rad]."""
-
-    peak_height_m: float
-    residual_height_m: float
-    peak_angle_rad: float
-
-
-def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
-    """Slosh of the sampled ``poses`` by the linear spherical-pendulum model (module docstring).
-
-    The liquid starts in equilibrium with the first pose; the residual height is the bound
-    sum_n e_n sqrt(|A_n|^2 + |B_n|^2) of the free oscillation about the last pose's equilibrium
-    (A_n, B_n: the cosine and sine amplitude vectors of mode n).
-
-    Examples
-    --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.motion.laws import s_curve
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
-    >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
-    >>> poses = sample_path(path, s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
-    >>> round(linear_screen([model], poses).peak_height_m * 1e3)  # [mm]
-    24
-    """
-    from sloshkit.sim.discretisation import linear_mode_response
-
-    ts = float(poses.time_s[1] - poses.time_s[0])
-    rotation = poses.rotation
-    spin_rate = (rotation[:-1].inv() * rotation[1:]).as_rotvec()[:, 2]
-    spin = np.concatenate(([0.0], np.cumsum(spin_rate)))
-    frame = rotation * Rotation.from_rotvec(-spin[:, None] * np.array([0.0, 0.0, 1.0]))
-    axis = rotation.apply([0.0, 0.0, 1.0])
-    peak = residual = angle = 0.0
-    for model in models:
-        wall = np.zeros((poses.time_s.size, 2))
-        bound = 0.0
-        for index, mode in enumerate(model.modes):
-            point = poses.position_m + mode.bob_height_m * axis
-            force = frame.inv().apply(GRAVITY - _second_difference(point, ts))[:, :2]
-            rest = force / (mode.length_m * mode.omega_rad_s**2)
-            # Equivalent velocity w with w' = -(f - f_0): linear_mode_response solves
-            # theta'' + 2 zeta w theta' + w^2 theta = -w'/L.
-            excess = force - force[0]
-            equivalent = -np.concatenate(
-                (np.zeros((1, 2)), np.cumsum(0.5 * (excess[1:] + excess[:-1]) * ts, axis=0))
-            )
-            theta, rate = linear_mode_response(
-                equivalent.T, ts, mode.omega_rad_s, mode.damping_ratio, mode.length_m
-            )
-            phi = theta.T + rest[0]
-            wall += mode.wall_elevation_factor_m * phi
-            if index == 0:
-                angle = max(angle, float(np.max(np.linalg.norm(phi, axis=1))))
-            damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
-            cosine = phi[-1] - rest[-1]
-            sine = (rate.T[-1] + mode.damping_ratio * mode.omega_rad_s * cosine) / damped
-            bound += mode.wall_elevation_factor_m * math.sqrt(cosine @ cosine + sine @ sine)
-        peak = max(peak, float(np.max(np.linalg.norm(wall, axis=1))))
-        residual = max(residual, bound)
-    return ScreenResult(peak, residual, angle)
-
-
-def screen_ok(problem: PathProblem, result: ScreenResult, margin: float = SEARCH_MARGIN) -> bool:
-    """True when the screen meets every slosh limit with the relative ``margin``."""
-    slosh = problem.slosh
-    keep = 1.0 - margin
-    ok = result.peak_height_m <= slosh.max_height_m * keep
-    ok &= result.residual_height_m <= slosh.max_residual_height_m * keep
-    if slosh.max_surface_angle_rad is not None:
-        ok &= result.peak_angle_rad <= slosh.max_surface_angle_rad * keep
-    return bool(ok)
-
-
-def kinematics(poses: PoseSamples) -> dict[str, float]:
-    """Peaks of the sampled export by finite differences: speed [m/s], acceleration
-    [m/s^2], jerk [m/s^3], angular velocity [rad/s], angular acceleration [rad/s^2], tilt from
-    vertical [rad]."""
-    ts = float(poses.time_s[1] - poses.time_s[0])
-    rest = np.concatenate(
-        (poses.position_m[:1],) * 2 + (poses.position_m,) + (poses.position_m[-1:],) * 2
-    )
-    velocity = np.diff(rest, axis=0) / ts
-    acceleration = np.diff(velocity, axis=0) / ts
-    jerk = np.diff(acceleration, axis=0) / ts
-    rotation = poses.rotation
-    omega = (rotation[1:] * rotation[:-1].inv()).as_rotvec() / ts
-    omega = np.concatenate((np.zeros((1, 3)), omega, np.zeros((1, 3))))
-    alpha = np.diff(omega, axis=0) / ts
-    axis = rotation.apply([0.0, 0.0, 1.0])
-    return {
-        "velocity": float(np.max(np.linalg.norm(velocity, axis=1))),
-        "acceleration": float(np.max(np.linalg.norm(acceleration, axis=1))),
-        "jerk": float(np.max(np.linalg.norm(jerk, axis=1))),
-        "angular_velocity": float(np.max(np.linalg.norm(omega, axis=1))),
-        "angular_acceleration": float(np.max(np.linalg.norm(alpha, axis=1))),
-        "tilt": float(np.max(np.arccos(np.clip(axis[:, 2], -1.0, 1.0)))),
-    }
-
-
-def machine_violations(problem: PathProblem, poses: PoseSamples, tilted: bool) -> list[str]:
-    """Names and values of the Cartesian, angular and tilt limits the export breaks."""
-    peaks = kinematics(poses)
-    machine = problem.machine
-    checks = [
-        ("velocity", peaks["velocity"], machine.max_velocity_m_s, "m/s"),
-        ("acceleration", peaks["acceleration"], machine.max_acceleration_m_s2, "m/s^2"),
-        ("jerk", peaks["jerk"], machine.max_jerk_m_s3, "m/s^3"),
-    ]
-    if machine.max_angular_velocity_rad_s is not None:
-        checks.append(
-            (
-                "angular velocity",
-                peaks["angular_velocity"],
-                machine.max_angular_velocity_rad_s,
-                "rad/s",
-            )
-        )
-    if machine.max_angular_acceleration_rad_s2 is not None:
-        checks.append(
-            (
-                "angular acceleration",
-                peaks["angular_acceleration"],
-                machine.max_angular_acceleration_rad_s2,
-                "rad/s^2",
-            )
-        )
-    if tilted:
-        checks.append(("tilt", peaks["tilt"], problem.max_tilt_rad, "rad"))
-    return [
-        f"{name} {value:.4g} > {limit:.4g} {unit}"
-        for name, value, limit, unit in checks
-        if value > limit * (1.0 + 1e-6)
-    ]
-
-
-def path_deviation(path: Path, poses: PoseSamples) -> float:
-    """Largest distance [m] of the exported positions from the path (`Path.distance_to`)."""
-    return float(np.max(path.distance_to(poses.position_m)))
-
-
-@dataclass(frozen=True)
-class Verification:
-    """Nonlinear 3-D simulation of the export (worst over the band) and the limit checks;
-    ``time_s``/``height_m``: the nominal model's slosh height over time [s, m] (for figures)."""
-
-    peak_height_m: float
-    residual_height_m: float
-    peak_tilt_rad: float
-    max_path_deviation_m: float
-    violations: tuple[str, ...]
-    time_s: FloatArray = field(default_factory=lambda: np.empty(0))
-    height_m: FloatArray = field(default_factory=lambda: np.empty(0))
-
-    @property
-    def feasible(self) -> bool:
-        """True when no limit is broken."""
-        return not self.violations
-
-
-def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Verification:
-    """Simulate the export with the nonlinear 3-D model (all modes, every band frequency) and
-    check the slosh, Cartesian, angular and tilt limits.
-
-    The slosh height is `sloshkit.sim.spatial.simulate_spatial`'s peak slosh height (the
-    largest free-surface elevation at the wall, over the circumference) and its residual
-    slosh height after the move; the surface angle its first-mode deflection. The export is
-    simulated twice, with exact differentiation of the poses and with the default smoothing
-    filter that ``simulate --pose-file`` uses, and the worse of the two counts.
-    """
-    import warnings
-
-    from sloshkit.errors import ValidityWarning
-    from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ
-    from sloshkit.sim.spatial import simulate_spatial
-
-    trajectory = poses.to_pose_trajectory()
-    peak = residual = angle = 0.0
-    series: tuple[FloatArray, FloatArray] = (np.empty(0), np.empty(0))
-    models = problem.models()
-    for index, model in enumerate(models):
-        for cutoff in (None, DEFAULT_CUTOFF_HZ):
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", ValidityWarning)
-                response = simulate_spatial(model, trajectory, nonlinear=True, cutoff_hz=cutoff)
-            peak = max(peak, float(response.peak_slosh_height_m))
-            residual = max(residual, float(response.residual_slosh_height_m))
-            angle = max(angle, float(response.peak_angle_rad))
-            if cutoff is None and index == len(models) // 2:
-                series = (response.time_s, response.slosh_height_m)
-    slosh = problem.slosh
-    violations = machine_violations(problem, poses, tilted)
-    if peak > slosh.max_height_m:
-        violations.append(f"peak slosh height {peak * 1e3:.4g} > {slosh.max_height_m * 1e3:.4g} mm")
-    if residual > slosh.max_residual_height_m:
-        violations.append(
-            f"residual slosh height {residual * 1e3:.4g} > "
-            f"{slosh.max_residual_height_m * 1e3:.4g} mm"
-        )
-    if slosh.max_surface_angle_rad is not None and angle > slosh.max_surface_angle_rad:
-        violations.append(
-            f"surface angle {math.degrees(angle):.4g} > "
-            f"{math.degrees(slosh.max_surface_angle_rad):.4g} deg"
-        )
-    end = problem.path.position(problem.path.length_m)
-    if float(np.linalg.norm(poses.position_m[-1] - end)) > 1e-6:
-        violations.append("does not end on the path's last pose")
-    return Verification(
-        peak,
-        residual,
-        kinematics(poses)["tilt"],
-        path_deviation(problem.path, poses),
-        tuple(violations),
-        *series,
-    )

@@ -40,6 +40,22 @@ def compensating_axis(acceleration_m_s2: FloatArray, max_tilt_rad: float) -> Flo
     """Unit container axes anti-parallel to f = g - a, tilted at most ``max_tilt_rad`` from
     vertical (horizontal part scaled down when the limit binds).
 
+    Parameters
+    ----------
+    acceleration_m_s2 : ndarray, shape (n, 3)
+        Acceleration of the point whose apparent gravity is followed [m/s^2].
+    max_tilt_rad : float
+        Largest tilt from vertical [rad].
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        Unit axes.
+
+    References
+    ----------
+    Feddema et al. (1997), doi:10.1109/37.569711.
+
     Examples
     --------
     >>> axis = compensating_axis(np.array([[3.0, 0.0, 0.0]]), np.radians(30))
@@ -120,6 +136,23 @@ def tilt_compensated(
 
 
 def peak_tilt_rad(poses: PoseSamples) -> float:
-    """Largest angle between the container axis and the vertical [rad]."""
+    """Largest angle between the container axis and the vertical [rad].
+
+    Parameters
+    ----------
+    poses : PoseSamples
+        The export.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> q = Rotation.from_euler("x", [[0.0], [0.2]]).as_quat()
+    >>> round(peak_tilt_rad(PoseSamples(np.arange(2) * 0.1, np.zeros((2, 3)), q)), 6)
+    0.2
+    """
     axis = poses.rotation.apply([0.0, 0.0, 1.0])
     return float(np.max(np.arccos(np.clip(axis[:, 2], -1.0, 1.0))))

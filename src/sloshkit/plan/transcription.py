@@ -27,7 +27,10 @@ from scipy.spatial.transform import Rotation
 
 from sloshkit.motion.laws import Motion, _piecewise_constant_jerk
 from sloshkit.plan.path import Path
-from sloshkit.plan.spatial import GRAVITY, PathProblem
+from sloshkit.plan.path_limits import machine_violations
+from sloshkit.plan.path_screen import linear_screen, screen_ok
+from sloshkit.plan.spatial import GRAVITY, SEARCH_MARGIN, PathProblem, sample_path
+from sloshkit.plan.timing import FINE_STEP_S, Timing
 
 FloatArray = NDArray[np.float64]
 #: Fraction of the Cartesian limits the transcription uses (they hold at its nodes only).
@@ -35,10 +38,31 @@ MARGIN = 0.98
 
 
 def path_tables(path: Path, count: int) -> tuple[FloatArray, FloatArray]:
-    """Grid of s [m] and a (22, count) table of the path quantities the transcription needs:
-    rows 0-1 R_N^T g, 2-3 R_N^T p', 4-5 R_N^T (R e_z)', 6-7 R_N^T p'', 8-9 R_N^T (R e_z)''
+    """Grid of s and the table of path quantities the transcription interpolates.
+
+    Rows 0-1 R_N^T g, 2-3 R_N^T p', 4-5 R_N^T (R e_z)', 6-7 R_N^T p'', 8-9 R_N^T (R e_z)''
     (lateral components in the spin-free container frame R_N), 10-12 p', 13-15 p'', 16-18
-    p''', 19-21 omega_s (world)."""
+    p''', 19-21 omega_s (world).
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    count : int
+        Grid points.
+
+    Returns
+    -------
+    tuple of ndarray
+        (s grid [m], table of shape (22, count)).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> grid, table = path_tables(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]), 5)
+    >>> table.shape, table[10:13, 2].round(6).tolist()  # p' along x
+    ((22, 5), [1.0, 0.0, 0.0])
+    """
     grid = np.linspace(0.0, path.length_m, count)
     rotation = path.orientation(grid)
     axis = rotation.apply([0.0, 0.0, 1.0])
@@ -306,3 +330,69 @@ def optimal_timing(
     interval = float(solution[0]) / count
     timing = _piecewise_constant_jerk("retime", [interval] * count, list(solution[-count:]))
     return Motion("retime", timing.position_pp), status
+
+
+#: Re-solves after the first when the sampled export breaks a slosh limit in the screen.
+TIGHTENING_STEPS = 2
+
+
+def transcribed_timing(problem: PathProblem, warm: Any) -> tuple[Timing, str] | None:
+    """`optimal_timing` checked on the export grid, with a bounded verify-and-tighten loop.
+
+    The transcription's slosh limits hold at its shooting nodes of an RK4 model with the path
+    quantities interpolated between nodes; the sampled export can break them between and at
+    the nodes (by 4 % peak and 20 % residual on the measured TRD path). So the export of each
+    solution is screened (`sloshkit.plan.path_screen.linear_screen` on the controller grid, with
+    the search margin): when a slosh limit is broken, that limit is tightened by the ratio of
+    the screened value to the allowed one and the problem is solved again, warm-started from
+    the previous solution, at most `TIGHTENING_STEPS` times.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model.
+    warm : Timing or Motion
+        First warm start.
+
+    Returns
+    -------
+    tuple or None
+        (timing, IPOPT status) of the first solution whose export passes the screen and the
+        Cartesian limits, None when IPOPT fails or the loop ends without one.
+
+    References
+    ----------
+    Betts (2010) ch. 4 (direct transcription); the export check is this library's.
+
+    Examples
+    --------
+    >>> TIGHTENING_STEPS
+    2
+    """
+    path, slosh = problem.path, problem.slosh
+    models = problem.models()
+    keep = 1.0 - SEARCH_MARGIN
+    peak_factor = residual_factor = keep
+    for _ in range(1 + TIGHTENING_STEPS):
+        solved = optimal_timing(
+            problem, warm, tightening=peak_factor, residual_tightening=residual_factor
+        )
+        if solved is None:
+            return None
+        motion, status = solved
+        grid = np.linspace(
+            0.0, motion.duration_s, max(8, math.ceil(motion.duration_s / FINE_STEP_S)) + 1
+        )
+        timing = Timing.from_samples(
+            "retime", grid, np.clip(motion.position(grid), 0.0, path.length_m)
+        )
+        poses = sample_path(path, timing, problem.sample_period_s)
+        if machine_violations(problem, poses, False):
+            return None
+        screen = linear_screen(models, poses)
+        if screen_ok(problem, screen):
+            return timing, status
+        peak_factor *= min(1.0, keep * slosh.max_height_m / screen.peak_height_m)
+        residual_factor *= min(1.0, keep * slosh.max_residual_height_m / screen.residual_height_m)
+        warm = timing
+    return None

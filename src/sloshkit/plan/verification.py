@@ -33,6 +33,28 @@ def verify(motion: Motion, problem: PlanProblem) -> Verification:
     first-order-hold discretisation assumes) and simulated for each model of the band. The
     residual amplitude is taken from the state at the last sample, when the move is over. With
     ``problem.nonlinear`` the exported accelerations drive the large-angle pendulums instead.
+
+    Parameters
+    ----------
+    motion : Motion
+        The candidate move.
+    problem : PlanProblem
+        Its limits, model, band and sample period.
+
+    Returns
+    -------
+    Verification
+        Peaks, residual, end error and the violated limits.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             fill_height_m=0.039)
+    >>> problem = sk.PlanProblem(0.1, sk.MachineLimits(1.0, 5.0, 200.0),
+    ...                          sk.SloshLimits(0.1, 0.01), model)
+    >>> verify(sk.quintic(0.1, 1.5), problem).feasible
+    True
     """
     samples = export_samples(motion, problem.sample_period_s)
     velocity = samples["velocity_m_s"]

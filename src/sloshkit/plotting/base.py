@@ -44,6 +44,16 @@ def panels(
     -------
     tuple
         (figure, axes) as `matplotlib.figure.Figure.subplots` returns them.
+
+    Examples
+    --------
+    Two panels sharing the area of one axes of an existing figure:
+
+    >>> from matplotlib.figure import Figure
+    >>> host = Figure().subplots(1, 2)[1]
+    >>> figure, axes = panels(host, 2, figsize=(6, 4), sharex=True)
+    >>> len(axes), len(figure.axes)
+    (2, 3)
     """
     from matplotlib.figure import Figure
 
@@ -78,6 +88,15 @@ def save_figure(figure: Any, path: str | Path | None) -> Any:
     -------
     matplotlib.figure.Figure
         ``figure``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from matplotlib.figure import Figure
+    >>> target = pathlib.Path(tempfile.mkdtemp()) / "empty.svg"
+    >>> figure = save_figure(Figure(), target)
+    >>> target.read_text()[:5]
+    '<?xml'
     """
     if path is not None:
         target = Path(path)

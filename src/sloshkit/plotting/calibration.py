@@ -26,7 +26,34 @@ def plot_calibration(
     signal_label: str = "signal (detrended) [unit of the record]",
 ) -> Any:
     """Signal in the window, every peak and trough, the peaks the estimators use and the fitted
-    decay envelope (seed Fig. 5b); ``signal_label`` names the signal and its unit."""
+    decay envelope (seed Fig. 5b); ``signal_label`` names the signal and its unit.
+
+    Parameters
+    ----------
+    result : CalibrationResult
+        The calibration.
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+    signal_label : str
+        The y label: the signal and its unit.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (saved to ``path`` when given).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration import calibrate
+    >>> t = np.arange(0, 4, 0.002)
+    >>> result = calibrate(t, np.exp(-0.6 * t) * np.cos(30 * t), start_s=0.0)
+    >>> figure = plot_calibration(result, signal_label="height [m]")
+    >>> figure.axes[0].get_ylabel()
+    'height [m]'
+    """
     from scipy.signal import find_peaks
 
     figure, axis = panels(ax, 1, figsize=(8, 4.2), layout="constrained")
@@ -120,6 +147,15 @@ def plot_free_response(
     -------
     matplotlib.figure.Figure
         The figure.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 2, 201)
+    >>> decay = 1e-3 * np.exp(-0.6 * t) * np.cos(30 * t)
+    >>> figure = plot_free_response(t, decay, 0.98 * decay, "pendulum")
+    >>> [line.get_label() for line in figure.axes[0].get_lines()][:2]
+    ['CFD (interFoam), wall elevation', 'pendulum']
     """
     figure, axis = panels(ax, 1, figsize=(8, 4), layout="constrained")
     axis.plot(time_s, 1e3 * measured_m, label="CFD (interFoam), wall elevation")
@@ -134,7 +170,32 @@ def plot_free_response(
 @register_plot(Backbone)
 def plot_backbone(backbone: Backbone, path: str | Path | None = None, *, ax: Any = None) -> Any:
     """Frequency and damping against amplitude (sliding-window fits) with the regressions
-    whose intercepts are the small-amplitude (linear) calibration."""
+    whose intercepts are the small-amplitude (linear) calibration.
+
+    Parameters
+    ----------
+    backbone : Backbone
+        The sliding-window fits (`sloshkit.calibration.backbone`).
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (saved to ``path`` when given).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration import prepare_signal
+    >>> from sloshkit.calibration.backbone import backbone
+    >>> t = np.arange(0, 6, 0.002)
+    >>> prepared, _ = prepare_signal(t, np.exp(-0.6 * t) * np.cos(29.99 * t), start_s=0.0)
+    >>> len(plot_backbone(backbone(prepared, 30.0, 0.02)).axes)
+    2
+    """
     figure, axes = panels(ax, 1, 2, figsize=(9, 3.8), layout="constrained")
     amplitude = backbone.amplitude
     line = np.linspace(0.0, float(amplitude.max()), 50)
@@ -170,7 +231,35 @@ def plot_backbone(backbone: Backbone, path: str | Path | None = None, *, ax: Any
 def plot_forced_identification(
     result: ForcedIdentification, path: str | Path | None = None, *, ax: Any = None
 ) -> Any:
-    """Measured record and the identified model's simulation, with the motion's span."""
+    """Measured record and the identified model's simulation, with the motion's span.
+
+    Parameters
+    ----------
+    result : ForcedIdentification
+        The identification.
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (saved to ``path`` when given).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.calibration.forced import ForcedIdentification, FitStatistics
+    >>> t = np.linspace(0.0, 1.0, 50)
+    >>> fit = FitStatistics(np.array([1.0]), np.sin(9 * t), np.zeros(3), 1.0, 0.0, 1.0)
+    >>> result = ForcedIdentification.from_fit(
+    ...     fit, t, np.sin(9 * t), signal_kind="height", omega_n_rad_s=9.0, damping_ratio=0.02,
+    ...     constrained={}, linear=fit.linear_parameters(["gain"], first=2),
+    ...     motion_span_s=(0.0, 0.3))
+    >>> len(plot_forced_identification(result).axes) >= 1
+    True
+    """
     figure, axes = panels(ax, 2, figsize=(8, 5.5), sharex=True, layout="constrained")
     axes[0].plot(result.time_s, result.measured, color="tab:blue", linewidth=1, label="measured")
     axes[0].plot(

@@ -16,7 +16,33 @@ from sloshkit.results import register_plot
 @register_plot(PlanResult)
 def plot_plan(result: PlanResult, path: str | Path | None = None, *, ax: Any = None) -> Any:
     """Velocity, acceleration and first-mode slosh angle of each verified candidate
-    (its exported samples, `PlanResult.histories`), with the limits."""
+    (its exported samples, `PlanResult.histories`), with the limits.
+
+    Parameters
+    ----------
+    result : PlanResult
+        The plan.
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (saved to ``path`` when given).
+
+    Examples
+    --------
+    >>> import math
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> problem = sk.PlanProblem(0.2, sk.MachineLimits(1.0, 10.0, 200.0),
+    ...                          sk.SloshLimits(math.radians(5), math.radians(0.5)), model, 0.004)
+    >>> result = sk.plan(problem, "shaped")
+    >>> len(plot_plan(result).axes)
+    3
+    """
 
     figure, axes = panels(ax, 3, figsize=(8.5, 8.5), sharex=True, layout="constrained")
     problem = result.problem

@@ -18,7 +18,30 @@ from sloshkit.sim.response import SloshResponse
 def plot_response(
     response: SloshResponse, path: str | Path | None = None, *, ax: Any = None
 ) -> Any:
-    """Container velocity and acceleration, pendulum angles and wall elevation over time."""
+    """Container velocity and acceleration, pendulum angles and wall elevation over time.
+
+    Parameters
+    ----------
+    response : SloshResponse
+        The simulation.
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (saved to ``path`` when given).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> figure = plot_response(sk.simulate(model, sk.quintic(0.1, 1.0)))
+    >>> [axis.get_ylabel() for axis in figure.axes][1:]
+    ['slosh angle [deg]', 'wall elevation [mm]']
+    """
     figure, axes = panels(ax, 3, figsize=(8, 8), sharex=True)
     t = response.time_s
     axes[0].plot(t, response.velocity_m_s, label="velocity [m/s]")
@@ -43,7 +66,29 @@ def plot_response(
 def plot_law_comparison(
     motions: Sequence[Motion], path: str | Path | None = None, *, ax: Any = None
 ) -> Any:
-    """Velocity, acceleration and jerk of each law (the seed paper's Fig. 7)."""
+    """Velocity, acceleration and jerk of each law (the seed paper's Fig. 7).
+
+    Parameters
+    ----------
+    motions : sequence of Motion
+        The laws.
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (saved to ``path`` when given).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> figure = plot_law_comparison([sk.quintic(0.1, 1.0), sk.septic(0.1, 1.0)])
+    >>> len(figure.axes), len(figure.axes[0].get_lines())
+    (3, 2)
+    """
     figure, axes = panels(ax, 3, figsize=(8, 8), sharex=True)
     for motion in motions:
         t = np.linspace(0.0, motion.duration_s, 2001)
@@ -66,7 +111,30 @@ def plot_law_comparison(
 def plot_slosh_comparison(
     responses: Sequence[SloshResponse], path: str | Path | None = None, *, ax: Any = None
 ) -> Any:
-    """First-mode slosh angle and angular rate of each law (the seed paper's Figs. 8-9)."""
+    """First-mode slosh angle and angular rate of each law (the seed paper's Figs. 8-9).
+
+    Parameters
+    ----------
+    responses : sequence of SloshResponse
+        The simulations.
+    path : str or Path, optional
+        Where to save the figure.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (saved to ``path`` when given).
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> responses = [sk.simulate(model, law(0.1, 1.0)) for law in (sk.quintic, sk.septic)]
+    >>> len(plot_slosh_comparison(responses).axes)
+    2
+    """
     figure, axes = panels(ax, 2, figsize=(8, 6.5), sharex=True)
     for response in responses:
         axes[0].plot(response.time_s, np.degrees(response.angle_rad[0]), label=response.motion_name)

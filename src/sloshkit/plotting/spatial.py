@@ -37,6 +37,15 @@ def plot_spatial_response(
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> poses = sk.poses_from_law(sk.quintic(0.05, 0.8), (1, 1, 0), sample_period_s=0.005)
+    >>> figure = plot_spatial_response(sk.simulate_spatial(model, poses), limit_m=0.01)
+    >>> len(figure.axes)
+    2
     """
     figure, axes = panels(ax, 1, 2, figsize=(11, 4.2))
     xyz = response.path_m
@@ -75,6 +84,30 @@ def plot_measured_comparison(
 
     Each item has ``name``, ``measured_t_s``, ``measured_m`` and ``predicted`` (a list of
     (label, time [s], height [m])).
+
+    Parameters
+    ----------
+    series : list of dict
+        The series.
+    path : str or Path, optional
+        Where to save the figure.
+    columns : int
+        Panels per row.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (saved to ``path`` when given).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 1, 11)
+    >>> series = [{"name": "run 1", "measured_t_s": t, "measured_m": 0.01 * t,
+    ...            "predicted": [("model", t, 0.011 * t)]}]
+    >>> plot_measured_comparison(series, columns=1).axes[0].get_title()
+    'run 1'
+
     """
     rows = int(np.ceil(len(series) / columns))
     figure, axes = panels(None, rows, columns, figsize=(6 * columns, 2.8 * rows), squeeze=False)

@@ -8,7 +8,6 @@ been produced, ``report.html`` last, so a failure never leaves a half-written re
 from __future__ import annotations
 
 import datetime as dt
-import html
 import json
 import shutil
 import sys
@@ -16,6 +15,8 @@ import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
+
+import markupsafe
 
 from sloshkit.io.scenario import Scenario
 from sloshkit.report.model_sections import _calibration_section, _model_section
@@ -25,61 +26,50 @@ from sloshkit.report.motion_sections import (
     _sweep_section,
     law_label,
 )
-from sloshkit.report.writer import ReportWriter, versions
+from sloshkit.report.writer import ReportWriter, render, versions
 
 Progress = Callable[[str], None]
 
 
-def summary_html(writer: ReportWriter, scenario: Scenario) -> str:
+def summary_html(writer: ReportWriter, scenario: Scenario) -> markupsafe.Markup:
     """The summary at the top of the report: the headline move, the key model figures, the
-    paper's conclusion in numbers and how many validity warnings the sections carry."""
-    items = []
+    paper's conclusion in numbers and how many validity warnings the sections carry.
+
+    Parameters
+    ----------
+    writer : ReportWriter
+        The writer after every section (its ``facts`` and ``warnings``).
+    scenario : Scenario
+        The scenario.
+
+    Returns
+    -------
+    markupsafe.Markup
+        The summary section's HTML.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit.report.paper import paper_scenario
+    >>> writer = ReportWriter(pathlib.Path(tempfile.mkdtemp()))
+    >>> writer.warnings.append(("Slosh maps", "<large angles>"))
+    >>> html = summary_html(writer, paper_scenario())
+    >>> '1 validity warning</span>' in html, '<a href="#slosh-maps">Slosh maps</a>' in html
+    (True, True)
+    """
     plan = writer.facts.get("plan")
-    if plan:
-        best = plan.get("best_paper_law")
-        line = (
-            f"<b>Fastest verified move: {html.escape(plan['method'])}, "
-            f"{plan['duration_s']:.3f} s</b> for the {1e3 * scenario.distance_m:.0f} mm move"
-        )
-        if plan.get("speed_up") and best:
-            line += (
-                f" — <b>{plan['speed_up']:.2f}× faster</b> than the best of the paper's laws "
-                f"({html.escape(law_label(best[0]))}, {best[1]:.3f} s) under the same limits"
-            )
-        items.append(line + ' (<a href="#fastest-safe-move">details</a>).')
-    elif "plan" in scenario.analyses:
-        items.append('<b>No move meets the limits</b> (<a href="#fastest-safe-move">details</a>).')
-    model = writer.facts.get("model")
-    if model:
-        items.append(
-            f"First sloshing mode: f₁ = {model['frequency_hz']:.3f} Hz "
-            f"(ω₁ = {model['omega_rad_s']:.2f} rad/s), slosh mass {model['slosh_mass_g']:.2f} g, "
-            f"pendulum length {model['length_mm']:.2f} mm, damping ratio ζ = "
-            f"{model['damping_ratio']:.3g} ({html.escape(model['liquid'])}; "
-            '<a href="#equivalent-model">model</a>).'
-        )
-    ratio = writer.facts.get("residual_ratio_trapezoid_septic")
-    if ratio:
-        items.append(
-            f"At equal duration the trapezoid leaves {ratio:.1f}× the residual slosh of the septic "
-            "law (the paper's jerk-continuous law): the paper's conclusion in numbers "
-            '(<a href="#motion-laws">motion laws</a>).'
-        )
-    if writer.warnings:
-        sections = list(dict.fromkeys(section for section, _ in writer.warnings))
-        links = ", ".join(
-            f'<a href="#{section.lower().replace(" ", "-")}">{html.escape(section)}</a>'
-            for section in sections
-        )
-        items.append(
-            f'<span class="bad">{len(writer.warnings)} validity warning'
-            f"{'s' if len(writer.warnings) > 1 else ''}</span>, shown next to the numbers they "
-            f"qualify: {links}."
-        )
-    else:
-        items.append("No validity warnings: every number is inside the model's range.")
-    listed = "".join(f"<li>{item}</li>" for item in items)
-    return f'<section id="summary"><h2>Summary</h2><ul>{listed}</ul></section>'
+    best = plan.get("best_paper_law") if plan else None
+    return render(
+        "summary.html.j2",
+        plan=plan,
+        best={"label": law_label(best[0]), "duration_s": best[1]} if best else None,
+        plan_requested="plan" in scenario.analyses,
+        distance_m=scenario.distance_m,
+        model=writer.facts.get("model"),
+        ratio=writer.facts.get("residual_ratio_trapezoid_septic"),
+        warning_count=len(writer.warnings),
+        warning_sections=list(dict.fromkeys(section for section, _ in writer.warnings)),
+    )
 
 
 def build_report(
@@ -89,7 +79,40 @@ def build_report(
     cfd_calibration: Any | None = None,
     command: str = "",
 ) -> Path:
-    """Run the scenario's analyses and write ``out_dir/report.html`` with figures and tables."""
+    """Run the scenario's analyses and write ``out_dir/report.html`` with figures and tables.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        What to analyse (`sloshkit.io.scenario`).
+    out_dir : str or pathlib.Path
+        The report's folder (report.html, figures/, tables/).
+    progress : callable, optional
+        Called with the name of each step as it starts.
+    cfd_calibration : CalibrationResult, optional
+        A calibration from a CFD run, used instead of the scenario's data.
+    command : str
+        The command line recorded in the report (default: ``sys.argv``).
+
+    Returns
+    -------
+    pathlib.Path
+        The report.html written.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit.io.scenario import parse_scenario
+    >>> scenario = parse_scenario({"name": "vial", "analyses": ["model"],
+    ...                            "container": {"radius": "20.5mm"}, "fill": {"height": "39mm"},
+    ...                            "move": {"distance": "0.2m", "duration": "1s"}})
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "report"
+    >>> report = build_report(scenario, out, command="example")
+    >>> sorted(path.name for path in (out / "tables").iterdir())[:2]
+    ['model.csv', 'model.json']
+    >>> '<section id="equivalent-model">' in report.read_text(encoding="utf-8")
+    True
+    """
     say = progress or (lambda _: None)
     target = Path(out_dir)
     target.parent.mkdir(parents=True, exist_ok=True)
@@ -121,17 +144,17 @@ def build_report(
         inputs = json.dumps(scenario.raw, indent=2, default=str)
         writer.section(
             "Inputs and versions",
-            writer.table(
-                "versions", [{"item": k, "value": v} for k, v in meta.items()], "Reproducibility"
-            )
-            + "<p>The scenario as read (SI values are converted where the analyses use them):</p>"
-            + f"<pre>{html.escape(inputs)}</pre>",
+            render(
+                "sections/inputs.html.j2",
+                table=writer.table(
+                    "versions",
+                    [{"item": k, "value": v} for k, v in meta.items()],
+                    "Reproducibility",
+                ),
+                inputs=inputs,
+            ),
         )
-        intro = f"<p>{html.escape(scenario.description)}</p>" if scenario.description else ""
-        intro += (
-            "<p>Generated by sloshkit. Figures are embedded; PNG and SVG copies are in "
-            "<code>figures/</code>, tables as CSV and JSON in <code>tables/</code>.</p>"
-        )
+        intro = render("intro.html.j2", description=scenario.description)
         say("writing the report")
         return writer.finish(target, scenario.name, intro, summary_html(writer, scenario))
     finally:

@@ -3,7 +3,6 @@ calibration (measured, CFD or the paper's Table 4)."""
 
 from __future__ import annotations
 
-import html
 import math
 import typing
 from typing import Any
@@ -20,7 +19,7 @@ from sloshkit.model.modal import SloshModel, equivalent_model
 from sloshkit.plotting import plot_free_response
 from sloshkit.report.cfd_reference import shipped_cfd_free_decay
 from sloshkit.report.paper import PAPER_TABLE3, PAPER_TABLE4
-from sloshkit.report.writer import ReportWriter, recorded_warnings
+from sloshkit.report.writer import ReportWriter, recorded_warnings, render
 
 
 def _model_section(writer: ReportWriter, scenario: Scenario) -> None:
@@ -40,14 +39,6 @@ def _model_section(writer: ReportWriter, scenario: Scenario) -> None:
         }
         for mode in model.modes
     ]
-    body = (
-        f"<p>Upright cylinder R = {1e3 * model.radius_m:.2f} mm filled to h = "
-        f"{1e3 * model.fill_height_m:.2f} mm with {html.escape(model.liquid.name)} "
-        f"(ρ = {model.liquid.density_kg_m3:g} kg/m³): liquid mass {1e3 * model.liquid_mass_kg:.2f} g, "
-        f"rigid mass {1e3 * model.rigid_mass_kg:.2f} g, Bond number {model.bond_number:.3g}. "
-        "Linear potential-flow theory (Abramson 1966; Dodge 2000), Bessel roots computed.</p>"
-    )
-    body += _asterisk_note(model)
     first = model.modes[0]
     writer.facts["model"] = {
         "omega_rad_s": first.omega_rad_s,
@@ -57,16 +48,23 @@ def _model_section(writer: ReportWriter, scenario: Scenario) -> None:
         "damping_ratio": first.damping_ratio,
         "liquid": model.liquid.name,
     }
-    body += writer.table("model", rows, "Equivalent pendulum model", {"mode": "d"})
-    body += writer.warning_note("Equivalent model", _model_warnings(model), "about the model")
-    if scenario.paper_comparison:
-        body += writer.table(
+    model_table = writer.table("model", rows, "Equivalent pendulum model", {"mode": "d"})
+    warnings = writer.warning_note("Equivalent model", _model_warnings(model), "about the model")
+    table3 = (
+        writer.table(
             "table3_comparison", _table3_rows(model), "The paper's Table 3 beside sloshkit"
         )
-        body += (
-            '<p class="note">Where the paper and sloshkit differ, sloshkit follows the formulas '
-            "the paper itself prints (its eqs. 1, 8, 9) and says why in the last column.</p>"
-        )
+        if scenario.paper_comparison
+        else None
+    )
+    body = render(
+        "sections/model.html.j2",
+        model=model,
+        asterisk=_asterisk_note(model),
+        model_table=model_table,
+        warnings=warnings,
+        table3=table3,
+    )
     writer.section("Equivalent model", body)
 
 
@@ -91,14 +89,15 @@ def _model_warnings(model: SloshModel) -> list[str]:
     return found
 
 
-def _asterisk_note(model: SloshModel) -> str:
-    """Explain the ``*`` of a preset liquid whose properties the scenario overrides."""
+def _asterisk_note(model: SloshModel) -> dict[str, Any] | None:
+    """What the ``*`` of a preset liquid whose properties the scenario overrides means: the
+    preset's name (None when it is unknown) and the changes (None without a ``*``)."""
     if not model.liquid.name.endswith("*"):
-        return ""
+        return None
     try:
         base = get_liquid(model.liquid.name.rstrip("*"))
     except InputError:
-        return '<p class="note">* marks a preset liquid with overridden properties.</p>'
+        return {"preset": None, "changes": []}
     changed = [
         f"{label} {new:g} {unit} instead of the preset's {old:g}"
         for label, unit, old, new in (
@@ -108,12 +107,7 @@ def _asterisk_note(model: SloshModel) -> str:
         )
         if not math.isclose(old, new)
     ]
-    return (
-        f'<p class="note">The * in “{html.escape(model.liquid.name)}” marks the preset '
-        f"{html.escape(base.name)} with properties overridden by the scenario: "
-        + html.escape("; ".join(changed) or "none changed")
-        + ".</p>"
-    )
+    return {"preset": base.name, "changes": changed}
 
 
 def _table3_rows(model: SloshModel) -> list[dict[str, Any]]:
@@ -173,13 +167,13 @@ def _calibration_section(
     synthetic free decay; returns the model the later sections use."""
 
     model = scenario.model
-    body = ""
     result = None
-    shipped = False
+    source = ""
     found: list[str] = []
+    values: dict[str, Any] = {}
     if cfd_result is not None:
         result = cfd_result
-        body += "<p>Calibrated from the OpenFOAM free-decay run (wall elevation).</p>"
+        source = "cfd"
     elif scenario.calibrate:
         options = scenario.calibrate
         header, table = read_table(options["data"])
@@ -193,29 +187,23 @@ def _calibration_section(
                 end_s=options["end"],
                 source=str(options["data"]),
             )
-        body += f"<p>Calibrated from <code>{html.escape(str(options['data']))}</code>.</p>"
+        source = "data"
+        values["data_file"] = str(options["data"])
     elif scenario.paper_comparison:
         delta = PAPER_TABLE4["log_decrement"]
         time_s, elevation_m, record = shipped_cfd_free_decay()
-        body += (
-            f"<p>The paper measured a logarithmic decrement δ = {delta} in its CFD free decay. The "
-            f"exact conversion ζ = δ/√(4π² + δ²) gives <b>ζ = {zeta_from_log_decrement(delta):.4f}</b> "
-            "(the paper prints 0.03, i.e. 0.026 rounded to one figure). The paper's CFD signal is "
-            "not published; the estimators are shown on sloshkit's own OpenFOAM free decay of the "
-            f"same vial ({html.escape(record['openfoam'])}, {record['cells']:,} cells, "
-            f"{record['cells_per_radius']} cells per radius, {html.escape(str(record['initial_tilt']))} "
-            "initial tilt), shipped with sloshkit so this report needs no OpenFOAM; made by "
-            f"<code>{html.escape(record['command'])}</code>. This coarse mesh damps numerically, "
-            "so its ζ is not the vial's; the paper's ζ = 0.03 is kept for the later sections.</p>"
-        )
+        values.update(paper_delta=delta, paper_zeta=zeta_from_log_decrement(delta), record=record)
         with recorded_warnings() as found:
             result = calibrate(time_s, elevation_m, source="sloshkit CFD free decay (shipped)")
-        shipped = True
+        source = "shipped"
+    shipped = source == "shipped"
     if result is None:
         writer.section(
             "Calibration",
-            "<p>No calibration data in this scenario: the model uses "
-            f"{html.escape(model.provenance.get('damping_ratio', 'its correlation'))}.</p>",
+            render(
+                "sections/no_calibration.html.j2",
+                damping_source=model.provenance.get("damping_ratio", "its correlation"),
+            ),
         )
         return model
     payload = result.to_dict()
@@ -266,35 +254,50 @@ def _calibration_section(
                 "log decrement": None,
             }
         )
-    body += writer.table("table4_calibration", rows, "Frequency and damping (the paper's Table 4)")
-    if scenario.paper_comparison:
-        body += _table4_comment(first.omega_rad_s)
-    body += writer.warning_note("Calibration", found, "about the estimates above")
+    estimates_table = writer.table(
+        "table4_calibration", rows, "Frequency and damping (the paper's Table 4)"
+    )
+    table4 = _table4_comment(first.omega_rad_s) if scenario.paper_comparison else None
+    warnings = writer.warning_note("Calibration", found, "about the estimates above")
+    intervals = None
     if payload["omega_n_interval_rad_s"]:
-        low, high = payload["omega_n_interval_rad_s"]
-        zlow, zhigh = payload["damping_ratio_interval"]
-        body += (
-            f"<p>Fit 95 % intervals: ω_n {low:.3f}–{high:.3f} rad/s, ζ {zlow:.4f}–{zhigh:.4f}; "
-            f"window {payload['window_s'][0]:.2f}–{payload['window_s'][1]:.2f} s, "
-            f"{payload['n_peaks']} peaks.</p>"
-        )
+        intervals = {
+            "omega": payload["omega_n_interval_rad_s"],
+            "zeta": payload["damping_ratio_interval"],
+            "window": payload["window_s"],
+            "peaks": payload["n_peaks"],
+        }
     label = (
         "wall elevation (detrended) [m]"
         if not scenario.calibrate or cfd_result is not None
-        else _signal_label(str(options["signal_column"]))
+        else _signal_label(str(scenario.calibrate["signal_column"]))
     )
-    body += writer.figure(
-        "fig5b_calibration",
-        result.plot(None, signal_label=label),
-        "Free decay, detected peaks and fitted envelope (the paper's Fig. 5b)",
-    )
-    if cfd_result is not None or shipped:
-        body += writer.figure(
-            "fig9_cfd_vs_model",
-            _free_response_figure(result, model),
-            "CFD free decay against the equivalent pendulum (linear-theory frequency, the CFD's "
-            "damping, started from the CFD's amplitude and phase): the paper's Fig. 9",
+    figures = [
+        writer.figure(
+            "fig5b_calibration",
+            result.plot(None, signal_label=label),
+            "Free decay, detected peaks and fitted envelope (the paper's Fig. 5b)",
         )
+    ]
+    if cfd_result is not None or shipped:
+        figures.append(
+            writer.figure(
+                "fig9_cfd_vs_model",
+                _free_response_figure(result, model),
+                "CFD free decay against the equivalent pendulum (linear-theory frequency, the "
+                "CFD's damping, started from the CFD's amplitude and phase): the paper's Fig. 9",
+            )
+        )
+    body = render(
+        "sections/calibration.html.j2",
+        source=source,
+        estimates_table=estimates_table,
+        table4=table4,
+        warnings=warnings,
+        intervals=intervals,
+        figures=figures,
+        **values,
+    )
     writer.section("Calibration", body)
     if cfd_result is not None or scenario.calibrate:
         return typing.cast(SloshModel, result.calibrated_model(model))
@@ -308,22 +311,18 @@ def _signal_label(column: str) -> str:
     return f"{name} (detrended) [{unit or 'unit of the record'}]"
 
 
-def _table4_comment(theory_omega_rad_s: float) -> str:
-    """What the paper's Table 4 says and where its values disagree with each other."""
+def _table4_comment(theory_omega_rad_s: float) -> dict[str, float]:
+    """The numbers behind the note on the paper's Table 4, which disagrees with itself."""
     table = PAPER_TABLE4
-    cfd_f = table["cfd_omega"] / (2 * math.pi)
-    mb_f = table["mb_omega"] / (2 * math.pi)
-    return (
-        '<p class="note">The paper’s Table 4 is not self-consistent: its multibody ω_n = '
-        f"{table['mb_omega']} rad/s is f_n = ω_n/2π = {mb_f:.3f} Hz, not the {table['mb_f']} Hz "
-        f"printed ({table['mb_f']} Hz would be {2 * math.pi * table['mb_f']:.2f} rad/s); its CFD "
-        f"ω_n = {table['cfd_omega']} rad/s ({cfd_f:.3f} Hz, printed {table['cfd_f']}) lies "
-        f"{100 * (1 - table['cfd_omega'] / theory_omega_rad_s):.1f} % below the linear theory "
-        f"that its own Table 3 evaluates ({theory_omega_rad_s:.2f} rad/s), and both columns "
-        f"print ζ = {table['cfd_zeta']} although δ = {table['log_decrement']} gives "
-        f"{zeta_from_log_decrement(table['log_decrement']):.3f}. sloshkit shows the printed "
-        "values unchanged.</p>"
-    )
+    return {
+        **table,
+        "mb_f_from_omega": table["mb_omega"] / (2 * math.pi),
+        "mb_omega_from_f": 2 * math.pi * table["mb_f"],
+        "cfd_f_from_omega": table["cfd_omega"] / (2 * math.pi),
+        "below_theory_percent": 100 * (1 - table["cfd_omega"] / theory_omega_rad_s),
+        "theory_omega": theory_omega_rad_s,
+        "zeta_from_delta": zeta_from_log_decrement(table["log_decrement"]),
+    }
 
 
 def _free_response_figure(result: Any, model: SloshModel) -> Any:

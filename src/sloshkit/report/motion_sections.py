@@ -3,7 +3,6 @@ safe move."""
 
 from __future__ import annotations
 
-import html
 import math
 import typing
 
@@ -14,7 +13,7 @@ from sloshkit.motion.laws import comparison_s_curve_limits, make_law
 from sloshkit.plan.planner import plan
 from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison, plot_sweep_map
-from sloshkit.report.writer import ReportWriter, recorded_warnings
+from sloshkit.report.writer import ReportWriter, recorded_warnings, render
 from sloshkit.sim.simulate import LARGE_ANGLE_DEG, simulate
 from sloshkit.sweep import linspace_inclusive, run_sweep
 
@@ -24,7 +23,22 @@ LAW_NOTES = {"septic": "septic (the paper's jerk-continuous law)"}
 
 def law_label(name: str) -> str:
     """A law's name with the paper's name for it, e.g. ``septic (the paper's jerk-continuous
-    law)``."""
+    law)``.
+
+    Parameters
+    ----------
+    name : str
+        The law's name in sloshkit.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> law_label("septic"), law_label("quintic")
+    ("septic (the paper's jerk-continuous law)", 'quintic')
+    """
     return LAW_NOTES.get(name, name)
 
 
@@ -104,36 +118,41 @@ def _compare_section(writer: ReportWriter, scenario: Scenario, model: SloshModel
                 "settling [s]": metrics["settling_time_s"],
             }
         )
-    body = f"<p>A {1e3 * scenario.distance_m:.0f} mm move under each law, linear model.</p>"
-    body += writer.table(
+    table = writer.table(
         "compare",
         rows,
         "Motion laws compared (peak values during the move; residual amplitude left at its end)",
     )
-    body += writer.warning_note("Motion laws", notes, "about the table above")
+    warnings = writer.warning_note("Motion laws", notes, "about the table above")
     residual = {
         motion.name: response.metrics()["residual_angle_deg"]
         for motion, response in zip(motions, responses, strict=True)
     }
+    ratio = None
     if "trapezoidal" in residual and "septic" in residual and residual["septic"] > 0:
         ratio = residual["trapezoidal"] / residual["septic"]
         writer.facts["residual_ratio_trapezoid_septic"] = ratio
-        body += (
-            f'<p class="note">The trapezoid leaves <b>{ratio:.1f}×</b> the residual slosh of the '
-            "jerk-continuous (septic) law at the same duration: the paper's conclusion, in "
-            "numbers.</p>"
-        )
-    body += writer.figure(
-        "fig7_laws",
-        plot_law_comparison(motions, None),
-        "Velocity, acceleration and jerk of each law (the paper's Fig. 7; septic = the paper's "
-        "jerk-continuous law)",
-    )
-    body += writer.figure(
-        "fig8_slosh",
-        plot_slosh_comparison(responses, None),
-        "First-mode slosh angle and rate under each law (the paper's Figs. 8–9; septic = the "
-        "paper's jerk-continuous law)",
+    figures = [
+        writer.figure(
+            "fig7_laws",
+            plot_law_comparison(motions, None),
+            "Velocity, acceleration and jerk of each law (the paper's Fig. 7; septic = the "
+            "paper's jerk-continuous law)",
+        ),
+        writer.figure(
+            "fig8_slosh",
+            plot_slosh_comparison(responses, None),
+            "First-mode slosh angle and rate under each law (the paper's Figs. 8–9; septic = "
+            "the paper's jerk-continuous law)",
+        ),
+    ]
+    body = render(
+        "sections/compare.html.j2",
+        distance_m=scenario.distance_m,
+        table=table,
+        warnings=warnings,
+        ratio=ratio,
+        figures=figures,
     )
     writer.section("Motion laws", body)
 
@@ -165,12 +184,6 @@ def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) 
             max_residual_rad=scenario.plan_limits["max_residual"],
         )
     rows = _collapsed_shortest(result.shortest_safe())
-    body = (
-        f"<p>{result.cases:,} cases (fill height × duration × law) on the fast path in "
-        f"{result.elapsed_s:.2f} s; safe means peak θ₁ ≤ {result.max_angle_deg:g}° and residual ≤ "
-        f"{result.max_residual_deg:g}°. Each map is hatched where its own quantity breaks its "
-        "own limit.</p>"
-    )
     beyond = float((result.peak_angle_deg > LARGE_ANGLE_DEG).mean())
     if beyond > 0:
         found.append(
@@ -178,23 +191,31 @@ def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) 
             f"(up to {float(result.peak_angle_deg.max()):.0f}°), where the linear model is not "
             "trustworthy: read those colours as 'far too much', not as values"
         )
-    body += writer.figure(
+    peak_map = writer.figure(
         "sweep_peak_map",
         plot_sweep_map(result, "peak_angle_deg", None),
         f"Peak slosh angle over fill height and duration (hatched: peak above "
         f"{result.max_angle_deg:g}°)",
     )
-    body += writer.warning_note("Slosh maps", found, "about the maps")
-    body += writer.figure(
+    warnings = writer.warning_note("Slosh maps", found, "about the maps")
+    residual_map = writer.figure(
         "sweep_residual_map",
         plot_sweep_map(result, "residual_angle_deg", None),
         f"Residual slosh angle over fill height and duration (hatched: residual above "
         f"{result.max_residual_deg:g}°)",
     )
-    body += writer.table(
+    table = writer.table(
         "sweep_shortest_safe",
         rows,
         "Shortest safe duration per fill height (fill heights with the same answer in one row)",
+    )
+    body = render(
+        "sections/sweep.html.j2",
+        result=result,
+        peak_map=peak_map,
+        warnings=warnings,
+        residual_map=residual_map,
+        table=table,
     )
     writer.section("Slosh maps", body)
 
@@ -231,14 +252,10 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
         }
         for c in payload["candidates"]
     ]
-    body = (
-        f"<p>Limits: peak θ₁ ≤ {math.degrees(limits['max_angle']):g}°, residual ≤ "
-        f"{math.degrees(limits['max_residual']):g}°, v ≤ {limits['vmax']:g} m/s, a ≤ "
-        f"{limits['amax']:g} m/s², j ≤ {limits['jmax']:g} m/s³, controller period "
-        f"{1e3 * limits['sample_period']:g} ms. Every candidate is re-simulated from its sampled "
-        "export before it counts as feasible.</p>"
-    )
+    chosen = None
+    speed_up = None
     if result.feasible and result.chosen is not None:
+        chosen = result.chosen
         speed_up = payload["speed_up_over_best_paper_law"]
         writer.facts["plan"] = {
             "method": result.chosen.method,
@@ -246,26 +263,33 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
             "speed_up": speed_up,
             "best_paper_law": _best_paper_law(payload),
         }
-        body += (
-            f'<p class="good">Fastest safe move: {html.escape(result.chosen.method)}, '
-            f"{result.chosen.duration_s:.3f} s"
-            + (f" — {speed_up:.2f}× faster than the best of the paper's laws." if speed_up else ".")
-            + "</p>"
-        )
-
         write_columns_csv(
             writer.staging / "tables" / "fastest_move_trajectory.csv", result.samples()
         )
         writer.table_names.append("fastest_move_trajectory")
-    else:
-        body += '<p class="bad">No method meets these limits.</p>'
-    body += writer.table("plan", rows, "Planner candidates")
-    body += writer.warning_note("Fastest safe move", found, "about the planner's candidates")
-    if result.feasible:
-        body += writer.figure(
+    table = writer.table("plan", rows, "Planner candidates")
+    warnings = writer.warning_note("Fastest safe move", found, "about the planner's candidates")
+    figure = (
+        writer.figure(
             "plan",
             result.plot(None),
             "The fastest verified moves against the paper's laws (septic = the paper's "
             "jerk-continuous law)",
         )
+        if result.feasible
+        else ""
+    )
+    body = render(
+        "sections/plan.html.j2",
+        limits={
+            **limits,
+            "max_angle_deg": math.degrees(limits["max_angle"]),
+            "max_residual_deg": math.degrees(limits["max_residual"]),
+        },
+        chosen=chosen,
+        speed_up=speed_up,
+        table=table,
+        warnings=warnings,
+        figure=figure,
+    )
     writer.section("Fastest safe move", body)

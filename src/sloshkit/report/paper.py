@@ -32,6 +32,22 @@ PAPER_TABLE4 = {
 
 
 def paper_scenario() -> Scenario:
-    """The seed paper's case as a `Scenario`."""
+    """The seed paper's case as a `Scenario`.
+
+    Returns
+    -------
+    Scenario
+        The vial of De Simone et al. (2024), as ``sloshkit reproduce`` runs it.
+
+    References
+    ----------
+    De Simone, M. C. et al., Appl. Sci. 14 (2024) 4522, doi:10.3390/app14114522.
+
+    Examples
+    --------
+    >>> scenario = paper_scenario()
+    >>> scenario.distance_m, round(scenario.model.modes[0].omega_rad_s, 1)
+    (0.5, 29.7)
+    """
 
     return parse_scenario(PAPER_SCENARIO, "built in: De Simone et al. (2024)")

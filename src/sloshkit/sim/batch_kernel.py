@@ -1,12 +1,20 @@
-"""Fused fast path: time-scaled laws sampled inside the kernel, one case at a time.
+"""Fused fast path: time-scaled laws sampled inside the kernel, 64 cases in lock step.
 
 For a rest-to-rest law of shape s_1(tau) moved in time T, the velocity at t_k = k dt is
 v_1(k dt / T) / T (`sloshkit.motion.scaling`). The kernel evaluates it where it is needed and
 steps the exact first-order-hold discretisation of every mode
 (`sloshkit.sim.discretisation.velocity_driven_discretisation`; Franklin, Powell & Workman,
-*Digital Control of Dynamic Systems*, 3rd ed. (1998) §6.3.2) with the state of each mode in
-registers: no velocity array, no time history, memory O(cases). The loop over samples has no
-data-dependent branch: it runs to the first sample at or after T, the last of which is peeled.
+*Digital Control of Dynamic Systems*, 3rd ed. (1998) §6.3.2): no velocity array, no time
+history, memory O(cases).
+
+Cases run in blocks of `BLOCK` lanes stepped together; every loop over the lanes is branch-free
+(selects, max) so that it compiles to vector instructions. At each step the velocity of all
+lanes is one Horner evaluation per law piece present in the block (usually one: the block's
+durations are close after sorting), the piece of each lane chosen by a select, so there is
+neither a per-lane search nor a gather. The polynomial order is a compile-time constant (the
+coefficients are padded with leading zeros to a multiple of 4; one compiled kernel per such
+order). Only floating-point contraction (fused multiply-add) is allowed: no reassociation, no
+assumption about NaN or infinity.
 
 The metrics are those of `sloshkit.sim.batch.batch_metrics` for the same velocity samples
 (peak |theta_1| and peak |wall elevation| over the samples t <= T, residual amplitudes from the
@@ -15,6 +23,7 @@ state at the first sample t >= T scaled back to T).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -28,156 +37,152 @@ from sloshkit.sim.metrics import free_amplitude
 
 FloatArray = NDArray[np.float64]
 
-#: Cases stepped together: their states stay in a few vector registers and the velocity
-#: samples of a block fit in the level-2 cache.
+#: Cases stepped together (lanes): enough independent recursions to hide the latency of the
+#: multiply-adds, few enough that the state of every mode stays in the level-1 cache.
 BLOCK = 64
 
 
-def _compile() -> Any:
+def _compile(order: int) -> Any:
     try:
         from numba import njit
     except ImportError:  # pragma: no cover - numba is a dependency
         return None
 
-    block = BLOCK
+    lanes = BLOCK
 
-    @njit(cache=True, fastmath=True, nogil=True)  # type: ignore[untyped-decorator]
+    @njit(cache=True, fastmath={"contract"}, nogil=True)  # type: ignore[untyped-decorator]
     def kernel(breaks, coefficients, durations, sample_period_s, p, out):  # type: ignore[no-untyped-def]
         # p rows per mode: p00 p01 p10 p11 q0 q1 h0 h1 wall_factor 1/L
         modes = p.shape[0]
         pieces = breaks.size - 1
-        order = coefficients.shape[0]
+        end_tau = breaks[pieces]
         cases = durations.size
-        last_move = np.empty(cases, dtype=np.int64)
-        first_after = np.empty(cases, dtype=np.int64)
-        for c in range(cases):
-            duration = durations[c]
-            k = int((duration + 1e-12) / sample_period_s)
-            while (k + 1) * sample_period_s <= duration + 1e-12:
-                k += 1
-            while k * sample_period_s > duration + 1e-12:
-                k -= 1
-            last_move[c] = k
-            first_after[c] = k if k * sample_period_s >= duration - 1e-12 else k + 1
-        steps = int(first_after.max()) + 1 if cases else 0
-        velocity = np.zeros((steps, block))
-        z0 = np.zeros((modes, block))
-        z1 = np.zeros((modes, block))
-        theta = np.zeros((modes, block))
-        rate = np.zeros((modes, block))
-        last = np.zeros(block, dtype=np.int64)
-        after = np.zeros(block, dtype=np.int64)
-        peak = np.zeros(block)
-        wall = np.zeros(block)
-        eta = np.zeros(block)
-        angle0 = np.zeros(block)
-        for start in range(0, cases, block):
-            width = min(block, cases - start)
-            # 1. Sample the block's velocities, piece by piece (vectorised over samples).
-            velocity[:, :] = 0.0
-            for j in range(width):
-                c = start + j
-                inverse = 1.0 / durations[c]
-                scale = sample_period_s * inverse
-                k_stop = first_after[c] + 1
-                k = 0
-                for piece in range(pieces):
-                    upper = breaks[piece + 1]
-                    # samples with tau < the next break (the last piece includes tau = 1)
-                    end = min(k_stop, max(k, int(upper / scale) - 1))
-                    while end < k_stop and (
-                        end * scale < upper or (piece == pieces - 1 and end * scale <= upper)
-                    ):
-                        end += 1
+        inverse = np.empty(lanes)
+        scale = np.empty(lanes)
+        last = np.empty(lanes, dtype=np.int64)
+        after = np.empty(lanes, dtype=np.int64)
+        tau = np.empty(lanes)
+        u = np.empty(lanes)
+        z0 = np.zeros((modes, lanes))
+        z1 = np.zeros((modes, lanes))
+        theta = np.zeros((modes, lanes))
+        rate = np.zeros((modes, lanes))
+        peak = np.zeros(lanes)
+        wall = np.zeros(lanes)
+        eta = np.zeros(lanes)
+        angle0 = np.zeros(lanes)
+        c = np.zeros(order)
+        for start in range(0, cases, lanes):
+            width = min(lanes, cases - start)
+            n = min(lanes, (width + 7) // 8 * 8)  # whole vectors; extra lanes repeat the last case
+            for j in range(n):
+                duration = durations[start + min(j, width - 1)]
+                k = int((duration + 1e-12) / sample_period_s)
+                while (k + 1) * sample_period_s <= duration + 1e-12:
+                    k += 1
+                while k * sample_period_s > duration + 1e-12:
+                    k -= 1
+                last[j] = k  # last sample with t <= T
+                after[j] = k if k * sample_period_s >= duration - 1e-12 else k + 1
+                inverse[j] = 1.0 / duration
+                scale[j] = sample_period_s * inverse[j]
+            steps = after[:n].max() + 1
+            k_common = after[:n].min()  # before it, no lane has reached its end
+            scale_hi = scale[:n].max()
+            scale_lo = scale[:n].min()
+            z0[:, :n] = 0.0
+            z1[:, :n] = 0.0
+            peak[:n] = 0.0
+            wall[:n] = 0.0
+            p_lo = 0
+            p_hi = 0
+            for k in range(steps):
+                # 1. Velocity of every lane at t = k dt: the pieces p_lo..p_hi are present.
+                while p_hi < pieces - 1 and k * scale_hi >= breaks[p_hi + 1]:
+                    p_hi += 1
+                while p_lo < pieces - 1 and k * scale_lo >= breaks[p_lo + 1]:
+                    p_lo += 1
+                for j in range(n):
+                    tau[j] = k * scale[j]
+                    u[j] = 0.0
+                for piece in range(p_lo, p_hi + 1):
                     left = breaks[piece]
-                    for kk in range(k, end):
-                        x = kk * scale - left
-                        value = 0.0
-                        for i in range(order):
-                            value = value * x + coefficients[i, piece]
-                        velocity[kk, j] = value * inverse
-                    k = end
-            # 2. Step every mode of the block's cases together (branch-free selects).
-            z0[:, :] = 0.0
-            z1[:, :] = 0.0
-            peak[:] = 0.0
-            wall[:] = 0.0
-            block_steps = int(first_after[start : start + width].max()) + 1
-            last[:] = -1
-            after[:] = -1
-            last[:width] = last_move[start : start + width]
-            after[:width] = first_after[start : start + width]
-            # Before the first end of the block's moves every case is moving: no selects.
-            k_common = int(first_after[start : start + width].min())
-            for k in range(k_common):
-                p00, p01, p10, p11 = p[0, 0], p[0, 1], p[0, 2], p[0, 3]
-                q0, q1, h0, f = p[0, 4], p[0, 5], p[0, 6], p[0, 8]
-                for j in range(block):
-                    u = velocity[k, j]
-                    a = z0[0, j]
-                    b = z1[0, j]
-                    angle = a + h0 * u
-                    eta[j] = f * angle
-                    peak[j] = max(peak[j], abs(angle))
-                    z0[0, j] = p00 * a + p01 * b + q0 * u
-                    z1[0, j] = p10 * a + p11 * b + q1 * u
-                for m in range(1, modes):
-                    p00, p01, p10, p11 = p[m, 0], p[m, 1], p[m, 2], p[m, 3]
-                    q0, q1, h0, f = p[m, 4], p[m, 5], p[m, 6], p[m, 8]
-                    for j in range(block):
-                        u = velocity[k, j]
-                        a = z0[m, j]
-                        b = z1[m, j]
-                        eta[j] += f * (a + h0 * u)
-                        z0[m, j] = p00 * a + p01 * b + q0 * u
-                        z1[m, j] = p10 * a + p11 * b + q1 * u
-                for j in range(block):
-                    wall[j] = max(wall[j], abs(eta[j]))
-            for k in range(k_common, block_steps):
-                for j in range(block):
-                    eta[j] = 0.0
-                    angle0[j] = 0.0
-                for m in range(modes):
-                    p00, p01, p10, p11 = p[m, 0], p[m, 1], p[m, 2], p[m, 3]
-                    q0, q1, h0, h1, f = p[m, 4], p[m, 5], p[m, 6], p[m, 7], p[m, 8]
-                    inverse_length = p[m, 9]
-                    first = 1.0 if m == 0 else 0.0
-                    for j in range(block):
-                        u = velocity[k, j]
-                        a = z0[m, j]
-                        b = z1[m, j]
-                        angle = a + h0 * u
-                        eta[j] += f * angle
-                        angle0[j] += first * angle
-                        end_here = k == after[j]
-                        theta[m, j] = angle if end_here else theta[m, j]
-                        rate[m, j] = b + h1 * u - u * inverse_length if end_here else rate[m, j]
-                        z0[m, j] = p00 * a + p01 * b + q0 * u
-                        z1[m, j] = p10 * a + p11 * b + q1 * u
-                for j in range(block):
-                    during = k <= last[j]
-                    peak[j] = max(peak[j], abs(angle0[j]) if during else 0.0)
-                    wall[j] = max(wall[j], abs(eta[j]) if during else 0.0)
+                    right = breaks[piece + 1] if piece < pieces - 1 else np.inf
+                    for i in range(order):
+                        c[i] = coefficients[i, piece]
+                    for j in range(n):
+                        x = tau[j] - left
+                        value = c[0]
+                        for i in range(1, order):
+                            value = value * x + c[i]
+                        inside = tau[j] >= left and tau[j] < right
+                        u[j] = value if inside else u[j]
+                for j in range(n):
+                    u[j] = u[j] * inverse[j] if tau[j] <= end_tau else 0.0
+                # 2. Step every mode; metrics by max and selects.
+                if k < k_common:
+                    for j in range(n):
+                        eta[j] = 0.0
+                    for m in range(modes):
+                        p00, p01, p10, p11 = p[m, 0], p[m, 1], p[m, 2], p[m, 3]
+                        q0, q1, h0, f = p[m, 4], p[m, 5], p[m, 6], p[m, 8]
+                        for j in range(n):
+                            a = z0[m, j]
+                            b = z1[m, j]
+                            angle = a + h0 * u[j]
+                            eta[j] += f * angle
+                            if m == 0:
+                                peak[j] = max(peak[j], abs(angle))
+                            z0[m, j] = p00 * a + p01 * b + q0 * u[j]
+                            z1[m, j] = p10 * a + p11 * b + q1 * u[j]
+                    for j in range(n):
+                        wall[j] = max(wall[j], abs(eta[j]))
+                else:
+                    for j in range(n):
+                        eta[j] = 0.0
+                        angle0[j] = 0.0
+                    for m in range(modes):
+                        p00, p01, p10, p11 = p[m, 0], p[m, 1], p[m, 2], p[m, 3]
+                        q0, q1, h0, h1, f = p[m, 4], p[m, 5], p[m, 6], p[m, 7], p[m, 8]
+                        inverse_length = p[m, 9]
+                        first = 1.0 if m == 0 else 0.0
+                        for j in range(n):
+                            a = z0[m, j]
+                            b = z1[m, j]
+                            angle = a + h0 * u[j]
+                            eta[j] += f * angle
+                            angle0[j] += first * angle
+                            end_here = k == after[j]
+                            theta[m, j] = angle if end_here else theta[m, j]
+                            end_rate = b + h1 * u[j] - u[j] * inverse_length
+                            rate[m, j] = end_rate if end_here else rate[m, j]
+                            z0[m, j] = p00 * a + p01 * b + q0 * u[j]
+                            z1[m, j] = p10 * a + p11 * b + q1 * u[j]
+                    for j in range(n):
+                        during = k <= last[j]
+                        peak[j] = max(peak[j], abs(angle0[j]) if during else 0.0)
+                        wall[j] = max(wall[j], abs(eta[j]) if during else 0.0)
             for j in range(width):
-                c = start + j
-                out[c, 0] = peak[j]
-                out[c, 1] = wall[j]
+                case = start + j
+                out[case, 0] = peak[j]
+                out[case, 1] = wall[j]
                 for m in range(modes):
-                    out[c, 2 + 2 * m] = theta[m, j]
-                    out[c, 3 + 2 * m] = rate[m, j]
-                out[c, 2 + 2 * modes] = first_after[c] * sample_period_s - durations[c]
+                    out[case, 2 + 2 * m] = theta[m, j]
+                    out[case, 3 + 2 * m] = rate[m, j]
+                out[case, 2 + 2 * modes] = after[j] * sample_period_s - durations[case]
 
     return kernel
 
 
-_KERNEL: Any = None
+_KERNELS: dict[int, Any] = {}
 
 
-def _kernel() -> Any:
-    global _KERNEL
-    if _KERNEL is None:
-        _KERNEL = _compile() or False
-    return _KERNEL
+def _kernel(order: int) -> Any:
+    """The compiled kernel for polynomial pieces of ``order`` coefficients (False without
+    numba)."""
+    if order not in _KERNELS:
+        _KERNELS[order] = _compile(order) or False
+    return _KERNELS[order]
 
 
 def kernel_rows(model: SloshModel, sample_period_s: float) -> FloatArray:
@@ -208,12 +213,46 @@ def kernel_rows(model: SloshModel, sample_period_s: float) -> FloatArray:
     >>> kernel_rows(model, 1e-3).shape
     (3, 10)
     """
-    omega = np.array([mode.omega_rad_s for mode in model.modes])
-    zeta = np.array([mode.damping_ratio for mode in model.modes])
-    length = np.array([mode.length_m for mode in model.modes])
+    return kernel_rows_of([model], sample_period_s)[0]
+
+
+def kernel_rows_of(models: Sequence[SloshModel], sample_period_s: float) -> list[FloatArray]:
+    """`kernel_rows` of many models with one vectorised evaluation of all their exponentials
+    (a sweep's fill heights).
+
+    Parameters
+    ----------
+    models : sequence of SloshModel
+        The models.
+    sample_period_s : float
+        dt [s].
+
+    Returns
+    -------
+    list of numpy.ndarray
+        One (modes, 10) array per model, equal to ``kernel_rows(model, dt)``.
+
+    References
+    ----------
+    Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 3rd ed. (1998) §6.3.2.
+
+    Examples
+    --------
+    >>> from sloshkit import UprightCylinder, get_liquid
+    >>> from sloshkit.model.modal import model_family
+    >>> family = model_family(UprightCylinder(0.0205), get_liquid("water-25C"))
+    >>> [rows.shape for rows in kernel_rows_of([family(0.02), family(0.04)], 1e-3)]
+    [(3, 10), (3, 10)]
+    """
+    modes = [mode for model in models for mode in model.modes]
+    omega = np.array([mode.omega_rad_s for mode in modes])
+    zeta = np.array([mode.damping_ratio for mode in modes])
+    length = np.array([mode.length_m for mode in modes])
     phi, gamma, ramp = velocity_driven_discretisations(omega, zeta, length, sample_period_s)
-    factor = np.array([mode.wall_elevation_factor_m for mode in model.modes])
-    return np.column_stack((phi.reshape(-1, 4), gamma, ramp, factor, 1.0 / length))
+    factor = np.array([mode.wall_elevation_factor_m for mode in modes])
+    rows = np.column_stack((phi.reshape(-1, 4), gamma, ramp, factor, 1.0 / length))
+    bounds = np.cumsum([len(model.modes) for model in models])[:-1]
+    return [np.ascontiguousarray(part) for part in np.split(rows, bounds)]
 
 
 def law_metrics(
@@ -222,6 +261,7 @@ def law_metrics(
     durations_s: FloatArray,
     sample_period_s: float,
     chunk_cases: int = 65536,
+    rows: FloatArray | None = None,
 ) -> BatchMetrics:
     """Linear slosh metrics of one law time-scaled to many durations, sampling fused.
 
@@ -238,6 +278,8 @@ def law_metrics(
         dt [s].
     chunk_cases : int
         Cases per call of the kernel (bounds the temporary memory).
+    rows : numpy.ndarray, optional
+        ``kernel_rows(model, sample_period_s)`` when already computed (`kernel_rows_of`).
 
     Returns
     -------
@@ -261,15 +303,19 @@ def law_metrics(
     True
     """
     durations = np.ascontiguousarray(durations_s, dtype=float)
-    if durations.ndim != 1 or not np.all(durations > 0):
-        raise InputError("durations", durations.shape, "must be positive, one per case")
-    kernel = _kernel()
+    if durations.ndim != 1 or not np.all((durations > 0) & np.isfinite(durations)):
+        raise InputError("durations", durations.shape, "must be positive and finite, one per case")
+    given = np.asarray(unit_law_velocity.c, dtype=float)
+    order = -(-given.shape[0] // 4) * 4  # leading zeros up to a multiple of 4
+    kernel = _kernel(order)
     if not kernel:
         return _through_arrays(model, unit_law_velocity, durations, sample_period_s, chunk_cases)
     modes = len(model.modes)
-    rows = kernel_rows(model, sample_period_s)
+    if rows is None:
+        rows = kernel_rows(model, sample_period_s)
     breaks = np.ascontiguousarray(unit_law_velocity.x, dtype=float)
-    coefficients = np.ascontiguousarray(unit_law_velocity.c, dtype=float)
+    coefficients = np.zeros((order, given.shape[1]))
+    coefficients[order - given.shape[0] :] = given
     # Sorted by duration, the cases of a block end their moves together (short masked tail).
     order = np.argsort(durations, kind="stable")
     durations = durations[order]

@@ -58,7 +58,6 @@ from __future__ import annotations
 
 import math
 import time as _time
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -66,10 +65,11 @@ from numpy.typing import NDArray
 from sloshkit.budget import require_samples
 from sloshkit.errors import InputError, require_positive, warn_validity
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, PoseKinematics, pose_kinematics
+from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, pose_kinematics
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.metrics import default_settle_time
 from sloshkit.sim.simulate import LARGE_ANGLE_DEG
+from sloshkit.sim.spatial_drive import SpatialDrive, spatial_drive
 from sloshkit.sim.spatial_kernels import linear_pendulums, nonlinear_pendulums
 from sloshkit.sim.spatial_response import HEIGHT_MAPPINGS, HeightMapping, SpatialResponse
 
@@ -79,127 +79,6 @@ FloatArray = NDArray[np.float64]
 LOW_AXIAL_GRAVITY_FRACTION = 0.5
 #: Tilt of the container axis from the vertical beyond which we warn [deg].
 LARGE_TILT_DEG = 60.0
-
-
-@dataclass(frozen=True, eq=False)
-class SpatialDrive:
-    """The drive of the slosh pendulums in the container's non-spinning frame N.
-
-    Attributes
-    ----------
-    time_s : (M,) [s]
-    specific_force_m_s2 : (modes + 1, M, 3) kappa_n g_vec - a_hinge in N for each mode; the
-        last row is g_vec - a at the free-surface centre (quasi-static correction)
-    tilt_rate_rad_s : (M, 2) lateral angular velocity (p, q) of N in N
-    tilt_acceleration_rad_s2 : (M, 2) its derivative
-    spin_angle_rad : (M,) phi, the container's rotation about its own axis relative to N
-    kinematics : the pose kinematics used
-    rest_force_m_s2 : (modes + 1, 3) kappa_n g_vec in the container frame of the first pose:
-        the drive of the container resting before the motion (initial equilibrium)
-    """
-
-    time_s: FloatArray
-    specific_force_m_s2: FloatArray
-    tilt_rate_rad_s: FloatArray
-    tilt_acceleration_rad_s2: FloatArray
-    spin_angle_rad: FloatArray
-    kinematics: PoseKinematics
-    rest_force_m_s2: FloatArray
-
-
-def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    """Row-wise cross product of (M, 3) arrays (faster than numpy.cross for 3-vectors)."""
-    return np.column_stack(
-        (
-            a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
-            a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
-            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0],
-        )
-    )
-
-
-def spatial_drive(model: SloshModel, kinematics: PoseKinematics) -> SpatialDrive:
-    """Specific force at each mode's hinge and the tilt rates, in the non-spinning frame.
-
-    Parameters
-    ----------
-    model : equivalent model (pivot heights, L_n, omega_n)
-    kinematics : `PoseKinematics` of the container's bottom centre
-
-    Returns
-    -------
-    SpatialDrive
-
-    References
-    ----------
-    Goldstein, *Classical Mechanics*, 3rd ed. (2002) §4.9-4.10 (rigid-body point
-    accelerations, rotating frames).
-
-    Examples
-    --------
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.motion.laws import quintic
-    >>> from sloshkit.motion.poses import poses_from_law
-    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08, 1)
-    >>> drive = spatial_drive(model, poses_from_law(quintic(0.1, 1.0)).kinematics())
-    >>> round(float(drive.specific_force_m_s2[0, 0, 2]), 2)
-    -9.81
-    """
-    g = model.gravity_m_s2
-    time = kinematics.time_s
-    matrix = kinematics.rotation_matrix  # (M, 3, 3) container -> world
-    axis = matrix[:, :, 2]
-    omega_w = kinematics.angular_velocity_world_rad_s
-    alpha_w = kinematics.angular_acceleration_world_rad_s2
-    omega_b = kinematics.angular_velocity_body_rad_s
-    alpha_b = kinematics.angular_acceleration_body_rad_s2
-    # lever per unit height: alpha x e + omega x (omega x e)
-    lever = _cross(alpha_w, axis) + _cross(omega_w, _cross(omega_w, axis))
-    spin = np.concatenate(
-        ([0.0], np.cumsum(0.5 * (omega_b[1:, 2] + omega_b[:-1, 2]) * np.diff(time)))
-    )
-    cos_s, sin_s = np.cos(spin), np.sin(spin)
-
-    def to_n(vectors_world: FloatArray) -> FloatArray:
-        body = np.einsum("kji,kj->ki", matrix, vectors_world)
-        return np.stack(
-            (
-                cos_s * body[:, 0] - sin_s * body[:, 1],
-                sin_s * body[:, 0] + cos_s * body[:, 1],
-                body[:, 2],
-            ),
-            axis=-1,
-        )
-
-    heights = [mode.pivot_height_m for mode in model.modes] + [model.fill_height_m]
-    kappas = [mode.omega_rad_s**2 * mode.length_m / g for mode in model.modes] + [1.0]
-    forces = np.empty((len(heights), time.size, 3))
-    for row, (height, kappa) in enumerate(zip(heights, kappas, strict=True)):
-        hinge = kinematics.acceleration_m_s2 + height * lever
-        specific = -hinge
-        specific[:, 2] -= kappa * g
-        forces[row] = to_n(specific)
-    rate_n = np.stack(
-        (
-            cos_s * omega_b[:, 0] - sin_s * omega_b[:, 1],
-            sin_s * omega_b[:, 0] + cos_s * omega_b[:, 1],
-        ),
-        -1,
-    )
-    accel_rot = np.stack(
-        (
-            cos_s * alpha_b[:, 0] - sin_s * alpha_b[:, 1],
-            sin_s * alpha_b[:, 0] + cos_s * alpha_b[:, 1],
-        ),
-        -1,
-    )
-    spin_rate = omega_b[:, 2:3]
-    tilt_accel = accel_rot + spin_rate * np.stack((-rate_n[:, 1], rate_n[:, 0]), -1)
-    gravity_body = matrix[0].T @ np.array([0.0, 0.0, -g])
-    rest = np.outer(kappas, gravity_body)
-    return SpatialDrive(time, forces, rate_n, tilt_accel, spin, kinematics, rest)
 
 
 def simulate_spatial(
@@ -248,7 +127,7 @@ def simulate_spatial(
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion.laws import septic
-    >>> from sloshkit.motion.poses import poses_from_law
+    >>> from sloshkit.motion.pose_builders import poses_from_law
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08,
     ...                          damping_ratio=0.0066)
     >>> response = simulate_spatial(model, poses_from_law(septic(0.3, 1.5)))

@@ -26,7 +26,7 @@ from sloshkit.sim.metrics import (
     free_oscillation_components,
     wall_elevation_factors,
 )
-from sloshkit.sim.spatial import spatial_drive
+from sloshkit.sim.spatial_drive import spatial_drive
 from sloshkit.sim.spatial_kernels import kernels
 from sloshkit.sim.spatial_response import HEIGHT_MAPPINGS, HeightMapping, ellipse_semi_major
 
@@ -44,6 +44,13 @@ class SpatialBatchMetrics(ResultMixin):
     peak_angle_rad : largest first-mode deflection [rad]
     residual_angle_rad : first-mode free-oscillation amplitude left at the end [rad]
     duration_s : duration of each pose trajectory [s]
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> metrics = SpatialBatchMetrics(*np.array([[2e-3], [1e-4], [0.1], [0.005], [1.0]]))
+    >>> metrics.to_pandas().loc[0, "peak_slosh_height_m"]
+    np.float64(0.002)
     """
 
     peak_slosh_height_m: FloatArray

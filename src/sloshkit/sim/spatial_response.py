@@ -21,7 +21,7 @@ from sloshkit.results import ResultMixin
 from sloshkit.sim.metrics import free_oscillation_components, wall_elevation_factors
 
 if TYPE_CHECKING:
-    from sloshkit.sim.spatial import SpatialDrive
+    from sloshkit.sim.spatial_drive import SpatialDrive
 
 FloatArray = NDArray[np.float64]
 HeightMapping = Literal["modal", "planar"]
@@ -39,6 +39,25 @@ def ellipse_semi_major(first: FloatArray, second: FloatArray) -> FloatArray:
     """Largest |A cos t + B sin t| over t for 2-D vectors A, B (..., 2): the semi-major axis.
 
     It is the square root of the largest eigenvalue of A A^T + B B^T.
+
+    Parameters
+    ----------
+    first, second : numpy.ndarray
+        A and B (..., 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        The semi-major axes (...).
+
+    Examples
+    --------
+    A circle of radius 2, and a line of half-length 5:
+
+    >>> import numpy as np
+    >>> ellipse_semi_major(np.array([[2.0, 0.0], [3.0, 0.0]]),
+    ...                    np.array([[0.0, 2.0], [4.0, 0.0]])).tolist()
+    [2.0, 5.0]
     """
     sxx = first[..., 0] ** 2 + second[..., 0] ** 2
     syy = first[..., 1] ** 2 + second[..., 1] ** 2
@@ -55,7 +74,7 @@ class SpatialResponse(ResultMixin):
     Attributes
     ----------
     model : the `SloshModel` simulated
-    drive : the `sloshkit.sim.spatial.SpatialDrive` (specific forces, tilt rates, spin angle)
+    drive : the `sloshkit.sim.spatial_drive.SpatialDrive` (specific forces, tilt rates, spin angle)
     pendulum : (modes, M, 3) hinge-to-bob unit vectors in N (nonlinear) or (theta_x, theta_y,
         -1) (linear)
     pendulum_rate : (modes, M, 3) their time derivatives in N

@@ -54,6 +54,15 @@ def write_cam_table(path: str | Path, line: LinePlan, metadata: Mapping[str, obj
 def read_cam_table(path: str | Path) -> LinePlan:
     """The 1-D move of a cam table CSV.
 
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    LinePlan
+
     Examples
     --------
     >>> import tempfile, pathlib, numpy as np

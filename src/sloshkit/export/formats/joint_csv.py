@@ -48,6 +48,15 @@ def write_joint_csv(path: str | Path, joints: JointPath, metadata: Mapping[str, 
 def read_joint_csv(path: str | Path) -> JointPath:
     """The joint path of a ``joint-csv`` file.
 
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    JointPath
+
     Examples
     --------
     >>> import tempfile, pathlib

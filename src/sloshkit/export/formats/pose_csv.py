@@ -57,6 +57,15 @@ def write_pose_csv(path: str | Path, stream: PoseStream, metadata: Mapping[str, 
 def read_pose_csv(path: str | Path) -> PoseStream:
     """The pose stream of a ``pose-csv`` file (metadata in ``.metadata``).
 
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    PoseStream
+
     Examples
     --------
     >>> import tempfile, pathlib, numpy as np

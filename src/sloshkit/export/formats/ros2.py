@@ -29,6 +29,16 @@ def duration(time_s: float) -> tuple[int, int]:
     """``builtin_interfaces/Duration`` (sec, nanosec) of a non-negative time, to the nearest
     nanosecond.
 
+    Parameters
+    ----------
+    time_s : float
+        Time from the trajectory's start [s].
+
+    Returns
+    -------
+    tuple of int
+        (sec, nanosec).
+
     Examples
     --------
     >>> duration(1.004)
@@ -99,6 +109,16 @@ def write_ros2_yaml(
 
 def read_ros2_yaml(path: str | Path) -> tuple[JointPath, str]:
     """The joint path and header frame of a ``JointTrajectory`` YAML file (PyYAML).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    tuple
+        (`JointPath`, the header's frame_id).
 
     Examples
     --------

@@ -109,6 +109,16 @@ def read_urscript(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.flo
     Each ``servoj`` holds its target for its own ``t``; sample k is at the sum of the earlier
     ``t``.
 
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Times [s] and joint positions (samples, 6) [rad].
+
     Examples
     --------
     >>> import tempfile, pathlib

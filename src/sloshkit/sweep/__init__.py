@@ -5,6 +5,9 @@ polynomial laws and the trapezoid (fixed acceleration fraction) are exactly that
 ``s-curve`` in a sweep keeps the shape that its --vmax/--amax/--jmax give and is stretched to
 each duration. Sweeping by peak acceleration instead of duration uses T = sqrt(a_1 / a_peak),
 a_1 being the law's peak acceleration for T = 1 s.
+
+`run_sweep` computes the cases (`sloshkit.sim.batch_kernel.law_metrics`); the result,
+`SweepResult` (`sloshkit.sweep.result`), holds them with their CSV, summary and maps.
 """
 
 from __future__ import annotations
@@ -13,230 +16,21 @@ import math
 import time
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from pathlib import Path
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError, require_positive
-from sloshkit.files import atomic_open
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES, make_law
 from sloshkit.motion.scaling import unit_duration_shape
-from sloshkit.results import ResultMixin, require_pandas
-from sloshkit.sim.batch_kernel import law_metrics
+from sloshkit.sim.batch_kernel import kernel_rows_of, law_metrics
+from sloshkit.sweep.result import SweepResult
 
 FloatArray = NDArray[np.float64]
 
 #: Every law can be time-scaled (the s-curve keeps the shape its limits give).
 SWEEP_LAWS: tuple[str, ...] = LAW_NAMES
-
-
-@dataclass(frozen=True, eq=False)
-class SweepResult(ResultMixin):
-    """Metrics over the grid; arrays indexed [law, fill height, duration] (SI, radians).
-
-    ``durations_s`` and ``peak_acceleration_m_s2`` are (laws, durations): identical rows when the
-    sweep is over duration, per-law when it is over peak acceleration. Follows the result protocol
-    (`sloshkit.results.ResultMixin`); ``to_csv`` writes one row per case (`rows`).
-
-    Parameters
-    ----------
-    laws : tuple of str
-        The laws swept.
-    fill_heights_m : numpy.ndarray
-        Fill heights [m].
-    durations_s : numpy.ndarray
-        Move durations [s], (laws, durations).
-    peak_acceleration_m_s2 : numpy.ndarray
-        Peak accelerations [m/s^2], (laws, durations).
-    omega_1_rad_s : numpy.ndarray
-        First-mode frequency per fill height [rad/s].
-    peak_angle_rad, residual_angle_rad : numpy.ndarray
-        Peak first-mode angle during the move and residual amplitude after it [rad].
-    peak_wall_elevation_m, residual_wall_elevation_m : numpy.ndarray
-        Peak wall elevation during the move and its residual bound after it [m].
-    distance_m : float
-        Travel distance [m].
-    axis : str
-        ``"duration"`` or ``"peak_acceleration"``.
-    max_angle_rad, max_residual_rad : float, optional
-        The limits that define `safe` [rad].
-    elapsed_s : float
-        Computing time [s].
-
-    Examples
-    --------
-    >>> import sloshkit as sk
-    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
-    ...                             fill_height_m=0.039)
-    >>> result = sk.run_sweep(model, ["septic"], 0.1, [1.0, 2.0])
-    >>> result.cases, len(result.rows())
-    (2, 2)
-    """
-
-    laws: tuple[str, ...]
-    fill_heights_m: FloatArray
-    durations_s: FloatArray
-    peak_acceleration_m_s2: FloatArray
-    omega_1_rad_s: FloatArray
-    peak_angle_rad: FloatArray
-    residual_angle_rad: FloatArray
-    peak_wall_elevation_m: FloatArray
-    residual_wall_elevation_m: FloatArray
-    distance_m: float
-    axis: str = "duration"
-    max_angle_rad: float | None = None
-    max_residual_rad: float | None = None
-    elapsed_s: float = 0.0
-
-    @property
-    def peak_angle_deg(self) -> FloatArray:
-        """`peak_angle_rad` in degrees (for tables and figures)."""
-        return np.degrees(self.peak_angle_rad)
-
-    @property
-    def residual_angle_deg(self) -> FloatArray:
-        """`residual_angle_rad` in degrees (for tables and figures)."""
-        return np.degrees(self.residual_angle_rad)
-
-    @property
-    def max_angle_deg(self) -> float | None:
-        """`max_angle_rad` in degrees."""
-        return None if self.max_angle_rad is None else math.degrees(self.max_angle_rad)
-
-    @property
-    def max_residual_deg(self) -> float | None:
-        """`max_residual_rad` in degrees."""
-        return None if self.max_residual_rad is None else math.degrees(self.max_residual_rad)
-
-    @property
-    def cases(self) -> int:
-        """Number of simulated cases."""
-        return int(self.peak_angle_rad.size)
-
-    def safe(self) -> NDArray[np.bool_]:
-        """Cases that meet the limits (peak angle during, residual amplitude after the move)."""
-        mask = np.ones(self.peak_angle_rad.shape, dtype=bool)
-        if self.max_angle_rad is not None:
-            mask &= self.peak_angle_rad <= self.max_angle_rad
-        if self.max_residual_rad is not None:
-            mask &= self.residual_angle_rad <= self.max_residual_rad
-        return mask
-
-    def rows(self) -> list[dict[str, object]]:
-        """One dict per case with the CSV columns."""
-        safe = self.safe()
-        peak_deg, residual_deg = self.peak_angle_deg, self.residual_angle_deg
-        rows: list[dict[str, object]] = []
-        for i, law in enumerate(self.laws):
-            for j, height in enumerate(self.fill_heights_m):
-                for k in range(self.durations_s.shape[1]):
-                    rows.append(
-                        {
-                            "law": law,
-                            "fill_height_m": float(height),
-                            "duration_s": float(self.durations_s[i, k]),
-                            "omega_1_rad_s": float(self.omega_1_rad_s[j]),
-                            "peak_angle_deg": float(peak_deg[i, j, k]),
-                            "residual_angle_deg": float(residual_deg[i, j, k]),
-                            "peak_wall_elevation_m": float(self.peak_wall_elevation_m[i, j, k]),
-                            "residual_wall_elevation_m": float(
-                                self.residual_wall_elevation_m[i, j, k]
-                            ),
-                            "peak_acceleration_m_s2": float(self.peak_acceleration_m_s2[i, k]),
-                            "safe": bool(safe[i, j, k]),
-                        }
-                    )
-        return rows
-
-    def columns(self) -> dict[str, NDArray[Any]]:
-        """The CSV columns as flat arrays, one entry per case (the order of `rows`)."""
-        laws, heights, durations = self.peak_angle_deg.shape
-        law_index = np.repeat(np.arange(laws), heights * durations)
-        height_index = np.tile(np.repeat(np.arange(heights), durations), laws)
-        return {
-            "law": np.asarray(self.laws, dtype=object)[law_index],
-            "fill_height_m": self.fill_heights_m[height_index],
-            "duration_s": np.repeat(self.durations_s, heights, axis=0).ravel(),
-            "omega_1_rad_s": self.omega_1_rad_s[height_index],
-            "peak_angle_deg": self.peak_angle_deg.ravel(),
-            "residual_angle_deg": self.residual_angle_deg.ravel(),
-            "peak_wall_elevation_m": self.peak_wall_elevation_m.ravel(),
-            "residual_wall_elevation_m": self.residual_wall_elevation_m.ravel(),
-            "peak_acceleration_m_s2": np.repeat(
-                self.peak_acceleration_m_s2, heights, axis=0
-            ).ravel(),
-            "safe": self.safe().ravel(),
-        }
-
-    def to_csv(self, path: str | Path) -> Path:
-        """Write the cases as CSV (the columns of `rows`), atomically, from the arrays:
-        numbers in their shortest round-trip form, as `rows` would write them."""
-        columns = self.columns()
-        text = [column.astype(str) for column in columns.values()]
-        lines = [",".join(columns), *map(",".join, zip(*text, strict=True))]
-        with atomic_open(path, "w") as stream:
-            stream.write("\n".join(lines) + "\n")
-        return Path(path)
-
-    def to_pandas(self) -> Any:
-        """`rows` as a pandas DataFrame (one row per case; pandas is optional)."""
-        return require_pandas().DataFrame(self.rows())
-
-    def to_dict(self) -> dict[str, Any]:
-        """The `summary` and every case (`rows`)."""
-        return {**self.summary(), "rows": self.rows()}
-
-    def shortest_safe(self) -> list[dict[str, object]]:
-        """Per fill height, the shortest safe duration over all laws (None if none is safe)."""
-        safe = self.safe()
-        best: list[dict[str, object]] = []
-        for j, height in enumerate(self.fill_heights_m):
-            candidates = [
-                (float(self.durations_s[i, k]), law)
-                for i, law in enumerate(self.laws)
-                for k in range(self.durations_s.shape[1])
-                if safe[i, j, k]
-            ]
-            duration, law = min(candidates) if candidates else (None, None)
-            best.append({"fill_height_m": float(height), "duration_s": duration, "law": law})
-        return best
-
-    def summary(self) -> dict[str, object]:
-        """JSON-ready summary: counts, limits and the shortest safe duration per fill height."""
-        safe = self.safe()
-        by_law = {}
-        for i, law in enumerate(self.laws):
-            durations = []
-            for j in range(self.fill_heights_m.size):
-                ok = np.nonzero(safe[i, j])[0]
-                durations.append(float(self.durations_s[i, ok].min()) if ok.size else None)
-            by_law[law] = durations
-        return {
-            "cases": self.cases,
-            "safe_cases": int(safe.sum()),
-            "laws": list(self.laws),
-            "axis": self.axis,
-            "distance_m": self.distance_m,
-            "max_angle_deg": self.max_angle_deg,
-            "max_residual_deg": self.max_residual_deg,
-            "shortest_safe": self.shortest_safe(),
-            "shortest_safe_by_law_s": by_law,
-            "elapsed_s": self.elapsed_s,
-            "cases_per_s": self.cases / self.elapsed_s if self.elapsed_s > 0 else None,
-        }
-
-    def plot_maps(self, folder: str | Path) -> list[Path]:
-        """Heat maps of peak and residual slosh angle, one panel per law (PNG)."""
-
-        target = Path(folder)
-        paths = [target / "peak_angle_map.png", target / "residual_angle_map.png"]
-        self.plot(path=paths[0], quantity="peak_angle_deg")
-        self.plot(path=paths[1], quantity="residual_angle_deg")
-        return paths
 
 
 def run_sweep(
@@ -377,10 +171,11 @@ def run_sweep(
     results = {key: np.zeros(shape) for key in ("peak", "residual", "wall", "wall_residual")}
     total = len(laws) * heights.size * grid.size
     done = 0
+    rows = kernel_rows_of(models, dt)
     for i, law_shape in enumerate(shapes):
         velocity_pp = law_shape.derivative_pp(1)
         for j, model in enumerate(models):
-            metrics = law_metrics(model, velocity_pp, durations[i], dt, chunk_cases)
+            metrics = law_metrics(model, velocity_pp, durations[i], dt, chunk_cases, rows[j])
             results["peak"][i, j] = metrics.peak_angle_rad
             results["residual"][i, j] = metrics.residual_angle_rad
             results["wall"][i, j] = metrics.peak_wall_elevation_m
@@ -433,14 +228,50 @@ def _check_sweep_size(
 
 
 def linspace_inclusive(start: float, stop: float, count: int) -> FloatArray:
-    """START:STOP:COUNT with both ends included (a single value when COUNT is 1)."""
+    """START:STOP:COUNT with both ends included (a single value when COUNT is 1).
+
+    Parameters
+    ----------
+    start, stop : float
+        First and last value.
+    count : int
+        Number of values.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values.
+
+    Examples
+    --------
+    >>> linspace_inclusive(1.0, 2.0, 3).tolist(), linspace_inclusive(1.0, 2.0, 1).tolist()
+    ([1.0, 1.5, 2.0], [1.0])
+    """
     if count == 1:
         return np.array([start])
     return np.linspace(start, stop, count)
 
 
 def describe_rate(result: SweepResult) -> str:
-    """One line: cases, time and rate."""
+    """One line: cases, time and rate.
+
+    Parameters
+    ----------
+    result : SweepResult
+        A sweep.
+
+    Returns
+    -------
+    str
+        ``"<cases> cases in <s> s (<rate> cases/s)"``.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> describe_rate(sk.run_sweep(model, ["septic"], 0.1, [1.0, 2.0])).startswith("2 cases in")
+    True
+    """
     rate = result.cases / result.elapsed_s if result.elapsed_s > 0 else math.inf
     return f"{result.cases} cases in {result.elapsed_s:.2f} s ({rate:,.0f} cases/s)"
 

@@ -1,0 +1,214 @@
+"""The linear slosh screen of a sampled 3-D export, used by the searches of the path planner.
+
+Linear screen (Abramson, NASA SP-106 (1966) ch. 6; Dodge (2000) ch. 3): each mode n is a
+spherical pendulum of length L_n whose small deflection phi_n (2-vector, relative to the
+container axis) obeys phi'' + 2 zeta w phi' + w^2 phi = f_lat / L_n, with f = g - a_B the
+specific force at the container-fixed point B_n where the bob rests (its acceleration includes
+the Euler and centripetal terms of the container's rotation), taken in the container's frame
+with its spin about the own axis removed (an ideal liquid does not spin with the container).
+A static tilt psi gives phi = sin(psi): the surface stays level. Wall height: |sum_n e_n phi_n|,
+e_n = 2R/(xi_n^2 - 1) (the model's ``wall_elevation_factor_m``). Rotations are handled as
+quaternion arrays (scalar last) in numpy.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sloshkit.plan.spatial import (
+    GRAVITY,
+    SEARCH_MARGIN,
+    PathProblem,
+    PoseSamples,
+    _second_difference,
+)
+
+FloatArray = NDArray[np.float64]
+
+
+def _qmul(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Hamilton product of quaternion arrays (scalar last), the rotation a * b."""
+    ax, ay, az, aw = np.moveaxis(a, -1, 0)
+    bx, by, bz, bw = np.moveaxis(b, -1, 0)
+    return np.stack(
+        (
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz,
+        ),
+        axis=-1,
+    )
+
+
+def _qconj(q: FloatArray) -> FloatArray:
+    """Inverse of unit quaternions (scalar last)."""
+    return np.asarray(q * np.array([-1.0, -1.0, -1.0, 1.0]))
+
+
+def _qrotvec(q: FloatArray) -> FloatArray:
+    """Rotation vectors of unit quaternions (scalar last), angle in [0, pi]."""
+    q = np.where(q[..., 3:4] < 0.0, -q, q)
+    sine = np.linalg.norm(q[..., :3], axis=-1)
+    angle = 2.0 * np.arctan2(sine, q[..., 3])
+    # angle / sin(angle / 2), -> 2 for small angles (series 2 + angle^2 / 12)
+    scale = np.where(sine > 1e-6, angle / np.maximum(sine, 1e-300), 2.0 + angle**2 / 12.0)
+    return np.asarray(q[..., :3] * scale[..., None])
+
+
+def _qaxis(q: FloatArray) -> FloatArray:
+    """The rotated z axis R e_z of unit quaternions (scalar last)."""
+    x, y, z, w = np.moveaxis(q, -1, 0)
+    return np.stack((2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)), axis=-1)
+
+
+def _qapply_inverse(q: FloatArray, v: FloatArray) -> FloatArray:
+    """R^T v for unit quaternions q and vectors v (rows)."""
+    u = -q[..., :3]
+    w = q[..., 3:4]
+    t = 2.0 * np.cross(u, v)
+    return np.asarray(v + w * t + np.cross(u, t))
+
+
+@dataclass(frozen=True)
+class ScreenResult:
+    """Linear-screen metrics, the worst over the band.
+
+    Parameters
+    ----------
+    peak_height_m : float
+        Peak slosh height at the wall [m].
+    residual_height_m : float
+        Bound of the residual slosh height [m].
+    peak_angle_rad : float
+        Peak first-mode surface angle [rad].
+
+    Examples
+    --------
+    >>> ScreenResult(0.01, 0.001, 0.05).residual_height_m
+    0.001
+    """
+
+    peak_height_m: float
+    residual_height_m: float
+    peak_angle_rad: float
+
+
+def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
+    """Slosh of the sampled ``poses`` by the linear spherical-pendulum model (module docstring).
+
+    The liquid starts in equilibrium with the first pose; the residual height is the bound
+    sum_n e_n sqrt(|A_n|^2 + |B_n|^2) of the free oscillation about the last pose's equilibrium
+    (A_n, B_n: the cosine and sine amplitude vectors of mode n).
+
+    Parameters
+    ----------
+    models : list of SloshModel
+        The models of the band (`PathProblem.models`).
+    poses : PoseSamples
+        The export.
+
+    Returns
+    -------
+    ScreenResult
+        The worst over the models.
+
+    References
+    ----------
+    Abramson, NASA SP-106 (1966) ch. 6; Dodge, *The New "Dynamic Behavior of Liquids in
+    Moving Containers"*, SwRI (2000) ch. 3.
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, PoseSamples,
+    ...                                   SpatialSloshLimits, sample_path)
+    >>> from sloshkit.motion.laws import s_curve
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
+    >>> poses = sample_path(path, s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
+    >>> round(linear_screen([model], poses).peak_height_m * 1e3)  # [mm]
+    24
+    """
+    from sloshkit.sim.discretisation import linear_mode_response
+
+    ts = float(poses.time_s[1] - poses.time_s[0])
+    quaternion = poses.quaternion_xyzw
+    spin_rate = _qrotvec(_qmul(_qconj(quaternion[:-1]), quaternion[1:]))[:, 2]
+    spin = np.concatenate(([0.0], np.cumsum(spin_rate)))
+    unspin = np.zeros((spin.size, 4))
+    unspin[:, 2], unspin[:, 3] = np.sin(-0.5 * spin), np.cos(-0.5 * spin)
+    frame = _qmul(quaternion, unspin)
+    axis = _qaxis(quaternion)
+    peak = residual = angle = 0.0
+    for model in models:
+        wall = np.zeros((poses.time_s.size, 2))
+        bound = 0.0
+        for index, mode in enumerate(model.modes):
+            point = poses.position_m + mode.bob_height_m * axis
+            force = _qapply_inverse(frame, GRAVITY - _second_difference(point, ts))[:, :2]
+            rest = force / (mode.length_m * mode.omega_rad_s**2)
+            # Equivalent velocity w with w' = -(f - f_0): linear_mode_response solves
+            # theta'' + 2 zeta w theta' + w^2 theta = -w'/L.
+            excess = force - force[0]
+            equivalent = -np.concatenate(
+                (np.zeros((1, 2)), np.cumsum(0.5 * (excess[1:] + excess[:-1]) * ts, axis=0))
+            )
+            theta, rate = linear_mode_response(
+                equivalent.T, ts, mode.omega_rad_s, mode.damping_ratio, mode.length_m
+            )
+            phi = theta.T + rest[0]
+            wall += mode.wall_elevation_factor_m * phi
+            if index == 0:
+                angle = max(angle, float(np.max(np.linalg.norm(phi, axis=1))))
+            damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
+            cosine = phi[-1] - rest[-1]
+            sine = (rate.T[-1] + mode.damping_ratio * mode.omega_rad_s * cosine) / damped
+            bound += mode.wall_elevation_factor_m * math.sqrt(cosine @ cosine + sine @ sine)
+        peak = max(peak, float(np.max(np.linalg.norm(wall, axis=1))))
+        residual = max(residual, bound)
+    return ScreenResult(peak, residual, angle)
+
+
+def screen_ok(problem: PathProblem, result: ScreenResult, margin: float = SEARCH_MARGIN) -> bool:
+    """True when the screen meets every slosh limit with the relative ``margin``.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        The limits.
+    result : ScreenResult
+        The screen of an export.
+    margin : float
+        Relative margin kept from each limit.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, PoseSamples,
+    ...                                   SpatialSloshLimits, sample_path)
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None)
+    >>> [screen_ok(problem, ScreenResult(peak, 0.001, 0.0)) for peak in (0.0099, 0.009)]
+    [False, True]
+    """
+    slosh = problem.slosh
+    keep = 1.0 - margin
+    ok = result.peak_height_m <= slosh.max_height_m * keep
+    ok &= result.residual_height_m <= slosh.max_residual_height_m * keep
+    if slosh.max_surface_angle_rad is not None:
+        ok &= result.peak_angle_rad <= slosh.max_surface_angle_rad * keep
+    return bool(ok)

@@ -1,0 +1,243 @@
+"""Searches over the timing family of `sloshkit.plan.retime`: the largest acceleration cap whose
+member passes a test, and the smallest uniform slow-down of a timing that does.
+
+Slosh is not monotone in the cap A (the residual oscillates with the move's duration), so
+`fastest_capped` scans 20 log-spaced caps downwards from amax, refines the first passing one by
+bisection towards the next larger (failing) grid value, also bisects over the whole range (it
+can land in a passing pocket between grid values), and keeps the larger passing cap. A uniform
+stretch in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative
+the planner compares with.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from sloshkit.motion.shaping import Shaper
+from sloshkit.plan.path_screen import linear_screen, screen_ok
+from sloshkit.plan.retime import ShaperFactory, family_member
+from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
+from sloshkit.plan.timing import Timing
+
+
+def stretcher(problem: PathProblem, timing: Timing) -> Callable[[float], PoseSamples]:
+    """Sampled poses of ``timing`` stretched uniformly in time by a factor c.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path and sample period.
+    timing : Timing
+        The timing.
+
+    Returns
+    -------
+    callable
+        c -> PoseSamples of s(t / c).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None, sample_period_s=0.01)
+    >>> ramp = Timing.from_samples("ramp", np.linspace(0, 1, 11), np.linspace(0, 0.3, 11))
+    >>> stretcher(problem, ramp)(2.0).duration_s
+    2.0
+    """
+
+    def poses_for(factor: float) -> PoseSamples:
+        return sample_path(problem.path, timing.stretched(factor), problem.sample_period_s)
+
+    return poses_for
+
+
+def _bisect(ok: Callable[[float], bool], low: float, high: float, steps: int = 14) -> float:
+    """Smallest c in [low, high] with ok(c) (ok assumed monotone; ok(high) True)."""
+    for _ in range(steps):
+        middle = math.sqrt(low * high)
+        if ok(middle):
+            high = middle
+        else:
+            low = middle
+        if high / low < 1.0 + 1e-3:
+            break
+    return high
+
+
+def stretch_until(
+    ok: Callable[[float], bool], start: float = 1.0, limit: float = 64.0
+) -> float | None:
+    """Smallest stretch c >= ``start`` with ok(c): doubling, then bisection (ok assumed
+    monotone).
+
+    Parameters
+    ----------
+    ok : callable
+        c -> bool.
+    start : float
+        First stretch tried.
+    limit : float
+        Largest stretch tried.
+
+    Returns
+    -------
+    float or None
+        None when nothing up to ``limit`` passes.
+
+    Examples
+    --------
+    >>> round(stretch_until(lambda c: c >= 3.0), 2)
+    3.0
+    """
+    if ok(start):
+        return start
+    low, high = start, 2.0 * start
+    while not ok(high):
+        low, high = high, 2.0 * high
+        if high > limit:
+            return None
+    return _bisect(ok, low, high)
+
+
+def slowed_until(
+    problem: PathProblem, poses_for: Callable[[float], PoseSamples], start: float = 1.0
+) -> tuple[float, PoseSamples] | None:
+    """Smallest uniform stretch c >= ``start`` at which ``poses_for(c)`` passes the linear
+    slosh screen, and its poses.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Limits and model.
+    poses_for : callable
+        c -> PoseSamples (e.g. `stretcher`).
+    start : float
+        First stretch tried.
+
+    Returns
+    -------
+    tuple or None
+        (c, poses), None when nothing up to 64x passes.
+
+    Examples
+    --------
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.motion.laws import s_curve
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       model, sample_period_s=0.01)
+    >>> move = s_curve(0.3, 1.0, 3.0, 30.0)
+    >>> ramp = Timing.from_samples("s", np.linspace(0, move.duration_s, 201),
+    ...                            move.position(np.linspace(0, move.duration_s, 201)))
+    >>> factor, poses = slowed_until(problem, stretcher(problem, ramp))
+    >>> factor > 1.0
+    True
+    """
+    models = problem.models()
+    factor = stretch_until(lambda c: screen_ok(problem, linear_screen(models, poses_for(c))), start)
+    return None if factor is None else (factor, poses_for(factor))
+
+
+def fastest_capped(
+    problem: PathProblem,
+    passes: Callable[[PoseSamples], bool],
+    shaper: Shaper | ShaperFactory | None,
+    low_fraction: float = 1e-3,
+    sampler: Callable[[Timing], PoseSamples] | None = None,
+) -> tuple[float, Timing] | None:
+    """The largest acceleration cap A between ``low_fraction`` amax and amax whose family
+    member's export passes ``passes`` (module docstring).
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path and limits.
+    passes : callable
+        PoseSamples -> bool.
+    shaper : Shaper, callable or None
+        Shaper of the family's timings (or a function of the cap giving it).
+    low_fraction : float
+        Smallest cap tried, as a fraction of amax.
+    sampler : callable, optional
+        Timing -> PoseSamples (default `sloshkit.plan.spatial.sample_path`).
+
+    Returns
+    -------
+    tuple or None
+        (A [m/s^2], the member's timing), None when no cap passes.
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path_limits import kinematics
+    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None, sample_period_s=0.01)
+    >>> cap, _ = fastest_capped(problem, lambda p: kinematics(p)["acceleration"] < 2.0, None)
+    >>> 1.9 < cap < 2.0
+    True
+    """
+    amax = problem.machine.max_acceleration_m_s2
+
+    def ok(member: Timing) -> bool:
+        if sampler is not None:
+            return passes(sampler(member))
+        return passes(sample_path(problem.path, member, problem.sample_period_s))
+
+    # Slosh is not monotone in A (the residual oscillates with the move's duration): a
+    # descending scan finds the largest passing grid cap and a bisection towards the next
+    # larger (failing) grid value refines it; a plain bisection over the whole range can land
+    # in a passing pocket between grid values; the larger of the two caps wins.
+    caps = np.geomspace(amax, low_fraction * amax, 20)
+    passing = None
+    for position, cap in enumerate(caps):
+        member = family_member(problem, float(cap), shaper)
+        if ok(member):
+            passing = position
+            break
+    if passing is None:
+        return None
+    scanned = _refine(
+        problem, ok, shaper, float(caps[passing]), member, float(caps[max(passing - 1, 0)])
+    )
+    bisected = _refine(problem, ok, shaper, float(caps[-1]), None, amax)
+    if scanned is None or (bisected is not None and bisected[0] > scanned[0]):
+        return bisected
+    return scanned
+
+
+def _refine(
+    problem: PathProblem,
+    ok: Callable[[Timing], bool],
+    shaper: Shaper | ShaperFactory | None,
+    low: float,
+    member: Timing | None,
+    high: float,
+) -> tuple[float, Timing] | None:
+    """Bisection in log A between a passing ``low`` (its member, if known) and ``high``."""
+    if member is None:
+        member = family_member(problem, low, shaper)
+        if not ok(member):
+            return None
+    found = (low, member)
+    for _ in range(10):
+        if high / low < 1.02:
+            break
+        middle = math.sqrt(low * high)
+        candidate = family_member(problem, middle, shaper)
+        if ok(candidate):
+            low, found = middle, (middle, candidate)
+        else:
+            high = middle
+    return found
