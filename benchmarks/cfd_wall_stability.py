@@ -189,6 +189,25 @@ EXPERIMENTS: dict[str, tuple[str, dict[str, object], Edit | None]] = {
         {"radial_cells": 8, "wall_grading": 0.1, "steps": 40},
         None,
     ),
+    "two-phase, graded 0.105 mm, 10 per quarter, tilted 3 deg": (
+        "the graded mesh that blew up at a 1 ms step in the damping study",
+        {"cells_per_radius": 10, "radial_cells": 7, "wall_grading": 0.1, "tilt": 3.0, "steps": 150},
+        None,
+    ),
+    "same, no interface compression (cAlpha 0)": (
+        "the interface-compression flux at the thin wall cells",
+        {"cells_per_radius": 10, "radial_cells": 7, "wall_grading": 0.1, "tilt": 3.0, "steps": 150},
+        replace("system/fvSolution", "cAlpha          1;", "cAlpha          0;"),
+    ),
+    "same, 90 deg contact angle on the wall": (
+        "the wall condition of alpha (contact-angle normal instead of zeroGradient)",
+        {"cells_per_radius": 10, "radial_cells": 7, "wall_grading": 0.1, "tilt": 3.0, "steps": 150},
+        replace(
+            "0/alpha.water",
+            "type            zeroGradient;",
+            "type constantAlphaContactAngle; theta0 90; limit gradient; value uniform 0;",
+        ),
+    ),
     "two-phase, graded 0.093 mm, 12 per quarter, tilted 3 deg": (
         "the graded mesh of the damping study, as it runs",
         {"cells_per_radius": 12, "radial_cells": 8, "wall_grading": 0.1, "tilt": 3.0, "steps": 60},
