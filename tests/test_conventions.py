@@ -48,23 +48,6 @@ def test_every_public_parameter_is_documented(name, obj):
     assert not TIME_STEP_ALIASES & set(parameters), f"sloshkit.{name}: say sample_period_s"
 
 
-#: Modules whose owners (other developers of session 2) are adding their Examples on their own
-#: branches; TEMPORARY: the coordinator empties this set when those branches are merged.
-PENDING_OWNERS = frozenset(
-    {
-        # (plan3d: merged, documented)
-        # (harden: merged, documented)
-        # cfd
-        "sloshkit.cli.cfd",
-        "sloshkit.cli.cfd_sweep",
-    }
-)
-
-
-def _is_pending(module_name: str) -> bool:
-    return module_name in PENDING_OWNERS or module_name.startswith("sloshkit.cfd.")
-
-
 def _command_callbacks() -> set[object]:
     """The functions typer runs for a command: the CLI is documented by ``--help`` instead."""
     from sloshkit.cli import load_commands
@@ -88,13 +71,11 @@ def _all_modules() -> list[str]:
     return [*modules, "sloshkit"]
 
 
-def _module_callables(*, pending: bool) -> list[tuple[str, object]]:
+def _module_callables() -> list[tuple[str, object]]:
     """Every public module-level function and class of sloshkit, where it is defined."""
     exempt = _command_callbacks()
     found = []
     for module_name in _all_modules():
-        if _is_pending(module_name) != pending:
-            continue
         module = importlib.import_module(module_name)
         for name, obj in vars(module).items():
             if name.startswith("_") or getattr(obj, "__module__", None) != module_name:
@@ -135,15 +116,10 @@ def _docstring_problems(obj: object) -> list[str]:
     return problems
 
 
-@pytest.mark.parametrize(("name", "obj"), _module_callables(pending=False))
+@pytest.mark.parametrize(("name", "obj"), _module_callables())
 def test_every_public_definition_is_documented(name, obj):
     problems = _docstring_problems(obj)
     assert not problems, f"{name}: {'; '.join(problems)}"
-
-
-def test_pending_owners_are_modules_of_sloshkit():
-    # The temporary set names real modules, so emptying it at merge time is all that is needed.
-    assert PENDING_OWNERS <= set(_all_modules())
 
 
 def test_the_checker_fails_on_an_undocumented_parameter():

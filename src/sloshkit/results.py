@@ -54,6 +54,7 @@ PLOTS: dict[str, str] = {
     ),
     "sloshkit.plan.planner.PlanResult": "sloshkit.plotting.plan:plot_plan",
     "sloshkit.plan.path_result.PathPlanResult": "sloshkit.plotting.plan3d:plot_path_plan",
+    "sloshkit.cfd.validation.CfdValidation": "sloshkit.plotting.cfd:plot_cfd_validation",
 }
 
 PlotFunction = Callable[..., Any]

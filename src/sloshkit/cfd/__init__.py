@@ -3,11 +3,19 @@
 - `sloshkit.cfd.foam`: a small, tested writer of OpenFOAM dictionary syntax (pure).
 - `sloshkit.cfd.spec`: what defines a case (`CaseSpec`, SI units).
 - `sloshkit.cfd.excitation`: container motions and the acceleration table (pure).
-- `sloshkit.cfd.mesh`, `sloshkit.cfd.fields`, `sloshkit.cfd.case`: the O-grid, the initial
-  fill and fluids, and every file of the case (pure: return file texts).
-- `sloshkit.cfd.state`: complete time folders, mesh checks, process limits (no processes).
+- `sloshkit.cfd.mesh`, `sloshkit.cfd.fields`, `sloshkit.cfd.system`, `sloshkit.cfd.case`: the
+  O-grid (uniform, or with a graded wall annulus), the initial fill and fluids, the system
+  dictionaries, and every file of the case (pure: return file texts).
+- `sloshkit.cfd.state`: complete time folders, mesh checks (the measured stability limit of
+  wall-graded O-grids), process limits, run outcomes (no processes).
+- `sloshkit.cfd.prepare`: writing a case, checking the host for OpenFOAM (no processes).
 - `sloshkit.cfd.run`: the only module that starts processes (blockMesh, setFields,
   decomposePar, interFoam, mpirun), with progress, interruption and resume.
 - `sloshkit.cfd.results`: parsing of function-object output into signals (pure).
-- `sloshkit.cfd.pipeline`: run + analyse + calibrate, used by the CLI and the report.
+- `sloshkit.cfd.analysis`: frequency and damping of a finished case.
+- `sloshkit.cfd.pipeline`: case from a model, run, and `validate` (CFD against the pendulum
+  model), used by the CLI and the report; `sloshkit.cfd.validation` holds its result object.
+- `sloshkit.cfd.spatial`: pose-driven cases against the 3-D model.
+- `sloshkit.cfd.convergence`: Richardson extrapolation and GCI (mesh and time-step studies).
+- `sloshkit.cfd.campaign`: campaigns of cases on Dask.
 """

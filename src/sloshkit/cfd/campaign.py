@@ -53,7 +53,29 @@ COLUMNS = (
 
 @dataclass(frozen=True)
 class CampaignCase:
-    """One case of a campaign: its folder name, its spec and the linear-theory frequency."""
+    """One case of a campaign: its folder name, its spec and the linear-theory frequency.
+
+    Parameters
+    ----------
+    name : str
+        Folder name of the case in the campaign.
+    spec : CaseSpec
+        The case.
+    theory_frequency_hz : float
+        First-mode frequency of linear theory [Hz], for the frequency ratio.
+
+    Returns
+    -------
+    CampaignCase
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> CampaignCase("fill-39mm", spec, 4.72).name
+    'fill-39mm'
+    """
 
     name: str
     spec: CaseSpec
@@ -65,6 +87,33 @@ def run_one(folder: str, processes: int, theory_frequency_hz: float) -> dict[str
 
     Failures become a row with status ``failed`` (and are not recorded, so a later campaign
     tries the case again).
+
+    Parameters
+    ----------
+    folder : str
+        The case folder (written by `run_campaign`).
+    processes : int
+        MPI processes of the run.
+    theory_frequency_hz : float
+        Linear-theory frequency [Hz].
+
+    Returns
+    -------
+    dict
+        One row with the keys of `COLUMNS`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from sloshkit.cfd.run import write_case
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=4)
+    >>> case = write_case(spec, Path(tempfile.mkdtemp()) / "c")
+    >>> row = run_one(str(case), 64, 4.72)  # an impossible process count: a failed row
+    >>> row["status"], row["cells"]
+    ('failed', 768)
     """
     case = Path(folder)
     summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
@@ -101,7 +150,26 @@ def run_one(folder: str, processes: int, theory_frequency_hz: float) -> dict[str
 
 def fill_model(rows: Sequence[dict[str, Any]]) -> dict[str, Any]:
     """Least-squares lines of the frequency ratio and damping ratio against h/R, per liquid
-    and mesh (needs two fills or more; otherwise the single values)."""
+    and mesh (needs two fills or more; otherwise the single values).
+
+    Parameters
+    ----------
+    rows : sequence of dict
+        Campaign rows (`run_one`).
+
+    Returns
+    -------
+    dict
+        ``form`` and one entry per (liquid, mesh) in ``groups``.
+
+    Examples
+    --------
+    >>> rows = [{"status": "completed", "liquid": "water", "cells_per_radius": 8,
+    ...          "fill_height_m": h, "radius_m": 0.02, "frequency_ratio": 1.0 + h,
+    ...          "damping_ratio": 0.01} for h in (0.02, 0.04)]
+    >>> round(fill_model(rows)["groups"][0]["frequency_ratio"]["slope_per_fill_over_radius"], 3)
+    0.02
+    """
     groups: dict[tuple[str, int], list[dict[str, Any]]] = {}
     for row in rows:
         if row["status"] == "completed":

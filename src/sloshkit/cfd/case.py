@@ -45,6 +45,13 @@ from sloshkit.cfd.mesh import (
     wall_cell_size_m,
 )
 from sloshkit.cfd.spec import SCALE, CaseSpec
+from sloshkit.cfd.system import (
+    PROBE_RADIUS_FRACTION,
+    control_dict,
+    decompose_par_dict,
+    fv_schemes,
+    fv_solution,
+)
 
 __all__ = [
     "SCALE",
@@ -64,7 +71,6 @@ __all__ = [
     "spec_summary",
 ]
 
-PROBE_RADIUS_FRACTION = 0.98
 #: Open MPI options that keep a run on this host: shared memory between the ranks (vader),
 #: and loopback for the TCP transport and the out-of-band (runtime) channel; waiting ranks
 #: yield their core (no busy polling: the machine may be shared).
@@ -86,7 +92,32 @@ MPI_LOCAL_OPTIONS = (
 
 def acceleration_table(spec: CaseSpec, sample_period_s: float = 1e-3) -> str:
     """``constant/acceleration.dat``: (t ((ax ay az) (wx wy wz) (dwx dwy dwz))), lengths in mm,
-    covering [0, endTime + 0.1 s] (a time outside the table is fatal)."""
+    covering [0, endTime + 0.1 s] (a time outside the table is fatal).
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+    sample_period_s : float
+        Spacing of the table [s].
+
+    Returns
+    -------
+    str
+        The table file.
+
+    References
+    ----------
+    OpenFOAM v1912 ``tabulatedAccelerationSource`` (the table's format).
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> acceleration_table(spec).splitlines()[2]
+    '(0 ((0 0 0) (0 0 0) (0 0 0)))'
+    """
     end = spec.end_time_s + 0.1
     t = np.arange(0.0, end + sample_period_s, sample_period_s)
     linear, omega, alpha = frame_motion(spec.excitation, t)
@@ -100,172 +131,6 @@ def acceleration_table(spec: CaseSpec, sample_period_s: float = 1e-3) -> str:
         for time, a, w, dw in zip(t, linear, omega, alpha, strict=True)
     )
     return f"{t.size}\n(\n{rows}\n)\n"
-
-
-def probe_points(spec: CaseSpec) -> list[str]:
-    """Probe locations in mm: one column per angle, bottom to top."""
-    z, _ = probe_columns(spec)
-    r = PROBE_RADIUS_FRACTION * spec.radius_m * SCALE
-    points = []
-    for angle in probe_angles_rad(spec):
-        x, y = round(r * math.cos(angle), 9), round(r * math.sin(angle), 9)
-        points += [
-            f"({format_number(x)} {format_number(y)} {format_number(round(zz * SCALE, 9))})"
-            for zz in z
-        ]
-    return points
-
-
-def write_interval(spec: CaseSpec) -> float:
-    """The write interval, shortened so that the end time is a write time (an adjustable
-    step then lands on it exactly, and the last fields are written there) [s]."""
-    count = max(1, round(spec.end_time_s / spec.write_interval_s))
-    return spec.end_time_s / count
-
-
-def _every_step(entries: dict[str, Any]) -> dict[str, Any]:
-    return {"writeControl": "timeStep", "writeInterval": 1, **entries}
-
-
-def control_dict(spec: CaseSpec) -> str:
-    """controlDict: adaptive (or fixed) step, fields at write times only, and the function
-    objects the calibration needs."""
-    entries: dict[str, Any] = {
-        "application": "interFoam",
-        "startFrom": "latestTime",
-        "startTime": 0,
-        "stopAt": "endTime",
-        "endTime": spec.end_time_s,
-        "deltaT": spec.delta_t_s,
-        "writeControl": "adjustableRunTime" if spec.adjust_time_step else "runTime",
-        "writeInterval": write_interval(spec),
-        "purgeWrite": 0,
-        "writeFormat": "ascii",
-        "writePrecision": 8,
-        "writeCompression": "off",
-        "timeFormat": "general",
-        "timePrecision": 8,
-        "runTimeModifiable": "no",
-        "adjustTimeStep": "yes" if spec.adjust_time_step else "no",
-        "maxCo": spec.max_courant,
-        "maxAlphaCo": spec.max_alpha_courant,
-        "maxDeltaT": spec.delta_t_s,
-        "libs": Raw(
-            '("libfvOptions.so" "libforces.so" "libsampling.so" "libfieldFunctionObjects.so")'
-        ),
-        "functions": {
-            "wallProbes": _every_step(
-                {
-                    "type": "probes",
-                    "libs": Raw('("libsampling.so")'),
-                    "fields": Raw("(alpha.water)"),
-                    "probeLocations": Raw(
-                        "\n        (\n            "
-                        + "\n            ".join(probe_points(spec))
-                        + "\n        )"
-                    ),
-                }
-            ),
-            # Computed every step (surfaceTilt integrates it), written at write times only.
-            "gradAlpha": {
-                "type": "grad",
-                "libs": Raw('("libfieldFunctionObjects.so")'),
-                "field": "alpha.water",
-                "executeControl": "timeStep",
-                "executeInterval": 1,
-                "writeControl": "writeTime",
-                "log": "false",
-            },
-            "surfaceTilt": _every_step(
-                {
-                    "type": "volFieldValue",
-                    "libs": Raw('("libfieldFunctionObjects.so")'),
-                    "writeFields": "false",
-                    "log": "false",
-                    "regionType": "all",
-                    "operation": "volIntegrate",
-                    "fields": Raw("(grad(alpha.water))"),
-                }
-            ),
-            "wallForces": _every_step(
-                {
-                    "type": "forces",
-                    "libs": Raw('("libforces.so")'),
-                    "patches": Raw("(walls)"),
-                    "rho": "rho",
-                    "rhoInf": 1,
-                    "CofR": Raw("(0 0 0)"),
-                    "log": "false",
-                }
-            ),
-        },
-    }
-    return foam_file("dictionary", "controlDict", entries, "system")
-
-
-def fv_schemes(spec: CaseSpec) -> str:
-    """Schemes: bounded second-order convection, the chosen time scheme."""
-    entries = {
-        "ddtSchemes": {"default": spec.ddt_scheme},
-        "gradSchemes": {"default": "Gauss linear"},
-        "divSchemes": {
-            "div(rhoPhi,U)": "Gauss linearUpwind grad(U)",
-            "div(phi,alpha)": "Gauss vanLeer",
-            "div(phirb,alpha)": "Gauss linear",
-            "div(((rho*nuEff)*dev2(T(grad(U)))))": "Gauss linear",
-        },
-        "laplacianSchemes": {"default": "Gauss linear corrected"},
-        "interpolationSchemes": {"default": "linear"},
-        "snGradSchemes": {"default": "corrected"},
-    }
-    return foam_file("dictionary", "fvSchemes", entries, "system")
-
-
-def fv_solution(spec: CaseSpec) -> str:
-    """Solvers and PIMPLE settings (MULES for alpha, GAMG for p_rgh)."""
-    entries = {
-        "solvers": {
-            '"alpha.water.*"': {
-                "nAlphaCorr": 2,
-                "nAlphaSubCycles": 1,
-                "cAlpha": 1,
-                "MULESCorr": "yes",
-                "nLimiterIter": 5,
-                "solver": "smoothSolver",
-                "smoother": "symGaussSeidel",
-                "tolerance": 1e-8,
-                "relTol": 0,
-            },
-            '"pcorr.*"': {"solver": "PCG", "preconditioner": "DIC", "tolerance": 1e-7, "relTol": 0},
-            "p_rgh": {"solver": "GAMG", "smoother": "DIC", "tolerance": 1e-7, "relTol": 0.05},
-            "p_rghFinal": {"$p_rgh": "", "relTol": 0},
-            '"U.*"': {
-                "solver": "smoothSolver",
-                "smoother": "symGaussSeidel",
-                "tolerance": 1e-7,
-                "relTol": 0,
-            },
-        },
-        "PIMPLE": {
-            "momentumPredictor": "no",
-            "nOuterCorrectors": 1,
-            "nCorrectors": spec.pressure_correctors,
-            "nNonOrthogonalCorrectors": 0,
-        },
-        "relaxationFactors": {"equations": {'".*"': 1}},
-    }
-    text = foam_file("dictionary", "fvSolution", entries, "system")
-    return text.replace("$p_rgh          ;", "$p_rgh;")
-
-
-def decompose_par_dict(spec: CaseSpec) -> str:
-    """Decomposition along z (hierarchical: scotch and metis are dummies in this package)."""
-    entries = {
-        "numberOfSubdomains": spec.processes,
-        "method": "hierarchical",
-        "coeffs": {"n": Raw(f"(1 1 {spec.processes})"), "order": "xyz"},
-    }
-    return foam_file("dictionary", "decomposeParDict", entries, "system")
 
 
 ALLRUN = """#!/bin/sh
@@ -300,7 +165,25 @@ fi
 
 
 def case_files(spec: CaseSpec) -> dict[str, str]:
-    """Every file of the case, path relative to the case folder -> text."""
+    """Every file of the case, path relative to the case folder -> text.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    dict of str to str
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> sorted(case_files(spec))[:3]
+    ['0/U', '0/alpha.water', '0/p_rgh']
+    """
     files = {
         "system/blockMeshDict": block_mesh_dict(spec),
         "system/controlDict": control_dict(spec),
@@ -352,7 +235,27 @@ POSE_FILE = "sloshkit-poses.csv"
 
 def pose_table(excitation: PoseExcitation) -> str:
     """The pose trajectory that drives the case, as a pose file (`sloshkit.io.poses`), so the
-    case can be compared with the 3-D model later without the original file."""
+    case can be compared with the 3-D model later without the original file.
+
+    Parameters
+    ----------
+    excitation : PoseExcitation
+        The pose-driven excitation.
+
+    Returns
+    -------
+    str
+        CSV text with ``t [s], x [m], y [m], z [m], qx, qy, qz, qw``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.motion.poses import PoseTrajectory
+    >>> t = np.linspace(0.0, 1.0, 3)
+    >>> poses = PoseTrajectory(t, np.zeros((3, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (3, 1)))
+    >>> pose_table(PoseExcitation(poses)).splitlines()[1]
+    '0.0,0.0,0.0,0.0,0.0,0.0,0.0,1.0'
+    """
     poses = excitation.poses
     rows = ["t [s],x [m],y [m],z [m],qx,qy,qz,qw"]
     for time, position, quaternion in zip(
@@ -364,7 +267,26 @@ def pose_table(excitation: PoseExcitation) -> str:
 
 
 def spec_summary(spec: CaseSpec) -> dict[str, Any]:
-    """JSON-ready description of a case (SI), written beside it as sloshkit-case.json."""
+    """JSON-ready description of a case (SI), written beside it as sloshkit-case.json.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> summary = spec_summary(spec)
+    >>> summary["cells"], summary["excitation"]["type"]
+    (6336, 'FreeDecay')
+    """
     layout = mesh_layout(spec)
     z, dz = probe_columns(spec)
     excitation = spec.excitation

@@ -25,7 +25,23 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class FreeDecay:
-    """Initial free surface tilted by ``tilt_rad`` about the y axis (rising towards +x)."""
+    """Initial free surface tilted by ``tilt_rad`` about the y axis (rising towards +x).
+
+    Parameters
+    ----------
+    tilt_rad : float
+        Initial tilt of the free surface [rad].
+
+    Returns
+    -------
+    FreeDecay
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> FreeDecay(0.05).acceleration(np.array([0.0, 1.0]))
+    array([0., 0.])
+    """
 
     tilt_rad: float = math.radians(3.0)
 
@@ -37,7 +53,31 @@ class FreeDecay:
 @dataclass(frozen=True)
 class Harmonic:
     """The seed paper's excitation: x(t) = A sin(2 pi f t) for ``duration_s``, then at rest
-    (acceleration -A (2 pi f)^2 sin(2 pi f t), zero at both ends for whole cycles)."""
+    (acceleration -A (2 pi f)^2 sin(2 pi f t), zero at both ends for whole cycles).
+
+    Parameters
+    ----------
+    amplitude_m : float
+        Displacement amplitude A [m].
+    frequency_hz : float
+        Frequency f [Hz].
+    duration_s : float
+        How long the container oscillates [s].
+
+    Returns
+    -------
+    Harmonic
+
+    References
+    ----------
+    De Simone et al. (2024), the seed paper, Fig. 9 (10 mm at 1 Hz for 2 s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> round(float(Harmonic(0.01, 1.0, 2.0).acceleration(np.array([0.25]))[0]), 4)
+    -0.3948
+    """
 
     amplitude_m: float = 0.01
     frequency_hz: float = 1.0
@@ -53,7 +93,28 @@ class Harmonic:
 @dataclass(frozen=True)
 class MotionExcitation:
     """Any container motion given by its acceleration function of time [m/s^2] (zero after
-    ``duration_s``, e.g. a sloshkit motion law)."""
+    ``duration_s``, e.g. a sloshkit motion law).
+
+    Parameters
+    ----------
+    name : str
+        Label of the motion.
+    acceleration_function : callable
+        t [s] -> container acceleration along x [m/s^2].
+    duration_s : float
+        When the motion ends [s].
+
+    Returns
+    -------
+    MotionExcitation
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> move = MotionExcitation("step", lambda t: np.where(t < 0.1, 2.0, 0.0), 0.1)
+    >>> move.acceleration(np.array([0.0, 0.2]))
+    array([2., 0.])
+    """
 
     name: str
     acceleration_function: Callable[[FloatArray], FloatArray]
@@ -71,6 +132,19 @@ GRAVITY_WORLD = np.array([0.0, 0.0, -9.81])
 @dataclass(frozen=True, eq=False)
 class PoseExcitation:
     """A 3-D pose trajectory of the container's bottom centre (translation, tilt, rotation).
+
+    Parameters
+    ----------
+    poses : PoseTrajectory
+        The container's poses (container -> world).
+    cutoff_hz : float, optional
+        Cut-off of the smoothed differentiation (default that of `PoseTrajectory.kinematics`).
+    sample_period_s : float
+        Step of the kinematics grid [s].
+
+    Returns
+    -------
+    PoseExcitation
 
     The case is solved in the container frame C with its origin at the bottom centre (the
     mesh origin). ``tabulatedAccelerationSource`` (OpenFOAM v1912) sets g = g0 - a with g0
@@ -91,6 +165,16 @@ class PoseExcitation:
     OpenFOAM v1912, ``src/fvOptions/sources/derived/tabulatedAccelerationSource``
     (``tabulatedAccelerationSourceTemplates.C``: the source terms above); L. D. Landau and
     E. M. Lifshitz, *Mechanics*, 3rd ed., §39 (motion in a non-inertial frame).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.motion.poses import PoseTrajectory
+    >>> t = np.linspace(0.0, 1.0, 11)
+    >>> still = PoseTrajectory(t, np.zeros((11, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (11, 1)))
+    >>> linear, omega, alpha = PoseExcitation(still).frame_motion(np.array([0.5]))
+    >>> np.round(linear + 0.0, 6), float(np.abs(omega).max())
+    (array([[0., 0., 0.]]), 0.0)
     """
 
     poses: PoseTrajectory
@@ -153,7 +237,27 @@ def frame_motion(
     excitation: Excitation, t: FloatArray
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Linear acceleration [m/s^2], angular velocity [rad/s] and angular acceleration
-    [rad/s^2] of the container frame at ``t``, each (n, 3)."""
+    [rad/s^2] of the container frame at ``t``, each (n, 3).
+
+    Parameters
+    ----------
+    excitation : Excitation
+        The motion.
+    t : ndarray
+        Times [s].
+
+    Returns
+    -------
+    tuple of ndarray
+        (linear acceleration, angular velocity, angular acceleration), each (n, 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> linear, omega, alpha = frame_motion(Harmonic(0.01, 1.0, 2.0), np.array([0.25, 3.0]))
+    >>> np.round(linear[:, 0], 4), omega.shape
+    (array([-0.3948,  0.    ]), (2, 3))
+    """
     frames = getattr(excitation, "frame_motion", None)
     if frames is not None:
         linear, omega, alpha = frames(t)

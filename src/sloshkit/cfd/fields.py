@@ -12,7 +12,27 @@ from sloshkit.cfd.spec import AIR_DENSITY_KG_M3, AIR_VISCOSITY_PA_S, SCALE, Case
 
 def rest_surface_normal(spec: CaseSpec) -> tuple[float, float, float]:
     """Unit normal of the initial free surface in the container frame: tilted by a free
-    decay's ``tilt_rad`` about y, or normal to gravity in the first pose of a 3-D motion."""
+    decay's ``tilt_rad`` about y, or normal to gravity in the first pose of a 3-D motion.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    tuple of float
+        (nx, ny, nz).
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.excitation import FreeDecay
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), FreeDecay(0.0))
+    >>> rest_surface_normal(spec)
+    (-0.0, 0.0, 1.0)
+    """
     excitation = spec.excitation
     if isinstance(excitation, FreeDecay):
         return (-math.sin(excitation.tilt_rad), 0.0, math.cos(excitation.tilt_rad))
@@ -31,7 +51,25 @@ def _cross(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float, fl
 def set_fields_dict(spec: CaseSpec) -> str:
     """setFieldsDict: water below the (possibly tilted) static free surface, a plane through
     the axis at the fill height (so the liquid volume is unchanged while it cuts the wall
-    only)."""
+    only).
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> "rotatedBoxToCell" in set_fields_dict(spec)
+    True
+    """
     radius, height, fill = spec.radius_m * SCALE, spec.height_m * SCALE, spec.fill_height_m * SCALE
     normal = rest_surface_normal(spec)
     if abs(normal[2] - 1.0) < 1e-12:
@@ -72,7 +110,29 @@ def set_fields_dict(spec: CaseSpec) -> str:
 
 
 def transport_properties(spec: CaseSpec) -> str:
-    """Water and air (the paper's Table 1 for air), in mm units."""
+    """Water and air (the paper's Table 1 for air), in mm units.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    str
+
+    References
+    ----------
+    De Simone et al. (2024), the seed paper, Table 1 (air).
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> [line.split()[-1] for line in transport_properties(spec).splitlines() if "sigma" in line]
+    ['0;']
+    """
     liquid = spec.liquid
     sigma = liquid.surface_tension_n_m * SCALE**3 if spec.surface_tension else 0.0
     entries = {
@@ -93,7 +153,18 @@ def transport_properties(spec: CaseSpec) -> str:
 
 
 def initial_fields() -> dict[str, str]:
-    """0/alpha.water, 0/U, 0/p_rgh: no-slip walls, an open top (atmosphere)."""
+    """0/alpha.water, 0/U, 0/p_rgh: no-slip walls, an open top (atmosphere).
+
+    Returns
+    -------
+    dict of str to str
+        Path in the case -> file text.
+
+    Examples
+    --------
+    >>> sorted(initial_fields())
+    ['0/U', '0/alpha.water', '0/p_rgh']
+    """
     alpha = foam_file(
         "volScalarField",
         "alpha.water",

@@ -23,13 +23,45 @@ HEADER = """/*--------------------------------*- C++ -*-------------------------
 
 @dataclass(frozen=True)
 class Raw:
-    """Text written verbatim (block lists, tables, #include lines)."""
+    """Text written verbatim (block lists, tables, #include lines).
+
+    Parameters
+    ----------
+    text : str
+        The text, as OpenFOAM should read it.
+
+    Returns
+    -------
+    Raw
+
+    Examples
+    --------
+    >>> format_value(Raw("(0 0 -9810)"))
+    '(0 0 -9810)'
+    """
 
     text: str
 
 
 def format_value(value: Any, indent: int = 0) -> str:
-    """One value in OpenFOAM syntax."""
+    """One value in OpenFOAM syntax.
+
+    Parameters
+    ----------
+    value : Any
+        `Raw`, bool, int, float, str, mapping (a sub-dictionary) or list/tuple.
+    indent : int
+        Nesting level of a sub-dictionary (4 spaces each).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> format_value([1, 2.5, True])
+    '(1 2.5 true)'
+    """
     pad = "    " * indent
     if isinstance(value, Raw):
         return value.text
@@ -50,13 +82,46 @@ def format_value(value: Any, indent: int = 0) -> str:
 
 
 def format_number(value: float) -> str:
-    """Shortest round-tripping text of a float (no trailing .0 noise)."""
+    """Shortest round-tripping text of a float (no trailing .0 noise).
+
+    Parameters
+    ----------
+    value : float
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> format_number(9810.0), format_number(1e-07)
+    ('9810', '1e-07')
+    """
     text = repr(float(value))
     return text[:-2] if text.endswith(".0") else text
 
 
 def format_entry(key: str, value: Any, indent: int = 0) -> str:
-    """``key value;`` (or ``key { ... }`` for a dictionary)."""
+    r"""``key value;`` (or ``key { ... }`` for a dictionary).
+
+    Parameters
+    ----------
+    key : str
+    value : Any
+        See `format_value`.
+    indent : int
+        Nesting level.
+
+    Returns
+    -------
+    str
+        The entry with its newline.
+
+    Examples
+    --------
+    >>> format_entry("nCorrectors", 3)
+    'nCorrectors     3;\n'
+    """
     pad = "    " * indent
     if isinstance(value, Mapping):
         return f"{pad}{key}{format_value(value, indent)}\n"
@@ -66,7 +131,29 @@ def format_entry(key: str, value: Any, indent: int = 0) -> str:
 def foam_file(
     class_name: str, object_name: str, entries: Mapping[str, Any], location: str = ""
 ) -> str:
-    """A complete dictionary file with its FoamFile header."""
+    """A complete dictionary file with its FoamFile header.
+
+    Parameters
+    ----------
+    class_name : str
+        ``dictionary``, ``volScalarField``, ...
+    object_name : str
+        The file's object name.
+    entries : Mapping
+        Its entries (see `format_value`).
+    location : str
+        Its folder in the case (``system``, ``constant``, ``0``), if any.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> text = foam_file("dictionary", "g", {"value": Raw("(0 0 -9810)")}, "constant")
+    >>> text.splitlines()[-1]
+    'value           (0 0 -9810);'
+    """
     header = {"version": 2.0, "format": "ascii", "class": class_name}
     if location:
         header["location"] = f'"{location}"'
@@ -82,7 +169,32 @@ _FIELD = re.compile(
 
 
 def read_scalar_internal_field(text: str, cells: int | None = None) -> NDArray[np.float64]:
-    """The internalField of a volScalarField file (uniform or nonuniform List<scalar>)."""
+    """The internalField of a volScalarField file (uniform or nonuniform List<scalar>).
+
+    Parameters
+    ----------
+    text : str
+        The field file's text.
+    cells : int, optional
+        Cell count, needed to expand a uniform field.
+
+    Returns
+    -------
+    ndarray
+        One value per cell.
+
+    Raises
+    ------
+    ValueError
+        No scalar internalField, or a list shorter or longer than its header says.
+
+    Examples
+    --------
+    >>> read_scalar_internal_field("internalField nonuniform List<scalar> 2 (0 1);")
+    array([0., 1.])
+    >>> read_scalar_internal_field("internalField uniform 0.5;", cells=3)
+    array([0.5, 0.5, 0.5])
+    """
     match = _FIELD.search(text)
     if match is None:
         raise ValueError("no scalar internalField found")

@@ -26,7 +26,30 @@ ANNULUS_INNER = 0.85
 @dataclass(frozen=True)
 class MeshLayout:
     """Cell counts of the O-grid: per quarter circumference, across the ring blocks, across
-    the wall annulus (0: none), and the z layers."""
+    the wall annulus (0: none), and the z layers.
+
+    Parameters
+    ----------
+    circumferential : int
+        Cells per quarter circumference (and along each edge of the square core).
+    radial : int
+        Cells across each ring block.
+    z_levels_m : tuple of float
+        Heights of the block layers [m].
+    z_cells : tuple of int
+        Cells in each layer.
+    annulus : int
+        Cells across the graded wall annulus (0: none).
+
+    Returns
+    -------
+    MeshLayout
+
+    Examples
+    --------
+    >>> MeshLayout(8, 4, (0.0, 0.03, 0.07), (13, 20)).cells
+    6336
+    """
 
     circumferential: int
     radial: int
@@ -47,7 +70,25 @@ class MeshLayout:
 
 def mesh_layout(spec: CaseSpec) -> MeshLayout:
     """Cell counts for ``spec``: fine vertical cells of R/(2N) within +-0.3 R of the free
-    surface, twice that elsewhere."""
+    surface, twice that elsewhere.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    MeshLayout
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> mesh_layout(spec).cells
+    6336
+    """
     n = spec.cells_per_radius
     radius, height, fill = spec.radius_m, spec.height_m, spec.fill_height_m
     fine = radius / (2 * n)
@@ -73,7 +114,26 @@ def mesh_layout(spec: CaseSpec) -> MeshLayout:
 def wall_cell_size_m(spec: CaseSpec) -> float:
     """Radial size of the cells at the side wall, on the ring blocks' mid-lines [m]: a
     geometric progression over the annulus (or ring) cells whose last-to-first ratio is the
-    grading."""
+    grading.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=12,
+    ...                 wall_grading=0.1, radial_cells=8)
+    >>> round(wall_cell_size_m(spec) * 1e3, 4)
+    0.0929
+    """
     layout = mesh_layout(spec)
     if layout.annulus:
         length, count = spec.radius_m * (1.0 - ANNULUS_INNER), layout.annulus
@@ -95,6 +155,23 @@ def block_mesh_dict(spec: CaseSpec) -> str:
     meshes add a wall annulus (arcs at `ANNULUS_INNER` R and R) that alone is graded: grading
     the ring blocks themselves squeezes skewed cells into the O-grid corners, where interFoam
     was seen to lose the hydrostatic balance (docs/cfd.md).
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> block_mesh_dict(spec).count("hex (")
+    15
     """
     layout = mesh_layout(spec)
     radius = spec.radius_m * SCALE
@@ -169,13 +246,51 @@ def block_mesh_dict(spec: CaseSpec) -> str:
 
 def probe_angles_rad(spec: CaseSpec) -> NDArray[np.float64]:
     """Angles of the probe columns about the axis [rad]: +x and -x (the motion axis of 1-D
-    cases), or ``spec.probe_angles`` equally spaced columns starting at +x."""
+    cases), or ``spec.probe_angles`` equally spaced columns starting at +x.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    ndarray
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> probe_angles_rad(spec)
+    array([0.        , 3.14159265])
+    """
     count = spec.probe_angles or 2
     return np.asarray(2 * np.pi * np.arange(count) / count, dtype=float)
 
 
 def probe_columns(spec: CaseSpec) -> tuple[NDArray[np.float64], float]:
-    """z of the probes in each column [m] and their spacing dz [m]."""
+    """z of the probes in each column [m] and their spacing dz [m].
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+
+    Returns
+    -------
+    tuple
+        (z of the probes [m], spacing dz [m]).
+
+    Examples
+    --------
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=8)
+    >>> z, dz = probe_columns(spec)
+    >>> z.size, round(dz * 1e3, 4)
+    (109, 0.6399)
+    """
     count = spec.probes_per_column or max(
         40, round(spec.height_m / (spec.radius_m / (4 * spec.cells_per_radius)))
     )

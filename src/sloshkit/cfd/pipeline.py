@@ -1,19 +1,23 @@
 """CFD pipeline: case from a model, run, signals, calibration, and comparison with the
-equivalent pendulum for the same motion (the seed paper's Table 4 and Figs. 5 and 9)."""
+equivalent pendulum for the same motion (the seed paper's Table 4 and Figs. 5 and 9).
+
+The calibration of a finished case lives in `sloshkit.cfd.analysis` (`analyse`, re-exported
+here), the comparison's result object in `sloshkit.cfd.validation`.
+"""
 
 from __future__ import annotations
 
 import json
 import time
-import warnings
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-from scipy.special import j1
-
-from sloshkit.calibration import CalibrationResult, calibrate
+from sloshkit.cfd.analysis import (
+    CfdAnalysis,
+    analyse,
+    excitation_end,
+    read_finished_signals,
+)
 from sloshkit.cfd.case import (
     CaseSpec,
     Excitation,
@@ -22,7 +26,6 @@ from sloshkit.cfd.case import (
     MotionExcitation,
     PoseExcitation,
 )
-from sloshkit.cfd.results import CfdSignals, read_signals
 from sloshkit.cfd.run import (
     RunResult,
     check_processes,
@@ -32,10 +35,23 @@ from sloshkit.cfd.run import (
     run_case,
     write_case,
 )
-from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.cfd.validation import model_wall_elevation, validate
+from sloshkit.errors import InputError
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.recorded import from_samples
-from sloshkit.sim.simulate import simulate
+
+__all__ = [
+    "RECOMMENDED",
+    "CfdAnalysis",
+    "analyse",
+    "case_spec",
+    "describe",
+    "excitation_end",
+    "excitation_from_options",
+    "model_wall_elevation",
+    "read_finished_signals",
+    "run",
+    "validate",
+]
 
 #: Settings recommended by the mesh and time-step study (docs/cfd.md).
 RECOMMENDED: dict[str, Any] = {
@@ -63,11 +79,57 @@ def case_spec(
     adjust_time_step: bool = True,
     probe_angles: int = 0,
     pressure_correctors: int = RECOMMENDED["pressure_correctors"],
+    wall_grading: float = 1.0,
+    radial_cells: int | None = None,
 ) -> CaseSpec:
     """A case for ``model``'s container, fill and liquid.
 
     With ``adjust_time_step`` the step follows the Courant limits and never exceeds
     ``delta_t_s``; otherwise it is fixed at ``delta_t_s``.
+
+    Parameters
+    ----------
+    model : SloshModel
+        Container, fill and liquid.
+    excitation : Excitation
+        The container motion.
+    cells_per_radius : int
+        Mesh resolution.
+    end_time_s, delta_t_s : float
+        Simulated time and largest (or fixed) step [s].
+    ddt_scheme : str
+        Time scheme.
+    processes : int
+        MPI processes.
+    surface_tension : bool
+        Include surface tension.
+    max_courant, max_alpha_courant : float
+        Courant limits of the adaptive step.
+    adjust_time_step : bool
+        Adaptive (else fixed) step.
+    probe_angles : int
+        Probe columns around the wall (0: two on the x axis).
+    pressure_correctors : int
+        PIMPLE pressure correctors.
+    wall_grading : float
+        Wall refinement (1: uniform; see `CaseSpec`).
+    radial_cells : int, optional
+        Cells across the ring blocks or the graded wall annulus.
+
+    Returns
+    -------
+    CaseSpec
+
+    Examples
+    --------
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
+    >>> spec = case_spec(model, FreeDecay(0.05), cells_per_radius=12, wall_grading=0.1,
+    ...                  radial_cells=8)
+    >>> spec.fill_height_m, spec.wall_grading
+    (0.039, 0.1)
     """
     return CaseSpec(
         radius_m=model.radius_m,
@@ -86,6 +148,8 @@ def case_spec(
         max_alpha_courant=max_alpha_courant,
         probe_angles=probe_angles,
         pressure_correctors=pressure_correctors,
+        wall_grading=wall_grading,
+        radial_cells=radial_cells,
     )
 
 
@@ -96,6 +160,46 @@ def run(
 
     Everything that can be checked before writing is checked first (OpenFOAM and mpirun
     present, a sensible --np), so a refused run leaves no files behind.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case.
+    case : Path
+        Its folder.
+    resume : bool
+        Continue an interrupted run.
+    overwrite : bool
+        Replace an existing sloshkit case.
+    progress : callable, optional
+        Progress callback (see `sloshkit.cfd.run.run_case`).
+
+    Returns
+    -------
+    RunResult
+
+    Raises
+    ------
+    InputError
+        Bad --np, or a folder that cannot be written.
+    CfdError
+        OpenFOAM missing or failing.
+
+    Examples
+    --------
+    >>> import shutil
+    >>> from pathlib import Path
+    >>> from sloshkit.cfd.spec import CaseSpec
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), processes=64)
+    >>> if shutil.which("interFoam"):  # refused before any file is written
+    ...     try:
+    ...         run(spec, Path("never-written"))
+    ...     except InputError as error:
+    ...         print(error.parameter)
+    ... else:
+    ...     print("np")
+    np
     """
     require_openfoam(spec.processes)
     with interruptible([], [0.0]):
@@ -125,160 +229,6 @@ def _check_and_write(spec: CaseSpec, case: Path, resume: bool, overwrite: bool) 
         write_case(spec, case, overwrite=overwrite)
 
 
-def excitation_end(summary: dict[str, Any]) -> float:
-    """When the container stops moving in this case [s] (0 for a free decay)."""
-    excitation = summary["excitation"]
-    if excitation["type"] == "Harmonic":
-        return float(excitation["duration_s"])
-    if excitation["type"] in ("MotionExcitation", "PoseExcitation"):
-        return float(excitation.get("duration_s", 0.0))
-    return 0.0
-
-
-@dataclass(frozen=True, eq=False)
-class CfdAnalysis:
-    """A case's signals and their calibration."""
-
-    case: Path
-    signals: CfdSignals
-    calibration: CalibrationResult
-    run_record: dict[str, Any]
-
-    def to_dict(self) -> dict[str, Any]:
-        """The calibrate keys plus cells, simulated_s and wall_clock_s."""
-        payload = self.calibration.to_dict()
-        payload.update(
-            cells=self.signals.summary["cells"],
-            simulated_s=float(self.signals.time_s[-1]),
-            wall_clock_s=self.run_record.get("wall_clock_s"),
-            processes=self.run_record.get("processes"),
-            case=str(self.case),
-        )
-        return payload
-
-
-def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> CfdAnalysis:
-    """Calibrate frequency and damping from the antisymmetric wall elevation of a case, over
-    the free decay (after the excitation, or from the largest peak).
-
-    Raises `InputError` for a folder that is not a sloshkit case and for an unfinished run
-    (saying how far it got), rather than calibrating a truncated record.
-    """
-    signals = read_finished_signals(case)
-    if start_s is None:
-        end = excitation_end(dict(signals.summary))
-        start_s = end if end > 0 else None
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
-        result = calibrate(
-            signals.time_s,
-            signals.elevation_m,
-            method=method,  # type: ignore[arg-type]
-            start_s=start_s,
-            source=f"{case} (CFD wall elevation)",
-        )
-    record_path = case / "sloshkit-run.json"
-    record = json.loads(record_path.read_text(encoding="utf-8")) if record_path.is_file() else {}
-    return CfdAnalysis(case, signals, result, record)
-
-
-def read_finished_signals(case: Path) -> CfdSignals:
-    """The signals of a finished case; `InputError` when the case is missing or unfinished."""
-    summary_path = case / "sloshkit-case.json"
-    if not summary_path.is_file():
-        raise InputError("case", str(case), "is not a sloshkit CFD case (no sloshkit-case.json)")
-    summary = json.loads(summary_path.read_text(encoding="utf-8"))
-    end = float(summary["end_time_s"])
-    resume = f"continue it with: sloshkit cfd run --case {case} --resume"
-    if not (case / "postProcessing" / "wallProbes").is_dir():
-        raise InputError("case", str(case), f"is unfinished (simulated 0 of {end:g} s)", resume)
-    signals = read_signals(case)
-    simulated = float(signals.time_s[-1])
-    step = float(summary.get("delta_t_s", 0.0))
-    if simulated < end - max(1.5 * step, 1e-6):
-        raise InputError(
-            "case", str(case), f"is unfinished (simulated {simulated:.4g} of {end:g} s)", resume
-        )
-    return signals
-
-
-def model_wall_elevation(
-    model: SloshModel, time_s: np.ndarray, acceleration: np.ndarray, x_over_r: float = 0.98
-) -> np.ndarray:
-    """The pendulum model's wall elevation at x = x_over_r R for a sampled container
-    acceleration: each mode scaled by J1(xi_n x/R)/J1(xi_n) (the linear mode shape)."""
-
-    motion = from_samples(time_s, acceleration_m_s2=acceleration, name="cfd excitation")
-    dt = float(np.median(np.diff(time_s)))
-    response = simulate(model, motion, sample_period_s=dt, settle_time_s=0.0)
-    shape = np.array([j1(m.bessel_root * x_over_r) / j1(m.bessel_root) for m in model.modes])
-    factors = np.array([m.wall_elevation_factor_m for m in model.modes]) * shape
-    elevation = factors @ response.angle_rad
-    return np.asarray(np.interp(time_s, response.time_s, elevation), dtype=float)
-
-
-def validate(case: Path, model: SloshModel) -> dict[str, Any]:
-    """Compare a finished case with the pendulum model for the same motion: frequency,
-    damping, peak elevation during the excitation and residual amplitude after it."""
-    analysis = analyse(case)
-    signals = analysis.signals
-    summary = dict(signals.summary)
-    t = signals.time_s
-    acceleration = _excitation_acceleration(case, t)
-    predicted = model_wall_elevation(model, t, acceleration)
-    end = excitation_end(summary)
-    during = t <= max(end, t[0])
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
-        model_fit = calibrate(
-            t, predicted, start_s=end if end > 0 else None, source="pendulum model"
-        )
-    cfd_fit = analysis.calibration
-
-    def amplitude(result: CalibrationResult) -> float | None:
-        fit = result.estimates["fit"]
-        return None if fit.amplitude is None else float(fit.amplitude)
-
-    rows = {
-        "omega_n_rad_s": (cfd_fit.omega_n_rad_s, model_fit.omega_n_rad_s),
-        "damping_ratio": (cfd_fit.damping_ratio, model_fit.damping_ratio),
-        "peak_elevation_m": (
-            float(np.max(np.abs(signals.elevation_m[during]))) if end > 0 else None,
-            float(np.max(np.abs(predicted[during]))) if end > 0 else None,
-        ),
-        "residual_elevation_m": (amplitude(cfd_fit), amplitude(model_fit)),
-    }
-    comparison = {}
-    for key, (cfd_value, model_value) in rows.items():
-        difference = None
-        if cfd_value is not None and model_value not in (None, 0.0):
-            difference = (cfd_value - model_value) / model_value  # type: ignore[operator]
-        comparison[key] = {
-            "cfd": cfd_value,
-            "model": model_value,
-            "relative_difference": difference,
-        }
-    correlation = float(np.corrcoef(signals.elevation_m, predicted)[0, 1])
-    return {
-        "case": str(case),
-        "comparison": comparison,
-        "correlation": correlation,
-        "time_s": t,
-        "cfd_elevation_m": signals.elevation_m,
-        "model_elevation_m": predicted,
-        "excitation_end_s": end,
-    }
-
-
-def _excitation_acceleration(case: Path, t: np.ndarray) -> np.ndarray:
-    """The container acceleration the case was driven with, read back from its table [m/s^2]."""
-    text = (case / "constant" / "acceleration.dat").read_text(encoding="utf-8")
-    rows = [line for line in text.splitlines() if line.startswith("(") and "((" in line]
-    times = np.array([float(row[1:].split()[0]) for row in rows])
-    values = np.array([float(row.split("((")[1].split()[0]) for row in rows]) / 1000.0
-    return np.asarray(np.interp(t, times, values), dtype=float)
-
-
 def excitation_from_options(
     kind: str,
     tilt_rad: float,
@@ -288,7 +238,35 @@ def excitation_from_options(
     motion: Any = None,
     poses: Any = None,
 ) -> Excitation:
-    """Build the excitation named on the command line."""
+    """Build the excitation named on the command line.
+
+    Parameters
+    ----------
+    kind : str
+        ``free-decay``, ``harmonic``, ``law`` or ``poses``.
+    tilt_rad : float
+        Initial tilt of a free decay [rad].
+    amplitude_m, frequency_hz, excite_time_s : float
+        The harmonic excitation.
+    motion : Any, optional
+        A motion law (``law``).
+    poses : PoseTrajectory, optional
+        A pose trajectory (``poses``).
+
+    Returns
+    -------
+    Excitation
+
+    Raises
+    ------
+    InputError
+        An unknown kind, or a missing motion or pose file.
+
+    Examples
+    --------
+    >>> excitation_from_options("harmonic", 0.05, 0.01, 1.0, 2.0)
+    Harmonic(amplitude_m=0.01, frequency_hz=1.0, duration_s=2.0)
+    """
     if kind == "poses":
         if poses is None:
             raise InputError("excitation", kind, "needs --pose-file")
@@ -305,7 +283,23 @@ def excitation_from_options(
 
 
 def describe(record: dict[str, Any]) -> str:
-    """One line about a run's cost."""
+    """One line about a run's cost.
+
+    Parameters
+    ----------
+    record : dict
+        ``sloshkit-run.json``.
+
+    Returns
+    -------
+    str
+        Empty when the record lacks the numbers.
+
+    Examples
+    --------
+    >>> describe({"wall_clock_s": 34.4, "simulated_s": 2.0})
+    '2 s simulated in 34 s wall clock (17 s per simulated second)'
+    """
     wall = record.get("wall_clock_s")
     simulated = record.get("simulated_s")
     if not wall or not simulated:

@@ -22,10 +22,26 @@ FloatArray = NDArray[np.float64]
 
 
 def parse_table(text: str) -> FloatArray:
-    """Rows of numbers from a function-object file: '#' lines skipped, parentheses dropped.
+    r"""Rows of numbers from a function-object file: '#' lines skipped, parentheses dropped.
 
     A row that is not all numbers, or shorter than the others (the last line of a run killed
     while writing it), is dropped.
+
+    Parameters
+    ----------
+    text : str
+        The file's text.
+
+    Returns
+    -------
+    ndarray
+        (rows, columns); empty (0, 0) when nothing parses.
+
+    Examples
+    --------
+    >>> parse_table("# t F\n0.1 (1 2 3)\n0.2 (4 5 6)\n0.3 (7")
+    array([[0.1, 1. , 2. , 3. ],
+           [0.2, 4. , 5. , 6. ]])
     """
     rows = []
     for line in text.splitlines():
@@ -44,7 +60,40 @@ def parse_table(text: str) -> FloatArray:
 
 
 def read_function_object(case: Path, name: str, file_name: str) -> FloatArray:
-    """All time folders of postProcessing/NAME/*/FILE merged in time order."""
+    r"""All time folders of postProcessing/NAME/*/FILE merged in time order (a restarted run
+    starts a new folder; later folders win where they overlap).
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+    name : str
+        The function object's name.
+    file_name : str
+        Its output file in each time folder.
+
+    Returns
+    -------
+    ndarray
+        The merged table (first column: time).
+
+    Raises
+    ------
+    InputError
+        No output of that function object.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> case = Path(tempfile.mkdtemp())
+    >>> for start, rows in (("0", "0 1\n1 2\n2 3\n"), ("1", "1 20\n2 30\n")):
+    ...     folder = case / "postProcessing" / "probe" / start
+    ...     folder.mkdir(parents=True)
+    ...     _ = (folder / "p").write_text(rows)
+    >>> read_function_object(case, "probe", "p")[:, 1]
+    array([ 1., 20., 30.])
+    """
     root = case / "postProcessing" / name
     if not root.is_dir():
         raise InputError("case", str(case), f"has no postProcessing/{name} (has the solver run?)")
@@ -76,7 +125,36 @@ def _is_number(text: str) -> bool:
 @dataclass(frozen=True)
 class CfdSignals:
     """Signals of a run in SI: wall elevations of every probe column (at r = 0.98 R, angles
-    ``angles_rad`` about the axis, counted from +x), mean surface tilt, wall force."""
+    ``angles_rad`` about the axis, counted from +x), mean surface tilt, wall force.
+
+    Parameters
+    ----------
+    time_s : ndarray
+        Sample times [s].
+    elevations_m : ndarray
+        Wall elevation of every probe column, (samples, columns) [m].
+    angles_rad : ndarray
+        Angles of the columns [rad].
+    tilt_rad : ndarray
+        Mean free-surface slope angle (the seed paper's eq. 13) [rad].
+    force_x_n : ndarray
+        Wall force along x [N].
+    summary : dict
+        The case's ``sloshkit-case.json``.
+
+    Returns
+    -------
+    CfdSignals
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.array([0.0, 0.1])
+    >>> signals = CfdSignals(t, np.array([[1e-3, -1e-3], [2e-3, -2e-3]]),
+    ...                      np.array([0.0, np.pi]), 0 * t, 0 * t, {})
+    >>> signals.elevation_m
+    array([0.001, 0.002])
+    """
 
     time_s: FloatArray
     elevations_m: FloatArray  # (samples, columns)
@@ -142,7 +220,35 @@ def _uniform(time: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArr
 
 def read_signals(case: Path) -> CfdSignals:
     """Wall elevations, tilt and force of a finished (or partly finished) case, on a uniform
-    time grid (runs with an adaptive step are resampled linearly at their median step)."""
+    time grid (runs with an adaptive step are resampled linearly at their median step).
+
+    The wall elevation of a column is the sum of its alpha probes times their spacing, minus
+    the fill height.
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+
+    Returns
+    -------
+    CfdSignals
+
+    Raises
+    ------
+    InputError
+        Missing or inconsistent function-object output.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> read_signals(Path("no-such-case"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
+    """
+    if not (case / "sloshkit-case.json").is_file():
+        raise InputError("case", str(case), "is not a sloshkit CFD case (no sloshkit-case.json)")
     summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
     probes = read_function_object(case, "wallProbes", "alpha.water")
     count = int(summary["probes_per_column"])

@@ -18,7 +18,6 @@ because Open MPI 4.1's out-of-band listener binds to every interface.
 from __future__ import annotations
 
 import contextlib
-import enum
 import json
 import os
 import re
@@ -26,19 +25,26 @@ import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import threading
 import time
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 from typing import Any
 
-from sloshkit.cfd.case import MPI_LOCAL_OPTIONS, CaseSpec, case_files, mesh_layout, spec_summary
+from sloshkit.cfd.case import MPI_LOCAL_OPTIONS
+from sloshkit.cfd.prepare import (
+    expected_cells,
+    openfoam_environment,
+    require_openfoam,
+    write_case,
+)
 from sloshkit.cfd.state import (
     CfdError,
+    CfdInterrupted,
+    RunResult,
+    RunStatus,
     check_mesh_quality,
     check_processes,
     discard_after,
@@ -68,117 +74,7 @@ TIME_LINE = re.compile(r"^Time = ([0-9.eE+-]+)$")
 COURANT_LINE = re.compile(r"^Courant Number mean: \S+ max: (\S+)")
 
 
-class CfdInterrupted(Exception):
-    """The run was stopped by a signal (the tools are stopped too; ``--resume`` continues)."""
-
-    def __init__(self, signum: int, simulated_s: float) -> None:
-        self.signum = signum
-        self.simulated_s = simulated_s
-        super().__init__(f"interrupted by signal {signum} at t = {simulated_s:.6g} s")
-
-
-class RunStatus(enum.Enum):
-    """Outcome of a CFD run."""
-
-    COMPLETED = "completed"
-    FAILED = "failed"
-
-
-@dataclass(frozen=True)
-class RunResult:
-    """A finished run: the case, how far it got, and how long it took."""
-
-    case: Path
-    status: RunStatus
-    simulated_s: float
-    wall_clock_s: float
-    processes: int
-    cells: int
-
-
 Progress = Callable[[float, float, float | None], None]  # (simulated, end, max Courant)
-
-
-def openfoam_environment() -> dict[str, str]:
-    """The environment the v1912 tools need: WM_PROJECT_DIR set, MPI allowed as root, PWD
-    dropped (it triggers a 'PWD is not the cwd()' warning)."""
-    environment = {k: v for k, v in os.environ.items() if k != "PWD"}
-    environment.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
-    environment["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
-    environment["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
-    environment["OMPI_MCA_rmaps_base_oversubscribe"] = "1"
-    return environment
-
-
-def require_openfoam(processes: int = 1) -> None:
-    """Raise `CfdError` unless the OpenFOAM tools are on the PATH, and `InputError` for
-    ``processes`` > 1 without ``mpirun``."""
-    missing = [
-        tool
-        for tool in ("blockMesh", "checkMesh", "setFields", "interFoam")
-        if shutil.which(tool) is None
-    ]
-    if missing:
-        raise CfdError(
-            "OpenFOAM is not installed (missing " + ", ".join(missing) + "): "
-            "apt-get install -y openfoam"
-        )
-    if processes > 1:
-        for tool in ("mpirun", "decomposePar"):
-            if shutil.which(tool) is None:
-                raise InputError(
-                    "np",
-                    processes,
-                    f"needs {tool}, which is not on the PATH",
-                    "install Open MPI (apt-get install openmpi-bin) or use --np 1",
-                )
-
-
-def write_case(spec: CaseSpec, case: Path, overwrite: bool = False) -> Path:
-    """Write the case files into ``case`` (sloshkit-case.json last: it marks a whole case).
-
-    An existing non-empty folder is refused unless ``overwrite`` is given and it holds a
-    sloshkit case, whose contents are then replaced; other folders are never emptied.
-    """
-    if case.exists() and not case.is_dir():
-        raise InputError("case", str(case), "is a file, not a folder")
-    if case.exists() and any(case.iterdir()):
-        if not overwrite:
-            raise InputError(
-                "case", str(case), "exists and is not empty (use --overwrite or --resume)"
-            )
-        if not (case / "sloshkit-case.json").is_file():
-            raise InputError(
-                "case",
-                str(case),
-                "is not empty and not a sloshkit case: --overwrite only replaces sloshkit cases",
-            )
-        for entry in case.iterdir():
-            if entry.is_dir() and not entry.is_symlink():
-                shutil.rmtree(entry)
-            else:
-                entry.unlink()
-    # Written into a staging folder beside the case and moved into place: an interruption
-    # leaves either no case or a whole one (the staging folder is removed on any exception).
-    case.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{case.name}.staging-", dir=case.parent))
-    try:
-        for relative, text in case_files(spec).items():
-            path = staging / relative
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(text, encoding="utf-8")
-        (staging / "Allrun").chmod(0o755)
-        (staging / "sloshkit-case.json").write_text(
-            json.dumps(spec_summary(spec), indent=2), encoding="utf-8"
-        )
-        staging.chmod(0o755)
-        if case.exists():
-            case.rmdir()
-        staging.rename(case)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
-    return case
 
 
 def _set_parent_death_signal() -> None:  # pragma: no cover - runs in the child
@@ -194,7 +90,29 @@ def _set_parent_death_signal() -> None:  # pragma: no cover - runs in the child
 def interruptible(process_holder: list[subprocess.Popen[str]], where: list[float]) -> Any:
     """Turn SIGTERM, SIGHUP and SIGINT into `CfdInterrupted` inside the block; on any exit,
     stop the process groups of the tools in ``process_holder`` (mpirun and its ranks) and wait
-    for them. ``where[0]`` is the simulated time reported with the interruption."""
+    for them. ``where[0]`` is the simulated time reported with the interruption.
+
+    Parameters
+    ----------
+    process_holder : list of subprocess.Popen
+        The running tools (filled by the caller while the block runs).
+    where : list of float
+        ``where[0]``: the simulated time to report.
+
+    Returns
+    -------
+    context manager
+
+    Raises
+    ------
+    CfdInterrupted
+        On SIGTERM, SIGHUP or SIGINT inside the block.
+
+    Examples
+    --------
+    >>> with interruptible([], [0.0]):
+    ...     pass
+    """
     previous: dict[signal.Signals, Any] = {}
 
     def handler(signum: int, frame: Any) -> None:
@@ -301,7 +219,17 @@ def _check_no_progress_lost(case: Path, processes: int) -> None:
 
 @cache
 def network_namespace_available() -> bool:
-    """True when ``unshare -rn`` can start a process in a private network namespace."""
+    """True when ``unshare -rn`` can start a process in a private network namespace.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> isinstance(network_namespace_available(), bool)
+    True
+    """
     unshare = shutil.which("unshare")
     if unshare is None:
         return False
@@ -325,7 +253,23 @@ LOOPBACK_UP = (
 
 
 def solver_command(processes: int) -> list[str]:
-    """interFoam, or mpirun on this host only (see the module notes on the network)."""
+    """interFoam, or mpirun on this host only (see the module notes on the network).
+
+    Parameters
+    ----------
+    processes : int
+        MPI processes (1: serial).
+
+    Returns
+    -------
+    list of str
+        The command (without the namespace wrapper).
+
+    Examples
+    --------
+    >>> solver_command(1)
+    ['interFoam']
+    """
     if processes == 1:
         return ["interFoam"]
     command = [
@@ -358,6 +302,38 @@ def run_case(
 
     ``resume`` continues from the latest complete time folder (later, half-written folders
     are discarded); preparation steps a previous run finished are not repeated.
+
+    Parameters
+    ----------
+    case : Path
+        A case written by `write_case`.
+    processes : int
+        MPI processes (1: serial).
+    resume : bool
+        Continue an interrupted run.
+    progress : callable, optional
+        Called with (simulated time, end time, largest Courant number) as the log grows.
+
+    Returns
+    -------
+    RunResult
+
+    Raises
+    ------
+    CfdError
+        A tool failed, the mesh was refused, or the solver stopped early.
+    CfdInterrupted
+        A signal stopped the run.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import shutil
+    >>> if shutil.which("interFoam"):  # no case there: the run cannot start
+    ...     try:
+    ...         run_case(Path("no-such-case"))
+    ...     except (OSError, CfdError):
+    ...         pass
     """
     require_openfoam(processes)
     summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
@@ -417,8 +393,3 @@ def _set_subdomains(case: Path, processes: int) -> None:
     text = re.sub(r"numberOfSubdomains\s+\d+;", f"numberOfSubdomains {processes};", text)
     text = re.sub(r"n\s+\(1 1 \d+\);", f"n               (1 1 {processes});", text)
     path.write_text(text, encoding="utf-8")
-
-
-def expected_cells(spec: CaseSpec) -> int:
-    """Cells blockMesh will make for ``spec``."""
-    return mesh_layout(spec).cells

@@ -10,12 +10,12 @@ over the same columns.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
+from sloshkit.cfd.analysis import read_finished_signals
 from sloshkit.cfd.case import POSE_FILE
-from sloshkit.cfd.pipeline import read_finished_signals
+from sloshkit.cfd.validation import CfdValidation, comparison_row, require_model_first
 from sloshkit.errors import InputError
 from sloshkit.io.poses import read_pose_file
 from sloshkit.model.modal import SloshModel
@@ -28,18 +28,20 @@ def _correlation(a: np.ndarray, b: np.ndarray) -> float | None:
     return float(np.corrcoef(a, b)[0, 1])
 
 
-def validate_poses(case: Path, model: SloshModel) -> dict[str, Any]:
+def validate_poses(model: SloshModel, case: Path) -> CfdValidation:
     """Compare a finished pose-driven case with `sloshkit.sim.spatial.simulate_spatial`.
 
     Parameters
     ----------
-    case : a case run by ``sloshkit cfd run --excitation poses``
-    model : the equivalent pendulum model of the same container, fill and liquid
+    model : SloshModel
+        The equivalent pendulum model of the same container, fill and liquid.
+    case : Path
+        A case run by ``sloshkit cfd run --excitation poses``.
 
     Returns
     -------
-    dict
-        ``comparison`` (peak slosh height during the motion, residual slosh height after it:
+    CfdValidation
+        ``kind`` ``poses``; ``comparison`` (peak slosh height during the motion, residual slosh height after it:
         CFD, model, relative difference), ``correlation`` of the slosh heights,
         ``wall_correlation`` of the wall elevations of every probe column, and the series
         ``time_s``, ``cfd_elevation_m``, ``model_elevation_m`` (slosh heights) for the figure.
@@ -51,11 +53,13 @@ def validate_poses(case: Path, model: SloshModel) -> dict[str, Any]:
     Examples
     --------
     >>> from pathlib import Path
-    >>> validate_poses(Path("no-such-case"), None)  # doctest: +ELLIPSIS
+    >>> validate_poses(None, Path("no-such-case"))  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
     sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
     """
+    require_model_first(model, case)
+    case = Path(case)
     signals = read_finished_signals(case)
     pose_path = case / POSE_FILE
     if not pose_path.is_file():
@@ -82,26 +86,19 @@ def validate_poses(case: Path, model: SloshModel) -> dict[str, Any]:
             float(cfd_height[after].max()),
             float(model_height[after].max()),
         )
-    comparison = {}
-    for key, (cfd_value, model_value) in rows.items():
-        difference = None
-        if cfd_value is not None and model_value:
-            difference = (cfd_value - model_value) / model_value
-        comparison[key] = {
-            "cfd": cfd_value,
-            "model": model_value,
-            "relative_difference": difference,
-        }
-    return {
-        "case": str(case),
-        "kind": "poses",
-        "comparison": comparison,
-        "correlation": _correlation(cfd_height, model_height),
-        "wall_correlation": _correlation(signals.elevations_m.ravel(), model_walls.ravel()),
-        "probe_angles_deg": [float(np.degrees(a)) for a in signals.angles_rad],
-        "time_s": t,
-        "cfd_elevation_m": cfd_height,
-        "model_elevation_m": model_height,
-        "excitation_end_s": end,
-        "quantity_label": "slosh height (max over the probe columns at 0.98 R) [mm]",
-    }
+    comparison = {key: comparison_row(*values) for key, values in rows.items()}
+    return CfdValidation(
+        case=str(case),
+        comparison=comparison,
+        correlation=_correlation(cfd_height, model_height),
+        time_s=np.asarray(t, dtype=float),
+        cfd_elevation_m=np.asarray(cfd_height, dtype=float),
+        model_elevation_m=np.asarray(model_height, dtype=float),
+        excitation_end_s=end,
+        kind="poses",
+        extra={
+            "wall_correlation": _correlation(signals.elevations_m.ravel(), model_walls.ravel()),
+            "probe_angles_deg": [float(np.degrees(a)) for a in signals.angles_rad],
+            "quantity_label": "slosh height (max over the probe columns at 0.98 R) [mm]",
+        },
+    )

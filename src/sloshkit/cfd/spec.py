@@ -37,6 +37,47 @@ class CaseSpec:
     >>> spec = CaseSpec(0.0205, 0.039, get_liquid("water-25C"), cells_per_radius=11)
     >>> round(spec.height_m, 5)
     0.06975
+
+    Parameters
+    ----------
+    radius_m, fill_height_m : float
+        Container radius and fill height [m].
+    liquid : Liquid
+        The liquid (air is the seed paper's Table 1).
+    excitation : Excitation
+        The container motion.
+    domain_height_m : float, optional
+        Wall height [m] (default: fill plus 1.5 R).
+    cells_per_radius : int
+        Mesh resolution N (see `sloshkit.cfd.mesh`).
+    end_time_s, delta_t_s : float
+        Simulated time and largest (or fixed) step [s].
+    ddt_scheme : str
+        One of `DDT_SCHEMES`.
+    write_interval_s : float
+        Interval of the field output [s].
+    surface_tension : bool
+        Include surface tension.
+    probes_per_column : int, optional
+        Probes in each column (default from the mesh).
+    processes : int
+        MPI processes.
+    adjust_time_step : bool
+        Adaptive step (else fixed).
+    max_courant, max_alpha_courant : float
+        Courant and interface-Courant limits of the adaptive step.
+    probe_angles : int
+        Probe columns around the wall (0: two on the x axis).
+    pressure_correctors : int
+        PIMPLE pressure correctors per step.
+    wall_grading : float
+        Wall cell / innermost cell of the graded wall annulus (1: uniform).
+    radial_cells : int, optional
+        Cells across the ring blocks (uniform) or the wall annulus (graded).
+
+    Returns
+    -------
+    CaseSpec
     """
 
     radius_m: float

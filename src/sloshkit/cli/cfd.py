@@ -5,9 +5,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import json
-import math
 from collections.abc import Iterator
-from contextlib import nullcontext
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -16,193 +14,29 @@ from rich.table import Table
 from rich.text import Text
 
 from sloshkit.cfd.pipeline import (
-    RECOMMENDED,
     analyse,
-    case_spec,
     describe,
-    excitation_from_options,
     validate,
 )
 from sloshkit.cfd.pipeline import run as run_cfd
 from sloshkit.cfd.run import CfdError, CfdInterrupted, interruptible
+from sloshkit.cfd.validation import CfdValidation
 from sloshkit.cli import display, signals
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.moves import Distance, Duration, MoveRequest
+from sloshkit.cli.cfd_options import CaseDir, cfd_options, spec_from_options
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
-from sloshkit.io.checks import naming
 from sloshkit.io.models import write_model_file
 from sloshkit.io.outputs import check_file, check_folder
-from sloshkit.io.poses import read_pose_file
-from sloshkit.io.units import parse_bounded, parse_quantity
+from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
-from sloshkit.plotting import plot_cfd_validation
 
 cfd_app = typer.Typer(
     help="The volume-of-fluid step with OpenFOAM (interFoam): generate, run, analyse, validate.",
     no_args_is_help=True,
 )
 app.add_typer(cfd_app, name="cfd")
-
-
-CaseDir = Annotated[Path, typer.Option("--case", help="Case folder.")]
-
-
-def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
-    """The case options shared by the cfd commands (with their command's defaults)."""
-    return {
-        "excitation": (
-            Annotated[
-                str,
-                typer.Option(
-                    "--excitation",
-                    help="free-decay (tilted surface), harmonic, law, or poses (--pose-file).",
-                ),
-            ],
-            excitation,
-        ),
-        "tilt": (
-            Annotated[str, typer.Option("--tilt", help="Initial tilt for free-decay.")],
-            "3deg",
-        ),
-        "amplitude": (
-            Annotated[str, typer.Option("--amplitude", help="Harmonic amplitude.")],
-            "10mm",
-        ),
-        "frequency": (
-            Annotated[str, typer.Option("--frequency", help="Harmonic frequency.")],
-            "1Hz",
-        ),
-        "excite_time": (
-            Annotated[str, typer.Option("--excite-time", help="Harmonic duration.")],
-            "2s",
-        ),
-        "law": (
-            Annotated[str | None, typer.Option("--law", help="Motion law for --excitation law.")],
-            None,
-        ),
-        "distance": (Distance, "0.1m"),
-        "duration": (Duration, None),
-        "pose_file": (
-            Annotated[
-                Path | None,
-                typer.Option(
-                    "--pose-file",
-                    help="Pose trajectory for --excitation poses (t, x, y, z and qx, qy, qz, qw "
-                    "or roll, pitch, yaw; units in the header).",
-                ),
-            ],
-            None,
-        ),
-        "probe_angles": (
-            Annotated[
-                int | None,
-                typer.Option(
-                    "--probe-angles",
-                    help="Probe columns around the wall (default 2 on the x axis; 12 for poses).",
-                ),
-            ],
-            None,
-        ),
-        "cells_per_radius": (
-            Annotated[int, typer.Option("--cells-per-radius", help="Mesh resolution.")],
-            RECOMMENDED["cells_per_radius"],
-        ),
-        "end_time": (Annotated[str, typer.Option("--end-time", help="Simulated time.")], end_time),
-        "delta_t": (
-            Annotated[
-                str,
-                typer.Option(
-                    "--delta-t", help="Largest time step (the step itself with --fixed-step)."
-                ),
-            ],
-            f"{RECOMMENDED['delta_t_s'] * 1e3:g}ms",
-        ),
-        "max_courant": (
-            Annotated[
-                float,
-                typer.Option(
-                    "--max-courant",
-                    help="Courant and interface-Courant limit of the adaptive time step.",
-                ),
-            ],
-            RECOMMENDED["max_courant"],
-        ),
-        "fixed_step": (
-            Annotated[
-                bool, typer.Option("--fixed-step", help="A fixed step of --delta-t (no Courant).")
-            ],
-            False,
-        ),
-        "ddt": (
-            Annotated[str, typer.Option("--ddt", help="Euler, 'CrankNicolson 0.9' or backward.")],
-            "Euler",
-        ),
-        "np_": (
-            Annotated[
-                int | None,
-                typer.Option(
-                    "--np",
-                    help="MPI processes (default 1, serial; with --resume, the case's own).",
-                ),
-            ],
-            None,
-        ),
-        "cfd_surface_tension": (
-            Annotated[
-                bool,
-                typer.Option("--cfd-surface-tension", help="Include surface tension in the CFD."),
-            ],
-            False,
-        ),
-    }
-
-
-def _cfd_spec(slosh_model: SloshModel, options: dict[str, Any]) -> Any:
-
-    motion = poses = None
-    if options["excitation"] == "poses":
-        if options["pose_file"] is None:
-            raise InputError("pose-file", None, "is needed with --excitation poses")
-        poses = read_pose_file(options["pose_file"])
-    if options["excitation"] == "law":
-        request = MoveRequest.parse(
-            options["distance"], options["duration"], None, None, None, None, None
-        )
-        motion = request.law(options["law"] or "quintic")
-    if options["np_"] is not None and options["np_"] < 1:
-        raise InputError("np", options["np_"], "must be at least 1 (1 runs serially)")
-    # ranges that keep a case meaningful: a tilt below 45 deg, an amplitude below 10 m
-    tilt = parse_bounded(options["tilt"], "angle", "tilt", 0.0, math.radians(45.0))
-    amplitude = parse_bounded(options["amplitude"], "length", "amplitude", 0.0, 10.0)
-    frequency = parse_bounded(options["frequency"], "frequency", "frequency", 0.0, 1e3)
-    excite_time = parse_bounded(options["excite_time"], "time", "excite_time", 0.0, 1e5)
-    with naming("pose_file", options["pose_file"]) if poses is not None else nullcontext():
-        chosen = excitation_from_options(
-            options["excitation"], tilt, amplitude, frequency, excite_time, motion, poses
-        )
-    angles = options["probe_angles"]
-    if angles is None:
-        angles = 12 if poses is not None else 0
-    end_time_s = parse_quantity(options["end_time"], "time", "end_time")
-    delta_t_s = parse_quantity(options["delta_t"], "time", "delta_t")
-    # a pose file too short or too long for the case's grid names --pose-file
-    with naming("pose_file", options["pose_file"]) if poses is not None else nullcontext():
-        return case_spec(
-            slosh_model,
-            chosen,
-            cells_per_radius=options["cells_per_radius"],
-            end_time_s=end_time_s,
-            delta_t_s=delta_t_s,
-            ddt_scheme=options["ddt"],
-            processes=options["np_"] or 1,
-            surface_tension=options["cfd_surface_tension"],
-            max_courant=options["max_courant"],
-            max_alpha_courant=options["max_courant"],
-            adjust_time_step=not options["fixed_step"],
-            probe_angles=angles,
-        )
 
 
 def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> Any:
@@ -355,12 +189,42 @@ def cfd_run_command(
     Example:
 
       sloshkit cfd run --case vial-decay --excitation free-decay --cells-per-radius 10 --np 2
+
+    \f
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The container, fill and liquid (the model options).
+    case_options : dict
+        The values of `sloshkit.cli.cfd_options.cfd_options`.
+    case : Path
+        The case folder.
+    resume : bool
+        Continue an interrupted run.
+    overwrite : bool
+        Replace an existing sloshkit case.
+    model_file_out : Path, optional
+        Write the calibrated model.
+    plot : Path, optional
+        Calibration figure.
+    json_output : bool
+        Print JSON.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.cli.app import run
+    >>> run(["cfd", "run", "--case", "c", "--cells-per-radius", "2"])  # refused: nothing written
+    2
     """
     check_file(model_file_out, "model_file_out", "model")
     check_file(plot, "plot", "figure")
     check_folder(case, "case", overwrite=True)  # a file, /proc, no permission: refused now
     with _clean_interruption(case):
-        spec = _cfd_spec(slosh_model, case_options)
+        spec = spec_from_options(slosh_model, case_options)
         if resume:
             spec = _resumed_spec(spec, case, case_options["np_"])
         result = _run_with_progress(spec, case, resume, overwrite)
@@ -401,6 +265,32 @@ def cfd_analyse_command(
     Example:
 
       sloshkit cfd analyse vial-decay --json
+
+    \f
+    Parameters
+    ----------
+    case : Path
+        A finished case.
+    method : str
+        The estimator reported.
+    start : str, optional
+        Window start (with its unit).
+    plot : Path, optional
+        Calibration figure.
+    csv : Path, optional
+        The CFD signals as CSV.
+    json_output : bool
+        Print JSON.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.cli.app import run
+    >>> run(["cfd", "analyse", "no-such-case"])  # one line on stderr
+    2
     """
     check_file(plot, "plot", "figure")
     check_file(csv, "csv")
@@ -415,7 +305,7 @@ def cfd_analyse_command(
     _print_analysis(analysis, json_output, None, plot, None)
 
 
-def _validate(case: Path, slosh_model: SloshModel) -> dict[str, Any]:
+def _validate(case: Path, slosh_model: SloshModel) -> CfdValidation:
     """The 1-D comparison, or the 3-D one for a case driven by a pose trajectory."""
     summary_path = case / "sloshkit-case.json"
     if summary_path.is_file():
@@ -423,8 +313,8 @@ def _validate(case: Path, slosh_model: SloshModel) -> dict[str, Any]:
         if summary.get("excitation", {}).get("type") == "PoseExcitation":
             from sloshkit.cfd.spatial import validate_poses
 
-            return validate_poses(case, slosh_model)
-    return validate(case, slosh_model)
+            return validate_poses(slosh_model, case)
+    return validate(slosh_model, case)
 
 
 @cfd_app.command("validate")
@@ -452,22 +342,46 @@ def cfd_validate_command(
       sloshkit cfd validate --case vial-harmonic --excitation harmonic --np 2 --plot fig9.png
 
       sloshkit cfd validate --case vial-3d --excitation poses --pose-file move.csv --np 2
+
+    \f
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The container, fill and liquid (the model options).
+    case_options : dict
+        The values of `sloshkit.cli.cfd_options.cfd_options`.
+    case : Path
+        The case folder.
+    reuse : bool
+        Compare the case's existing results (no run).
+    overwrite : bool
+        Replace an existing sloshkit case.
+    plot : Path, optional
+        CFD against the model (Fig. 9).
+    json_output : bool
+        Print JSON (the keys of `sloshkit.cfd.validation.CfdValidation.to_dict`).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.cli.app import run
+    >>> run(["cfd", "validate", "--case", "no-such-case", "--reuse"])  # one line on stderr
+    2
     """
     check_file(plot, "plot", "figure")
     if not reuse:
         check_folder(case, "case", overwrite=True)
     with _clean_interruption(case):
         if not reuse:
-            spec = _cfd_spec(slosh_model, case_options)
+            spec = spec_from_options(slosh_model, case_options)
             _run_with_progress(spec, case, False, overwrite)
         result = _validate(case, slosh_model)
         if plot is not None:
-            plot_cfd_validation(result, plot)
-        summary = {
-            k: v
-            for k, v in result.items()
-            if k not in ("time_s", "cfd_elevation_m", "model_elevation_m")
-        }
+            result.plot(path=plot)
+        summary = result.to_dict()
         if json_output:
             print_json(summary)
             return

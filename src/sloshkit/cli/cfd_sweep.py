@@ -10,7 +10,8 @@ from rich.table import Table
 from rich.text import Text
 
 from sloshkit.cli.app import stderr, stdout
-from sloshkit.cli.cfd import _cfd_spec, cfd_app, cfd_options
+from sloshkit.cli.cfd import cfd_app
+from sloshkit.cli.cfd_options import cfd_options, spec_from_options
 from sloshkit.cli.options import Json, print_json, with_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.io.outputs import check_folder
@@ -117,6 +118,34 @@ def cfd_sweep_command(
     Example:
 
       sloshkit cfd sweep --out campaign --fills 30mm,39mm,45mm --meshes 8 --end-time 2s
+
+    \f
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The container, fill and liquid (the model options).
+    case_options : dict
+        The values of `sloshkit.cli.cfd_options.cfd_options`.
+    out : Path
+        Campaign folder.
+    fills, liquids, meshes : str, optional
+        Comma-separated fill heights, liquid presets, cells per radius.
+    workers : int
+        Cases run at once.
+    scheduler : str, optional
+        Address of an existing Dask scheduler.
+    json_output : bool
+        Print JSON.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.cli.app import run
+    >>> run(["cfd", "sweep", "--workers", "0"])  # one line on stderr
+    2
     """
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
@@ -148,7 +177,7 @@ def cfd_sweep_command(
         for fill in fill_list:
             model = equivalent_model(slosh_model.container, liquid, fill)
             for cells in mesh_list:
-                spec = _cfd_spec(model, {**case_options, "cells_per_radius": cells})
+                spec = spec_from_options(model, {**case_options, "cells_per_radius": cells})
                 name = f"{liquid.name}-h{fill * 1e3:g}mm-n{cells}"
                 cases.append(CampaignCase(name, spec, model.modes[0].frequency_hz))
     with Progress(
@@ -169,7 +198,7 @@ def cfd_sweep_command(
             cases,
             out,
             workers=workers,
-            processes=case_options["np_"] or 1,
+            processes=1 if case_options["np_"] is None else case_options["np_"],
             scheduler=scheduler,
             progress=advance,
         )

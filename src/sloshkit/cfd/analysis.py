@@ -1,0 +1,214 @@
+"""Calibration of a finished CFD case: its signals, and frequency and damping of its free
+decay (the seed paper's Table 4)."""
+
+from __future__ import annotations
+
+import json
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from sloshkit.calibration import CalibrationResult, calibrate
+from sloshkit.cfd.results import CfdSignals, read_signals
+from sloshkit.errors import InputError, ValidityWarning
+
+
+def excitation_end(summary: dict[str, Any]) -> float:
+    """When the container stops moving in this case [s] (0 for a free decay).
+
+    Parameters
+    ----------
+    summary : dict
+        The case's ``sloshkit-case.json``.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> excitation_end({"excitation": {"type": "Harmonic", "duration_s": 2.0}})
+    2.0
+    >>> excitation_end({"excitation": {"type": "FreeDecay", "tilt_deg": 3.0}})
+    0.0
+    """
+    excitation = summary["excitation"]
+    if excitation["type"] == "Harmonic":
+        return float(excitation["duration_s"])
+    if excitation["type"] in ("MotionExcitation", "PoseExcitation"):
+        return float(excitation.get("duration_s", 0.0))
+    return 0.0
+
+
+@dataclass(frozen=True, eq=False)
+class CfdAnalysis:
+    """A case's signals and their calibration.
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+    signals : CfdSignals
+        Its signals.
+    calibration : CalibrationResult
+        Frequency and damping of its free decay.
+    run_record : dict
+        ``sloshkit-run.json`` (wall clock, processes), or empty.
+
+    Returns
+    -------
+    CfdAnalysis
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pathlib import Path
+    >>> from sloshkit.calibration import calibrate
+    >>> from sloshkit.cfd.results import CfdSignals
+    >>> t = np.arange(0.0, 3.0, 0.002)
+    >>> y = 1e-3 * np.exp(-0.15 * t) * np.cos(29.66 * t)
+    >>> signals = CfdSignals(t, np.column_stack((y, -y)), np.array([0.0, np.pi]), 0 * t, 0 * t,
+    ...                      {"cells": 100})
+    >>> analysis = CfdAnalysis(Path("c"), signals, calibrate(t, y, start_s=0.0), {})
+    >>> round(analysis.to_dict()["damping_ratio"], 4), analysis.to_dict()["cells"]
+    (0.0051, 100)
+    """
+
+    case: Path
+    signals: CfdSignals
+    calibration: CalibrationResult
+    run_record: dict[str, Any]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The calibrate keys plus cells, simulated_s and wall_clock_s."""
+        payload = self.calibration.to_dict()
+        payload.update(
+            cells=self.signals.summary["cells"],
+            simulated_s=float(self.signals.time_s[-1]),
+            wall_clock_s=self.run_record.get("wall_clock_s"),
+            processes=self.run_record.get("processes"),
+            case=str(self.case),
+        )
+        return payload
+
+
+def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> CfdAnalysis:
+    """Calibrate frequency and damping from the antisymmetric wall elevation of a case, over
+    its free decay.
+
+    The window starts at ``start_s`` when given; otherwise, for a forced case, one damped
+    period after the excitation ends (``forcing_end_s`` of `sloshkit.calibration.calibrate`:
+    the forcing's end is known exactly, so it is not searched for in the signal), and for a
+    free decay from the largest peak.
+
+    Parameters
+    ----------
+    case : Path
+        A case run by ``sloshkit cfd run``.
+    method : str
+        The estimator reported (``fit``, ``logdec``, ``fft``, ...).
+    start_s : float, optional
+        Window start [s].
+
+    Returns
+    -------
+    CfdAnalysis
+
+    Raises
+    ------
+    InputError
+        A folder that is not a sloshkit case, an unfinished run (saying how far it got), or a
+        forced run that ends too soon after its excitation to calibrate a free decay.
+
+    References
+    ----------
+    Seed paper eqs. 11-12 (the calibration of frequency and damping from a free decay).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> analyse(Path("no-such-case"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
+    """
+    signals = read_finished_signals(case)
+    end = excitation_end(dict(signals.summary))
+    forcing_end = end if start_s is None and end > 0 else None
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            result = calibrate(
+                signals.time_s,
+                signals.elevation_m,
+                method=method,  # type: ignore[arg-type]
+                start_s=start_s,
+                forcing_end_s=forcing_end,
+                source=f"{case} (CFD wall elevation)",
+            )
+    except InputError as error:
+        if forcing_end is None:
+            raise
+        after = float(signals.time_s[-1]) - forcing_end
+        raise InputError(
+            "case",
+            str(case),
+            f"has only {after:.3g} s of free decay after the excitation ends at "
+            f"{forcing_end:g} s, too short to calibrate ({error})",
+            "run it longer with --end-time (at least 4 periods after the excitation)",
+        ) from error
+    record_path = case / "sloshkit-run.json"
+    record = json.loads(record_path.read_text(encoding="utf-8")) if record_path.is_file() else {}
+    return CfdAnalysis(case, signals, result, record)
+
+
+def read_finished_signals(case: Path) -> CfdSignals:
+    """The signals of a finished case; `InputError` when the case is missing or unfinished.
+
+    Parameters
+    ----------
+    case : Path
+        The case folder.
+
+    Returns
+    -------
+    CfdSignals
+
+    Raises
+    ------
+    InputError
+        Not a sloshkit case, or unfinished (saying how far it got and how to continue).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> read_finished_signals(Path("no-such-case"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
+    """
+    summary_path = case / "sloshkit-case.json"
+    if not summary_path.is_file():
+        raise InputError("case", str(case), "is not a sloshkit CFD case (no sloshkit-case.json)")
+    summary = json.loads(summary_path.read_text(encoding="utf-8"))
+    end = float(summary["end_time_s"])
+    resume = f"continue it with: sloshkit cfd run --case {case} --resume"
+    if not (case / "postProcessing" / "wallProbes").is_dir():
+        raise InputError("case", str(case), f"is unfinished (simulated 0 of {end:g} s)", resume)
+    try:
+        signals = read_signals(case)
+    except InputError as error:  # probe files created but nothing written in them yet
+        raise InputError(
+            "case",
+            str(case),
+            f"is unfinished (no probe data yet; simulated 0 of {end:g} s)",
+            resume,
+        ) from error
+    simulated = float(signals.time_s[-1])
+    step = float(summary.get("delta_t_s", 0.0))
+    if simulated < end - max(1.5 * step, 1e-6):
+        raise InputError(
+            "case", str(case), f"is unfinished (simulated {simulated:.4g} of {end:g} s)", resume
+        )
+    return signals

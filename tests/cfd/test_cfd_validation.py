@@ -1,0 +1,176 @@
+"""CFD comparison, calibration window and mesh limits without OpenFOAM: synthetic cases whose
+probe output encodes a known wall elevation, and Richardson/GCI on manufactured data."""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sloshkit.cfd.case import CaseSpec, Harmonic
+from sloshkit.cfd.convergence import combined_uncertainty, observed_order, richardson
+from sloshkit.cfd.mesh import probe_columns
+from sloshkit.cfd.pipeline import analyse, model_wall_elevation, validate
+from sloshkit.cfd.run import write_case
+from sloshkit.cfd.state import MIN_DETERMINANT, CfdError, check_mesh_quality
+from sloshkit.cfd.validation import CfdValidation
+from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import equivalent_model
+
+WATER = get_liquid("water-25C")
+MODEL = equivalent_model(UprightCylinder(0.0205), WATER, 0.039, damping_ratio=0.006)
+
+
+def synthetic_case(folder: Path, end_time_s: float, elevation_of=None) -> Path:
+    """A finished-looking harmonic case whose wall elevation at +-x is the pendulum model's
+    (or ``elevation_of(t)``), written as alpha probes, tilt and force files."""
+    excitation = Harmonic(0.001, 3.0, 0.5)
+    spec = CaseSpec(0.0205, 0.039, WATER, excitation, cells_per_radius=4, end_time_s=end_time_s)
+    case = write_case(spec, folder)
+    t = np.arange(0.0, end_time_s + 1e-9, 2e-3)
+    if elevation_of is None:
+        eta = model_wall_elevation(MODEL, t, excitation.acceleration(t))
+    else:
+        eta = elevation_of(t)
+    z, dz = probe_columns(spec)
+    rows = []
+    for time, value in zip(t, eta, strict=True):
+        plus = np.clip((0.039 + value - (z - dz / 2)) / dz, 0, 1)
+        minus = np.clip((0.039 - value - (z - dz / 2)) / dz, 0, 1)
+        rows.append(" ".join(f"{v:.12g}" for v in [time, *plus, *minus]))
+    for name, file_name, text in (
+        ("wallProbes", "alpha.water", "\n".join(rows)),
+        ("surfaceTilt", "volFieldValue.dat", f"0 (0 0 -1000)\n{end_time_s} (0 0 -1000)\n"),
+        ("wallForces", "force.dat", f"0 (0 0 0) (0 0 0)\n{end_time_s} (0 0 0) (0 0 0)\n"),
+    ):
+        target = case / "postProcessing" / name / "0"
+        target.mkdir(parents=True)
+        (target / file_name).write_text("# synthetic\n" + text + "\n")
+    return case
+
+
+def test_validate_takes_model_then_case_and_returns_the_result_protocol(tmp_path):
+    case = synthetic_case(tmp_path / "c", 3.0)
+    result = validate(MODEL, case)
+    assert isinstance(result, CfdValidation)
+    payload = result.to_dict()
+    # The JSON keys of `sloshkit cfd validate --json` (1-D) are unchanged.
+    assert list(payload) == ["case", "comparison", "correlation", "excitation_end_s"]
+    assert set(payload["comparison"]) == {
+        "omega_n_rad_s",
+        "damping_ratio",
+        "peak_elevation_m",
+        "residual_elevation_m",
+    }
+    # The CFD side went through the alpha-probe encoding: it must reproduce the model.
+    assert payload["correlation"] > 0.9999
+    for row in payload["comparison"].values():
+        assert abs(row["relative_difference"]) < 0.02
+    assert payload["comparison"]["damping_ratio"]["model"] == pytest.approx(0.006, rel=0.1)
+    frame = result.to_pandas()
+    assert list(frame.columns) == ["time_s", "cfd_elevation_m", "model_elevation_m"]
+    written = result.to_csv(tmp_path / "v.csv")
+    assert written.read_text().splitlines()[0] == "time_s,cfd_elevation_m,model_elevation_m"
+    figure = result.plot(path=tmp_path / "v.png")
+    assert (tmp_path / "v.png").stat().st_size > 1000
+    assert figure.axes[0].get_lines()
+
+
+def test_validate_with_the_arguments_swapped_fails_loudly(tmp_path):
+    case = synthetic_case(tmp_path / "c", 1.0)
+    with pytest.raises(TypeError, match="v1 order"):
+        validate(case, MODEL)  # type: ignore[arg-type]
+
+
+def test_analyse_starts_one_period_after_the_excitation(tmp_path):
+    case = synthetic_case(tmp_path / "c", 3.0)
+    calibration = analyse(case).calibration
+    window_start = calibration.to_dict()["window_s"][0]
+    period = 2 * math.pi / MODEL.modes[0].omega_rad_s
+    assert 0.5 + 0.9 * period <= window_start <= 0.5 + 1.6 * period
+    assert calibration.damping_ratio == pytest.approx(0.006, rel=0.1)
+
+
+def test_a_short_forced_run_says_it_is_too_short(tmp_path):
+    case = synthetic_case(tmp_path / "c", 0.6)
+    with pytest.raises(InputError, match=r"too short to calibrate.*--end-time"):
+        analyse(case)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = validate(MODEL, case)
+    assert any(issubclass(w.category, ValidityWarning) for w in caught)
+    assert result.comparison["damping_ratio"]["cfd"] is None
+    assert result.comparison["peak_elevation_m"]["relative_difference"] == pytest.approx(
+        0.0, abs=0.02
+    )
+    json.dumps(result.to_dict())  # still a JSON document
+
+
+CHECKMESH = """    cells:            33840
+    Mesh non-orthogonality Max: 30.6 average: 5.2
+    Max skewness = 0.50 OK.
+    Max aspect ratio = {aspect} OK.
+    Cell determinant (wellposedness) : minimum: {determinant} average: 0.5
+{flag}"""
+
+
+def test_mesh_limit_is_the_measured_determinant_not_checkmesh_s_own():
+    stable = CHECKMESH.format(
+        aspect=19.0,
+        determinant=9.4e-4,
+        flag=" ***Cells with small determinant (< 0.001) found, number of cells: 96\n"
+        "Failed 1 mesh checks.",
+    )
+    with pytest.warns(ValidityWarning, match="marginal"):
+        assert check_mesh_quality(stable)["min_determinant"] == pytest.approx(9.4e-4)
+    unstable = CHECKMESH.format(aspect=19.0, determinant=2.3e-4, flag="")
+    assert 2.3e-4 < MIN_DETERMINANT < 9.4e-4
+    with pytest.raises(CfdError, match="determinant"):
+        check_mesh_quality(unstable)
+    thin = CHECKMESH.format(aspect=29.6, determinant=1.4e-3, flag="")
+    with pytest.raises(CfdError, match="aspect ratio"):
+        check_mesh_quality(thin)
+    other = CHECKMESH.format(aspect=2.0, determinant=0.3, flag=" ***Zero or negative cell volume")
+    with pytest.raises(CfdError, match="failed mesh checks"):
+        check_mesh_quality(other)
+
+
+@pytest.mark.parametrize("order", [1.0, 2.0])
+def test_richardson_recovers_a_manufactured_solution(order):
+    h = np.array([1.0, 1.3, 1.3 * 1.4])  # unequal refinement ratios
+    exact, c = 0.006, 0.002
+    values = exact + c * h**order
+    study = richardson(values, [h[1] / h[0], h[2] / h[1]])
+    assert study.observed and study.behaviour == "monotonic"
+    assert study.order == pytest.approx(order, rel=1e-6)
+    assert study.extrapolated == pytest.approx(exact, abs=1e-12)
+    low, high = study.interval
+    assert low <= exact <= high
+    assert observed_order(values, [1.3, 1.4]) == pytest.approx(order, rel=1e-6)
+
+
+def test_richardson_two_levels_oscillation_and_bad_input():
+    two = richardson([0.0061, 0.0074], [2.0], order=1.0)
+    assert two.extrapolated == pytest.approx(0.0048)
+    assert two.safety_factor == 3.0 and not two.observed
+    wobbly = richardson([0.0050, 0.0060, 0.0040], [1.4, 1.4])
+    assert wobbly.behaviour == "oscillatory"
+    assert wobbly.uncertainty == pytest.approx(3.0 * 0.0010)
+    with pytest.raises(InputError):
+        richardson([0.005, 0.006], [0.5], order=1.0)
+    with pytest.raises(InputError):
+        richardson([0.005, 0.006], [2.0])
+    assert combined_uncertainty(3.0, 4.0) == 5.0
+
+
+def test_a_case_with_empty_probe_files_is_unfinished(tmp_path):
+    case = synthetic_case(tmp_path / "c", 1.0)
+    (case / "postProcessing" / "wallProbes" / "0" / "alpha.water").write_text("# Probe 0\n")
+    with pytest.raises(InputError, match=r"is unfinished \(no probe data yet"):
+        analyse(case)
