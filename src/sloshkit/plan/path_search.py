@@ -13,6 +13,7 @@ verified seeds and keeps the fastest, so ``retime`` is never slower than its see
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from collections.abc import Callable, Sequence
@@ -26,8 +27,8 @@ from sloshkit.plan.path_limits import machine_violations
 from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.retime import ShaperFactory, family_member
-from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
-from sloshkit.plan.timing import Timing, warped_timing
+from sloshkit.plan.spatial import PathProblem, PoseSamples, _continuous, sample_path
+from sloshkit.plan.timing import Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
 
@@ -254,8 +255,13 @@ def _refine(
 
 #: B-spline coefficients of the speed-scaling warp (`warp_search`).
 WARP_KNOTS = 12
+#: Coefficient counts `warped_candidates` tries per seed (the local search finds different
+#: optima with each; on the measured series each count won in some case).
+WARP_KNOT_COUNTS = (8, 12)
 #: Largest number of linear screens one `warp_search` spends.
 WARP_SCREENS = 250
+#: Samples `warped_candidates` lets one search screen (fewer screens on long moves).
+WARP_SAMPLE_BUDGET = 400_000
 #: Verify-and-tighten rounds of `warped_candidates` per seed.
 WARP_ROUNDS = 5
 #: Smallest warp factor (time may run at most 10x faster than in the seed locally).
@@ -314,10 +320,19 @@ def warp_search(
     True
     """
 
+    period = problem.sample_period_s
+    # The screens sample the warp directly: u(t) by interpolating the clock t(u) on a grid of
+    # a quarter sample period, s = s_seed(u) (the export of the result is the same to ~1e-9 s).
+    grid = np.linspace(0.0, seed.duration_s, max(64, math.ceil(4 * seed.duration_s / period)))
+
     def ok(factors: FloatArray) -> bool:
-        return passes(
-            sample_path(problem.path, warped_timing(seed, factors), problem.sample_period_s)
-        )
+        clock = warp_clock(grid, factors)
+        count = math.ceil(clock[-1] / period - 1e-9)
+        t = np.arange(count + 1, dtype=float) * period
+        s = np.clip(seed.position(np.interp(t, clock, grid)), 0.0, problem.path.length_m)
+        s[-1] = problem.path.length_m
+        quaternions = problem.path.orientation(s).as_quat()
+        return passes(PoseSamples(t, problem.path.position(s), _continuous(quaternions)))
 
     factors = np.ones(knots)
     screens = 0
@@ -347,9 +362,11 @@ def warped_candidates(
     """The fastest of verified candidates and of their `warp_search` improvements. Each
     improvement is verified again; when the verifier finds a slosh height above a limit that
     the screen passed, that limit of the screen is tightened by the excess and the search
-    repeated from the seed (`WARP_ROUNDS` in all), and when every round fails the last
-    improvement is slowed uniformly (`sloshkit.plan.path_result.verified_candidate`). Never
-    slower than the fastest feasible candidate of ``pool``.
+    repeated from the seed (`WARP_ROUNDS` in all, for each of `WARP_KNOT_COUNTS`; each search
+    screens at most `WARP_SAMPLE_BUDGET` samples, `WARP_SCREENS` exports), and when
+    every round fails the last improvement is slowed uniformly
+    (`sloshkit.plan.path_result.verified_candidate`). Never slower than the fastest feasible
+    candidate of ``pool``.
 
     Parameters
     ----------
@@ -393,24 +410,27 @@ def warped_candidates(
         return passes
 
     results = [candidate for candidate, _ in pool]
-    for candidate, timing in pool:
+    for (candidate, timing), knots in itertools.product(pool, WARP_KNOT_COUNTS):
         if not candidate.feasible:
             continue
         height, residual = limits.max_height_m, limits.max_residual_height_m
+        samples = timing.duration_s / problem.sample_period_s
+        budget = max(20, min(WARP_SCREENS, int(WARP_SAMPLE_BUDGET / samples)))
         improved: tuple[Timing, int] | None = None
         for _ in range(WARP_ROUNDS):
             tight = replace(
                 problem,
                 slosh=replace(limits, max_height_m=height, max_residual_height_m=residual),
             )
-            warped, screens = warp_search(problem, timing, passes_for(tight))
+            warped, screens = warp_search(problem, timing, passes_for(tight), knots, budget)
             if warped is timing or warped.duration_s >= candidate.duration_s:
                 break
             improved = (warped, screens)
             poses = stretcher(problem, warped)(1.0)
             check = verifier(problem, poses, False)
             message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
-            detail = {**candidate.detail, "warp_screens": screens, "stretch": 1.0}
+            detail = {**candidate.detail, "warp_screens": screens, "warp_knots": knots}
+            detail["stretch"] = 1.0
             results.append(PathCandidate(candidate.method, poses, check, 0.0, message, detail))
             if check.feasible:
                 improved = None
@@ -427,7 +447,7 @@ def warped_candidates(
         if improved is not None:
             # Still above a limit after every round: the last improvement slowed uniformly by
             # the excess (`sloshkit.plan.path_result.verified_candidate`).
-            detail = {**candidate.detail, "warp_screens": improved[1]}
+            detail = {**candidate.detail, "warp_screens": improved[1], "warp_knots": knots}
             poses_for = stretcher(problem, improved[0])
             results.append(
                 verified_candidate(

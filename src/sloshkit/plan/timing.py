@@ -181,6 +181,35 @@ def shaped_timing(timing: Timing, shaper: Shaper) -> Timing:
     return Timing(timing.name, grid, values)
 
 
+def warp_clock(seed_time_s: FloatArray, factors: FloatArray) -> FloatArray:
+    """t(u) = integral_0^u c of `warped_timing` on an increasing grid of seed times from 0 to
+    the seed's duration (trapezoidal rule).
+
+    Parameters
+    ----------
+    seed_time_s : ndarray
+        Grid of seed times u [s], from 0 to the seed's duration.
+    factors : ndarray
+        B-spline coefficients of c (at least 4).
+
+    Returns
+    -------
+    ndarray
+        t(u) [s] on the grid.
+
+    Examples
+    --------
+    >>> warp_clock(np.linspace(0.0, 1.0, 5), np.full(4, 2.0)).tolist()
+    [0.0, 0.5, 1.0, 1.5, 2.0]
+    """
+    duration = float(seed_time_s[-1])
+    inner = np.linspace(0.0, duration, factors.size - 2)
+    knots = np.concatenate(([0.0] * 3, inner, [duration] * 3))
+    scale = np.asarray(BSpline(knots, factors, 3)(seed_time_s), dtype=float)
+    steps = 0.5 * (scale[1:] + scale[:-1]) * np.diff(seed_time_s)
+    return np.concatenate(([0.0], np.cumsum(steps)))
+
+
 def warped_timing(timing: Timing, factors: ArrayLike) -> Timing:
     """Piecewise speed scaling of a timing: time runs c(u) times slower at the seed's time u,
     t(u) = integral_0^u c(v) dv, s_new(t(u)) = s(u), with c a clamped cubic B-spline whose
@@ -217,15 +246,18 @@ def warped_timing(timing: Timing, factors: ArrayLike) -> Timing:
     coefficients = np.asarray(factors, dtype=float)
     if coefficients.ndim != 1 or coefficients.size < 4 or np.any(coefficients <= 0.0):
         raise InputError("factors", coefficients.size, "needs at least 4 positive factors")
-    duration = timing.duration_s
-    inner = np.linspace(0.0, duration, coefficients.size - 2)
-    knots = np.concatenate(([0.0] * 3, inner, [duration] * 3))
-    u = _fine_grid(duration)
-    scale = np.asarray(BSpline(knots, coefficients, 3)(u), dtype=float)
-    elapsed = np.concatenate(([0.0], np.cumsum(0.5 * (scale[1:] + scale[:-1]) * np.diff(u))))
+    u = _fine_grid(timing.duration_s)
+    elapsed = warp_clock(u, coefficients)
     s = timing.position(u)
     s[-1] = timing.length_m
     return Timing(timing.name, elapsed, s)
 
 
-__all__ = ["FINE_STEP_S", "Timing", "box_smoothed", "shaped_timing", "warped_timing"]
+__all__ = [
+    "FINE_STEP_S",
+    "Timing",
+    "box_smoothed",
+    "shaped_timing",
+    "warp_clock",
+    "warped_timing",
+]
