@@ -25,7 +25,7 @@ from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
-from sloshkit.io.outputs import check_file
+from sloshkit.io.outputs import all_or_nothing, check_file
 from sloshkit.io.requests import fraction_request
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
@@ -157,10 +157,8 @@ def plan_command(
     check_file(out, "out")
     check_file(plot, "plot", "figure")
     if export is not None and path is None and path_from_poses is None:
-        from sloshkit.export.exporter import SUFFIXES
-
-        base = out if out is not None else Path("plan.csv")  # as _export_chosen names it
-        target = base.with_name(base.stem + SUFFIXES.get(export, ""))
+        target = _export_target(out, export)  # as _export_chosen names it
+        assert target is not None
         check_export_request(export, target, export_settings, "export")  # before planning
     if path is not None or path_from_poses is not None:
         from sloshkit.cli.plan_path import run_path_plan
@@ -237,16 +235,19 @@ def plan_command(
 
     with stderr.status("planning") as status, signals.deferred():
         result = plan(problem, method, nonlinear_optimal, progress=progress, smooth=smooth)
-    if result.feasible:
-        if out is not None:
-            result.to_csv(out)
-        if plot is not None:
-            result.plot(plot)
     payload = result.to_dict()
     exported = None
-    if result.feasible and export is not None:
-        exported = _export_chosen(result, problem, export, out, export_settings, slosh_model)
-        payload["export"] = exported.to_dict()
+    # The trajectory, its figure and its export are kept together or not at all (a signal or a
+    # failed round trip after the CSV was written must not leave the CSV behind).
+    with all_or_nothing(out, plot, _export_target(out, export)):
+        if result.feasible:
+            if out is not None:
+                result.to_csv(out)
+            if plot is not None:
+                result.plot(plot)
+        if result.feasible and export is not None:
+            exported = _export_chosen(result, problem, export, out, export_settings, slosh_model)
+            payload["export"] = exported.to_dict()
     if json_output:
         print_json(payload)
     else:
@@ -321,11 +322,12 @@ def _export_chosen(
     model: SloshModel,
 ) -> typing.Any:
     """Export the chosen move beside ``--out`` (or as ``plan<suffix>``), with its limits."""
-    from sloshkit.export.exporter import SUFFIXES
     from sloshkit.export.plans import LinePlan
 
     samples = result.samples()
     base = out if out is not None else Path("plan.csv")
+    target = _export_target(out, fmt)
+    assert target is not None
     line = LinePlan(
         samples["t_s"],
         samples["position_m"],
@@ -333,5 +335,15 @@ def _export_chosen(
         samples["acceleration_m_s2"],
         source=base.name,
     )
-    target = base.with_name(base.stem + SUFFIXES.get(fmt, ""))
     return run_export(line, fmt, target, settings, model, problem.slosh, None)
+
+
+def _export_target(out: Path | None, fmt: str | None) -> Path | None:
+    """Where ``plan --export FMT`` writes: beside ``--out`` (or ``plan.csv``), with the
+    format's suffix; None without ``--export``."""
+    if fmt is None:
+        return None
+    from sloshkit.export.exporter import SUFFIXES
+
+    base = out if out is not None else Path("plan.csv")
+    return base.with_name(base.stem + SUFFIXES.get(fmt, ""))
