@@ -107,7 +107,7 @@ class Motion:
         acceleration = self.derivative_pp(2)
         widths = np.diff(acceleration.x)
         starts = acceleration.c[-1, :]  # value at the left end of each piece
-        ends = np.array([np.polyval(acceleration.c[:, i], widths[i]) for i in range(widths.size)])
+        ends = _horner(np.asarray(acceleration.c, dtype=float), widths)
         left = np.concatenate(([0.0], ends))
         right = np.concatenate((starts, [0.0]))
         return float(np.max(np.abs(right - left)))
@@ -135,10 +135,52 @@ class Motion:
         return sample_motion(self, sample_period_s)
 
 
+def _horner(coefficients: FloatArray, t: FloatArray) -> FloatArray:
+    """Each piece's polynomial (a column of ``coefficients``, highest power first) at its
+    own local time ``t``."""
+    value = np.zeros_like(t)
+    for row in coefficients:
+        value = value * t + row
+    return value
+
+
 def _peak_abs(pp: PPoly) -> float:
-    """max |p(t)| over the breakpoints' span, from each piece's ends and interior extrema."""
+    """max |p(t)| over the breakpoints' span, from each piece's ends and interior extrema.
+
+    Pieces up to cubic (every motion built from jerk segments) are done for all pieces at once:
+    the extrema are the real roots of the derivative in closed form; higher orders piece by
+    piece with `numpy.roots`.
+    """
     coefficients = np.asarray(pp.c, dtype=float)  # shape (order + 1, pieces)
     widths = np.diff(pp.x)
+    if coefficients.shape[0] > 4:
+        return _peak_abs_by_piece(coefficients, widths)
+    coefficients = np.vstack((np.zeros((4 - coefficients.shape[0], widths.size)), coefficients))
+    c3, c2, c1 = coefficients[0], coefficients[1], coefficients[2]
+    candidates = [np.zeros_like(widths), widths]
+    # p'(t) = 3 c3 t^2 + 2 c2 t + c1: a quadratic where c3 != 0, linear where only c2 != 0.
+    cubic = c3 != 0.0
+    a = np.where(cubic, 3.0 * c3, 1.0)
+    b = 2.0 * c2
+    discriminant = b * b - 4.0 * a * c1
+    root = np.sqrt(np.abs(discriminant))
+    # numpy.roots' tolerance: a complex pair with |imag| < 1e-12 counts as a double real root.
+    real = cubic & ((discriminant >= 0.0) | (root / (2.0 * np.abs(a)) < 1e-12))
+    root = np.where(discriminant >= 0.0, root, 0.0)
+    candidates += [np.where(real, (-b - root) / (2.0 * a), 0.0)]
+    candidates += [np.where(real, (-b + root) / (2.0 * a), 0.0)]
+    linear = ~cubic & (c2 != 0.0)
+    candidates += [np.where(linear, -c1 / np.where(linear, 2.0 * c2, 1.0), 0.0)]
+    best = 0.0
+    for t in candidates:
+        inside = (t >= 0.0) & (t <= widths)
+        values = np.abs(_horner(coefficients, np.where(inside, t, 0.0)))
+        if values.size:
+            best = max(best, float(np.max(values)))
+    return best
+
+
+def _peak_abs_by_piece(coefficients: FloatArray, widths: FloatArray) -> float:
     best = 0.0
     for piece in range(coefficients.shape[1]):
         poly = np.poly1d(coefficients[:, piece])
