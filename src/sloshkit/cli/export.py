@@ -298,9 +298,9 @@ def export_command(
 
       sloshkit export plan.csv --format urscript --robot ur5e --base-pose=-0.5m,-0.13m,0.39m
     """
-    from sloshkit.export.exporter import SUFFIXES
+    from sloshkit.export.exporter import path_beside
 
-    target = out if out is not None else plan_file.with_name(plan_file.stem + SUFFIXES.get(fmt, ""))
+    target = out if out is not None else path_beside(plan_file, fmt)
     check_export_request(fmt, target, export_settings)
     from sloshkit.export.plans import read_plan
 

@@ -343,7 +343,6 @@ def _export_target(out: Path | None, fmt: str | None) -> Path | None:
     format's suffix; None without ``--export``."""
     if fmt is None:
         return None
-    from sloshkit.export.exporter import SUFFIXES
+    from sloshkit.export.exporter import path_beside
 
-    base = out if out is not None else Path("plan.csv")
-    return base.with_name(base.stem + SUFFIXES.get(fmt, ""))
+    return path_beside(out if out is not None else Path("plan.csv"), fmt)

@@ -46,6 +46,29 @@ SUFFIXES = {
 }
 
 
+def path_beside(base: Path, fmt: str) -> Path:
+    """Where an export of ``base`` (a plan file, or ``plan --out``) goes by default: beside it,
+    its stem followed by the format's suffix (`SUFFIXES`).
+
+    Parameters
+    ----------
+    base : Path
+        The plan file the export is made from.
+    fmt : str
+        The export format (a key of `FORMATS`).
+
+    Returns
+    -------
+    Path
+
+    Examples
+    --------
+    >>> path_beside(Path("runs/plan.csv"), "urscript").as_posix()
+    'runs/plan.script'
+    """
+    return base.with_name(base.stem + SUFFIXES.get(fmt, ""))
+
+
 @dataclass(frozen=True)
 class ExportResult:
     """What was exported, and the round trip when checked.
