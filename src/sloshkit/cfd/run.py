@@ -5,10 +5,10 @@ setFields, decomposePar and interFoam (serial, or ``mpirun -np N``), feeding a p
 from the solver log. A solver that stops early (exit code 136 is a floating-point exception)
 raises `CfdError` with the tail of the log.
 
-Interruptions: the tools run in their own process group, which is stopped when sloshkit is
-interrupted (SIGINT, SIGTERM) or dies; every finished preparation step leaves a marker, and a
-resumed run restarts from the latest *complete* time folder (every field of every processor
-written to its end), discarding later, half-written ones.
+Interruptions: each tool runs in a session of its own, every process of which (mpirun and its
+ranks) is stopped when sloshkit is interrupted (SIGINT, SIGTERM) or dies; every finished
+preparation step leaves a marker, and a resumed run restarts from the latest *complete* time
+folder (every field of every processor written to its end), discarding later, half-written ones.
 
 Network: MPI runs use shared memory between the ranks and loopback for anything else, and run
 in a private network namespace (``unshare -rn``, loopback only) where the kernel allows it,
@@ -134,38 +134,106 @@ def interruptible(process_holder: list[subprocess.Popen[str]], where: list[float
 
 
 def _stop_group(process: subprocess.Popen[str], grace_s: float = 10.0) -> None:
-    if process.poll() is not None:
-        return
-    for signum, wait_s in ((signal.SIGTERM, grace_s), (signal.SIGKILL, 5.0)):
+    """Stop a tool and everything it started, and wait until they are gone.
+
+    The tool leads its own session (``start_new_session``). Open MPI's mpirun puts each rank in
+    a process group of its own, so signalling the tool's group reaches mpirun only: mpirun
+    forwards SIGTERM to its ranks and may exit before they do. Hence the wait is for every
+    process of the session, and SIGKILL after ``grace_s`` goes to each of them.
+    """
+    session = process.pid
+    if process.poll() is None:
         with contextlib.suppress(ProcessLookupError):
-            os.killpg(process.pid, signum)
-        try:
-            process.wait(timeout=wait_s)
-            return
-        except subprocess.TimeoutExpired:
-            continue
+            os.killpg(session, signal.SIGTERM)
+    deadline = time.monotonic() + grace_s
+    for kill in (False, True):
+        if kill:
+            for pid in [*session_members(session), process.pid]:
+                with contextlib.suppress(ProcessLookupError, PermissionError):
+                    os.kill(pid, signal.SIGKILL)
+            deadline = time.monotonic() + 5.0
+        while time.monotonic() < deadline:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                process.wait(timeout=0.05)
+            if process.returncode is not None and not session_members(session):
+                return
 
 
-def _start(command: list[str], case: Path, stdout: Any) -> subprocess.Popen[str]:
-    return subprocess.Popen(
-        command,
-        cwd=case,
-        env=openfoam_environment(),
-        stdout=stdout,
-        stderr=subprocess.STDOUT,
-        text=True,
-        bufsize=1,
-        start_new_session=True,
-        preexec_fn=_set_parent_death_signal,
-    )
+def session_members(session: int) -> list[int]:
+    """The live (not zombie) processes of a session, read from ``/proc`` (Linux).
+
+    Parameters
+    ----------
+    session : int
+        Session id (the pid of the process that started the session).
+
+    Returns
+    -------
+    list of int
+        Their pids; empty where ``/proc`` cannot be read.
+
+    Examples
+    --------
+    >>> session_members(-1)
+    []
+    """
+    members = []
+    with contextlib.suppress(OSError):
+        for entry in os.scandir("/proc"):
+            if not entry.name.isdigit():
+                continue
+            try:
+                with open(f"/proc/{entry.name}/stat", encoding="ascii", errors="replace") as f:
+                    stat = f.read()
+            except OSError:
+                continue
+            # "pid (comm) state ppid pgrp session ...": comm may hold spaces and parentheses.
+            fields = stat[stat.rfind(")") + 2 :].split()
+            if len(fields) > 3 and fields[0] != "Z" and int(fields[3]) == session:
+                members.append(int(entry.name))
+    return members
+
+
+_STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP}
+
+
+def _child_setup() -> None:  # pragma: no cover - runs in the child
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP_SIGNALS)
+    _set_parent_death_signal()
+
+
+def _start(
+    holder: list[subprocess.Popen[str]], command: list[str], case: Path, stdout: Any
+) -> subprocess.Popen[str]:
+    """Start a tool and put it in ``holder`` with stop signals held back meanwhile, so that an
+    interruption cannot fall between the fork and the tool's registration (it would leave the
+    tool running unseen); a signal that came meanwhile is delivered right after."""
+    in_main = threading.current_thread() is threading.main_thread()
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS) if in_main else None
+    try:
+        process = subprocess.Popen(
+            command,
+            cwd=case,
+            env=openfoam_environment(),
+            stdout=stdout,
+            stderr=subprocess.STDOUT,
+            text=True,
+            bufsize=1,
+            start_new_session=True,
+            preexec_fn=_child_setup,
+        )
+        holder.append(process)
+    finally:
+        if blocked is not None:
+            signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+    return process
 
 
 def _tool(case: Path, command: list[str], log_name: str) -> str:
     log = case / log_name
     holder: list[subprocess.Popen[str]] = []
     with open(log, "w", encoding="utf-8") as stream, interruptible(holder, [0.0]):
-        holder.append(_start(command, case, stream))
-        code = holder[0].wait()
+        code = _start(holder, command, case, stream).wait()
     text = log.read_text(encoding="utf-8", errors="replace")
     if code != 0:
         raise CfdError(f"{command[0]} failed (exit {code}):\n" + tail(text))
@@ -353,8 +421,7 @@ def run_case(
         open(log_path, "a" if resume else "w", encoding="utf-8") as log,
         interruptible(holder, simulated),
     ):
-        holder.append(_start(command, case, subprocess.PIPE))
-        process = holder[0]
+        process = _start(holder, command, case, subprocess.PIPE)
         assert process.stdout is not None
         for line in process.stdout:
             log.write(line)
