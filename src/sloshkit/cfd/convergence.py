@@ -21,6 +21,8 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
 from sloshkit.errors import InputError
 
 #: Roache's safety factors: three solutions with an observed order, and otherwise.
@@ -260,3 +262,128 @@ def combined_uncertainty(*parts: float) -> float:
     5.0
     """
     return math.sqrt(sum(float(x) ** 2 for x in parts))
+
+
+@dataclass(frozen=True)
+class TermFit:
+    """A generalised Richardson extrapolation: f(h) = f0 + sum_k a_k h**p_k fitted by least
+    squares to solutions at several spacings.
+
+    Parameters
+    ----------
+    extrapolated : float
+        f0, the zero-spacing value.
+    exponents : tuple of float
+        The exponents p_k of the error terms (assumed, e.g. 1/2 and 1).
+    coefficients : tuple of float
+        The fitted a_k.
+    residual_rms : float
+        Root-mean-square misfit of the solutions (0 when as many solutions as unknowns).
+    spacings : tuple of float
+        The spacings h used.
+
+    Returns
+    -------
+    TermFit
+
+    Examples
+    --------
+    >>> fit = fit_error_terms([1.5, 1.25, 1.125], [1.0, 0.5, 0.25], (1.0,))
+    >>> round(fit.extrapolated, 6), round(fit.residual_rms, 9)
+    (1.0, 0.0)
+    """
+
+    extrapolated: float
+    exponents: tuple[float, ...]
+    coefficients: tuple[float, ...]
+    residual_rms: float
+    spacings: tuple[float, ...]
+
+    def predict(self, spacing: float) -> float:
+        """The fitted f at ``spacing``.
+
+        Parameters
+        ----------
+        spacing : float
+            h (same units as the fit's spacings).
+
+        Returns
+        -------
+        float
+
+        Examples
+        --------
+        >>> round(fit_error_terms([1.5, 1.25, 1.125], [1.0, 0.5, 0.25], (1.0,)).predict(0.125), 9)
+        1.0625
+        """
+        terms = (
+            a * float(spacing) ** p for a, p in zip(self.coefficients, self.exponents, strict=True)
+        )
+        return float(self.extrapolated + sum(terms))
+
+
+def fit_error_terms(
+    values: Sequence[float], spacings: Sequence[float], exponents: Sequence[float]
+) -> TermFit:
+    """Generalised Richardson extrapolation with assumed exponents: least-squares fit of
+    f(h) = f0 + sum_k a_k h**p_k.
+
+    For a quantity whose error has two leading terms of different orders (so that the
+    observed order of three solutions drifts with h), a single-term Richardson extrapolation
+    is biased; fitting both terms with their exponents recovers f0 (Richards 1997; Roache
+    1998, ch. 5, "generalized Richardson extrapolation"). With more solutions than unknowns
+    the residual tests the assumed form.
+
+    Parameters
+    ----------
+    values : sequence of float
+        The solutions.
+    spacings : sequence of float
+        Their spacings h (> 0), any order.
+    exponents : sequence of float
+        The exponents p_k (> 0, distinct).
+
+    Returns
+    -------
+    TermFit
+
+    Raises
+    ------
+    InputError
+        Fewer solutions than unknowns, or non-positive spacings or exponents.
+
+    References
+    ----------
+    S. A. Richards, "Completed Richardson extrapolation in space and time", Commun. Numer.
+    Methods Eng. 13 (1997) 573-582, doi:10.1002/(SICI)1099-0887(199707)13:7<573::AID-CNM84>3.0.CO;2-6;
+    P. J. Roache, *Verification and Validation in Computational Science and Engineering*,
+    Hermosa (1998), ch. 5.
+
+    Examples
+    --------
+    f = 2 + 3 sqrt(h) - h at four spacings:
+
+    >>> h = [2.0, 1.0, 0.5, 0.25]
+    >>> f = [2 + 3 * x**0.5 - x for x in h]
+    >>> round(fit_error_terms(f, h, (0.5, 1.0)).extrapolated, 9)
+    2.0
+    """
+    f = np.asarray(values, dtype=float)
+    h = np.asarray(spacings, dtype=float)
+    p = tuple(float(x) for x in exponents)
+    if f.size != h.size or f.size < len(p) + 1:
+        raise InputError(
+            "values", f.size, f"must be at least {len(p) + 1} solutions, one per spacing"
+        )
+    if np.any(h <= 0.0) or any(x <= 0.0 for x in p) or len(set(p)) != len(p):
+        raise InputError("spacings", list(h), "must be positive, with distinct positive exponents")
+    matrix = np.column_stack([np.ones_like(h), *(h**x for x in p)])
+    solution, *_ = np.linalg.lstsq(matrix, f, rcond=None)
+    residual = f - matrix @ solution
+    return TermFit(
+        float(solution[0]),
+        p,
+        tuple(float(a) for a in solution[1:]),
+        float(np.sqrt(np.mean(residual**2))),
+        tuple(float(x) for x in h),
+    )

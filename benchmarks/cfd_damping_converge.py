@@ -1,0 +1,190 @@
+"""Session-3 runs of the CFD damping study: the time step towards its asymptotic range, a
+second-order (Crank-Nicolson) family, and wall-graded meshes that might form a family.
+
+Each entry of `PLAN` is one serial free decay of the seed vial (3 deg tilt, fixed step, the
+same 2 s window as docs/cfd-damping-study.json unless stated); one row per run, keyed by the
+entry's name, goes to docs/cfd-damping-converge.json (resumable: finished keys are kept, a run
+that blows up or is refused is a row with ``failed``). `benchmarks/cfd_damping_analysis.py`
+reads the rows.
+
+Run: PYTHONPATH=src nice -n 5 python benchmarks/cfd_damping_converge.py [--only KEY ...]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import sys
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from bench_cfd_speed import bench
+
+from sloshkit.cfd.state import CfdError
+from sloshkit.errors import InputError
+
+ROOT = Path(__file__).resolve().parent.parent
+CN = "CrankNicolson 0.9"
+
+
+def entry(
+    cells: int,
+    step_ms: float,
+    ddt: str = "Euler",
+    grading: float = 1.0,
+    radial: int | None = None,
+    end_s: float = 2.0,
+) -> dict[str, Any]:
+    """One planned run, named by its settings."""
+    name = f"n{cells}-dt{step_ms:g}ms"
+    if ddt != "Euler":
+        name += "-cn" if ddt == CN else f"-{ddt}"
+    if grading < 1.0:
+        name += f"-g{grading:g}r{radial}"
+    if end_s != 2.0:
+        name += f"-t{end_s:g}s"
+    return {
+        "key": name,
+        "cells_per_radius": cells,
+        "step_ms": step_ms,
+        "ddt_scheme": ddt,
+        "wall_grading": grading,
+        "radial_cells": radial,
+        "end_time_s": end_s,
+    }
+
+
+#: In the order run (cheapest informative first).
+PLAN = [
+    entry(8, 0.25),
+    entry(8, 2.0, CN),
+    entry(8, 1.0, CN),
+    entry(8, 0.5, CN),
+    entry(8, 0.125),
+    entry(11, 0.25),
+    entry(8, 0.25, CN),
+    entry(8, 0.0625),
+    # the wall-graded family at a fixed grading of 0.25 (docs/cfd-damping-graded-meshes.json):
+    # cells per radius and annulus cells refined together by about 4/3
+    entry(9, 2.0, grading=0.25, radial=7),
+    entry(12, 2.0, grading=0.25, radial=10),
+    entry(9, 1.0, grading=0.25, radial=7),
+    entry(12, 1.0, grading=0.25, radial=10),
+    entry(16, 2.0, grading=0.25, radial=13),
+    entry(9, 0.5, grading=0.25, radial=7),
+    entry(16, 1.0, grading=0.25, radial=13),
+    entry(12, 0.5, grading=0.25, radial=10),
+]
+
+
+def run_entry(item: dict[str, Any], work: Path) -> dict[str, Any]:
+    """Run one entry; a blow-up or a refused mesh is a row with ``failed``."""
+    try:
+        row = bench(
+            work / item["key"],
+            item["cells_per_radius"],
+            1,
+            item["end_time_s"],
+            item["step_ms"] * 1e-3,
+            0.5,
+            0.5,
+            adjust_time_step=False,
+            wall_grading=item["wall_grading"],
+            radial_cells=item["radial_cells"],
+            ddt_scheme=item["ddt_scheme"],
+        )
+    except (CfdError, InputError) as error:
+        row = {"failed": str(error).splitlines()[0]}
+    return {**item, **row}
+
+
+#: Graded O-grids checked at rest (blockMesh + checkMesh) before any run: (cells per radius,
+#: wall grading, annulus cells). The stable mesh of session 2 is (12, 0.1, 8).
+MESH_CHECKS = [
+    (12, 0.1, 8),
+    (16, 0.1, 11),
+    (9, 0.25, 7),
+    (10, 0.25, 8),
+    (12, 0.25, 10),
+    (12, 0.2, 10),
+    (12, 0.3, 12),
+    (16, 0.25, 13),
+    (16, 0.2, 12),
+    (16, 0.3, 12),
+    (20, 0.25, 16),
+]
+
+
+def check_meshes(work: Path, out: Path) -> None:
+    """Mesh quality of the `MESH_CHECKS` O-grids (sloshkit's own checkMesh parsing)."""
+    import math
+
+    from cfd_wall_grading import PATTERNS, tool
+
+    from sloshkit.cfd.case import CaseSpec, FreeDecay
+    from sloshkit.cfd.mesh import wall_cell_size_m
+    from sloshkit.cfd.prepare import write_case
+    from sloshkit.model.liquids import get_liquid
+
+    rows = []
+    for cells, grading, radial in MESH_CHECKS:
+        spec = CaseSpec(
+            0.0205,
+            0.039,
+            get_liquid("water-25C"),
+            FreeDecay(math.radians(3.0)),
+            cells_per_radius=cells,
+            radial_cells=radial,
+            wall_grading=grading,
+        )
+        case = write_case(spec, work / f"mesh-n{cells}-g{grading:g}r{radial}", overwrite=True)
+        tool(case, "blockMesh")
+        log = tool(case, "checkMesh", "-allGeometry")
+        row: dict[str, Any] = {
+            "cells_per_radius": cells,
+            "wall_grading": grading,
+            "radial_cells": radial,
+            "wall_cell_mm": 1e3 * wall_cell_size_m(spec),
+        }
+        for key, pattern in PATTERNS.items():
+            match = re.search(pattern, log)
+            row[key] = float(match.group(1)) if match else None
+        match = re.search(r"^\s*cells:\s+(\d+)", log, re.M)
+        row["cells"] = int(match.group(1)) if match else None
+        rows.append(row)
+        print(json.dumps(row), flush=True)
+    out.write_text(json.dumps(rows, indent=2) + "\n", encoding="utf-8")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-damping3"))
+    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-damping-converge.json")
+    parser.add_argument("--only", nargs="*", default=None, help="run these keys only")
+    parser.add_argument("--list", action="store_true", help="list the plan's keys")
+    parser.add_argument("--check-meshes", action="store_true", help="checkMesh the graded grids")
+    args = parser.parse_args()
+    if args.check_meshes:
+        check_meshes(args.work, ROOT / "docs" / "cfd-damping-graded-meshes.json")
+        return
+    if args.list:
+        print("\n".join(item["key"] for item in PLAN))
+        return
+    for item in PLAN:
+        rows = json.loads(args.out.read_text()) if args.out.is_file() else []
+        if any(r["key"] == item["key"] for r in rows):
+            continue
+        if args.only is not None and item["key"] not in args.only:
+            continue
+        row = run_entry(item, args.work)
+        rows = json.loads(args.out.read_text()) if args.out.is_file() else []
+        rows.append(row)
+        print(json.dumps(row), flush=True)
+        args.out.write_text(json.dumps(rows, indent=2) + "\n", encoding="utf-8")
+
+
+if __name__ == "__main__":
+    main()

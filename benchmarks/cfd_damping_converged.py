@@ -1,0 +1,381 @@
+"""The damping of the seed vial with an uncertainty: step and mesh extrapolation of every run
+of the damping study, estimated from the wall force (docs/cfd-damping-estimators.json).
+
+1. Every run's damping ratio is re-estimated from its wall force (`PRIMARY` of
+   benchmarks/cfd_damping_estimators.py); the estimator's own scatter is recorded.
+2. The coarse uniform mesh (8 cells per radius) is run at steps 2 ms to 62.5 us: its observed
+   order in the step (Celik et al. 2008) over each triple of steps, and Richardson from the
+   finest triple (`sloshkit.cfd.convergence.richardson`), give its zero-step value z8.
+3. Every other mesh, run at fewer and larger steps, is extrapolated by *transferring* the
+   shape of the coarse mesh's step error: a straight line z_M(dt) = a + c z8(dt) through its
+   runs (at steps the coarse mesh also ran), evaluated at z8(0). The uncertainty adds the
+   propagated GCI of z8(0) (times c), and how well one line fits (the spread of the
+   predictions of its pairs of steps; a mesh with one pair takes the largest relative spread
+   seen, a mesh with one step takes c from the others).
+4. The zero-step values of a mesh family are extrapolated in the mesh (Richardson/GCI).
+
+Used by benchmarks/cfd_damping_analysis.py (docs/cfd-damping.json and the docs section).
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import statistics
+from pathlib import Path
+from typing import Any
+
+from cfd_damping_estimators import PRIMARY, STARTS_S
+from cfd_damping_report import MAX_FREQUENCY_ERROR, MAX_LATE_COURANT
+
+from sloshkit.cfd.convergence import (
+    combined_uncertainty,
+    fit_error_terms,
+    observed_order,
+    richardson,
+)
+from sloshkit.cfd.mesh import wall_cell_size_m
+from sloshkit.cfd.spec import CaseSpec
+from sloshkit.model.liquids import get_liquid
+
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = ROOT / "docs"
+OLD_WORK, NEW_WORK = "sloshkit-cfd-damping", "sloshkit-cfd-damping3"
+REFERENCE = 8  # cells per radius of the mesh whose step series is extended
+#: Exponents of the step error: a sqrt(dt) term and Euler's dt (see `two_term`).
+EXPONENTS = (0.5, 1.0)
+SAFETY = 1.25  # Roache's factor for a form whose orders are supported by the data
+#: The estimators whose spread is the estimator's uncertainty: the wall force (where fit and
+#: logdec agree within a few per cent at every step), fit and logdec, three window starts.
+ESTIMATOR_KEYS = [f"force/{method}/{start:g}" for method in ("fit", "logdec") for start in STARTS_S]
+#: Cross-check only: the surface tilt (interface cells only; fit and logdec disagree more).
+CROSS_CHECK_KEYS = [
+    f"tilt/{method}/{start:g}" for method in ("fit", "logdec") for start in STARTS_S
+]
+
+
+def load_runs() -> list[dict[str, Any]]:
+    """Every run of the study (sessions 2 and 3) with its family and re-estimated damping."""
+    estimates = {
+        (r["work"], r["case"]): r
+        for r in json.loads((DOCS / "cfd-damping-estimators.json").read_text())
+    }
+    runs = []
+    sources = (
+        ("cfd-damping-study.json", "uniform", OLD_WORK, ""),
+        ("cfd-damping-graded.json", "graded 0.1", OLD_WORK, "-graded"),
+        ("cfd-damping-converge.json", None, NEW_WORK, None),
+    )
+    for name, family, work, suffix in sources:
+        path = DOCS / name
+        for row in json.loads(path.read_text()) if path.is_file() else []:
+            step_ms = round(row.get("max_step_s", row.get("step_ms", 0) * 1e-3) * 1e3, 6)
+            case = (
+                row["key"]
+                if "key" in row
+                else f"n{row['cells_per_radius']}-dt{step_ms:g}ms{suffix}"
+            )
+            grading = float(row.get("wall_grading") or 1.0)
+            scheme = row.get("ddt_scheme") or "Euler"
+            label = family or (
+                f"graded {grading:g}" if grading < 1.0 else "uniform" if scheme == "Euler"
+                else "uniform CN 0.9"
+            )  # fmt: skip
+            estimate = estimates.get((work, case), {})
+            runs.append(
+                {
+                    "family": label,
+                    "case": case,
+                    "cells_per_radius": int(row["cells_per_radius"]),
+                    "radial_cells": row.get("radial_cells"),
+                    "cells": row.get("cells"),
+                    "wall_cell_m": row.get("wall_cell_m") or wall_cell(row),
+                    "step_s": step_ms * 1e-3,
+                    "ddt_scheme": scheme,
+                    "failed": row.get("failed"),
+                    "max_courant_late": row.get("max_courant_late"),
+                    "frequency_error": row.get("frequency_error"),
+                    "cpu_s": row.get("cpu_s"),
+                    "zeta_probe_fit": row.get("damping_ratio"),
+                    "zeta": estimate.get("primary", math.nan),
+                    "estimator_scatter": estimate.get("scatter", math.nan),
+                    "estimates": estimate.get("estimates", {}),
+                }
+            )
+    return sorted(runs, key=lambda r: (r["family"], r["cells_per_radius"], -r["step_s"]))
+
+
+def wall_cell(row: dict[str, Any]) -> float:
+    """Radial size of the wall cells of a run's mesh [m] (for rows that did not record it)."""
+    spec = CaseSpec(
+        0.0205,
+        0.039,
+        get_liquid("water-25C"),
+        cells_per_radius=int(row["cells_per_radius"]),
+        wall_grading=float(row.get("wall_grading") or 1.0),
+        radial_cells=row.get("radial_cells"),
+    )
+    return wall_cell_size_m(spec)
+
+
+def problem(run: dict[str, Any]) -> str | None:
+    """Why a run is left out of the extrapolation (None: usable)."""
+    if run["failed"]:
+        return f"failed: {run['failed']}"
+    if (run["max_courant_late"] or 0.0) > MAX_LATE_COURANT:
+        return f"parasitic currents: largest Courant number {run['max_courant_late']:.2f} late"
+    if abs(run["frequency_error"] or 0.0) > MAX_FREQUENCY_ERROR:
+        return f"frequency {100 * run['frequency_error']:+.1f} % from theory"
+    if not math.isfinite(run["zeta"]):
+        return "no free decay in the wall force (the amplitude grows or the fit fails)"
+    return None
+
+
+def series(
+    runs: list[dict[str, Any]], family: str, cells: int, key: str = ""
+) -> dict[float, float]:
+    """Damping by step of one mesh (usable runs; ``key`` picks an estimator, else primary)."""
+    out = {}
+    for run in runs:
+        if run["family"] == family and run["cells_per_radius"] == cells and not problem(run):
+            value = run["estimates"].get(key, math.nan) if key else run["zeta"]
+            if math.isfinite(value):
+                out[run["step_s"]] = float(value)
+    return out
+
+
+def step_study(values: dict[float, float]) -> dict[str, Any]:
+    """Observed orders of consecutive triples of halved steps, Richardson of the finest."""
+    steps = sorted(values, reverse=True)
+    orders = []
+    for a, b, c in zip(steps, steps[1:], steps[2:], strict=False):
+        orders.append(
+            {
+                "steps_s": [a, b, c],
+                "order": observed_order([values[c], values[b], values[a]], [b / c, a / b]),
+            }
+        )
+    finest = steps[-3:][::-1]
+    study = richardson([values[s] for s in finest], [finest[1] / finest[0], finest[2] / finest[1]])
+    return {
+        "steps_s": steps,
+        "values": [values[s] for s in steps],
+        "orders": orders,
+        "zero_step": study.to_dict(),
+    }
+
+
+def two_term(values: dict[float, float]) -> dict[str, Any]:
+    """Zero-step value from z(dt) = z0 + a sqrt(dt) + b dt (`fit_error_terms`) over all steps,
+    with its checks: the fit over the coarser steps predicting the finest (a test of the form)
+    and the half-range of z0 over the fits of the finest 3, 4, ... steps."""
+    steps = sorted(values)
+    fit = fit_error_terms([values[s] for s in steps], steps, EXPONENTS)
+    out: dict[str, Any] = {
+        "extrapolated": fit.extrapolated,
+        "coefficients": list(fit.coefficients),
+        "exponents": list(EXPONENTS),
+        "residual_rms": fit.residual_rms,
+        "points": len(steps),
+    }
+    if len(steps) >= 4:
+        coarse = fit_error_terms([values[s] for s in steps[1:]], steps[1:], EXPONENTS)
+        out["prediction_of_finest"] = coarse.predict(steps[0])
+        out["finest"] = values[steps[0]]
+        out["prediction_error"] = coarse.predict(steps[0]) - values[steps[0]]
+        subsets = [
+            fit_error_terms([values[s] for s in steps[:k]], steps[:k], EXPONENTS).extrapolated
+            for k in range(3, len(steps) + 1)
+        ]
+        out["zero_step_of_finest_subsets"] = subsets
+        out["subset_spread"] = 0.5 * (max(subsets) - min(subsets))
+    return out
+
+
+def transfer(
+    mesh: dict[float, float], reference: dict[float, float], z8: float, u8: float
+) -> dict[str, Any]:
+    """Zero-step value of a mesh from the step-error shape of the reference mesh."""
+    steps = sorted(s for s in mesh if s in reference)
+    if len(steps) < 2:
+        return {"steps_s": steps, "points": len(steps)}
+    x = [reference[s] for s in steps]
+    y = [mesh[s] for s in steps]
+    slope, intercept = _line(x, y)
+    value = intercept + slope * z8
+    pairs = [
+        _line([reference[a], reference[b]], [mesh[a], mesh[b]])
+        for a, b in itertools.combinations(steps, 2)
+    ]
+    predictions = [i + c * z8 for c, i in pairs]
+    spread = 0.5 * (max(predictions) - min(predictions)) if len(pairs) > 1 else math.nan
+    return {
+        "steps_s": steps,
+        "points": len(steps),
+        "slope": slope,
+        "slopes_of_pairs": [c for c, _ in pairs],
+        "extrapolated": value,
+        "distance": mesh[steps[0]] - value,
+        "fit_spread": spread,
+        "propagated": abs(slope) * u8,
+    }
+
+
+def _line(x: list[float], y: list[float]) -> tuple[float, float]:
+    """Least-squares line y = c x + a: (c, a)."""
+    mx, my = statistics.fmean(x), statistics.fmean(y)
+    sxx = sum((a - mx) ** 2 for a in x)
+    c = sum((a - mx) * (b - my) for a, b in zip(x, y, strict=True)) / sxx
+    return c, my - c * mx
+
+
+def finish_transfers(
+    results: dict[str, dict[str, Any]],
+    reference: dict[float, float],
+    z8: float,
+    u8: float,
+    meshes: dict[str, dict[float, float]],
+) -> None:
+    """Uncertainties of the transferred values (in place): fit spread where measured, else the
+    largest relative spread seen; one-step meshes take the mean slope of the others."""
+    relative = [
+        r["fit_spread"] / abs(r["distance"])
+        for r in results.values()
+        if r.get("points", 0) >= 3 and math.isfinite(r["fit_spread"]) and r["distance"]
+    ]
+    worst = max(relative) if relative else 0.5
+    slopes = [r["slope"] for r in results.values() if r.get("points", 0) >= 2]
+    for name, r in results.items():
+        if r.get("points", 0) == 1 and slopes:
+            step = r["steps_s"][0]
+            c = statistics.fmean(slopes)
+            spread_c = 0.5 * (max(slopes) - min(slopes))
+            value = meshes[name][step] - c * (reference[step] - z8)
+            r.update(
+                slope=c,
+                extrapolated=value,
+                distance=meshes[name][step] - value,
+                fit_spread=spread_c * abs(reference[step] - z8),
+                propagated=c * u8,
+                slope_from="mean of the other meshes",
+            )
+        elif r.get("points", 0) == 2:
+            r["fit_spread"] = worst * abs(r["distance"])
+            r["fit_spread_from"] = "largest relative spread of the meshes with three steps"
+        if "extrapolated" in r:
+            r["uncertainty"] = combined_uncertainty(r["propagated"], r["fit_spread"])
+
+
+def mesh_study(family: dict[str, dict[str, Any]]) -> dict[str, Any] | None:
+    """Richardson in the mesh over a family's zero-step values (finest = most cells per
+    radius; spacing ~ 1 / cells per radius), with the step uncertainty of the finest mesh."""
+    usable = {int(n): r for n, r in family.items() if "extrapolated" in r}
+    meshes = sorted(usable, reverse=True)[:3]
+    if len(meshes) < 2:
+        return None
+    values = [usable[n]["extrapolated"] for n in meshes]
+    ratios = [meshes[i] / meshes[i + 1] for i in range(len(meshes) - 1)]
+    study = richardson(values, ratios) if len(values) == 3 else richardson(values, ratios, 1.0)
+    step = usable[meshes[0]]["uncertainty"]
+    total = combined_uncertainty(study.uncertainty, step)
+    return {
+        "cells_per_radius": meshes,
+        "mesh": study.to_dict(),
+        "finest_zero_step": values[0],
+        "step_uncertainty_finest": step,
+        "uncertainty": total,
+        "interval": [values[0] - total, values[0] + total],
+    }
+
+
+def analyse(theory: dict[str, float]) -> dict[str, Any]:
+    """Every number of the converged damping study (module docstring)."""
+    runs = load_runs()
+    reference = series(runs, "uniform", REFERENCE)
+    study = step_study(reference)
+    terms = two_term(reference)
+    by_estimator = {}
+    for key in ESTIMATOR_KEYS:
+        values = series(runs, "uniform", REFERENCE, key)
+        if set(reference) <= set(values):
+            by_estimator[key] = two_term(values)["extrapolated"]
+    spread = 0.5 * (max(by_estimator.values()) - min(by_estimator.values()))
+    cross_check = {}
+    for key in CROSS_CHECK_KEYS:
+        values = series(runs, "uniform", REFERENCE, key)
+        if set(reference) <= set(values):
+            cross_check[key] = two_term(values)["extrapolated"]
+    parts = {
+        "subset_spread": terms.get("subset_spread", math.nan),
+        "prediction_error": abs(terms.get("prediction_error", math.nan)),
+        "estimator_spread": spread,
+    }
+    z8 = terms["extrapolated"]
+    u8 = SAFETY * combined_uncertainty(*(v for v in parts.values() if math.isfinite(v)))
+    meshes: dict[str, dict[float, float]] = {}
+    for run in runs:
+        if run["family"] != "uniform CN 0.9":
+            name = f"{run['family']}|{run['cells_per_radius']}"
+            meshes.setdefault(name, series(runs, run["family"], run["cells_per_radius"]))
+    meshes = {n: v for n, v in meshes.items() if v}
+    results = {
+        name: transfer(values, reference, z8, u8)
+        for name, values in meshes.items()
+        if name != f"uniform|{REFERENCE}"
+    }
+    for name, r in results.items():
+        if r["points"] < 2:
+            r["points"], r["steps_s"] = 1, sorted(meshes[name])[:1]
+    finish_transfers(results, reference, z8, u8, meshes)
+    for name, r in results.items():
+        if len(meshes[name]) >= 3:
+            own = two_term(meshes[name])
+            r["own_two_term"] = own["extrapolated"]
+            r["uncertainty"] = combined_uncertainty(
+                r["uncertainty"], r["extrapolated"] - own["extrapolated"]
+            )
+    results[f"uniform|{REFERENCE}"] = {
+        "steps_s": sorted(reference),
+        "points": len(reference),
+        "extrapolated": z8,
+        "uncertainty": u8,
+        "two_term": terms,
+        "uncertainty_parts": parts,
+    }
+    families: dict[str, dict[str, Any]] = {}
+    for name, r in results.items():
+        family, cells = name.split("|")
+        families.setdefault(family, {})[cells] = r
+        sample = next(
+            x for x in runs if x["family"] == family and str(x["cells_per_radius"]) == cells
+        )
+        r.update(
+            cells=sample["cells"],
+            wall_cell_m=sample["wall_cell_m"],
+            radial_cells=sample["radial_cells"],
+            values={str(k): v for k, v in sorted(meshes[name].items())},
+            frequency_errors=[
+                x["frequency_error"]
+                for x in runs
+                if x["family"] == family and str(x["cells_per_radius"]) == cells
+                and not problem(x)
+            ],
+        )  # fmt: skip
+    cn = series(runs, "uniform CN 0.9", REFERENCE)
+    return {
+        "theory": theory,
+        "reference_cells_per_radius": REFERENCE,
+        "primary_estimator": "/".join(f"{p:g}" if isinstance(p, float) else p for p in PRIMARY),
+        "reference_one_term": study,
+        "reference_zero_step_by_estimator": by_estimator,
+        "reference_zero_step_tilt_cross_check": cross_check,
+        "reference_uncertainty": u8,
+        "crank_nicolson": {str(k): v for k, v in sorted(cn.items())},
+        "families": families,
+        "mesh_studies": {f: mesh_study(m) for f, m in families.items()},
+        "runs": [
+            {k: v for k, v in run.items() if k != "estimates"} | {"problem": problem(run)}
+            for run in runs
+        ],
+    }
