@@ -193,6 +193,37 @@ def two_term(values: dict[float, float]) -> dict[str, Any]:
     return out
 
 
+def own_fit(runs: list[dict[str, Any]], family: str, cells: int) -> dict[str, Any]:
+    """Two-term zero-step value of a mesh run at three steps or more, with its uncertainty:
+    `SAFETY` x root-sum-square of the subset spread, the prediction error of the finest step
+    and the spread over the wall-force estimators."""
+    values = series(runs, family, cells)
+    terms = two_term(values)
+    by_estimator = {}
+    for key in ESTIMATOR_KEYS:
+        other = series(runs, family, cells, key)
+        if set(values) <= set(other):
+            by_estimator[key] = two_term({s: other[s] for s in values})["extrapolated"]
+    spread = (
+        0.5 * (max(by_estimator.values()) - min(by_estimator.values()))
+        if by_estimator
+        else math.nan
+    )
+    parts = {
+        "subset_spread": terms.get("subset_spread", math.nan),
+        "prediction_error": abs(terms.get("prediction_error", math.nan)),
+        "estimator_spread": spread,
+    }
+    return {
+        "extrapolated": terms["extrapolated"],
+        "uncertainty": SAFETY
+        * combined_uncertainty(*(v for v in parts.values() if math.isfinite(v))),
+        "two_term": terms,
+        "zero_step_by_estimator": by_estimator,
+        "uncertainty_parts": parts,
+    }
+
+
 def transfer(
     mesh: dict[float, float], reference: dict[float, float], z8: float, u8: float
 ) -> dict[str, Any]:
@@ -289,30 +320,42 @@ def mesh_study(family: dict[str, dict[str, Any]]) -> dict[str, Any] | None:
     }
 
 
+def estimator_check(runs: list[dict[str, Any]]) -> dict[str, Any]:
+    """Fit against log decrement (window from 0.5 s) on the probe elevation and on the wall
+    force, over the usable uniform Euler runs: the worst ratio and the worst relative gap."""
+    worst_ratio, worst_case, worst_force = 1.0, "", 0.0
+    for run in runs:
+        e = run["estimates"]
+        if run["family"] != "uniform" or problem(run):
+            continue
+        fit, logdec = e.get("elevation/fit/0.5", math.nan), e.get("elevation/logdec/0.5", math.nan)
+        if fit > 0 and logdec > 0 and max(fit / logdec, logdec / fit) > worst_ratio:
+            worst_ratio = max(fit / logdec, logdec / fit)
+            worst_case = (
+                f"{run['cells_per_radius']}/radius at {1e3 * run['step_s']:g} ms: "
+                f"{fit:.4f} against {logdec:.4f}"
+            )
+        force = abs(e["force/fit/0.5"] - e["force/logdec/0.5"]) / e["force/fit/0.5"]
+        worst_force = max(worst_force, force)
+    return {
+        "probe_worst_ratio": worst_ratio,
+        "probe_worst_case": worst_case,
+        "force_worst_relative": worst_force,
+    }
+
+
 def analyse(theory: dict[str, float]) -> dict[str, Any]:
     """Every number of the converged damping study (module docstring)."""
     runs = load_runs()
     reference = series(runs, "uniform", REFERENCE)
     study = step_study(reference)
-    terms = two_term(reference)
-    by_estimator = {}
-    for key in ESTIMATOR_KEYS:
-        values = series(runs, "uniform", REFERENCE, key)
-        if set(reference) <= set(values):
-            by_estimator[key] = two_term(values)["extrapolated"]
-    spread = 0.5 * (max(by_estimator.values()) - min(by_estimator.values()))
+    own = own_fit(runs, "uniform", REFERENCE)
+    z8, u8 = own["extrapolated"], own["uncertainty"]
     cross_check = {}
     for key in CROSS_CHECK_KEYS:
         values = series(runs, "uniform", REFERENCE, key)
         if set(reference) <= set(values):
             cross_check[key] = two_term(values)["extrapolated"]
-    parts = {
-        "subset_spread": terms.get("subset_spread", math.nan),
-        "prediction_error": abs(terms.get("prediction_error", math.nan)),
-        "estimator_spread": spread,
-    }
-    z8 = terms["extrapolated"]
-    u8 = SAFETY * combined_uncertainty(*(v for v in parts.values() if math.isfinite(v)))
     meshes: dict[str, dict[float, float]] = {}
     for run in runs:
         if run["family"] != "uniform CN 0.9":
@@ -330,18 +373,24 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
     finish_transfers(results, reference, z8, u8, meshes)
     for name, r in results.items():
         if len(meshes[name]) >= 3:
-            own = two_term(meshes[name])
-            r["own_two_term"] = own["extrapolated"]
-            r["uncertainty"] = combined_uncertainty(
-                r["uncertainty"], r["extrapolated"] - own["extrapolated"]
+            family, cells = name.split("|")
+            fit = own_fit(runs, family, int(cells))
+            r["transfer_extrapolated"], r["transfer_uncertainty"] = (
+                r.pop("extrapolated"),
+                r.pop("uncertainty"),
             )
+            if fit["two_term"]["points"] == 3:  # no test of the form on this mesh
+                fit["uncertainty_parts"]["transfer_difference"] = abs(
+                    fit["extrapolated"] - r["transfer_extrapolated"]
+                )
+                fit["uncertainty"] = SAFETY * combined_uncertainty(
+                    *(v for v in fit["uncertainty_parts"].values() if math.isfinite(v))
+                )
+            r.update(fit)
     results[f"uniform|{REFERENCE}"] = {
         "steps_s": sorted(reference),
         "points": len(reference),
-        "extrapolated": z8,
-        "uncertainty": u8,
-        "two_term": terms,
-        "uncertainty_parts": parts,
+        **own,
     }
     families: dict[str, dict[str, Any]] = {}
     for name, r in results.items():
@@ -364,11 +413,12 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
         )  # fmt: skip
     cn = series(runs, "uniform CN 0.9", REFERENCE)
     return {
+        "estimator_check": estimator_check(runs),
         "theory": theory,
         "reference_cells_per_radius": REFERENCE,
         "primary_estimator": "/".join(f"{p:g}" if isinstance(p, float) else p for p in PRIMARY),
         "reference_one_term": study,
-        "reference_zero_step_by_estimator": by_estimator,
+        "reference_zero_step_by_estimator": own["zero_step_by_estimator"],
         "reference_zero_step_tilt_cross_check": cross_check,
         "reference_uncertainty": u8,
         "crank_nicolson": {str(k): v for k, v in sorted(cn.items())},
