@@ -67,6 +67,7 @@ PLAN = [
     entry(11, 0.25),
     entry(8, 0.25, CN),
     entry(8, 0.0625),
+    entry(8, 0.125, CN),
     # the wall-graded family at a fixed grading of 0.25 (docs/cfd-damping-graded-meshes.json):
     # cells per radius and annulus cells refined together by about 4/3
     entry(9, 2.0, grading=0.25, radial=7),
@@ -77,6 +78,7 @@ PLAN = [
     entry(9, 0.5, grading=0.25, radial=7),
     entry(16, 1.0, grading=0.25, radial=13),
     entry(12, 0.5, grading=0.25, radial=10),
+    entry(9, 0.25, grading=0.25, radial=7),
 ]
 
 

@@ -261,35 +261,44 @@ def _line(x: list[float], y: list[float]) -> tuple[float, float]:
     return c, my - c * mx
 
 
+def _split(name: str) -> tuple[str, int]:
+    family, cells = name.split("|")
+    return family, int(cells)
+
+
+def _kind(name: str) -> str:
+    """uniform or graded."""
+    return name.split("|")[0].split(" ")[0]
+
+
 def finish_transfers(
     results: dict[str, dict[str, Any]],
     reference: dict[float, float],
-    z8: float,
-    u8: float,
+    z_ref: float,
+    u_ref: float,
     meshes: dict[str, dict[float, float]],
+    worst: float,
 ) -> None:
-    """Uncertainties of the transferred values (in place): fit spread where measured, else the
-    largest relative spread seen; one-step meshes take the mean slope of the others."""
-    relative = [
-        r["fit_spread"] / abs(r["distance"])
-        for r in results.values()
-        if r.get("points", 0) >= 3 and math.isfinite(r["fit_spread"]) and r["distance"]
-    ]
-    worst = max(relative) if relative else 0.5
-    slopes = [r["slope"] for r in results.values() if r.get("points", 0) >= 2]
+    """Uncertainties of the transferred values of one kind of mesh (in place): the fit spread
+    where measured, else ``worst`` (the largest relative spread seen) times the distance; a
+    one-step mesh takes the mean slope of the others (a slope of 1 +- 0.25, the same step
+    error as its reference, when there is none)."""
+    slopes = [x["slope"] for x in results.values() if x.get("points", 0) >= 2]
     for name, r in results.items():
-        if r.get("points", 0) == 1 and slopes:
+        if r.get("points", 0) == 1:
             step = r["steps_s"][0]
-            c = statistics.fmean(slopes)
-            spread_c = 0.5 * (max(slopes) - min(slopes))
-            value = meshes[name][step] - c * (reference[step] - z8)
+            c = statistics.fmean(slopes) if slopes else 1.0
+            spread_c = 0.5 * (max(slopes) - min(slopes)) if slopes else 0.25
+            value = meshes[name][step] - c * (reference[step] - z_ref)
             r.update(
                 slope=c,
                 extrapolated=value,
                 distance=meshes[name][step] - value,
-                fit_spread=spread_c * abs(reference[step] - z8),
-                propagated=c * u8,
-                slope_from="mean of the other meshes",
+                fit_spread=spread_c * abs(reference[step] - z_ref),
+                propagated=c * u_ref,
+                slope_from="mean of the meshes of its kind with two steps or more"
+                if slopes
+                else "1 ± 0.25 assumed (no other mesh of its kind with two steps)",
             )
         elif r.get("points", 0) == 2:
             r["fit_spread"] = worst * abs(r["distance"])
@@ -350,7 +359,7 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
     reference = series(runs, "uniform", REFERENCE)
     study = step_study(reference)
     own = own_fit(runs, "uniform", REFERENCE)
-    z8, u8 = own["extrapolated"], own["uncertainty"]
+    u8 = own["uncertainty"]
     cross_check = {}
     for key in CROSS_CHECK_KEYS:
         values = series(runs, "uniform", REFERENCE, key)
@@ -362,23 +371,43 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
             name = f"{run['family']}|{run['cells_per_radius']}"
             meshes.setdefault(name, series(runs, run["family"], run["cells_per_radius"]))
     meshes = {n: v for n, v in meshes.items() if v}
-    results = {
-        name: transfer(values, reference, z8, u8)
-        for name, values in meshes.items()
-        if name != f"uniform|{REFERENCE}"
+    fits = {
+        name: own_fit(runs, *_split(name)) for name, values in meshes.items() if len(values) >= 3
     }
+    # The reference of each kind (uniform, graded): its mesh with the most steps.
+    references = {"uniform": f"uniform|{REFERENCE}"}
+    for name in sorted(fits, key=lambda n: (-len(meshes[n]), n)):
+        references.setdefault(_kind(name), name)
+    results: dict[str, dict[str, Any]] = {}
+    groups = []
+    for kind in sorted({_kind(n) for n in meshes}):
+        ref = references.get(kind, references["uniform"])
+        zr, ur = fits[ref]["extrapolated"], fits[ref]["uncertainty"]
+        group = {
+            n: transfer(v, meshes[ref], zr, ur) | {"reference": ref}
+            for n, v in meshes.items()
+            if _kind(n) == kind and n != ref
+        }
+        for n, r in group.items():
+            if r["points"] < 2:
+                r["points"], r["steps_s"] = 1, sorted(meshes[n])[:1]
+        groups.append((group, ref, zr, ur))
+    relative = [
+        r["fit_spread"] / abs(r["distance"])
+        for group, *_ in groups
+        for r in group.values()
+        if r["points"] >= 3 and math.isfinite(r["fit_spread"]) and r["distance"]
+    ]
+    worst = max(relative) if relative else 0.5
+    for group, ref, zr, ur in groups:
+        finish_transfers(group, meshes[ref], zr, ur, meshes, worst)
+        results.update(group)
+        results[ref] = {"steps_s": sorted(meshes[ref]), "points": len(meshes[ref]), **fits[ref]}
     for name, r in results.items():
-        if r["points"] < 2:
-            r["points"], r["steps_s"] = 1, sorted(meshes[name])[:1]
-    finish_transfers(results, reference, z8, u8, meshes)
-    for name, r in results.items():
-        if len(meshes[name]) >= 3:
-            family, cells = name.split("|")
-            fit = own_fit(runs, family, int(cells))
-            r["transfer_extrapolated"], r["transfer_uncertainty"] = (
-                r.pop("extrapolated"),
-                r.pop("uncertainty"),
-            )
+        if name in fits and "slope" in r:  # own fit first, the transfer as its check
+            fit = fits[name]
+            r["transfer_extrapolated"] = r.pop("extrapolated")
+            r["transfer_uncertainty"] = r.pop("uncertainty")
             if fit["two_term"]["points"] == 3:  # no test of the form on this mesh
                 fit["uncertainty_parts"]["transfer_difference"] = abs(
                     fit["extrapolated"] - r["transfer_extrapolated"]
@@ -387,13 +416,8 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
                     *(v for v in fit["uncertainty_parts"].values() if math.isfinite(v))
                 )
             r.update(fit)
-    results[f"uniform|{REFERENCE}"] = {
-        "steps_s": sorted(reference),
-        "points": len(reference),
-        **own,
-    }
     families: dict[str, dict[str, Any]] = {}
-    for name, r in results.items():
+    for name, r in sorted(results.items(), key=lambda kv: (kv[0][0] != "u", kv[0])):
         family, cells = name.split("|")
         families.setdefault(family, {})[cells] = r
         sample = next(
@@ -412,7 +436,9 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
             ],
         )  # fmt: skip
     cn = series(runs, "uniform CN 0.9", REFERENCE)
+    cn_study = step_study(cn) if len(cn) >= 3 else None
     return {
+        "crank_nicolson_steps": cn_study,
         "estimator_check": estimator_check(runs),
         "theory": theory,
         "reference_cells_per_radius": REFERENCE,
