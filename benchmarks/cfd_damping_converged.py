@@ -45,6 +45,9 @@ OLD_WORK, NEW_WORK = "sloshkit-cfd-damping", "sloshkit-cfd-damping3"
 REFERENCE = 8  # cells per radius of the mesh whose step series is extended
 #: Exponents of the step error: a sqrt(dt) term and Euler's dt (see `two_term`).
 EXPONENTS = (0.5, 1.0)
+#: Largest ratio of high- to low-frequency wall force (`noise_ratio`) of a clean run: clean
+#: runs stay at or below 0.23, runs with parasitic currents at or above 0.88.
+MAX_FORCE_NOISE = 0.5
 SAFETY = 1.25  # Roache's factor for a form whose orders are supported by the data
 #: The estimators whose spread is the estimator's uncertainty: the wall force (where fit and
 #: logdec agree within a few per cent at every step), fit and logdec, three window starts.
@@ -100,6 +103,7 @@ def load_runs() -> list[dict[str, Any]]:
                     "zeta_probe_fit": row.get("damping_ratio"),
                     "zeta": estimate.get("primary", math.nan),
                     "estimator_scatter": estimate.get("scatter", math.nan),
+                    "force_noise_ratio": estimate.get("force_noise_ratio", math.nan),
                     "estimates": estimate.get("estimates", {}),
                 }
             )
@@ -125,6 +129,11 @@ def problem(run: dict[str, Any]) -> str | None:
         return f"failed: {run['failed']}"
     if (run["max_courant_late"] or 0.0) > MAX_LATE_COURANT:
         return f"parasitic currents: largest Courant number {run['max_courant_late']:.2f} late"
+    if run["force_noise_ratio"] > MAX_FORCE_NOISE:
+        return (
+            f"parasitic currents: wall-force noise above 15 Hz {run['force_noise_ratio']:.1f}× "
+            "the slosh signal"
+        )
     if abs(run["frequency_error"] or 0.0) > MAX_FREQUENCY_ERROR:
         return f"frequency {100 * run['frequency_error']:+.1f} % from theory"
     if not math.isfinite(run["zeta"]):

@@ -39,6 +39,7 @@ from sloshkit.errors import InputError, ValidityWarning
 ROOT = Path(__file__).resolve().parent.parent
 STARTS_S = (0.3, 0.5, 0.7)
 PRIMARY = ("force", "fit", 0.5)
+NOISE_CUTOFF_HZ = 15.0  # three times the first-mode frequency
 WORKS = (Path("/tmp/sloshkit-cfd-damping"), Path("/tmp/sloshkit-cfd-damping3"))
 
 
@@ -59,6 +60,18 @@ def zeta(time_s: np.ndarray, values: np.ndarray, method: str, start: float, end:
         return math.nan
     value = result.damping_ratio
     return math.nan if value is None else float(value)
+
+
+def noise_ratio(time_s: np.ndarray, values: np.ndarray, start_s: float = 0.5) -> float:
+    """RMS of the part of a signal above `NOISE_CUTOFF_HZ` over the RMS of the part below,
+    after ``start_s`` (zero-phase 4th-order Butterworth): the spurious high-frequency content
+    that parasitic currents put into the wall force."""
+    from scipy.signal import butter, sosfiltfilt
+
+    sos = butter(4, NOISE_CUTOFF_HZ, fs=1.0 / float(time_s[1] - time_s[0]), output="sos")
+    smooth = sosfiltfilt(sos, values)
+    inside = time_s > start_s
+    return float(np.std((values - smooth)[inside]) / np.std(smooth[inside]))
 
 
 def summarise(values: dict[str, float]) -> tuple[float, float]:
@@ -106,6 +119,7 @@ def estimate(case: Path) -> dict[str, Any] | None:
         "record": json.loads(run.read_text()) if run.is_file() else {},
         "primary": primary,
         "scatter": scatter,
+        "force_noise_ratio": noise_ratio(t, signals.force_x_n),
         "estimates": values,
     }
 
@@ -117,6 +131,11 @@ def main() -> None:
     args = parser.parse_args()
     rows = json.loads(args.out.read_text()) if args.out.is_file() else []
     known = {(r["work"], r["case"]) for r in rows}
+    for row in rows:  # rows estimated before the noise ratio was recorded
+        case = Path("/tmp") / row["work"] / row["case"]
+        if "force_noise_ratio" not in row and case.is_dir():
+            signals = read_signals(case)
+            row["force_noise_ratio"] = noise_ratio(signals.time_s, signals.force_x_n)
     for work in args.works:
         for case in sorted(work.iterdir()) if work.is_dir() else []:
             if (work.name, case.name) in known:
