@@ -1,10 +1,12 @@
 """Richardson extrapolation and the grid convergence index (GCI) of a CFD quantity.
 
-Used for the CFD damping ratio of the seed vial (``benchmarks/cfd_damping_study.py``): first
-in the time step on each mesh (Euler's first-order error), then in the mesh on the step-free
-values. The procedure is that of Celik et al. (2008) for three solutions with refinement
-ratios that need not be equal; with two solutions (or an order that is assumed rather than
-observed) Roache's safety factor 3 replaces 1.25.
+Used for the CFD damping ratio of the seed vial (``benchmarks/cfd_damping_analysis.py``):
+first in the time step on each mesh, then in the mesh on the step-free values. The procedure
+is that of Celik et al. (2008) for three solutions with refinement ratios that need not be
+equal; with two solutions (or an order that is assumed rather than observed) Roache's safety
+factor 3 replaces 1.25. When the error has two leading terms of different orders (interFoam's
+damping in the time step: a sqrt(dt) and a dt term), the observed order drifts with the
+spacing and `fit_error_terms` fits both terms instead (generalised Richardson extrapolation).
 
 References
 ----------
