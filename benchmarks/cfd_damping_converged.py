@@ -293,8 +293,6 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
     runs = load_runs()
     reference = series(runs, "uniform", REFERENCE)
     study = step_study(reference)
-    own = own_fit(runs, "uniform", REFERENCE)
-    u8 = own["uncertainty"]
     cross_check = {}
     for key in CROSS_CHECK_KEYS:
         values = series(runs, "uniform", REFERENCE, key)
@@ -309,6 +307,21 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
     fits = {
         name: own_fit(runs, *_split(name)) for name, values in meshes.items() if len(values) >= 3
     }
+    # A second scheme on the reference mesh: Crank-Nicolson's single-term Richardson, when its
+    # order is observed, must agree with Euler's two-term value; their gap adds to the
+    # reference's uncertainty (and so to every transferred value).
+    cn = series(runs, "uniform CN 0.9", REFERENCE)
+    cn_study = step_study(cn) if len(cn) >= 3 else None
+    reference_fit = fits[f"uniform|{REFERENCE}"]
+    if cn_study is not None and cn_study["zero_step"]["order_observed"]:
+        parts = reference_fit["uncertainty_parts"]
+        parts["scheme_difference"] = abs(
+            reference_fit["extrapolated"] - cn_study["zero_step"]["extrapolated"]
+        )
+        reference_fit["uncertainty"] = SAFETY * combined_uncertainty(
+            *(v for v in parts.values() if math.isfinite(v))
+        )
+    own, u8 = reference_fit, reference_fit["uncertainty"]
     # The reference of each kind (uniform, graded): its mesh with the most steps.
     references = {"uniform": f"uniform|{REFERENCE}"}
     for name in sorted(fits, key=lambda n: (-len(meshes[n]), n)):
@@ -370,8 +383,6 @@ def analyse(theory: dict[str, float]) -> dict[str, Any]:
                 and not problem(x)
             ],
         )  # fmt: skip
-    cn = series(runs, "uniform CN 0.9", REFERENCE)
-    cn_study = step_study(cn) if len(cn) >= 3 else None
     return {
         "crank_nicolson_steps": cn_study,
         "estimator_check": estimator_check(runs),

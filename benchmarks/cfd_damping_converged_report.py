@@ -80,10 +80,10 @@ def render_reference(document: dict[str, Any]) -> list[str]:
         f"  ζ₀ by estimator (wall force, fit and logdec, windows from 0.3/0.5/0.7 s): "
         f"{_f(min(estimators.values()))}–{_f(max(estimators.values()))}; from the surface tilt "
         f"(cross-check): {_f(min(tilt.values()))}–{_f(max(tilt.values()))}. Uncertainty of ζ₀: "
-        f"{document['safety']:g} × root-sum-square of the subset spread "
-        f"({_f(parts['subset_spread'])}), the prediction error "
-        f"({_f(parts['prediction_error'])}) and the estimator spread "
-        f"({_f(parts['estimator_spread'])}) = **{_f(document['reference_uncertainty'])}**."
+        f"{document['safety']:g} × root-sum-square of "
+        + ", ".join(f"the {k.replace('_', ' ')} ({_f(v)})" for k, v in parts.items())
+        + f" = **{_f(document['reference_uncertainty'])}** (the scheme difference: Euler's "
+        "two-term value against Crank–Nicolson's Richardson value, below)."
     )
     cn = document["crank_nicolson"]
     if cn:

@@ -262,10 +262,15 @@ def limits(document: dict[str, Any]) -> list[str]:
             f"{study['mesh']['safety_factor']:g}): the largest part of the reported uncertainty."
         )
     member = document["families"]["uniform"][str(document["reference_cells_per_radius"])]
+    parts = member["uncertainty_parts"]
     lines.append(
         f"- **The estimator** on the 8/radius mesh: ζ₀ ranges over "
         f"{_f(2 * member['uncertainty_parts']['estimator_spread'])} between the wall-force "
-        "estimators (fit or log decrement, window from 0.3, 0.5 or 0.7 s): the largest part "
-        "of that mesh's uncertainty."
+        "estimators (fit or log decrement, window from 0.3, 0.5 or 0.7 s)"
+        + (
+            ": the largest part of that mesh's uncertainty."
+            if parts["estimator_spread"] >= max(v for v in parts.values() if math.isfinite(v))
+            else "."
+        )
     )
     return lines
