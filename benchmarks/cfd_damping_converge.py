@@ -79,8 +79,8 @@ PLAN = [
     entry(16, 2.0, grading=0.25, radial=13),
     entry(9, 0.5, grading=0.25, radial=7),
     entry(16, 1.0, grading=0.25, radial=13),
-    entry(12, 0.5, grading=0.25, radial=10),
-    entry(9, 0.25, grading=0.25, radial=7),
+    # not run: 12/radius at 0.5 ms and 9/radius at 0.25 ms (the 9/radius run at 0.5 ms was
+    # already swamped by parasitic currents)
 ]
 
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import json
 import math
+import statistics
 from pathlib import Path
 from typing import Any
 
@@ -281,10 +282,18 @@ def estimator_check(runs: list[dict[str, Any]]) -> dict[str, Any]:
             )
         force = abs(e["force/fit/0.5"] - e["force/logdec/0.5"]) / e["force/fit/0.5"]
         worst_force = max(worst_force, force)
+    halves = [
+        (r["estimates"]["force/fit/first-half"], r["estimates"]["force/fit/second-half"])
+        for r in runs
+        if not problem(r) and r["family"] != "uniform CN 0.9"
+    ]
+    relative_halves = [abs(a - b) / (0.5 * (a + b)) for a, b in halves if a > 0 and b > 0]
     return {
         "probe_worst_ratio": worst_ratio,
         "probe_worst_case": worst_case,
         "force_worst_relative": worst_force,
+        "force_halves_worst_relative": max(relative_halves),
+        "force_halves_median_relative": statistics.median(relative_halves),
     }
 
 
