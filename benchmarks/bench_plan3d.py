@@ -106,6 +106,7 @@ def series_table(
     manifest: dict[str, dict[str, str]],
     residual_m: float | None,
     transcription: bool,
+    series: tuple[str, ...] = SERIES,
 ) -> list[str]:
     """Rows of one table over the series and the full and half measured limits: the residual
     limit is ``residual_m`` or, when None, the measured residual (halved with the height)."""
@@ -115,7 +116,7 @@ def series_table(
         "| compute retime / shaped / tilt |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for name in SERIES:
+    for name in series:
         trajectory = read_pose_file(DATA / "poses" / f"{name}.csv")
         time_s = trajectory.time_s
         positions, quaternions = trajectory.position_m, trajectory.quaternion_xyzw
@@ -171,6 +172,8 @@ def main() -> None:
     parser.add_argument("--transcription", action="store_true")
     parser.add_argument("--out", type=Path, default=None)
     parser.add_argument("--docs", type=Path, default=None)
+    parser.add_argument("--series", nargs="*", default=None, help="path classes (LE, RD, TRD)")
+    parser.add_argument("--tables", default="primary,strict,waypoints")
     arguments = parser.parse_args()
     warnings.simplefilter("ignore", ValidityWarning)
     model = equivalent_model(
@@ -178,37 +181,28 @@ def main() -> None:
     )
     with (DATA / "manifest.csv").open() as stream:
         manifest = {row["name"]: row for row in csv.DictReader(stream)}
-    rows = [
-        "Primary: both limits from the measured run (peak `meas_peak_m`, residual the measured "
-        "residual) and half of both:",
-        "",
-        *series_table(model, manifest, None, arguments.transcription),
-        "",
-        "Stricter: height limit as above, residual limit fixed at 2 mm:",
-        "",
-        *series_table(model, manifest, RESIDUAL_M, arguments.transcription),
-    ]
-    # 20 waypoints: a zig-zag in the plane with a rise, 30 mm blends.
-    points = np.array([[0.12 * i, 0.1 * (i % 2), 0.01 * i] for i in range(20)])
-    problem = PathProblem(
-        path_from_waypoints(points, 0.03), LIMITS, SpatialSloshLimits(0.015, RESIDUAL_M), model
+    series = tuple(
+        name for name in SERIES if not arguments.series or name.split("_")[0] in arguments.series
     )
-    started, cpu = time.perf_counter(), time.process_time()
-    result = plan_path(problem, "auto", tilt=True, transcription=arguments.transcription)
-    total, cpu = time.perf_counter() - started, time.process_time() - cpu
-    rows.append("")
-    rows.append(
-        f"20 waypoints (zig-zag, {problem.path.length_m:.2f} m, 30 mm blends), 15 mm / 2 mm "
-        f"limits; `auto` with tilt took {total:.1f} s wall, {cpu:.1f} s CPU in all:"
-    )
-    rows.append("")
-    rows.append("| method | duration | feasible | compute |")
-    rows.append("|---|---|---|---|")
-    for candidate in result.candidates:
-        rows.append(
-            f"| {candidate.method} | {candidate.duration_s:.2f} s | {candidate.feasible} "
-            f"| {candidate.compute_time_s:.1f} s |"
-        )
+    tables = arguments.tables.split(",")
+    rows: list[str] = []
+    if "primary" in tables:
+        rows += [
+            "Primary: both limits from the measured run (peak `meas_peak_m`, residual the "
+            "measured residual) and half of both:",
+            "",
+            *series_table(model, manifest, None, arguments.transcription, series),
+            "",
+        ]
+    if "strict" in tables:
+        rows += [
+            "Stricter: height limit as above, residual limit fixed at 2 mm:",
+            "",
+            *series_table(model, manifest, RESIDUAL_M, arguments.transcription, series),
+            "",
+        ]
+    if "waypoints" in tables:
+        rows += waypoint_table(model, arguments.transcription)
     load = os.getloadavg()[0]
     rows.append("")
     rows.append(f"(load average {load:.1f} on {os.cpu_count()} cores when the run ended)")
@@ -222,6 +216,31 @@ def main() -> None:
         head, _, rest = document.partition(start)
         _, _, tail = rest.partition(end)
         arguments.docs.write_text(f"{head}{start}\n{text}\n{end}{tail}")
+
+
+def waypoint_table(model: object, transcription: bool) -> list[str]:
+    """The 20-waypoint compute-time case: rows of its table."""
+    points = np.array([[0.12 * i, 0.1 * (i % 2), 0.01 * i] for i in range(20)])
+    problem = PathProblem(
+        path_from_waypoints(points, 0.03), LIMITS, SpatialSloshLimits(0.015, RESIDUAL_M), model
+    )
+    started, cpu = time.perf_counter(), time.process_time()
+    result = plan_path(problem, "auto", tilt=True, transcription=transcription)
+    total, cpu = time.perf_counter() - started, time.process_time() - cpu
+    rows: list[str] = []
+    rows.append(
+        f"20 waypoints (zig-zag, {problem.path.length_m:.2f} m, 30 mm blends), 15 mm / 2 mm "
+        f"limits; `auto` with tilt took {total:.1f} s wall, {cpu:.1f} s CPU in all:"
+    )
+    rows.append("")
+    rows.append("| method | duration | feasible | compute |")
+    rows.append("|---|---|---|---|")
+    for candidate in result.candidates:
+        rows.append(
+            f"| {candidate.method} | {candidate.duration_s:.2f} s | {candidate.feasible} "
+            f"| {candidate.compute_time_s:.1f} s |"
+        )
+    return rows
 
 
 if __name__ == "__main__":

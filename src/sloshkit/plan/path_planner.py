@@ -34,6 +34,7 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.shaping import Shaper
+from sloshkit.plan.path_improve import warped_candidates
 from sloshkit.plan.path_limits import machine_stretch, machine_violations, path_deviation
 from sloshkit.plan.path_result import (
     PathCandidate,
@@ -44,12 +45,7 @@ from sloshkit.plan.path_result import (
     verify,
 )
 from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import (
-    fastest_capped,
-    slowed_until,
-    stretcher,
-    warped_candidates,
-)
+from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
 from sloshkit.plan.retime import (
     ShaperFactory,
     axis_shaped_samples,

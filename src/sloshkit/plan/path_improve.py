@@ -1,0 +1,281 @@
+"""Local improvement of verified ``retime`` timings: the searches of `path_search` and
+`path_slp` run from verified seeds, each result verified again.
+
+Two kinds of search are combined (`warped_candidates`):
+
+- **screened chains** (`SEARCH_CHAINS`): the pattern search
+  (`sloshkit.plan.path_search.warp_search`) and then the SLP (`sloshkit.plan.path_slp.slp_search`)
+  under the linear screen; the result is verified, and when the nonlinear model exceeds a limit
+  the screen passed, the screen's limit is tightened and the chain repeated from the seed
+  slowed until it passes the tighter screen (a bounded verify-and-tighten loop);
+- **polishing**: the SLP with the nonlinear model as its reference (every accepted step is
+  simulated with it and the LP's limits corrected by the gap between the two models), from
+  every verified seed and from the fastest verified result of the chains, so each of its steps
+  is a verified improvement.
+
+The fastest verified candidate wins, so ``retime`` is never slower than its seeds.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+
+from sloshkit.plan.path_limits import machine_violations
+from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
+from sloshkit.plan.path_screen import linear_screen, screen_ok
+from sloshkit.plan.path_search import (
+    WARP_KNOTS,
+    WARP_ROUNDS,
+    WARP_SAMPLE_BUDGET,
+    WARP_SCREENS,
+    slowed_until,
+    stretcher,
+    warp_search,
+)
+from sloshkit.plan.path_slp import SLP_KNOTS, slp_search
+from sloshkit.plan.spatial import SEARCH_MARGIN, PathProblem, PoseSamples
+from sloshkit.plan.timing import Timing
+
+#: The screened search chains `warped_candidates` runs from the fastest verified seed, each
+#: search continued from the previous one's result.
+SEARCH_CHAINS: tuple[tuple[str, ...], ...] = (("warp", "slp"),)
+#: How many of the fastest verified seeds the screened chains start from.
+CHAIN_SEEDS = 1
+#: Largest number of steps (each a linear screen or a nonlinear simulation) of one polishing.
+POLISH_SCREENS = 200
+
+Seeded = tuple[PathCandidate, Timing]
+
+
+def _budget(problem: PathProblem, timing: Timing, most: int) -> int:
+    """Screens one search may spend: at most ``most`` and `WARP_SAMPLE_BUDGET` samples."""
+    samples = timing.duration_s / problem.sample_period_s
+    return max(20, min(most, int(WARP_SAMPLE_BUDGET / samples)))
+
+
+def _chain(
+    problem: PathProblem,
+    seed: Timing,
+    passes: Callable[[PoseSamples], bool],
+    chain: tuple[str, ...],
+    budget: int,
+) -> tuple[Timing, int]:
+    """Run the searches of ``chain`` in turn, each from the previous one's result."""
+    screens = 0
+    timing = seed
+    for search in chain:
+        if search == "slp":
+            timing, spent = slp_search(problem, timing, passes, SLP_KNOTS, budget)
+        else:
+            timing, spent = warp_search(problem, timing, passes, WARP_KNOTS, budget)
+        screens += spent
+    return timing, screens
+
+
+def _tightened(limit: float, current: float, nonlinear: float, screen: float) -> float:
+    """The screen's next limit when the nonlinear model gave ``nonlinear`` against the screen's
+    ``screen`` (``current`` the screen's limit so far, ``limit`` the true one, 2 % kept): the
+    mean of the limit scaled by the excess and the limit lowered by the gap between the two
+    models (for the residual of large slosh the gap is nearly additive, so scaling alone takes
+    several rounds), not below half the scaled one; unchanged when the limit holds."""
+    target = 0.98 * limit
+    if nonlinear <= target:
+        return current
+    scaled = current * target / nonlinear
+    shifted = (target - nonlinear + screen) / (1.0 - SEARCH_MARGIN)
+    return min(current, max(0.5 * (scaled + shifted), 0.5 * scaled))
+
+
+def _screened(
+    problem: PathProblem,
+    seed: Seeded,
+    chain: tuple[str, ...],
+    verifier: Verifier,
+    best: float,
+    started: float,
+) -> list[Seeded]:
+    """The verified results of one screened chain from one seed, with the verify-and-tighten
+    rounds (module docstring); the last failing improvement slowed uniformly when every round
+    fails (`sloshkit.plan.path_result.verified_candidate`)."""
+    models = problem.models()
+    limits = problem.slosh
+    candidate, timing = seed
+    height, residual = limits.max_height_m, limits.max_residual_height_m
+    budget = _budget(problem, timing, WARP_SCREENS)
+    results: list[Seeded] = []
+    improved: tuple[Timing, int] | None = None
+    for _ in range(WARP_ROUNDS):
+        tight = replace(
+            problem, slosh=replace(limits, max_height_m=height, max_residual_height_m=residual)
+        )
+
+        def passes(poses: PoseSamples, tight: PathProblem = tight) -> bool:
+            return screen_ok(tight, linear_screen(models, poses)) and not machine_violations(
+                problem, poses, False
+            )
+
+        start = timing
+        if (height, residual) != (limits.max_height_m, limits.max_residual_height_m):
+            # A tightened screen: start from the seed slowed uniformly until it passes.
+            slowed = slowed_until(tight, stretcher(problem, timing))
+            if slowed is None:
+                break
+            start = timing.stretched(slowed[0])
+        warped, screens = _chain(tight, start, passes, chain, budget)
+        if warped is start or warped.duration_s >= best:
+            break
+        poses = stretcher(problem, warped)(1.0)
+        check = verifier(problem, poses, False)
+        message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
+        detail = {**candidate.detail, "warp_screens": screens, "search": "+".join(chain)}
+        detail["stretch"] = 1.0
+        results.append(
+            (PathCandidate(candidate.method, poses, check, 0.0, message, detail), warped)
+        )
+        if check.feasible:
+            return results
+        improved = (warped, screens)
+        # The nonlinear model exceeds what the screen predicted: tighten the screen's limit
+        # and search again.
+        screen = linear_screen(models, poses)
+        tighter = (
+            _tightened(limits.max_height_m, height, check.peak_height_m, screen.peak_height_m),
+            _tightened(
+                limits.max_residual_height_m,
+                residual,
+                check.residual_height_m,
+                screen.residual_height_m,
+            ),
+        )
+        if tighter == (height, residual):
+            break
+        height, residual = tighter
+    if improved is not None:
+        detail = {**candidate.detail, "warp_screens": improved[1], "search": "+".join(chain)}
+        poses_for = stretcher(problem, improved[0])
+        found = verified_candidate(
+            candidate.method, problem, poses_for, 1.0, started, verifier, False, detail
+        )
+        results.append((found, improved[0].stretched(float(found.detail["stretch"]))))
+    return results
+
+
+def _polished(problem: PathProblem, seed: Seeded, verifier: Verifier) -> Seeded | None:
+    """The SLP from a verified seed with the nonlinear model as its reference (module
+    docstring), verified again; None when it found no shorter timing."""
+    candidate, timing = seed
+
+    def machine(poses: PoseSamples) -> bool:
+        return not machine_violations(problem, poses, False)
+
+    def reference(poses: PoseSamples) -> tuple[float, float]:
+        check = verify(problem, poses, False)
+        return check.peak_height_m, check.residual_height_m
+
+    budget = _budget(problem, timing, POLISH_SCREENS)
+    polished, steps = slp_search(
+        problem, timing, machine, SLP_KNOTS, budget, SEARCH_MARGIN, reference
+    )
+    if polished is timing:
+        return None
+    poses = stretcher(problem, polished)(1.0)
+    check = verifier(problem, poses, False)
+    message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
+    search = candidate.detail.get("search")
+    detail = {
+        **candidate.detail,
+        "search": "slp-nonlinear" if search is None else f"{search}+slp-nonlinear",
+        "polish_steps": steps,
+        "stretch": 1.0,
+    }
+    return PathCandidate(candidate.method, poses, check, 0.0, message, detail), polished
+
+
+def warped_candidates(
+    problem: PathProblem,
+    pool: Sequence[Seeded],
+    verifier: Verifier,
+    started: float,
+    chains: Sequence[tuple[str, ...]] | None = None,
+    polish: bool = True,
+) -> PathCandidate:
+    """The fastest of verified candidates and of their improvements (module docstring): the
+    screened chains (`SEARCH_CHAINS`) from the fastest verified seed, and with ``polish`` the
+    nonlinear-referenced SLP from every verified seed and from the chains' fastest verified
+    result. Never slower than the fastest feasible candidate of ``pool``.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model.
+    pool : sequence of (PathCandidate, Timing)
+        Verified candidates (at least one) and the timings of their exports.
+    verifier : callable
+        Verification of an export.
+    started : float
+        ``time.perf_counter()`` when the method started.
+    chains : sequence of tuple of str, optional
+        The screened searches run in turn (``"warp"``, ``"slp"``; default `SEARCH_CHAINS`).
+    polish : bool
+        Also run the SLP with the nonlinear model as its reference.
+
+    Returns
+    -------
+    PathCandidate
+        The fastest feasible one (the fastest at all when none is feasible); improvements carry
+        ``search`` (which searches made them) and ``warp_screens`` or ``polish_steps`` in
+        their detail.
+
+    References
+    ----------
+    Hooke & Jeeves (1961), doi:10.1145/321062.321069; Fletcher (1987) ch. 14 (SLP).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path_planner import _example_problem
+    >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.retime import family_member
+    >>> problem = _example_problem()
+    >>> slow = family_member(problem, 0.5, None).stretched(2.0)
+    >>> seed = verified_candidate("retime", problem, stretcher(problem, slow), 1.0,
+    ...                           time.perf_counter(), linear_verifier, False, {})
+    >>> found = warped_candidates(problem, [(seed, slow)], linear_verifier, time.perf_counter(),
+    ...                           chains=(("warp",),), polish=False)
+    >>> found.feasible, found.duration_s < seed.duration_s
+    (True, True)
+    """
+    results: list[Seeded] = list(pool)
+    seeds = sorted((item for item in pool if item[0].feasible), key=lambda item: item[0].duration_s)
+
+    def fastest() -> float:
+        return min(found.duration_s for found, _ in results if found.feasible)
+
+    for index, seed in enumerate(seeds):
+        if polish:
+            found = _polished(problem, seed, verifier)
+            if found is not None:
+                results.append(found)
+        if index < CHAIN_SEEDS:
+            for chain in chains or SEARCH_CHAINS:
+                results += _screened(problem, seed, chain, verifier, fastest(), started)
+    if polish:
+        names = {"+".join(chain) for chain in chains or SEARCH_CHAINS}
+        chained = [
+            item
+            for item in results
+            if item[0].feasible
+            and item[0].detail.get("search") in names
+        ]
+        if chained:
+            best = min(chained, key=lambda item: item[0].duration_s)
+            found = _polished(problem, best, verifier)
+            if found is not None:
+                results.append(found)
+    feasible = [candidate for candidate, _ in results if candidate.feasible]
+    chosen = min(feasible or [c for c, _ in results], key=lambda candidate: candidate.duration_s)
+    return replace(chosen, compute_time_s=time.perf_counter() - started)
+
+
+__all__ = ["POLISH_SCREENS", "SEARCH_CHAINS", "warped_candidates"]
