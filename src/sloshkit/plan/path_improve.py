@@ -4,16 +4,19 @@
 Two kinds of search are combined (`warped_candidates`):
 
 - **screened chains** (`SEARCH_CHAINS`): the pattern search
-  (`sloshkit.plan.path_search.warp_search`) and then the SLP (`sloshkit.plan.path_slp.slp_search`)
-  under the linear screen; the result is verified, and when the nonlinear model exceeds a limit
-  the screen passed, the screen's limit is tightened and the chain repeated from the seed
-  slowed until it passes the tighter screen (a bounded verify-and-tighten loop);
+  (`sloshkit.plan.path_search.warp_search`) alone, and followed by the SLP
+  (`sloshkit.plan.path_slp.slp_search`), under the linear screen, from every verified seed;
+  the result is verified, and when the nonlinear model exceeds a limit the screen passed, the
+  screen's limit is tightened and the chain repeated from the seed slowed until it passes the
+  tighter screen (a bounded verify-and-tighten loop);
 - **polishing**: the SLP with the nonlinear model as its reference (every accepted step is
   simulated with it and the LP's limits corrected by the gap between the two models), from
   every verified seed and from the fastest verified result of the chains, so each of its steps
   is a verified improvement.
 
-The fastest verified candidate wins, so ``retime`` is never slower than its seeds.
+All searches share one budget of screened samples (`IMPROVE_SAMPLE_BUDGET`, so long moves
+get fewer screens; the order above is the order of priority). The fastest verified candidate
+wins, so ``retime`` is never slower than its seeds.
 """
 
 from __future__ import annotations
@@ -38,21 +41,33 @@ from sloshkit.plan.path_slp import SLP_KNOTS, slp_search
 from sloshkit.plan.spatial import SEARCH_MARGIN, PathProblem, PoseSamples
 from sloshkit.plan.timing import Timing
 
-#: The screened search chains `warped_candidates` runs from the fastest verified seed, each
-#: search continued from the previous one's result.
-SEARCH_CHAINS: tuple[tuple[str, ...], ...] = (("warp", "slp"),)
-#: How many of the fastest verified seeds the screened chains start from.
-CHAIN_SEEDS = 1
+#: The screened search chains `warped_candidates` runs from every verified seed, each search
+#: continued from the previous one's result (``warp8``: the pattern search on 8 coefficients;
+#: on the measured series each chain won some cases).
+SEARCH_CHAINS: tuple[tuple[str, ...], ...] = (("warp8",), ("warp", "slp"))
+#: Screened samples all searches of one `warped_candidates` share, for moves of up to
+#: `IMPROVE_LONG_MOVE` samples; longer moves get proportionally fewer samples (fewer screens
+#: both ways: the 20-waypoint case of the benchmark must plan in under 5 s CPU in all).
+IMPROVE_SAMPLE_BUDGET = 1_200_000
+#: Sample count of a move above which the shared budget shrinks.
+IMPROVE_LONG_MOVE = 1000
 #: Largest number of steps (each a linear screen or a nonlinear simulation) of one polishing.
 POLISH_SCREENS = 200
 
 Seeded = tuple[PathCandidate, Timing]
 
 
-def _budget(problem: PathProblem, timing: Timing, most: int) -> int:
-    """Screens one search may spend: at most ``most`` and `WARP_SAMPLE_BUDGET` samples."""
+def _budget(problem: PathProblem, timing: Timing, most: int, left: list[float]) -> int:
+    """Screens one search may spend: at most ``most``, `WARP_SAMPLE_BUDGET` samples and what
+    is ``left`` of the shared budget of samples (0 when fewer than 20 screens are left)."""
     samples = timing.duration_s / problem.sample_period_s
-    return max(20, min(most, int(WARP_SAMPLE_BUDGET / samples)))
+    screens = min(most, int(WARP_SAMPLE_BUDGET / samples), int(left[0] / samples))
+    return screens if screens >= 20 else 0
+
+
+def _spend(problem: PathProblem, timing: Timing, screens: int, left: list[float]) -> None:
+    """Take ``screens`` screens of ``timing``'s length from the shared budget ``left``."""
+    left[0] -= screens * timing.duration_s / problem.sample_period_s
 
 
 def _chain(
@@ -62,14 +77,17 @@ def _chain(
     chain: tuple[str, ...],
     budget: int,
 ) -> tuple[Timing, int]:
-    """Run the searches of ``chain`` in turn, each from the previous one's result."""
+    """Run the searches of ``chain`` in turn, each from the previous one's result (``warp`` or
+    ``slp``, optionally followed by the number of warp coefficients, e.g. ``warp8``)."""
     screens = 0
     timing = seed
     for search in chain:
-        if search == "slp":
-            timing, spent = slp_search(problem, timing, passes, SLP_KNOTS, budget)
+        if search.startswith("slp"):
+            knots = int(search[3:] or SLP_KNOTS)
+            timing, spent = slp_search(problem, timing, passes, knots, budget)
         else:
-            timing, spent = warp_search(problem, timing, passes, WARP_KNOTS, budget)
+            knots = int(search[4:] or WARP_KNOTS)
+            timing, spent = warp_search(problem, timing, passes, knots, budget)
         screens += spent
     return timing, screens
 
@@ -95,6 +113,7 @@ def _screened(
     verifier: Verifier,
     best: float,
     started: float,
+    left: list[float],
 ) -> list[Seeded]:
     """The verified results of one screened chain from one seed, with the verify-and-tighten
     rounds (module docstring); the last failing improvement slowed uniformly when every round
@@ -103,10 +122,12 @@ def _screened(
     limits = problem.slosh
     candidate, timing = seed
     height, residual = limits.max_height_m, limits.max_residual_height_m
-    budget = _budget(problem, timing, WARP_SCREENS)
     results: list[Seeded] = []
     improved: tuple[Timing, int] | None = None
     for _ in range(WARP_ROUNDS):
+        budget = _budget(problem, timing, WARP_SCREENS, left)
+        if not budget:
+            break
         tight = replace(
             problem, slosh=replace(limits, max_height_m=height, max_residual_height_m=residual)
         )
@@ -124,6 +145,7 @@ def _screened(
                 break
             start = timing.stretched(slowed[0])
         warped, screens = _chain(tight, start, passes, chain, budget)
+        _spend(problem, timing, screens, left)
         if warped is start or warped.duration_s >= best:
             break
         poses = stretcher(problem, warped)(1.0)
@@ -162,7 +184,9 @@ def _screened(
     return results
 
 
-def _polished(problem: PathProblem, seed: Seeded, verifier: Verifier) -> Seeded | None:
+def _polished(
+    problem: PathProblem, seed: Seeded, verifier: Verifier, left: list[float]
+) -> Seeded | None:
     """The SLP from a verified seed with the nonlinear model as its reference (module
     docstring), verified again; None when it found no shorter timing."""
     candidate, timing = seed
@@ -174,10 +198,13 @@ def _polished(problem: PathProblem, seed: Seeded, verifier: Verifier) -> Seeded 
         check = verify(problem, poses, False)
         return check.peak_height_m, check.residual_height_m
 
-    budget = _budget(problem, timing, POLISH_SCREENS)
+    budget = _budget(problem, timing, POLISH_SCREENS, left)
+    if not budget:
+        return None
     polished, steps = slp_search(
         problem, timing, machine, SLP_KNOTS, budget, SEARCH_MARGIN, reference
     )
+    _spend(problem, timing, steps, left)
     if polished is timing:
         return None
     poses = stretcher(problem, polished)(1.0)
@@ -202,7 +229,7 @@ def warped_candidates(
     polish: bool = True,
 ) -> PathCandidate:
     """The fastest of verified candidates and of their improvements (module docstring): the
-    screened chains (`SEARCH_CHAINS`) from the fastest verified seed, and with ``polish`` the
+    screened chains (`SEARCH_CHAINS`) from every verified seed, and with ``polish`` the
     nonlinear-referenced SLP from every verified seed and from the chains' fastest verified
     result. Never slower than the fastest feasible candidate of ``pool``.
 
@@ -252,25 +279,23 @@ def warped_candidates(
     def fastest() -> float:
         return min(found.duration_s for found, _ in results if found.feasible)
 
-    for index, seed in enumerate(seeds):
+    samples = seeds[0][1].duration_s / problem.sample_period_s if seeds else 1.0
+    left = [IMPROVE_SAMPLE_BUDGET * min(1.0, IMPROVE_LONG_MOVE / samples)]
+    for seed in seeds:
         if polish:
-            found = _polished(problem, seed, verifier)
+            found = _polished(problem, seed, verifier, left)
             if found is not None:
                 results.append(found)
-        if index < CHAIN_SEEDS:
-            for chain in chains or SEARCH_CHAINS:
-                results += _screened(problem, seed, chain, verifier, fastest(), started)
+        for chain in chains or SEARCH_CHAINS:
+            results += _screened(problem, seed, chain, verifier, fastest(), started, left)
     if polish:
         names = {"+".join(chain) for chain in chains or SEARCH_CHAINS}
         chained = [
-            item
-            for item in results
-            if item[0].feasible
-            and item[0].detail.get("search") in names
+            item for item in results if item[0].feasible and item[0].detail.get("search") in names
         ]
         if chained:
             best = min(chained, key=lambda item: item[0].duration_s)
-            found = _polished(problem, best, verifier)
+            found = _polished(problem, best, verifier, left)
             if found is not None:
                 results.append(found)
     feasible = [candidate for candidate, _ in results if candidate.feasible]
@@ -278,4 +303,10 @@ def warped_candidates(
     return replace(chosen, compute_time_s=time.perf_counter() - started)
 
 
-__all__ = ["POLISH_SCREENS", "SEARCH_CHAINS", "warped_candidates"]
+__all__ = [
+    "IMPROVE_LONG_MOVE",
+    "IMPROVE_SAMPLE_BUDGET",
+    "POLISH_SCREENS",
+    "SEARCH_CHAINS",
+    "warped_candidates",
+]

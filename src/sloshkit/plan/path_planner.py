@@ -4,7 +4,8 @@ All methods use the timing family of `sloshkit.plan.retime` (acceleration-capped
 speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the timing):
 
 - ``retime``: the largest cap whose member passes the linear screen (with and without shaping),
-  and the verified ``uniform`` timing, each warped locally (`path_search.warp_search`);
+  and the verified ``uniform`` timing, each improved locally by speed-scaling warps
+  (`path_improve.warped_candidates`: pattern search and sequential linear programming);
 - ``shaped``: per-axis input shaping of the members (each Cartesian axis convolved with the
   ZV/ZVD shaper of the first mode, which cancels its residual for every lateral direction), the
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
@@ -147,7 +148,8 @@ def plan_retime(
     timing shaper, without, and on curved paths with `sloshkit.plan.retime.curve_shaper`),
     then, with ``transcription``, the minimum-time transcription warm-started from it;
     verified. The verified family timing and every verified ``seeds`` timing are candidates
-    too, each improved by `sloshkit.plan.path_search.warp_search` and verified again; the
+    too, each improved by `sloshkit.plan.path_improve.warped_candidates` (pattern search and
+    SLP on a speed-scaling warp) and verified again; the
     fastest verified one wins, so ``retime`` is never slower than a feasible seed. The
     container stays on the path.
 

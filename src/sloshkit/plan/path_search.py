@@ -7,8 +7,9 @@ bisection towards the next larger (failing) grid value, also bisects over the wh
 can land in a passing pocket between grid values), and keeps the larger passing cap. A uniform
 stretch in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative
 the planner compares with. `warp_search` improves a feasible timing locally by a piecewise
-(B-spline) speed scaling under the screen, and `warped_candidates` verifies the improvements of
-verified seeds and keeps the fastest, so ``retime`` is never slower than its seeds.
+(B-spline) speed scaling under the screen (`sloshkit.plan.path_improve.warped_candidates` runs it,
+with the SLP of `sloshkit.plan.path_slp`, from verified seeds and keeps the fastest verified
+result, so ``retime`` is never slower than its seeds).
 """
 
 from __future__ import annotations
@@ -250,9 +251,6 @@ def _refine(
 
 #: B-spline coefficients of the speed-scaling warp (`warp_search`).
 WARP_KNOTS = 12
-#: Coefficient counts `warped_candidates` tries per seed (the local search finds different
-#: optima with each; on the measured series each count won in some case).
-WARP_KNOT_COUNTS = (8, 12)
 #: Largest number of linear screens one `warp_search` spends.
 WARP_SCREENS = 250
 #: Samples `warped_candidates` lets one search screen (fewer screens on long moves).
