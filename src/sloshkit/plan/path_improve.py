@@ -4,8 +4,9 @@
 Two kinds of search are combined (`warped_candidates`):
 
 - **screened chains** (`SEARCH_CHAINS`): the pattern search
-  (`sloshkit.plan.path_search.warp_search`) alone, and followed by the SLP
-  (`sloshkit.plan.path_slp.slp_search`), under the linear screen, from every verified seed;
+  (`sloshkit.plan.path_search.warp_search`) alone, followed by the SLP
+  (`sloshkit.plan.path_slp.slp_search`), and after it, under the linear screen, from every
+  verified seed;
   the result is verified, and when the nonlinear model exceeds a limit the screen passed, the
   screen's limit is tightened and the chain repeated from the seed slowed until it passes the
   tighter screen (a bounded verify-and-tighten loop);
@@ -44,7 +45,7 @@ from sloshkit.plan.timing import Timing
 #: The screened search chains `warped_candidates` runs from every verified seed, each search
 #: continued from the previous one's result (``warp8``: the pattern search on 8 coefficients;
 #: on the measured series each chain won some cases).
-SEARCH_CHAINS: tuple[tuple[str, ...], ...] = (("warp8",), ("warp", "slp"))
+SEARCH_CHAINS: tuple[tuple[str, ...], ...] = (("warp8",), ("warp", "slp"), ("slp", "warp"))
 #: Screened samples all searches of one `warped_candidates` share, for moves of up to
 #: `IMPROVE_LONG_MOVE` samples; longer moves get proportionally fewer samples (fewer screens
 #: both ways: the 20-waypoint case of the benchmark must plan in under 5 s CPU in all).
