@@ -293,26 +293,27 @@ def test_mpi_run_opens_no_socket_reachable_from_other_hosts(tmp_path):
 def test_stopping_mpirun_waits_for_every_rank(tmp_path):
     """Open MPI puts each rank in a process group of its own and mpirun may exit before its
     ranks: the stop waits for (and if need be kills) every process of the tool's session."""
-    from sloshkit.cfd import run as cfd_run
+    from sloshkit.cfd import processes
+    from sloshkit.cfd.run import solver_command
 
     holder: list[subprocess.Popen[str]] = []
-    command = [*cfd_run.solver_command(2)[:-4], "-np", "2", "sleep", "60"]  # as interFoam runs
-    process = cfd_run._start(holder, command, tmp_path, subprocess.DEVNULL)
+    command = [*solver_command(2)[:-4], "-np", "2", "sleep", "60"]  # as interFoam runs
+    process = processes.start_tool(holder, command, tmp_path, subprocess.DEVNULL)
     deadline = time.monotonic() + 30
-    while len(cfd_run.session_members(process.pid)) < 3 and time.monotonic() < deadline:
+    while len(processes.session_members(process.pid)) < 3 and time.monotonic() < deadline:
         time.sleep(0.05)
-    ranks = set(cfd_run.session_members(process.pid)) - {process.pid}
+    ranks = set(processes.session_members(process.pid)) - {process.pid}
     assert len(ranks) == 2
     assert all(os.getpgid(rank) != process.pid for rank in ranks)  # why killpg is not enough
-    cfd_run._stop_group(process, grace_s=5.0)
-    assert cfd_run.session_members(process.pid) == []
+    processes.stop_session(process, grace_s=5.0)
+    assert processes.session_members(process.pid) == []
     assert _processes_working_in(tmp_path) == []
 
 
 def test_a_signal_while_a_tool_starts_still_stops_the_tool(tmp_path, monkeypatch):
     """A stop signal that lands between the fork and the tool's registration is held back until
     the tool is registered, so the interruption stops it instead of leaving it running."""
-    from sloshkit.cfd import run as cfd_run
+    from sloshkit.cfd import processes
 
     real_popen = subprocess.Popen
     started: list[subprocess.Popen[str]] = []
@@ -323,10 +324,10 @@ def test_a_signal_while_a_tool_starts_still_stops_the_tool(tmp_path, monkeypatch
         os.kill(os.getpid(), signal.SIGTERM)  # the worst moment: before Popen returns
         return process
 
-    monkeypatch.setattr(cfd_run.subprocess, "Popen", popen_then_signal)
+    monkeypatch.setattr(processes.subprocess, "Popen", popen_then_signal)
     holder: list[subprocess.Popen[str]] = []
-    with pytest.raises(cfd_run.CfdInterrupted), cfd_run.interruptible(holder, [0.0]):
-        cfd_run._start(holder, ["sleep", "60"], tmp_path, subprocess.DEVNULL)
+    with pytest.raises(processes.CfdInterrupted), processes.interruptible(holder, [0.0]):
+        processes.start_tool(holder, ["sleep", "60"], tmp_path, subprocess.DEVNULL)
         time.sleep(5)  # not reached: the held-back signal is delivered on registration
     assert started[0].poll() is not None
     assert _processes_working_in(tmp_path) == []

@@ -9,8 +9,9 @@
 - `sloshkit.cfd.state`: complete time folders, mesh checks (the measured stability limit of
   wall-graded O-grids), process limits, run outcomes (no processes).
 - `sloshkit.cfd.prepare`: writing a case, checking the host for OpenFOAM (no processes).
-- `sloshkit.cfd.run`: the only module that starts processes (blockMesh, setFields,
-  decomposePar, interFoam, mpirun), with progress, interruption and resume.
+- `sloshkit.cfd.run`: runs the tools (blockMesh, setFields, decomposePar, interFoam, mpirun),
+  with progress, interruption and resume; `sloshkit.cfd.processes` starts and stops them (no
+  process outlives an interruption). The only modules that start processes.
 - `sloshkit.cfd.results`: parsing of function-object output into signals (pure).
 - `sloshkit.cfd.analysis`: frequency and damping of a finished case.
 - `sloshkit.cfd.pipeline`: case from a model, run, and `validate` (CFD against the pendulum

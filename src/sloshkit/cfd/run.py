@@ -17,21 +17,16 @@ because Open MPI 4.1's out-of-band listener binds to every interface.
 
 from __future__ import annotations
 
-import contextlib
 import json
-import os
 import re
 import shutil
-import signal
 import subprocess
 import sys
-import threading
 import time
 import warnings
 from collections.abc import Callable
 from functools import cache
 from pathlib import Path
-from typing import Any
 
 from sloshkit.cfd.case import MPI_LOCAL_OPTIONS
 from sloshkit.cfd.prepare import (
@@ -40,6 +35,7 @@ from sloshkit.cfd.prepare import (
     require_openfoam,
     write_case,
 )
+from sloshkit.cfd.processes import interruptible, start_tool
 from sloshkit.cfd.state import (
     CfdError,
     CfdInterrupted,
@@ -77,163 +73,11 @@ COURANT_LINE = re.compile(r"^Courant Number mean: \S+ max: (\S+)")
 Progress = Callable[[float, float, float | None], None]  # (simulated, end, max Courant)
 
 
-def _set_parent_death_signal() -> None:  # pragma: no cover - runs in the child
-    """Linux: the tool gets SIGTERM when sloshkit dies (even by SIGKILL)."""
-    with contextlib.suppress(Exception):
-        import ctypes
-
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
-
-
-@contextlib.contextmanager
-def interruptible(process_holder: list[subprocess.Popen[str]], where: list[float]) -> Any:
-    """Turn SIGTERM, SIGHUP and SIGINT into `CfdInterrupted` inside the block; on any exit,
-    stop the process groups of the tools in ``process_holder`` (mpirun and its ranks) and wait
-    for them. ``where[0]`` is the simulated time reported with the interruption.
-
-    Parameters
-    ----------
-    process_holder : list of subprocess.Popen
-        The running tools (filled by the caller while the block runs).
-    where : list of float
-        ``where[0]``: the simulated time to report.
-
-    Returns
-    -------
-    context manager
-
-    Raises
-    ------
-    CfdInterrupted
-        On SIGTERM, SIGHUP or SIGINT inside the block.
-
-    Examples
-    --------
-    >>> with interruptible([], [0.0]):
-    ...     pass
-    """
-    previous: dict[signal.Signals, Any] = {}
-
-    def handler(signum: int, frame: Any) -> None:
-        raise CfdInterrupted(signum, where[0])
-
-    in_main = threading.current_thread() is threading.main_thread()
-    if in_main:
-        for signum in (signal.SIGTERM, signal.SIGHUP):
-            previous[signum] = signal.signal(signum, handler)
-    try:
-        yield
-    except KeyboardInterrupt:
-        raise CfdInterrupted(signal.SIGINT, where[0]) from None
-    finally:
-        for process in process_holder:
-            _stop_group(process)
-        for number, old in previous.items():
-            signal.signal(number, old)
-
-
-def _stop_group(process: subprocess.Popen[str], grace_s: float = 10.0) -> None:
-    """Stop a tool and everything it started, and wait until they are gone.
-
-    The tool leads its own session (``start_new_session``). Open MPI's mpirun puts each rank in
-    a process group of its own, so signalling the tool's group reaches mpirun only: mpirun
-    forwards SIGTERM to its ranks and may exit before they do. Hence the wait is for every
-    process of the session, and SIGKILL after ``grace_s`` goes to each of them.
-    """
-    session = process.pid
-    if process.poll() is None:
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(session, signal.SIGTERM)
-    deadline = time.monotonic() + grace_s
-    for kill in (False, True):
-        if kill:
-            for pid in [*session_members(session), process.pid]:
-                with contextlib.suppress(ProcessLookupError, PermissionError):
-                    os.kill(pid, signal.SIGKILL)
-            deadline = time.monotonic() + 5.0
-        while time.monotonic() < deadline:
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                process.wait(timeout=0.05)
-            if process.returncode is not None and not session_members(session):
-                return
-
-
-def session_members(session: int) -> list[int]:
-    """The live (not zombie) processes of a session, read from ``/proc`` (Linux).
-
-    Parameters
-    ----------
-    session : int
-        Session id (the pid of the process that started the session).
-
-    Returns
-    -------
-    list of int
-        Their pids; empty where ``/proc`` cannot be read.
-
-    Examples
-    --------
-    >>> session_members(-1)
-    []
-    """
-    members = []
-    with contextlib.suppress(OSError):
-        for entry in os.scandir("/proc"):
-            if not entry.name.isdigit():
-                continue
-            try:
-                with open(f"/proc/{entry.name}/stat", encoding="ascii", errors="replace") as f:
-                    stat = f.read()
-            except OSError:
-                continue
-            # "pid (comm) state ppid pgrp session ...": comm may hold spaces and parentheses.
-            fields = stat[stat.rfind(")") + 2 :].split()
-            if len(fields) > 3 and fields[0] != "Z" and int(fields[3]) == session:
-                members.append(int(entry.name))
-    return members
-
-
-_STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP}
-
-
-def _child_setup() -> None:  # pragma: no cover - runs in the child
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP_SIGNALS)
-    _set_parent_death_signal()
-
-
-def _start(
-    holder: list[subprocess.Popen[str]], command: list[str], case: Path, stdout: Any
-) -> subprocess.Popen[str]:
-    """Start a tool and put it in ``holder`` with stop signals held back meanwhile, so that an
-    interruption cannot fall between the fork and the tool's registration (it would leave the
-    tool running unseen); a signal that came meanwhile is delivered right after."""
-    in_main = threading.current_thread() is threading.main_thread()
-    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS) if in_main else None
-    try:
-        process = subprocess.Popen(
-            command,
-            cwd=case,
-            env=openfoam_environment(),
-            stdout=stdout,
-            stderr=subprocess.STDOUT,
-            text=True,
-            bufsize=1,
-            start_new_session=True,
-            preexec_fn=_child_setup,
-        )
-        holder.append(process)
-    finally:
-        if blocked is not None:
-            signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
-    return process
-
-
 def _tool(case: Path, command: list[str], log_name: str) -> str:
     log = case / log_name
     holder: list[subprocess.Popen[str]] = []
     with open(log, "w", encoding="utf-8") as stream, interruptible(holder, [0.0]):
-        code = _start(holder, command, case, stream).wait()
+        code = start_tool(holder, command, case, stream).wait()
     text = log.read_text(encoding="utf-8", errors="replace")
     if code != 0:
         raise CfdError(f"{command[0]} failed (exit {code}):\n" + tail(text))
@@ -421,7 +265,7 @@ def run_case(
         open(log_path, "a" if resume else "w", encoding="utf-8") as log,
         interruptible(holder, simulated),
     ):
-        process = _start(holder, command, case, subprocess.PIPE)
+        process = start_tool(holder, command, case, subprocess.PIPE)
         assert process.stdout is not None
         for line in process.stdout:
             log.write(line)
