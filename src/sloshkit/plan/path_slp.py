@@ -49,6 +49,9 @@ SLP_MIN_RADIUS = 0.004
 SLP_DIFFERENCE = 0.02
 #: The LP aims this much below the screen's limits (the linearisation's error).
 SLP_BACKOFF = 0.98
+#: Screens one call of the reference model counts for in the budget (the nonlinear model of
+#: two differentiations costs about eight linear screens).
+REFERENCE_COST = 8
 #: The share of each limit the reference model's heights must keep to accept a step.
 REFERENCE_KEEP = 0.99
 #: Smallest warp factor (time may run at most 10x faster than in the seed locally).
@@ -80,7 +83,8 @@ def slp_search(
     knots : int
         Number of warp coefficients (at least 4).
     max_screens : int
-        Budget of linear screens (differences and trials).
+        Budget of linear screens (differences and trials; a call of ``reference`` counts
+        `REFERENCE_COST`).
     margin : float
         Relative margin the LP keeps from each slosh limit.
     reference : callable, optional
@@ -167,7 +171,7 @@ def slp_search(
     factors = np.ones(knots)
     current = outputs(factors)
     limits = corrected(sample(factors)[0])
-    screens = 2
+    screens = 2 + (0 if reference is None else REFERENCE_COST)
     if limits is None:
         return seed, screens
     radius = SLP_RADIUS[0]
@@ -189,7 +193,10 @@ def slp_search(
         trial = factors + step
         poses = sample(trial)[0]
         screens += 1
-        found = corrected(poses) if passes(poses) else None
+        found = None
+        if passes(poses):
+            found = corrected(poses)
+            screens += 0 if reference is None else REFERENCE_COST
         if found is not None:
             factors, current, jacobian, limits = trial, outputs(trial), None, found
             screens += 1
