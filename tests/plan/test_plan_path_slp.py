@@ -6,6 +6,7 @@ from __future__ import annotations
 import time
 import warnings
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -15,9 +16,11 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import SloshModel, equivalent_model
 from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.plan import path_improve
 from sloshkit.plan.path import path_from_waypoints
-from sloshkit.plan.path_improve import warped_candidates
+from sloshkit.plan.path_improve import ladder_seeds, warped_candidates
 from sloshkit.plan.path_limits import kinematics, machine_violations
+from sloshkit.plan.path_planner import plan_retime
 from sloshkit.plan.path_result import verified_candidate, verify
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
@@ -129,3 +132,40 @@ def test_every_improved_plan_meets_its_limits_when_simulated_again(
     assert peaks["acceleration"] <= 8.0 * (1 + 1e-6)
     assert peaks["jerk"] <= 80.0 * (1 + 1e-6)
     assert np.allclose(poses.position_m[-1], [0.25, 0.15, 0.0], atol=1e-6)
+
+
+def test_ladder_seeds_are_verified_against_the_true_limits(robot_vial: SloshModel) -> None:
+    """The continuation's seeds: the family under each stricter target of the ladder and a
+    given timing slowed until it passes; each verified against the TRUE limits (so feasible
+    here, being found under stricter ones) and labelled with its target."""
+    problem = _bend(robot_vial)
+    started = time.perf_counter()
+    slow = family_member(problem, 4.0, None)
+    seeds = ladder_seeds(problem, verify, started, None, [("other", slow, (1.0, 0.5))])
+    assert [seed.detail["target"] for seed, _ in seeds] == [[1.0, 0.5], [0.9, 0.25], [1.0, 0.5]]
+    assert [seed.detail["seed"] for seed, _ in seeds] == ["family", "family", "other"]
+    for seed, timing in seeds:
+        assert seed.feasible
+        assert seed.verification is not None
+        assert seed.verification.residual_height_m <= 0.002
+        assert timing.duration_s == pytest.approx(seed.duration_s, abs=0.01)
+
+
+def test_a_looser_limit_never_gives_a_longer_retime_plan(
+    robot_vial: SloshModel, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A plan feasible under the stricter limits is feasible under the looser ones, so
+    ``retime`` under a residual limit twice as large (whose ladder holds the stricter limit as
+    a target) must not return a longer plan; the same for a peak limit 1/0.9 as large. Small
+    budgets keep the test short."""
+    monkeypatch.setattr(path_improve, "IMPROVE_SAMPLE_BUDGET", 120_000)
+    monkeypatch.setattr(path_improve, "LADDER_SAMPLE_BUDGET", 120_000)
+    strict = _bend(robot_vial)
+    looser = [
+        replace(strict, slosh=replace(strict.slosh, max_residual_height_m=0.004)),
+        replace(strict, slosh=replace(strict.slosh, max_height_m=0.012 / 0.9)),
+    ]
+    plans = [plan_retime(p, verify, transcription=False) for p in (strict, *looser)]
+    assert all(plan.feasible for plan in plans)
+    for plan in plans[1:]:
+        assert plan.duration_s <= plans[0].duration_s + strict.sample_period_s

@@ -15,17 +15,23 @@ Two kinds of search are combined (`warped_candidates`):
   every verified seed and from the fastest verified result of the chains, so each of its steps
   is a verified improvement.
 
-All searches share one budget of screened samples (`IMPROVE_SAMPLE_BUDGET`, so long moves
-get fewer screens; the order above is the order of priority). The fastest verified candidate
-wins, so ``retime`` is never slower than its seeds.
+All these searches share one budget of screened samples (`IMPROVE_SAMPLE_BUDGET`, so long
+moves get fewer screens; the order above is the order of priority). Then the
+**continuation**: seeds found under stricter internal targets and the other methods'
+timings of the path (`sloshkit.plan.path_ladder`, which says why: the residual's basins) are
+polished against the true limits, by successive halving of their own budget
+(`LADDER_SAMPLE_BUDGET`; `ladder_affordable` says when a move is short enough for it). The
+fastest verified candidate wins, so ``retime`` is never slower than its seeds.
 """
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 
+from sloshkit.plan.path_ladder import targeted
 from sloshkit.plan.path_limits import machine_violations
 from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
 from sloshkit.plan.path_screen import linear_screen, screen_ok
@@ -49,11 +55,18 @@ SEARCH_CHAINS: tuple[tuple[str, ...], ...] = (("warp8",), ("warp", "slp"), ("slp
 #: Screened samples all searches of one `warped_candidates` share, for moves of up to
 #: `IMPROVE_LONG_MOVE` samples; longer moves get fewer, in proportion to the square of
 #: their sample count (the 20-waypoint case of the benchmark must plan in under 5 s CPU).
-IMPROVE_SAMPLE_BUDGET = 1_200_000
+IMPROVE_SAMPLE_BUDGET = 800_000
 #: Sample count of a move above which the shared budget shrinks.
 IMPROVE_LONG_MOVE = 1500
 #: Largest number of steps (each a linear screen or a nonlinear simulation) of one polishing.
 POLISH_SCREENS = 400
+
+#: Screened samples the polishing of the ladder's seeds shares (on top of what the searches
+#: of `IMPROVE_SAMPLE_BUDGET` left; shrinking like it on long moves).
+LADDER_SAMPLE_BUDGET = 800_000
+#: Fewest screens of the move the ladder's budget must buy for the continuation to run (on
+#: long moves the budget shrinks, and the ladder's seeding alone would cost more).
+LADDER_MIN_SCREENS = 100
 
 Seeded = tuple[PathCandidate, Timing]
 
@@ -120,8 +133,9 @@ def _screened(
     rounds (module docstring); the last failing improvement slowed uniformly when every round
     fails (`sloshkit.plan.path_result.verified_candidate`)."""
     models = problem.models()
-    limits = problem.slosh
     candidate, timing = seed
+    peak, residual_share = candidate.detail.get("target", (1.0, 1.0))
+    limits = targeted(problem, (peak, residual_share)).slosh
     height, residual = limits.max_height_m, limits.max_residual_height_m
     results: list[Seeded] = []
     improved: tuple[Timing, int] | None = None
@@ -228,11 +242,14 @@ def warped_candidates(
     started: float,
     chains: Sequence[tuple[str, ...]] | None = None,
     polish: bool = True,
+    ladder: Sequence[Seeded] = (),
 ) -> PathCandidate:
     """The fastest of verified candidates and of their improvements (module docstring): the
-    screened chains (`SEARCH_CHAINS`) from every verified seed, and with ``polish`` the
-    nonlinear-referenced SLP from every verified seed and from the chains' fastest verified
-    result. Never slower than the fastest feasible candidate of ``pool``.
+    screened chains (`SEARCH_CHAINS`) from every verified seed of ``pool`` and with ``polish``
+    the nonlinear-referenced SLP from each of them and from the chains' fastest result, then
+    the polishing of the ``ladder``'s seeds by successive halving. Every result is verified
+    against the true limits. Never slower than the fastest feasible candidate of ``pool``
+    and ``ladder``.
 
     Parameters
     ----------
@@ -248,6 +265,10 @@ def warped_candidates(
         The screened searches run in turn (``"warp"``, ``"slp"``; default `SEARCH_CHAINS`).
     polish : bool
         Also run the SLP with the nonlinear model as its reference.
+    ladder : sequence of (PathCandidate, Timing)
+        Further verified seeds (`sloshkit.plan.path_ladder.ladder_seeds`), polished with
+        ``polish`` on their own budget (`LADDER_SAMPLE_BUDGET`, and what the searches above
+        left).
 
     Returns
     -------
@@ -274,40 +295,109 @@ def warped_candidates(
     >>> found.feasible, found.duration_s < seed.duration_s
     (True, True)
     """
-    results: list[Seeded] = list(pool)
+    results: list[Seeded] = [*pool, *ladder]
     seeds = sorted((item for item in pool if item[0].feasible), key=lambda item: item[0].duration_s)
+    chains = chains or SEARCH_CHAINS
 
     def fastest() -> float:
         return min(found.duration_s for found, _ in results if found.feasible)
 
     samples = seeds[0][1].duration_s / problem.sample_period_s if seeds else 1.0
-    left = [IMPROVE_SAMPLE_BUDGET * min(1.0, IMPROVE_LONG_MOVE / samples) ** 2]
+    shrink = min(1.0, IMPROVE_LONG_MOVE / samples) ** 2
+    left = [IMPROVE_SAMPLE_BUDGET * shrink]
     for seed in seeds:
         if polish:
-            found = _polished(problem, seed, verifier, left)
-            if found is not None:
-                results.append(found)
-        for chain in chains or SEARCH_CHAINS:
+            results += _listed(_polished(problem, seed, verifier, left))
+        for chain in chains:
             results += _screened(problem, seed, chain, verifier, fastest(), started, left)
     if polish:
-        names = {"+".join(chain) for chain in chains or SEARCH_CHAINS}
+        names = {"+".join(chain) for chain in chains}
         chained = [
             item for item in results if item[0].feasible and item[0].detail.get("search") in names
         ]
         if chained:
             best = min(chained, key=lambda item: item[0].duration_s)
-            found = _polished(problem, best, verifier, left)
-            if found is not None:
-                results.append(found)
+            results += _listed(_polished(problem, best, verifier, left))
+        # The continuation: polish every seed of the ladder (stricter targets, other methods'
+        # timings) against the true limits, with equal shares of its own budget.
+        others = sorted(
+            (item for item in ladder if item[0].feasible), key=lambda item: item[0].duration_s
+        )
+        left[0] += LADDER_SAMPLE_BUDGET * shrink
+        results += _halving(problem, others, verifier, left)
     feasible = [candidate for candidate, _ in results if candidate.feasible]
     chosen = min(feasible or [c for c, _ in results], key=lambda candidate: candidate.duration_s)
     return replace(chosen, compute_time_s=time.perf_counter() - started)
 
 
+def _halving(
+    problem: PathProblem, entrants: list[Seeded], verifier: Verifier, left: list[float]
+) -> list[Seeded]:
+    """Successive halving of the polishing over ``entrants`` (Jamieson & Talwalkar 2016): each
+    round polishes every entrant from its latest result with an equal share of its part of
+    ``left`` and keeps the faster half (at least one) for the next round, whose entrants get
+    twice the share; a round's part is what is left over the rounds still to run, weighted
+    equally."""
+    found: list[Seeded] = []
+    rounds = max(1, math.ceil(math.log2(max(len(entrants), 1))) + 1)
+    for round_ in range(rounds):
+        if not entrants:
+            break
+        share = left[0] / (rounds - round_) / len(entrants)
+        latest = []
+        for entrant in entrants:
+            part = [share]
+            polished = _polished(problem, entrant, verifier, part)
+            left[0] -= share - part[0]
+            if polished is not None and polished[0].feasible:
+                found.append(polished)
+                entrant = polished
+            latest.append(entrant)
+        latest.sort(key=lambda item: item[0].duration_s)
+        entrants = latest[: max(1, len(latest) // 2)]
+    return found
+
+
+def _listed(found: Seeded | None) -> list[Seeded]:
+    return [] if found is None else [found]
+
+
+def ladder_affordable(problem: PathProblem, duration_s: float) -> bool:
+    """Whether the continuation (`sloshkit.plan.path_ladder.ladder_seeds`,
+    `LADDER_SAMPLE_BUDGET`) runs for a move of
+    about ``duration_s``: its budget, shrunk like `IMPROVE_SAMPLE_BUDGET` above
+    `IMPROVE_LONG_MOVE` samples, must buy `LADDER_MIN_SCREENS` screens of the move.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Sample period.
+    duration_s : float
+        Duration of the move [s].
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path_planner import _example_problem
+    >>> problem = _example_problem()  # a 10 ms sample period
+    >>> ladder_affordable(problem, 2.0), ladder_affordable(problem, 60.0)
+    (True, False)
+    """
+    samples = max(duration_s / problem.sample_period_s, 1.0)
+    shrink = min(1.0, IMPROVE_LONG_MOVE / samples) ** 2
+    return LADDER_SAMPLE_BUDGET * shrink / samples >= LADDER_MIN_SCREENS
+
+
 __all__ = [
     "IMPROVE_LONG_MOVE",
     "IMPROVE_SAMPLE_BUDGET",
+    "LADDER_MIN_SCREENS",
+    "LADDER_SAMPLE_BUDGET",
     "POLISH_SCREENS",
     "SEARCH_CHAINS",
+    "ladder_affordable",
     "warped_candidates",
 ]
