@@ -174,3 +174,21 @@ def test_a_case_with_empty_probe_files_is_unfinished(tmp_path):
     (case / "postProcessing" / "wallProbes" / "0" / "alpha.water").write_text("# Probe 0\n")
     with pytest.raises(InputError, match=r"is unfinished \(no probe data yet"):
         analyse(case)
+
+
+def test_a_run_stopped_in_its_last_step_is_unfinished(tmp_path):
+    """Stopped one 2 ms step before its 1 s end, a run is unfinished (CI once saw such a run
+    analysed as if finished); with an adaptive step, the resampled grid may stop short of the
+    solver's last probe time, which must not make a finished run look unfinished."""
+    case = synthetic_case(tmp_path / "c", 1.0)
+    probes = case / "postProcessing" / "wallProbes" / "0" / "alpha.water"
+    lines = probes.read_text().splitlines()
+    probes.write_text("\n".join(lines[:-1]) + "\n")
+    with pytest.raises(InputError, match=r"is unfinished \(simulated 0.998 of 1 s\)"):
+        analyse(case)
+    adaptive = synthetic_case(tmp_path / "a", 1.0)
+    probes = adaptive / "postProcessing" / "wallProbes" / "0" / "alpha.water"
+    header, first, *rows = probes.read_text().splitlines()
+    first = first.replace("0 ", "0.0001 ", 1)  # an adaptive first step: the grid is shifted
+    probes.write_text("\n".join([header, first, *rows]) + "\n")
+    assert analyse(adaptive).signals.time_s[-1] < 1.0 - 1e-3  # resampled short of the end

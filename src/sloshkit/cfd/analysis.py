@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from sloshkit.calibration import CalibrationResult, calibrate
-from sloshkit.cfd.results import CfdSignals, read_signals
+from sloshkit.cfd.results import CfdSignals, read_function_object, read_signals
 from sloshkit.errors import InputError, ValidityWarning
 
 
@@ -205,9 +205,11 @@ def read_finished_signals(case: Path) -> CfdSignals:
             f"is unfinished (no probe data yet; simulated 0 of {end:g} s)",
             resume,
         ) from error
-    simulated = float(signals.time_s[-1])
-    step = float(summary.get("delta_t_s", 0.0))
-    if simulated < end - max(1.5 * step, 1e-6):
+    # The solver's own last probe time, not the resampled grid's (which may stop a step short):
+    # a finished run's last line is at the end time itself (8 significant digits), and a run
+    # stopped one step early is unfinished, not nearly finished.
+    simulated = float(read_function_object(case, "wallProbes", "alpha.water")[-1, 0])
+    if simulated < end - 1e-6:
         raise InputError(
             "case", str(case), f"is unfinished (simulated {simulated:.4g} of {end:g} s)", resume
         )

@@ -4,7 +4,8 @@ All methods use the timing family of `sloshkit.plan.retime` (acceleration-capped
 speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the timing):
 
 - ``retime``: the largest cap whose member passes the linear screen (with and without shaping),
-  and the verified ``uniform`` timing, each warped locally (`path_search.warp_search`);
+  and the verified ``uniform`` timing, each improved locally by speed-scaling warps
+  (`path_improve.warped_candidates`: pattern search and sequential linear programming);
 - ``shaped``: per-axis input shaping of the members (each Cartesian axis convolved with the
   ZV/ZVD shaper of the first mode, which cancels its residual for every lateral direction), the
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
@@ -34,7 +35,9 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.shaping import Shaper
-from sloshkit.plan.path_limits import machine_stretch, machine_violations, path_deviation
+from sloshkit.plan.path_improve import ladder_affordable, warped_candidates
+from sloshkit.plan.path_ladder import TARGET_LADDER, ladder_seeds, method_timing, plan_uniform
+from sloshkit.plan.path_limits import machine_violations, path_deviation
 from sloshkit.plan.path_result import (
     PathCandidate,
     PathPlanResult,
@@ -44,12 +47,7 @@ from sloshkit.plan.path_result import (
     verify,
 )
 from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import (
-    fastest_capped,
-    slowed_until,
-    stretcher,
-    warped_candidates,
-)
+from sloshkit.plan.path_search import fastest_capped, stretcher
 from sloshkit.plan.retime import (
     ShaperFactory,
     axis_shaped_samples,
@@ -146,12 +144,14 @@ def plan_retime(
     transcription: bool = True,
     warm_starts: Sequence[Timing] = (),
     seeds: Sequence[tuple[PathCandidate, Timing]] = (),
+    timings: Sequence[tuple[str, Timing]] = (),
 ) -> PathCandidate:
     """The fastest acceleration cap of the family under the slosh screen (with the first-mode
     timing shaper, without, and on curved paths with `sloshkit.plan.retime.curve_shaper`),
     then, with ``transcription``, the minimum-time transcription warm-started from it;
     verified. The verified family timing and every verified ``seeds`` timing are candidates
-    too, each improved by `sloshkit.plan.path_search.warp_search` and verified again; the
+    too, each improved by `sloshkit.plan.path_improve.warped_candidates` (pattern search and
+    SLP on a speed-scaling warp) and verified again; the
     fastest verified one wins, so ``retime`` is never slower than a feasible seed. The
     container stays on the path.
 
@@ -167,6 +167,10 @@ def plan_retime(
         Further warm starts for the transcription (e.g. the pose file's slowed timing).
     seeds : sequence of (PathCandidate, Timing)
         Verified candidates of the same path and their timings (e.g. ``uniform``).
+    timings : sequence of (str, Timing)
+        Other timings of the path (e.g. the ``shaped`` and ``tilt`` members), seeds once
+        slowed until they pass (`sloshkit.plan.path_improve.ladder_seeds`, which also seeds
+        the family and ``seeds`` under the stricter targets of `TARGET_LADDER`).
 
     Returns
     -------
@@ -185,7 +189,8 @@ def plan_retime(
     started = time.perf_counter()
     models = problem.models()
     best: tuple[float, float, Timing, str] | None = None
-    for name, shaper in _timing_shapers(problem):
+    shapers = dict(_timing_shapers(problem))
+    for name, shaper in shapers.items():
         found = fastest_capped(
             problem, lambda poses: screen_ok(problem, linear_screen(models, poses)), shaper
         )
@@ -214,7 +219,15 @@ def plan_retime(
         )
         stretched = timing.stretched(float(family.detail["stretch"]))
         pool.append((replace(family, detail={**family.detail, "seed": "family"}), stretched))
-    chosen = warped_candidates(problem, pool, verifier, started)
+    # The continuation over stricter targets and the other methods' timings (seeds).
+    others = [(c.method, t, ladder) for c, t in seeds if c.feasible for ladder in TARGET_LADDER[1:]]
+    others += [(name, timing, TARGET_LADDER[0]) for name, timing in timings]
+    shaper = None if best is None else shapers[best[3]]
+    ladder = TARGET_LADDER[1:] if best is not None else ()
+    extra: list[tuple[PathCandidate, Timing]] = []
+    if ladder_affordable(problem, min(t.duration_s for _, t in pool)):
+        extra = ladder_seeds(problem, verifier, started, shaper, others, ladder)
+    chosen = warped_candidates(problem, pool, verifier, started, ladder=extra)
     return replace(chosen, method="retime", compute_time_s=time.perf_counter() - started)
 
 
@@ -289,42 +302,6 @@ def plan_tilt(problem: PathProblem, verifier: Verifier = verify) -> PathCandidat
         "rotation_centre_height_m": problem.tilt_centre_height_m,
     }
     return verified_candidate("tilt", problem, poses_for, 1.0, started, verifier, True, detail)
-
-
-def plan_uniform(
-    problem: PathProblem, reference: Timing, verifier: Verifier = verify
-) -> PathCandidate:
-    """The reference timing slowed uniformly until it meets the Cartesian and angular limits
-    and then the slosh screen (the naive fix), then verified.
-
-    Parameters
-    ----------
-    problem : PathProblem
-        Path, limits, model.
-    reference : Timing
-        The timing to slow down (e.g. the pose file's own).
-    verifier : callable
-        Verification of an export.
-
-    Returns
-    -------
-    PathCandidate
-
-    Examples
-    --------
-    >>> from sloshkit.plan.retime import capped_timing
-    >>> problem = _example_problem()
-    >>> found = plan_uniform(problem, capped_timing(problem, 10.0), linear_verifier)
-    >>> found.feasible, found.detail["stretch"] > 1.0
-    (True, True)
-    """
-    started = time.perf_counter()
-
-    poses_for = stretcher(problem, reference)
-    found = slowed_until(problem, poses_for, machine_stretch(problem, poses_for(1.0)))
-    if found is None:
-        return _failed("uniform", started, "no uniform stretch up to 64x meets the slosh limits")
-    return verified_candidate("uniform", problem, poses_for, found[0], started, verifier, False, {})
 
 
 def plan_path(
@@ -402,15 +379,18 @@ def plan_path(
         ]
     )
     seeds = [] if uniform is None or not uniform.feasible else [(uniform, warm_starts[0])]
-    if method in ("auto", "retime"):
-        say("retime: fastest acceleration cap under the slosh limits")
-        candidates.append(plan_retime(problem, verifier, transcription, warm_starts, seeds))
     if method in ("auto", "shaped"):
         say("shaped: per-axis input shaping")
         candidates.append(plan_shaped(problem, verifier))
     if method == "tilt" or (method == "auto" and tilt):
         say("tilt: tilt compensation with re-timing")
         candidates.append(plan_tilt(problem, verifier))
+    if method in ("auto", "retime"):
+        say("retime: fastest acceleration cap under the slosh limits, then local searches")
+        shapers = dict(_timing_shapers(problem))
+        timings = [method_timing(problem, c, shapers) for c in candidates if c.poses is not None]
+        found = plan_retime(problem, verifier, transcription, warm_starts, seeds, timings)
+        candidates.insert(0, found)
     feasible = [c for c in candidates if c.feasible]
     pool = feasible or [c for c in candidates if c.poses is not None]
     chosen = min(pool, key=lambda c: c.duration_s) if pool else None

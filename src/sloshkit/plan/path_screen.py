@@ -138,6 +138,53 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
     >>> round(linear_screen([model], poses).peak_height_m * 1e3)  # [mm]
     24
     """
+    peak = residual = angle = 0.0
+    for wall, bound, first, _ in screen_outputs(models, poses):
+        peak = max(peak, float(np.max(wall)))
+        residual = max(residual, bound)
+        angle = max(angle, first)
+    return ScreenResult(peak, residual, angle)
+
+
+def screen_outputs(
+    models: list[Any], poses: PoseSamples
+) -> list[tuple[FloatArray, float, float, FloatArray]]:
+    """The linear screen's outputs per model of the band (`linear_screen` takes their worst).
+
+    Parameters
+    ----------
+    models : list of SloshModel
+        The models of the band (`PathProblem.models`).
+    poses : PoseSamples
+        The export.
+
+    Returns
+    -------
+    list of tuple
+        Per model: the wall height |sum_n e_n phi_n| at every sample [m], the residual bound
+        sum_n e_n sqrt(|A_n|^2 + |B_n|^2) [m], the peak first-mode angle [rad] and the rows
+        e_n (A_n, B_n) of every mode n [m] (the cosine and sine amplitude vectors of its free
+        oscillation after the move, whose norms add up to the residual bound).
+
+    References
+    ----------
+    Abramson, NASA SP-106 (1966) ch. 6; Dodge (2000) ch. 3 (module docstring).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.spatial import sample_path
+    >>> from sloshkit.motion.laws import s_curve
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> poses = sample_path(path_from_waypoints([[0, 0, 0], [0.5, 0, 0]]),
+    ...                     s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
+    >>> (wall, residual, angle, amplitudes), = screen_outputs([model], poses)
+    >>> wall.shape == poses.time_s.shape, round(float(wall.max()) * 1e3), amplitudes.shape
+    (True, 24, (3, 4))
+    """
     from sloshkit.sim.discretisation import linear_mode_response
 
     ts = float(poses.time_s[1] - poses.time_s[0])
@@ -148,10 +195,11 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
     unspin[:, 2], unspin[:, 3] = np.sin(-0.5 * spin), np.cos(-0.5 * spin)
     frame = _qmul(quaternion, unspin)
     axis = _qaxis(quaternion)
-    peak = residual = angle = 0.0
+    outputs: list[tuple[FloatArray, float, float, FloatArray]] = []
     for model in models:
         wall = np.zeros((poses.time_s.size, 2))
-        bound = 0.0
+        bound = angle = 0.0
+        amplitudes = np.zeros((len(model.modes), 4))
         for index, mode in enumerate(model.modes):
             point = poses.position_m + mode.bob_height_m * axis
             force = _qapply_inverse(frame, GRAVITY - _second_difference(point, ts))[:, :2]
@@ -168,14 +216,14 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
             phi = theta.T + rest[0]
             wall += mode.wall_elevation_factor_m * phi
             if index == 0:
-                angle = max(angle, float(np.max(np.linalg.norm(phi, axis=1))))
+                angle = float(np.max(np.linalg.norm(phi, axis=1)))
             damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
             cosine = phi[-1] - rest[-1]
             sine = (rate.T[-1] + mode.damping_ratio * mode.omega_rad_s * cosine) / damped
-            bound += mode.wall_elevation_factor_m * math.sqrt(cosine @ cosine + sine @ sine)
-        peak = max(peak, float(np.max(np.linalg.norm(wall, axis=1))))
-        residual = max(residual, bound)
-    return ScreenResult(peak, residual, angle)
+            amplitudes[index] = mode.wall_elevation_factor_m * np.concatenate((cosine, sine))
+            bound += float(np.linalg.norm(amplitudes[index]))
+        outputs.append((np.linalg.norm(wall, axis=1), bound, angle, amplitudes))
+    return outputs
 
 
 def screen_ok(problem: PathProblem, result: ScreenResult, margin: float = SEARCH_MARGIN) -> bool:

@@ -7,24 +7,20 @@ bisection towards the next larger (failing) grid value, also bisects over the wh
 can land in a passing pocket between grid values), and keeps the larger passing cap. A uniform
 stretch in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative
 the planner compares with. `warp_search` improves a feasible timing locally by a piecewise
-(B-spline) speed scaling under the screen, and `warped_candidates` verifies the improvements of
-verified seeds and keeps the fastest, so ``retime`` is never slower than its seeds.
+(B-spline) speed scaling under the screen (`sloshkit.plan.path_improve.warped_candidates` runs it,
+with the SLP of `sloshkit.plan.path_slp`, from verified seeds and keeps the fastest verified
+result, so ``retime`` is never slower than its seeds).
 """
 
 from __future__ import annotations
 
-import itertools
 import math
-import time
-from collections.abc import Callable, Sequence
-from dataclasses import replace
+from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.motion.shaping import Shaper
-from sloshkit.plan.path_limits import machine_violations
-from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.retime import ShaperFactory, family_member
 from sloshkit.plan.spatial import PathProblem, PoseSamples, _continuous, sample_path
@@ -255,9 +251,6 @@ def _refine(
 
 #: B-spline coefficients of the speed-scaling warp (`warp_search`).
 WARP_KNOTS = 12
-#: Coefficient counts `warped_candidates` tries per seed (the local search finds different
-#: optima with each; on the measured series each count won in some case).
-WARP_KNOT_COUNTS = (8, 12)
 #: Largest number of linear screens one `warp_search` spends.
 WARP_SCREENS = 250
 #: Samples `warped_candidates` lets one search screen (fewer screens on long moves).
@@ -351,109 +344,3 @@ def warp_search(
     if np.all(factors == 1.0):
         return seed, screens
     return warped_timing(seed, factors), screens
-
-
-def warped_candidates(
-    problem: PathProblem,
-    pool: Sequence[tuple[PathCandidate, Timing]],
-    verifier: Verifier,
-    started: float,
-) -> PathCandidate:
-    """The fastest of verified candidates and of their `warp_search` improvements. Each
-    improvement is verified again; when the verifier finds a slosh height above a limit that
-    the screen passed, that limit of the screen is tightened by the excess and the search
-    repeated from the seed (`WARP_ROUNDS` in all, for each of `WARP_KNOT_COUNTS`; each search
-    screens at most `WARP_SAMPLE_BUDGET` samples, `WARP_SCREENS` exports), and when
-    every round fails the last improvement is slowed uniformly
-    (`sloshkit.plan.path_result.verified_candidate`). Never slower than the fastest feasible
-    candidate of ``pool``.
-
-    Parameters
-    ----------
-    problem : PathProblem
-        Path, limits, model.
-    pool : sequence of (PathCandidate, Timing)
-        Verified candidates (at least one) and the timings of their exports.
-    verifier : callable
-        Verification of an export.
-    started : float
-        ``time.perf_counter()`` when the method started.
-
-    Returns
-    -------
-    PathCandidate
-        The fastest feasible one (the fastest at all when none is feasible); improvements carry
-        ``warp_screens`` in their detail.
-
-    Examples
-    --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.path_result import linear_verifier
-    >>> from sloshkit.plan.retime import family_member
-    >>> problem = _example_problem()
-    >>> slow = family_member(problem, 0.5, None).stretched(2.0)
-    >>> seed = verified_candidate("retime", problem, stretcher(problem, slow), 1.0,
-    ...                           time.perf_counter(), linear_verifier, False, {})
-    >>> found = warped_candidates(problem, [(seed, slow)], linear_verifier, time.perf_counter())
-    >>> found.feasible, found.duration_s < seed.duration_s
-    (True, True)
-    """
-    models = problem.models()
-    limits = problem.slosh
-
-    def passes_for(tight: PathProblem) -> Callable[[PoseSamples], bool]:
-        def passes(poses: PoseSamples) -> bool:
-            return screen_ok(tight, linear_screen(models, poses)) and not machine_violations(
-                problem, poses, False
-            )
-
-        return passes
-
-    results = [candidate for candidate, _ in pool]
-    for (candidate, timing), knots in itertools.product(pool, WARP_KNOT_COUNTS):
-        if not candidate.feasible:
-            continue
-        height, residual = limits.max_height_m, limits.max_residual_height_m
-        samples = timing.duration_s / problem.sample_period_s
-        budget = max(20, min(WARP_SCREENS, int(WARP_SAMPLE_BUDGET / samples)))
-        improved: tuple[Timing, int] | None = None
-        for _ in range(WARP_ROUNDS):
-            tight = replace(
-                problem,
-                slosh=replace(limits, max_height_m=height, max_residual_height_m=residual),
-            )
-            warped, screens = warp_search(problem, timing, passes_for(tight), knots, budget)
-            if warped is timing or warped.duration_s >= candidate.duration_s:
-                break
-            improved = (warped, screens)
-            poses = stretcher(problem, warped)(1.0)
-            check = verifier(problem, poses, False)
-            message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
-            detail = {**candidate.detail, "warp_screens": screens, "warp_knots": knots}
-            detail["stretch"] = 1.0
-            results.append(PathCandidate(candidate.method, poses, check, 0.0, message, detail))
-            if check.feasible:
-                improved = None
-                break
-            # The nonlinear model exceeds what the screen predicted: tighten the screen's
-            # limit by the excess and search again (a bounded verify-and-tighten loop).
-            tighter = (
-                height * min(1.0, 0.98 * limits.max_height_m / check.peak_height_m),
-                residual * min(1.0, 0.98 * limits.max_residual_height_m / check.residual_height_m),
-            )
-            if tighter == (height, residual):
-                break
-            height, residual = tighter
-        if improved is not None:
-            # Still above a limit after every round: the last improvement slowed uniformly by
-            # the excess (`sloshkit.plan.path_result.verified_candidate`).
-            detail = {**candidate.detail, "warp_screens": improved[1], "warp_knots": knots}
-            poses_for = stretcher(problem, improved[0])
-            results.append(
-                verified_candidate(
-                    candidate.method, problem, poses_for, 1.0, started, verifier, False, detail
-                )
-            )
-    feasible = [candidate for candidate in results if candidate.feasible]
-    chosen = min(feasible or results, key=lambda candidate: candidate.duration_s)
-    return replace(chosen, compute_time_s=time.perf_counter() - started)
