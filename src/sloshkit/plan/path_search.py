@@ -267,7 +267,6 @@ def warp_search(
     passes: Callable[[PoseSamples], bool],
     knots: int = WARP_KNOTS,
     max_screens: int = WARP_SCREENS,
-    transform: Callable[[PoseSamples], PoseSamples] | None = None,
 ) -> tuple[Timing, int]:
     """Local improvement of a feasible timing by piecewise speed scaling
     (`sloshkit.plan.timing.warped_timing`): from all factors 1 (the seed), each factor in turn
@@ -288,9 +287,6 @@ def warp_search(
         Number of warp factors.
     max_screens : int
         Budget of ``passes`` calls.
-    transform : callable, optional
-        PoseSamples -> PoseSamples applied to each sampled timing before ``passes`` (the
-        export of a method that changes the poses, e.g. ``tilt``'s tilt compensation).
 
     Returns
     -------
@@ -329,8 +325,7 @@ def warp_search(
         s = np.clip(seed.position(np.interp(t, clock, grid)), 0.0, problem.path.length_m)
         s[-1] = problem.path.length_m
         quaternions = problem.path.orientation(s).as_quat()
-        poses = PoseSamples(t, problem.path.position(s), _continuous(quaternions))
-        return passes(poses if transform is None else transform(poses))
+        return passes(PoseSamples(t, problem.path.position(s), _continuous(quaternions)))
 
     factors = np.ones(knots)
     screens = 0
