@@ -191,7 +191,7 @@ def improved_tilt(
 ) -> PathCandidate:
     """The ``tilt`` family candidate improved by the local searches of ``retime`` on the tilted
     export (module docstring), seeded from its own timing and from ``seeds``; never slower than
-    ``family`` when that is feasible.
+    ``family``. ``family`` itself when it is infeasible or the move too long for the budget.
 
     Parameters
     ----------
@@ -227,13 +227,14 @@ def improved_tilt(
     (True, True)
     """
     started = time.perf_counter() - family.compute_time_s
+    if not family.feasible or not ladder_affordable(problem, family.duration_s, TILT_SAMPLE_BUDGET):
+        return family
     tilted, smoothing = tilt_transform(problem)
-    pool: list[tuple[PathCandidate, Timing]] = []
-    if family.poses is not None:
-        pool.append((family, method_timing(problem, family, dict(timing_shapers(problem)))[1]))
+    pool = [(family, method_timing(problem, family, dict(timing_shapers(problem)))[1])]
     detail = {
         "tilt_smoothing_s": smoothing,
         "rotation_centre_height_m": problem.tilt_centre_height_m,
+        "seed": "retime",
     }
     for timing in seeds:
         plain = stretcher(problem, timing)
@@ -245,23 +246,12 @@ def improved_tilt(
         if slowed is None:
             continue
         found = verified_candidate(
-            "tilt",
-            problem,
-            poses_for,
-            slowed[0],
-            started,
-            verifier,
-            True,
-            {**detail, "seed": "retime"},
+            "tilt", problem, poses_for, slowed[0], started, verifier, True, detail
         )
-        pool.append((found, timing.stretched(float(found.detail["stretch"]))))
-    feasible = [item for item in pool if item[0].feasible]
-    fastest = min((c.duration_s for c, _ in feasible), default=math.inf)
-    if not ladder_affordable(problem, fastest, TILT_SAMPLE_BUDGET):
-        chosen = min((c for c, _ in feasible), key=lambda c: c.duration_s, default=family)
-        return replace(chosen, compute_time_s=time.perf_counter() - started)
+        if found.feasible:
+            pool.append((found, timing.stretched(float(found.detail["stretch"]))))
     chosen = warped_candidates(
-        problem, feasible, verifier, started, transform=tilted, budget=TILT_SAMPLE_BUDGET
+        problem, pool, verifier, started, transform=tilted, budget=TILT_SAMPLE_BUDGET
     )
     return replace(chosen, method="tilt")
 
