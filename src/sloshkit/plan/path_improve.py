@@ -256,6 +256,7 @@ def warped_candidates(
     --------
     >>> from sloshkit.plan.path_planner import _example_problem
     >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.path_search import stretcher
     >>> from sloshkit.plan.retime import family_member
     >>> problem = _example_problem()
     >>> slow = family_member(problem, 0.5, None).stretched(2.0)
@@ -300,6 +301,7 @@ def fastest_improved(
     --------
     >>> from sloshkit.plan.path_planner import _example_problem
     >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.path_search import stretcher
     >>> from sloshkit.plan.retime import family_member
     >>> problem = _example_problem()
     >>> slow = family_member(problem, 0.5, None).stretched(2.0)
