@@ -26,22 +26,29 @@ fastest verified candidate wins, so ``retime`` is never slower than its seeds.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 from sloshkit.plan.path_ladder import targeted
 from sloshkit.plan.path_limits import machine_violations
-from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
+from sloshkit.plan.path_polish import (
+    POLISH_SCREENS,
+    Transform,
+    _budget,
+    _exporter,
+    _halving,
+    _listed,
+    _polished,
+    _spend,
+)
+from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import (
     WARP_KNOTS,
     WARP_ROUNDS,
-    WARP_SAMPLE_BUDGET,
     WARP_SCREENS,
     slowed_until,
-    stretcher,
     warp_search,
 )
 from sloshkit.plan.path_slp import SLP_KNOTS, slp_search
@@ -58,8 +65,6 @@ SEARCH_CHAINS: tuple[tuple[str, ...], ...] = (("warp8",), ("warp", "slp"), ("slp
 IMPROVE_SAMPLE_BUDGET = 800_000
 #: Sample count of a move above which the shared budget shrinks.
 IMPROVE_LONG_MOVE = 1500
-#: Largest number of steps (each a linear screen or a nonlinear simulation) of one polishing.
-POLISH_SCREENS = 400
 
 #: Screened samples the polishing of the ladder's seeds shares (on top of what the searches
 #: of `IMPROVE_SAMPLE_BUDGET` left; shrinking like it on long moves).
@@ -71,37 +76,29 @@ LADDER_MIN_SCREENS = 100
 Seeded = tuple[PathCandidate, Timing]
 
 
-def _budget(problem: PathProblem, timing: Timing, most: int, left: list[float]) -> int:
-    """Screens one search may spend: at most ``most``, `WARP_SAMPLE_BUDGET` samples and what
-    is ``left`` of the shared budget of samples (0 when fewer than 20 screens are left)."""
-    samples = timing.duration_s / problem.sample_period_s
-    screens = min(most, int(WARP_SAMPLE_BUDGET / samples), int(left[0] / samples))
-    return screens if screens >= 20 else 0
-
-
-def _spend(problem: PathProblem, timing: Timing, screens: int, left: list[float]) -> None:
-    """Take ``screens`` screens of ``timing``'s length from the shared budget ``left``."""
-    left[0] -= screens * timing.duration_s / problem.sample_period_s
-
-
 def _chain(
     problem: PathProblem,
     seed: Timing,
     passes: Callable[[PoseSamples], bool],
     chain: tuple[str, ...],
     budget: int,
+    transform: Transform = None,
 ) -> tuple[Timing, int]:
     """Run the searches of ``chain`` in turn, each from the previous one's result (``warp`` or
     ``slp``, optionally followed by the number of warp coefficients, e.g. ``warp8``)."""
     screens = 0
     timing = seed
+
+    def screened(poses: PoseSamples) -> bool:
+        return passes(poses if transform is None else transform(poses))
+
     for search in chain:
         if search.startswith("slp"):
             knots = int(search[3:] or SLP_KNOTS)
-            timing, spent = slp_search(problem, timing, passes, knots, budget)
+            timing, spent = slp_search(problem, timing, passes, knots, budget, transform=transform)
         else:
             knots = int(search[4:] or WARP_KNOTS)
-            timing, spent = warp_search(problem, timing, passes, knots, budget)
+            timing, spent = warp_search(problem, timing, screened, knots, budget)
         screens += spent
     return timing, screens
 
@@ -128,6 +125,7 @@ def _screened(
     best: float,
     started: float,
     left: list[float],
+    transform: Transform = None,
 ) -> list[Seeded]:
     """The verified results of one screened chain from one seed, with the verify-and-tighten
     rounds (module docstring); the last failing improvement slowed uniformly when every round
@@ -139,6 +137,7 @@ def _screened(
     height, residual = limits.max_height_m, limits.max_residual_height_m
     results: list[Seeded] = []
     improved: tuple[Timing, int] | None = None
+    tilted = transform is not None
     for _ in range(WARP_ROUNDS):
         budget = _budget(problem, timing, WARP_SCREENS, left)
         if not budget:
@@ -149,22 +148,22 @@ def _screened(
 
         def passes(poses: PoseSamples, tight: PathProblem = tight) -> bool:
             return screen_ok(tight, linear_screen(models, poses)) and not machine_violations(
-                problem, poses, False
+                problem, poses, tilted
             )
 
         start = timing
         if (height, residual) != (limits.max_height_m, limits.max_residual_height_m):
             # A tightened screen: start from the seed slowed uniformly until it passes.
-            slowed = slowed_until(tight, stretcher(problem, timing))
+            slowed = slowed_until(tight, _exporter(problem, timing, transform))
             if slowed is None:
                 break
             start = timing.stretched(slowed[0])
-        warped, screens = _chain(tight, start, passes, chain, budget)
+        warped, screens = _chain(tight, start, passes, chain, budget, transform)
         _spend(problem, timing, screens, left)
         if warped is start or warped.duration_s >= best:
             break
-        poses = stretcher(problem, warped)(1.0)
-        check = verifier(problem, poses, False)
+        poses = _exporter(problem, warped, transform)(1.0)
+        check = verifier(problem, poses, tilted)
         message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
         detail = {**candidate.detail, "warp_screens": screens, "search": "+".join(chain)}
         detail["stretch"] = 1.0
@@ -191,48 +190,12 @@ def _screened(
         height, residual = tighter
     if improved is not None:
         detail = {**candidate.detail, "warp_screens": improved[1], "search": "+".join(chain)}
-        poses_for = stretcher(problem, improved[0])
+        poses_for = _exporter(problem, improved[0], transform)
         found = verified_candidate(
-            candidate.method, problem, poses_for, 1.0, started, verifier, False, detail
+            candidate.method, problem, poses_for, 1.0, started, verifier, tilted, detail
         )
         results.append((found, improved[0].stretched(float(found.detail["stretch"]))))
     return results
-
-
-def _polished(
-    problem: PathProblem, seed: Seeded, verifier: Verifier, left: list[float]
-) -> Seeded | None:
-    """The SLP from a verified seed with the nonlinear model as its reference (module
-    docstring), verified again; None when it found no shorter timing."""
-    candidate, timing = seed
-
-    def machine(poses: PoseSamples) -> bool:
-        return not machine_violations(problem, poses, False)
-
-    def reference(poses: PoseSamples) -> tuple[float, float]:
-        check = verify(problem, poses, False)
-        return check.peak_height_m, check.residual_height_m
-
-    budget = _budget(problem, timing, POLISH_SCREENS, left)
-    if not budget:
-        return None
-    polished, steps = slp_search(
-        problem, timing, machine, SLP_KNOTS, budget, SEARCH_MARGIN, reference
-    )
-    _spend(problem, timing, steps, left)
-    if polished is timing:
-        return None
-    poses = stretcher(problem, polished)(1.0)
-    check = verifier(problem, poses, False)
-    message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
-    search = candidate.detail.get("search")
-    detail = {
-        **candidate.detail,
-        "search": "slp-nonlinear" if search is None else f"{search}+slp-nonlinear",
-        "polish_steps": steps,
-        "stretch": 1.0,
-    }
-    return PathCandidate(candidate.method, poses, check, 0.0, message, detail), polished
 
 
 def warped_candidates(
@@ -243,6 +206,8 @@ def warped_candidates(
     chains: Sequence[tuple[str, ...]] | None = None,
     polish: bool = True,
     ladder: Sequence[Seeded] = (),
+    transform: Transform = None,
+    budget: float | None = None,
 ) -> PathCandidate:
     """The fastest of verified candidates and of their improvements (module docstring): the
     screened chains (`SEARCH_CHAINS`) from every verified seed of ``pool`` and with ``polish``
@@ -269,6 +234,12 @@ def warped_candidates(
         Further verified seeds (`sloshkit.plan.path_ladder.ladder_seeds`), polished with
         ``polish`` on their own budget (`LADDER_SAMPLE_BUDGET`, and what the searches above
         left).
+    transform : callable, optional
+        PoseSamples -> PoseSamples turning a sampled timing into the export (e.g. ``tilt``'s
+        tilt compensation, `sloshkit.plan.path_tilt`): every search screens, and every
+        verification checks, the transformed poses, with the tilt limit when given.
+    budget : float, optional
+        Screened samples the searches share (default `IMPROVE_SAMPLE_BUDGET`).
 
     Returns
     -------
@@ -285,6 +256,7 @@ def warped_candidates(
     --------
     >>> from sloshkit.plan.path_planner import _example_problem
     >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.path_search import stretcher
     >>> from sloshkit.plan.retime import family_member
     >>> problem = _example_problem()
     >>> slow = family_member(problem, 0.5, None).stretched(2.0)
@@ -295,6 +267,51 @@ def warped_candidates(
     >>> found.feasible, found.duration_s < seed.duration_s
     (True, True)
     """
+    chosen = fastest_improved(
+        problem, pool, verifier, started, chains, polish, ladder, transform, budget
+    )[0]
+    return replace(chosen, compute_time_s=time.perf_counter() - started)
+
+
+def fastest_improved(
+    problem: PathProblem,
+    pool: Sequence[Seeded],
+    verifier: Verifier,
+    started: float,
+    chains: Sequence[tuple[str, ...]] | None = None,
+    polish: bool = True,
+    ladder: Sequence[Seeded] = (),
+    transform: Transform = None,
+    budget: float | None = None,
+) -> Seeded:
+    """`warped_candidates` with the timing of the chosen candidate's export (before
+    ``transform``).
+
+    Parameters
+    ----------
+    problem, pool, verifier, started, chains, polish, ladder, transform, budget
+        As for `warped_candidates`.
+
+    Returns
+    -------
+    tuple
+        (the chosen PathCandidate, its Timing).
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path_planner import _example_problem
+    >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.path_search import stretcher
+    >>> from sloshkit.plan.retime import family_member
+    >>> problem = _example_problem()
+    >>> slow = family_member(problem, 0.5, None).stretched(2.0)
+    >>> seed = verified_candidate("retime", problem, stretcher(problem, slow), 1.0,
+    ...                           time.perf_counter(), linear_verifier, False, {})
+    >>> found, timing = fastest_improved(problem, [(seed, slow)], linear_verifier,
+    ...                                  time.perf_counter(), (("warp",),), False)
+    >>> timing.duration_s < slow.duration_s
+    True
+    """
     results: list[Seeded] = [*pool, *ladder]
     seeds = sorted((item for item in pool if item[0].feasible), key=lambda item: item[0].duration_s)
     chains = chains or SEARCH_CHAINS
@@ -304,12 +321,14 @@ def warped_candidates(
 
     samples = seeds[0][1].duration_s / problem.sample_period_s if seeds else 1.0
     shrink = min(1.0, IMPROVE_LONG_MOVE / samples) ** 2
-    left = [IMPROVE_SAMPLE_BUDGET * shrink]
+    left = [(IMPROVE_SAMPLE_BUDGET if budget is None else budget) * shrink]
     for seed in seeds:
         if polish:
-            results += _listed(_polished(problem, seed, verifier, left))
+            results += _listed(_polished(problem, seed, verifier, left, transform))
         for chain in chains:
-            results += _screened(problem, seed, chain, verifier, fastest(), started, left)
+            results += _screened(
+                problem, seed, chain, verifier, fastest(), started, left, transform
+            )
     if polish:
         names = {"+".join(chain) for chain in chains}
         chained = [
@@ -317,7 +336,7 @@ def warped_candidates(
         ]
         if chained:
             best = min(chained, key=lambda item: item[0].duration_s)
-            results += _listed(_polished(problem, best, verifier, left))
+            results += _listed(_polished(problem, best, verifier, left, transform))
         # The continuation: polish every seed of the ladder (stricter targets, other methods'
         # timings) against the true limits, with equal shares of its own budget.
         others = sorted(
@@ -325,44 +344,12 @@ def warped_candidates(
         )
         left[0] += LADDER_SAMPLE_BUDGET * shrink
         results += _halving(problem, others, verifier, left)
-    feasible = [candidate for candidate, _ in results if candidate.feasible]
-    chosen = min(feasible or [c for c, _ in results], key=lambda candidate: candidate.duration_s)
-    return replace(chosen, compute_time_s=time.perf_counter() - started)
+    feasible = [item for item in results if item[0].feasible]
+    chosen = min(feasible or results, key=lambda item: item[0].duration_s)
+    return replace(chosen[0], compute_time_s=time.perf_counter() - started), chosen[1]
 
 
-def _halving(
-    problem: PathProblem, entrants: list[Seeded], verifier: Verifier, left: list[float]
-) -> list[Seeded]:
-    """Successive halving of the polishing over ``entrants`` (Jamieson & Talwalkar 2016): each
-    round polishes every entrant from its latest result with an equal share of its part of
-    ``left`` and keeps the faster half (at least one) for the next round, whose entrants get
-    twice the share; a round's part is what is left over the rounds still to run, weighted
-    equally."""
-    found: list[Seeded] = []
-    rounds = max(1, math.ceil(math.log2(max(len(entrants), 1))) + 1)
-    for round_ in range(rounds):
-        if not entrants:
-            break
-        share = left[0] / (rounds - round_) / len(entrants)
-        latest = []
-        for entrant in entrants:
-            part = [share]
-            polished = _polished(problem, entrant, verifier, part)
-            left[0] -= share - part[0]
-            if polished is not None and polished[0].feasible:
-                found.append(polished)
-                entrant = polished
-            latest.append(entrant)
-        latest.sort(key=lambda item: item[0].duration_s)
-        entrants = latest[: max(1, len(latest) // 2)]
-    return found
-
-
-def _listed(found: Seeded | None) -> list[Seeded]:
-    return [] if found is None else [found]
-
-
-def ladder_affordable(problem: PathProblem, duration_s: float) -> bool:
+def ladder_affordable(problem: PathProblem, duration_s: float, budget: float | None = None) -> bool:
     """Whether the continuation (`sloshkit.plan.path_ladder.ladder_seeds`,
     `LADDER_SAMPLE_BUDGET`) runs for a move of
     about ``duration_s``: its budget, shrunk like `IMPROVE_SAMPLE_BUDGET` above
@@ -374,6 +361,8 @@ def ladder_affordable(problem: PathProblem, duration_s: float) -> bool:
         Sample period.
     duration_s : float
         Duration of the move [s].
+    budget : float, optional
+        The screened samples (default `LADDER_SAMPLE_BUDGET`; ``tilt`` passes its own).
 
     Returns
     -------
@@ -388,7 +377,8 @@ def ladder_affordable(problem: PathProblem, duration_s: float) -> bool:
     """
     samples = max(duration_s / problem.sample_period_s, 1.0)
     shrink = min(1.0, IMPROVE_LONG_MOVE / samples) ** 2
-    return LADDER_SAMPLE_BUDGET * shrink / samples >= LADDER_MIN_SCREENS
+    budget = LADDER_SAMPLE_BUDGET if budget is None else budget
+    return budget * shrink / samples >= LADDER_MIN_SCREENS
 
 
 __all__ = [
@@ -398,6 +388,7 @@ __all__ = [
     "LADDER_SAMPLE_BUDGET",
     "POLISH_SCREENS",
     "SEARCH_CHAINS",
+    "fastest_improved",
     "ladder_affordable",
     "warped_candidates",
 ]

@@ -11,7 +11,9 @@ speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the tim
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
   path (shaping the axes cuts corners; the deviation is measured on the export);
 - ``tilt``: tilt compensation (`sloshkit.plan.tilt`) of the members, the largest cap whose
-  tilted export passes the screen and the tilt and angular limits;
+  tilted export passes the screen and the tilt and angular limits, then improved by the same
+  local searches on the tilted export, seeded also from ``retime``'s timing in ``auto``
+  (`sloshkit.plan.path_tilt`);
 - ``auto``: all three, the fastest verified.
 
 Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path_result.verify`); when
@@ -24,7 +26,6 @@ file's own) is slowed uniformly until the limits and the screen pass and reporte
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import replace
@@ -34,8 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
-from sloshkit.motion.shaping import Shaper
-from sloshkit.plan.path_improve import ladder_affordable, warped_candidates
+from sloshkit.plan.path_improve import fastest_improved, ladder_affordable
 from sloshkit.plan.path_ladder import TARGET_LADDER, ladder_seeds, method_timing, plan_uniform
 from sloshkit.plan.path_limits import machine_violations, path_deviation
 from sloshkit.plan.path_result import (
@@ -48,14 +48,12 @@ from sloshkit.plan.path_result import (
 )
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import fastest_capped, stretcher
+from sloshkit.plan.path_tilt import improved_tilt, plan_tilt, timing_shapers
 from sloshkit.plan.retime import (
-    ShaperFactory,
     axis_shaped_samples,
-    curve_shaper,
     first_mode_shaper,
 )
 from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
-from sloshkit.plan.tilt import tilt_compensated
 from sloshkit.plan.timing import Timing
 from sloshkit.plan.transcription import transcribed_timing
 
@@ -127,17 +125,6 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
     )
 
 
-def _timing_shapers(problem: PathProblem) -> list[tuple[str, Shaper | ShaperFactory | None]]:
-    """The timing shapers the cap searches try: the first-mode ZV (ZVD), none, and on a path
-    that turns the curve shaper (`sloshkit.plan.retime.curve_shaper`)."""
-    first = first_mode_shaper(problem)
-    shapers: list[tuple[str, Shaper | ShaperFactory | None]] = [(first.name, first), ("none", None)]
-    curve = curve_shaper(problem)
-    if curve(problem.machine.max_acceleration_m_s2).amplitudes.size > 3:
-        shapers.append(("curve", curve))
-    return shapers
-
-
 def plan_retime(
     problem: PathProblem,
     verifier: Verifier = verify,
@@ -186,10 +173,22 @@ def plan_retime(
     >>> plan_retime(problem, linear_verifier, transcription=False).detail["shaper"]
     'zv'
     """
+    return _retime(problem, verifier, transcription, warm_starts, seeds, timings)[0]
+
+
+def _retime(
+    problem: PathProblem,
+    verifier: Verifier,
+    transcription: bool,
+    warm_starts: Sequence[Timing],
+    seeds: Sequence[tuple[PathCandidate, Timing]],
+    timings: Sequence[tuple[str, Timing]],
+) -> tuple[PathCandidate, Timing | None]:
+    """`plan_retime` and the timing of its export (None when it failed)."""
     started = time.perf_counter()
     models = problem.models()
     best: tuple[float, float, Timing, str] | None = None
-    shapers = dict(_timing_shapers(problem))
+    shapers = dict(timing_shapers(problem))
     for name, shaper in shapers.items():
         found = fastest_capped(
             problem, lambda poses: screen_ok(problem, linear_screen(models, poses)), shaper
@@ -202,9 +201,8 @@ def plan_retime(
             best = (duration, cap, member, name)
     pool = [(replace(c, detail={**c.detail, "seed": c.method}), t) for c, t in seeds if c.feasible]
     if best is None and not pool:
-        return _failed(
-            "retime", started, "no acceleration cap down to 0.1 % of amax meets the slosh limits"
-        )
+        message = "no acceleration cap down to 0.1 % of amax meets the slosh limits"
+        return _failed("retime", started, message), None
     if best is not None:
         duration, cap, timing, shaper_name = best
         detail: dict[str, Any] = {"acceleration_cap_m_s2": cap, "shaper": shaper_name}
@@ -227,81 +225,8 @@ def plan_retime(
     extra: list[tuple[PathCandidate, Timing]] = []
     if ladder_affordable(problem, min(t.duration_s for _, t in pool)):
         extra = ladder_seeds(problem, verifier, started, shaper, others, ladder)
-    chosen = warped_candidates(problem, pool, verifier, started, ladder=extra)
-    return replace(chosen, method="retime", compute_time_s=time.perf_counter() - started)
-
-
-def plan_tilt(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
-    """Tilt compensation of the family: the largest cap whose tilted export passes the screen
-    and the tilt and angular limits, then verified.
-
-    Parameters
-    ----------
-    problem : PathProblem
-        Path, limits (``max_tilt_rad``, ``tilt_centre_height_m``), model.
-    verifier : callable
-        Verification of an export.
-
-    Returns
-    -------
-    PathCandidate
-
-    References
-    ----------
-    Feddema et al. (1997), doi:10.1109/37.569711.
-
-    Examples
-    --------
-    >>> problem = _example_problem()
-    >>> found = plan_tilt(problem, linear_verifier)
-    >>> found.feasible, found.verification.peak_tilt_rad > 0.0
-    (True, True)
-    """
-    started = time.perf_counter()
-    bob = problem.model.modes[0].bob_height_m
-    models = problem.models()
-
-    # Smoothing: a fifth of the first mode's period (the tilt's angular acceleration excites
-    # the liquid; 0.01-0.06 s were compared on a straight move, longer is calmer).
-    smoothing = 2.0 * math.pi / problem.model.modes[0].omega_rad_s / 5.0
-
-    def tilted(poses: PoseSamples) -> PoseSamples:
-        return tilt_compensated(
-            poses, bob, problem.max_tilt_rad, problem.tilt_centre_height_m, smoothing
-        )
-
-    def passes(poses: PoseSamples) -> bool:
-        candidate = tilted(poses)
-        return screen_ok(problem, linear_screen(models, candidate)) and not machine_violations(
-            problem, candidate, True
-        )
-
-    best: tuple[float, float, Callable[[float], PoseSamples], str] | None = None
-    # The curve shaper is not tried: tilting removes the turning forcing it is for (on the
-    # series' paths it never gave a faster tilted plan and cost a third more compute).
-    for name, shaper in _timing_shapers(problem)[:2]:
-        found = fastest_capped(problem, passes, shaper)
-        if found is None:
-            continue
-        cap, member = found
-        plain = stretcher(problem, member)
-        duration = tilted(plain(1.0)).duration_s
-        if best is None or duration < best[0]:
-            best = (duration, cap, plain, name)
-    if best is None:
-        return _failed("tilt", started, "no tilted timing meets the limits")
-    _, cap, plain, shaper_name = best
-
-    def poses_for(factor: float) -> PoseSamples:
-        return tilted(plain(factor))
-
-    detail = {
-        "acceleration_cap_m_s2": cap,
-        "tilt_smoothing_s": smoothing,
-        "shaper": shaper_name,
-        "rotation_centre_height_m": problem.tilt_centre_height_m,
-    }
-    return verified_candidate("tilt", problem, poses_for, 1.0, started, verifier, True, detail)
+    chosen, timing = fastest_improved(problem, pool, verifier, started, ladder=extra)
+    return replace(chosen, method="retime", compute_time_s=time.perf_counter() - started), timing
 
 
 def plan_path(
@@ -382,15 +307,22 @@ def plan_path(
     if method in ("auto", "shaped"):
         say("shaped: per-axis input shaping")
         candidates.append(plan_shaped(problem, verifier))
-    if method == "tilt" or (method == "auto" and tilt):
+    tilting = method == "tilt" or (method == "auto" and tilt)
+    if tilting:
         say("tilt: tilt compensation with re-timing")
-        candidates.append(plan_tilt(problem, verifier))
+        candidates.append(plan_tilt(problem, verifier, improve=method == "tilt"))
     if method in ("auto", "retime"):
         say("retime: fastest acceleration cap under the slosh limits, then local searches")
-        shapers = dict(_timing_shapers(problem))
+        shapers = dict(timing_shapers(problem))
         timings = [method_timing(problem, c, shapers) for c in candidates if c.poses is not None]
-        found = plan_retime(problem, verifier, transcription, warm_starts, seeds, timings)
+        found, timing = _retime(problem, verifier, transcription, warm_starts, seeds, timings)
         candidates.insert(0, found)
+        if tilting:
+            # The tilt family's timing improved on the tilted export, seeded also from
+            # retime's timing (tilting a good timing is a natural seed).
+            say("tilt: local searches on the tilted export")
+            retimed = [] if timing is None or not found.feasible else [timing]
+            candidates[-1] = improved_tilt(problem, candidates[-1], retimed, verifier)
     feasible = [c for c in candidates if c.feasible]
     pool = feasible or [c for c in candidates if c.poses is not None]
     chosen = min(pool, key=lambda c: c.duration_s) if pool else None

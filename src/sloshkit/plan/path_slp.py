@@ -66,6 +66,7 @@ def slp_search(
     max_screens: int = SLP_SCREENS,
     margin: float = SEARCH_MARGIN,
     reference: Callable[[PoseSamples], tuple[float, float]] | None = None,
+    transform: Callable[[PoseSamples], PoseSamples] | None = None,
 ) -> tuple[Timing, int]:
     """Shorten a feasible timing by trust-region SLP on its warp coefficients (module
     docstring): the linearised duration is minimised under the linearised residual and
@@ -93,6 +94,10 @@ def slp_search(
         are within the limits (1 % kept) and ``passes`` holds, and the LP's limits are
         corrected by the gap between this model and the screen at the current timing (defect
         correction: the screen gives the sensitivities, the reference the levels).
+    transform : callable, optional
+        PoseSamples -> PoseSamples applied to each sampled timing before it is screened,
+        linearised, passed to ``passes`` and ``reference`` (e.g. ``tilt``'s tilt
+        compensation); it may add equally many rest samples at both ends.
 
     Returns
     -------
@@ -155,13 +160,16 @@ def slp_search(
         s = np.clip(seed.position(u), 0.0, length)
         s[-1] = length
         quaternions = problem.path.orientation(s).as_quat()
-        return PoseSamples(t, problem.path.position(s), _continuous(quaternions)), u
+        poses = PoseSamples(t, problem.path.position(s), _continuous(quaternions))
+        return (poses if transform is None else transform(poses)), u
 
     def outputs(factors: FloatArray) -> FloatArray:
         # Per model: the modes' scaled amplitude rows e_n (A_n, B_n), then the window peaks.
         poses, u = sample(factors, False)
         index = np.minimum((u / seed.duration_s * windows).astype(int), windows - 1)
         values = []
+        pad = (poses.time_s.size - u.size) // 2  # rest samples a transform added at each end
+        index = np.concatenate((np.zeros(pad, int), index, np.full(pad, windows - 1)))
         for wall, _, _, amplitudes in screen_outputs(models, poses):
             peaks = np.zeros(windows)
             np.maximum.at(peaks, index, wall)
