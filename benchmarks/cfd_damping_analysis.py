@@ -1,8 +1,10 @@
 """Analysis of the CFD damping study (benchmarks/cfd_damping_study.py): Richardson
 extrapolation in time step and mesh, GCI, boundary-layer theory, figure and the docs section.
 
-Reads docs/cfd-damping-study.json (uniform O-grids) and docs/cfd-damping-graded.json (wall-
-graded O-grids), writes docs/cfd-damping.json (every number of the section), the figure
+Reads docs/cfd-damping-study.json and docs/cfd-damping-graded.json (session 2),
+docs/cfd-damping-converge.json (session 3) and docs/cfd-damping-estimators.json (every run
+re-estimated from its wall force), extrapolates (benchmarks/cfd_damping_converged.py), and
+writes docs/cfd-damping.json (every number of the section), the figure
 docs/figures/cfd_damping_study.png, and the text between the markers
 ``<!-- damping-study:start -->`` and ``<!-- damping-study:end -->`` of docs/cfd.md.
 
