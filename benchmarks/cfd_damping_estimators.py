@@ -33,6 +33,7 @@ from sloshkit.calibration.decrement import estimate_logdec
 from sloshkit.calibration.estimators import estimate_fit
 from sloshkit.calibration.signals import spectral_peak
 from sloshkit.calibration.window import prepare_signal
+from sloshkit.cfd.force_signal import noise_ratio
 from sloshkit.cfd.results import read_signals
 from sloshkit.errors import InputError, ValidityWarning
 
@@ -62,16 +63,10 @@ def zeta(time_s: np.ndarray, values: np.ndarray, method: str, start: float, end:
     return math.nan if value is None else float(value)
 
 
-def noise_ratio(time_s: np.ndarray, values: np.ndarray, start_s: float = 0.5) -> float:
-    """RMS of the part of a signal above `NOISE_CUTOFF_HZ` over the RMS of the part below,
-    after ``start_s`` (zero-phase 4th-order Butterworth): the spurious high-frequency content
-    that parasitic currents put into the wall force."""
-    from scipy.signal import butter, sosfiltfilt
-
-    sos = butter(4, NOISE_CUTOFF_HZ, fs=1.0 / float(time_s[1] - time_s[0]), output="sos")
-    smooth = sosfiltfilt(sos, values)
-    inside = time_s > start_s
-    return float(np.std((values - smooth)[inside]) / np.std(smooth[inside]))
+def force_noise(time_s: np.ndarray, values: np.ndarray) -> float:
+    """The study's noise ratio of the wall force: `sloshkit.cfd.force_signal.noise_ratio`
+    above `NOISE_CUTOFF_HZ`, after 0.5 s."""
+    return noise_ratio(time_s, values, cutoff_hz=NOISE_CUTOFF_HZ, start_s=0.5)
 
 
 def summarise(values: dict[str, float]) -> tuple[float, float]:
@@ -119,7 +114,7 @@ def estimate(case: Path) -> dict[str, Any] | None:
         "record": json.loads(run.read_text()) if run.is_file() else {},
         "primary": primary,
         "scatter": scatter,
-        "force_noise_ratio": noise_ratio(t, signals.force_x_n),
+        "force_noise_ratio": force_noise(t, signals.force_x_n),
         "estimates": values,
     }
 
@@ -135,7 +130,7 @@ def main() -> None:
         case = Path("/tmp") / row["work"] / row["case"]
         if "force_noise_ratio" not in row and case.is_dir():
             signals = read_signals(case)
-            row["force_noise_ratio"] = noise_ratio(signals.time_s, signals.force_x_n)
+            row["force_noise_ratio"] = force_noise(signals.time_s, signals.force_x_n)
     for work in args.works:
         for case in sorted(work.iterdir()) if work.is_dir() else []:
             if (work.name, case.name) in known:

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sloshkit.cfd.case import CaseSpec, Harmonic
+from sloshkit.cfd.case import SCALE, CaseSpec, Harmonic
 from sloshkit.cfd.convergence import combined_uncertainty, observed_order, richardson
 from sloshkit.cfd.mesh import probe_columns
 from sloshkit.cfd.pipeline import analyse, model_wall_elevation, validate
@@ -27,9 +27,10 @@ WATER = get_liquid("water-25C")
 MODEL = equivalent_model(UprightCylinder(0.0205), WATER, 0.039, damping_ratio=0.006)
 
 
-def synthetic_case(folder: Path, end_time_s: float, elevation_of=None) -> Path:
+def synthetic_case(folder: Path, end_time_s: float, elevation_of=None, force_of=None) -> Path:
     """A finished-looking harmonic case whose wall elevation at +-x is the pendulum model's
-    (or ``elevation_of(t)``), written as alpha probes, tilt and force files."""
+    (or ``elevation_of(t)``), written as alpha probes, tilt and force files (the force zero,
+    or ``force_of(t)`` [N])."""
     excitation = Harmonic(0.001, 3.0, 0.5)
     spec = CaseSpec(0.0205, 0.039, WATER, excitation, cells_per_radius=4, end_time_s=end_time_s)
     case = write_case(spec, folder)
@@ -44,10 +45,16 @@ def synthetic_case(folder: Path, end_time_s: float, elevation_of=None) -> Path:
         plus = np.clip((0.039 + value - (z - dz / 2)) / dz, 0, 1)
         minus = np.clip((0.039 - value - (z - dz / 2)) / dz, 0, 1)
         rows.append(" ".join(f"{v:.12g}" for v in [time, *plus, *minus]))
+    forces = f"0 (0 0 0) (0 0 0)\n{end_time_s} (0 0 0) (0 0 0)\n"
+    if force_of is not None:  # the case's millimetre units: N' = N * SCALE**4 (cfd/results.py)
+        forces = "".join(
+            f"{time:.12g} ({f * SCALE**4:.12g} 0 0) (0 0 0)\n"
+            for time, f in zip(t, force_of(t), strict=True)
+        )
     for name, file_name, text in (
         ("wallProbes", "alpha.water", "\n".join(rows)),
         ("surfaceTilt", "volFieldValue.dat", f"0 (0 0 -1000)\n{end_time_s} (0 0 -1000)\n"),
-        ("wallForces", "force.dat", f"0 (0 0 0) (0 0 0)\n{end_time_s} (0 0 0) (0 0 0)\n"),
+        ("wallForces", "force.dat", forces),
     ):
         target = case / "postProcessing" / name / "0"
         target.mkdir(parents=True)
@@ -60,8 +67,15 @@ def test_validate_takes_model_then_case_and_returns_the_result_protocol(tmp_path
     result = validate(MODEL, case)
     assert isinstance(result, CfdValidation)
     payload = result.to_dict()
-    # The JSON keys of `sloshkit cfd validate --json` (1-D) are unchanged.
-    assert list(payload) == ["case", "comparison", "correlation", "excitation_end_s"]
+    # The JSON keys of `sloshkit cfd validate --json` (1-D): v1's, plus damping_signal.
+    assert list(payload) == [
+        "case",
+        "comparison",
+        "correlation",
+        "damping_signal",
+        "excitation_end_s",
+    ]
+    assert payload["damping_signal"] == "wall_elevation"  # the synthetic force is zero
     assert set(payload["comparison"]) == {
         "omega_n_rad_s",
         "damping_ratio",
@@ -192,3 +206,70 @@ def test_a_run_stopped_in_its_last_step_is_unfinished(tmp_path):
     first = first.replace("0 ", "0.0001 ", 1)  # an adaptive first step: the grid is shifted
     probes.write_text("\n".join([header, first, *rows]) + "\n")
     assert analyse(adaptive).signals.time_s[-1] < 1.0 - 1e-3  # resampled short of the end
+
+
+OMEGA = MODEL.modes[0].omega_rad_s
+
+
+def damped_force(zeta: float, noise_n: float = 0.0):
+    """A free-decay wall force from the excitation's end (0.5 s) with damping ratio ``zeta``,
+    plus ``noise_n`` [N] of 120 Hz content (what parasitic currents add)."""
+
+    def force_of(t):
+        after = np.clip(t - 0.5, 0.0, None)
+        omega_d = OMEGA * math.sqrt(1 - zeta**2)
+        decay = 2e-4 * np.exp(-zeta * OMEGA * after) * np.cos(omega_d * after)
+        return decay + noise_n * np.sin(2 * math.pi * 120.0 * t)
+
+    return force_of
+
+
+def corrupted_elevation(t):
+    """The model's elevation (zeta 0.006) with a 0.3 mm staircase: a coarse probe column."""
+    eta = model_wall_elevation(MODEL, t, Harmonic(0.001, 3.0, 0.5).acceleration(t))
+    return np.round(eta / 3e-4) * 3e-4
+
+
+def test_analyse_takes_frequency_and_damping_from_the_wall_force(tmp_path):
+    case = synthetic_case(tmp_path / "c", 3.0, corrupted_elevation, damped_force(0.003))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ValidityWarning)  # a clean force raises no doubt
+        analysis = analyse(case)
+    payload = analysis.to_dict()
+    assert payload["damping_signal"] == "wall_force"
+    assert payload["damping_ratio"] == pytest.approx(0.003, rel=0.05)
+    assert payload["omega_n_rad_s"] == pytest.approx(OMEGA, rel=0.005)
+    assert payload["force_noise_ratio"] < 0.1
+    assert "wall force" in payload["source"]
+    # The corrupted elevation alone gives another damping: the force's value is not a fluke.
+    elevation_only = analyse(synthetic_case(tmp_path / "e", 3.0, corrupted_elevation))
+    assert elevation_only.damping_signal == "wall_elevation"
+    assert abs(elevation_only.calibration.damping_ratio - 0.003) > 0.001
+    # validate compares the force's damping; its residual amplitude stays an elevation [m].
+    result = validate(MODEL, case).to_dict()
+    assert result["damping_signal"] == "wall_force"
+    assert result["comparison"]["damping_ratio"]["cfd"] == pytest.approx(0.003, rel=0.05)
+    assert result["comparison"]["residual_elevation_m"]["cfd"] < 1e-2
+
+
+def test_analyse_without_force_output_uses_the_elevation(tmp_path):
+    analysis = analyse(synthetic_case(tmp_path / "c", 3.0))  # zero force
+    payload = analysis.to_dict()
+    assert payload["damping_signal"] == "wall_elevation"
+    assert payload["force_noise_ratio"] is None
+    assert payload["damping_ratio"] == pytest.approx(0.006, rel=0.1)
+    nan_force = synthetic_case(tmp_path / "n", 3.0, force_of=lambda t: np.where(t > 1, np.nan, t))
+    assert analyse(nan_force).damping_signal == "wall_elevation"
+
+
+def test_a_noisy_wall_force_warns_of_parasitic_currents(tmp_path):
+    case = synthetic_case(tmp_path / "c", 3.0, force_of=damped_force(0.003, noise_n=1.5e-4))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        analysis = analyse(case)
+    doubts = [str(w.message) for w in caught if issubclass(w.category, ValidityWarning)]
+    assert any("parasitic currents" in d for d in doubts)
+    payload = analysis.to_dict()
+    assert payload["damping_signal"] == "wall_force"
+    assert payload["force_noise_ratio"] > 0.5
+    assert any("parasitic currents" in w for w in payload["warnings"])

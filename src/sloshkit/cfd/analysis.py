@@ -1,15 +1,23 @@
 """Calibration of a finished CFD case: its signals, and frequency and damping of its free
-decay (the seed paper's Table 4)."""
+decay (the seed paper's Table 4), from the wall force when the case has one
+(`sloshkit.cfd.force_signal`), else from the wall elevation."""
 
 from __future__ import annotations
 
 import json
+import math
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from sloshkit.calibration import CalibrationResult, calibrate
+from sloshkit.cfd.force_signal import (
+    NOISE_CUTOFF_FACTOR,
+    NOISE_RATIO_LIMIT,
+    noise_ratio,
+    usable_force,
+)
 from sloshkit.cfd.results import CfdSignals, read_function_object, read_signals
 from sloshkit.errors import InputError, ValidityWarning
 
@@ -55,6 +63,13 @@ class CfdAnalysis:
         Frequency and damping of its free decay.
     run_record : dict
         ``sloshkit-run.json`` (wall clock, processes), or empty.
+    damping_signal : str
+        The signal calibrated: ``wall_force`` or ``wall_elevation``.
+    force_noise_ratio : float or None
+        High-frequency noise ratio of the wall force (`sloshkit.cfd.force_signal.noise_ratio`)
+        when the case has a usable wall force (even if it failed to calibrate).
+    warnings : tuple of str
+        Doubts about the calibration (also issued as `ValidityWarning`).
 
     Returns
     -------
@@ -73,15 +88,21 @@ class CfdAnalysis:
     >>> analysis = CfdAnalysis(Path("c"), signals, calibrate(t, y, start_s=0.0), {})
     >>> round(analysis.to_dict()["damping_ratio"], 4), analysis.to_dict()["cells"]
     (0.0051, 100)
+    >>> analysis.to_dict()["damping_signal"]
+    'wall_elevation'
     """
 
     case: Path
     signals: CfdSignals
     calibration: CalibrationResult
     run_record: dict[str, Any]
+    damping_signal: str = "wall_elevation"
+    force_noise_ratio: float | None = None
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """The calibrate keys plus cells, simulated_s and wall_clock_s."""
+        """The calibrate keys plus cells, simulated_s, wall_clock_s, damping_signal and
+        force_noise_ratio (this analysis's warnings appended to ``warnings``)."""
         payload = self.calibration.to_dict()
         payload.update(
             cells=self.signals.summary["cells"],
@@ -89,13 +110,29 @@ class CfdAnalysis:
             wall_clock_s=self.run_record.get("wall_clock_s"),
             processes=self.run_record.get("processes"),
             case=str(self.case),
+            damping_signal=self.damping_signal,
+            force_noise_ratio=self.force_noise_ratio,
         )
+        payload["warnings"] = list(payload.get("warnings", [])) + list(self.warnings)
         return payload
 
 
 def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> CfdAnalysis:
-    """Calibrate frequency and damping from the antisymmetric wall elevation of a case, over
-    its free decay.
+    """Calibrate frequency and damping of a case's free decay from its wall force, or from its
+    antisymmetric wall elevation when the case has no usable force output.
+
+    In free decay the lateral wall force of the first mode oscillates at the same frequency
+    and decays at the same rate as the wall elevation: in linear modal theory both are
+    proportional to the modal amplitude (Abramson, NASA SP-106, ch. 2 and 6). So the force
+    gives the same quantity from a signal that integrates the pressure over the whole wall
+    instead of the volume fraction along a thin column of probes; on coarse meshes the
+    probe elevation's estimators disagree by up to 6.4x, the force's within 20 % (the damping
+    study, docs/cfd.md). The force is used when it is finite and not constant
+    (`sloshkit.cfd.force_signal.usable_force`) and calibrates; otherwise the elevation is,
+    with a warning when a usable force failed to calibrate. A usable force whose high-frequency
+    noise ratio (above three times the measured frequency, over the window) exceeds
+    `sloshkit.cfd.force_signal.NOISE_RATIO_LIMIT` carries parasitic currents: a
+    `ValidityWarning` says so.
 
     The window starts at ``start_s`` when given; otherwise, for a forced case, one damped
     period after the excitation ends (``forcing_end_s`` of `sloshkit.calibration.calibrate`:
@@ -114,6 +151,8 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
     Returns
     -------
     CfdAnalysis
+        With ``damping_signal`` (``wall_force`` or ``wall_elevation``) and, when the case
+        has a usable wall force, its ``force_noise_ratio``.
 
     Raises
     ------
@@ -123,7 +162,9 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
 
     References
     ----------
-    Seed paper eqs. 11-12 (the calibration of frequency and damping from a free decay).
+    Seed paper eqs. 11-12 (the calibration of frequency and damping from a free decay);
+    H. N. Abramson (ed.), *The Dynamic Behavior of Liquids in Moving Containers*, NASA SP-106
+    (1966), ch. 2 and 6 (wall force and elevation of a mode share its frequency and decay).
 
     Examples
     --------
@@ -136,17 +177,34 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
     signals = read_finished_signals(case)
     end = excitation_end(dict(signals.summary))
     forcing_end = end if start_s is None and end > 0 else None
-    try:
+    doubts: list[str] = []
+
+    def calibrated(values: Any, label: str) -> CalibrationResult:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ValidityWarning)
-            result = calibrate(
+            return calibrate(
                 signals.time_s,
-                signals.elevation_m,
+                values,
                 method=method,  # type: ignore[arg-type]
                 start_s=start_s,
                 forcing_end_s=forcing_end,
-                source=f"{case} (CFD wall elevation)",
+                source=f"{case} (CFD {label})",
             )
+
+    result: CalibrationResult | None = None
+    signal = "wall_elevation"
+    if usable_force(signals.force_x_n):
+        try:
+            result = calibrated(signals.force_x_n, "wall force")
+            signal = "wall_force"
+        except InputError as error:
+            doubts.append(
+                f"the wall force gave no calibration ({error}); frequency and damping are "
+                "from the probe wall elevation, which is unreliable on coarse meshes"
+            )
+    try:
+        if result is None:
+            result = calibrated(signals.elevation_m, "wall elevation")
     except InputError as error:
         if forcing_end is None:
             raise
@@ -158,9 +216,35 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
             f"{forcing_end:g} s, too short to calibrate ({error})",
             "run it longer with --end-time (at least 4 periods after the excitation)",
         ) from error
+    ratio = _force_noise(signals, result) if usable_force(signals.force_x_n) else None
+    if ratio is not None and ratio > NOISE_RATIO_LIMIT:
+        doubts.append(
+            f"the wall force's noise above {NOISE_CUTOFF_FACTOR:g}x the slosh frequency is "
+            f"{ratio:.2f} of the slosh signal (above {NOISE_RATIO_LIMIT:g}: clean runs of the "
+            "damping study stay at or below 0.23, runs with parasitic currents reach 0.88 or "
+            "more); the damping is not trustworthy (the study saw this on wall-graded meshes at small time steps: use a uniform mesh or a longer step)"
+        )
+    for doubt in doubts:
+        warnings.warn(doubt, ValidityWarning, stacklevel=2)
     record_path = case / "sloshkit-run.json"
     record = json.loads(record_path.read_text(encoding="utf-8")) if record_path.is_file() else {}
-    return CfdAnalysis(case, signals, result, record)
+    return CfdAnalysis(case, signals, result, record, signal, ratio, tuple(doubts))
+
+
+def _force_noise(signals: CfdSignals, result: CalibrationResult) -> float | None:
+    """The wall force's noise ratio over the calibration window, cut off at
+    `NOISE_CUTOFF_FACTOR` times the calibrated frequency (of whichever signal was calibrated;
+    None when not measurable)."""
+    omega = result.omega_n_rad_s
+    if omega is None or not math.isfinite(omega) or omega <= 0:
+        return None
+    ratio = noise_ratio(
+        signals.time_s,
+        signals.force_x_n,
+        cutoff_hz=NOISE_CUTOFF_FACTOR * omega / (2 * math.pi),
+        start_s=float(result.signal.window_s[0]),
+    )
+    return ratio if math.isfinite(ratio) else None
 
 
 def read_finished_signals(case: Path) -> CfdSignals:

@@ -113,8 +113,9 @@ class CfdValidation(ResultMixin):
     kind : str
         ``wall-elevation`` or ``poses`` (see `KINDS`).
     extra : dict
-        Further JSON keys of a pose comparison (``wall_correlation``, ``probe_angles_deg``,
-        ``quantity_label``).
+        Further JSON keys: ``damping_signal`` (1-D: the CFD signal of frequency and damping,
+        see `sloshkit.cfd.analysis.analyse`), or those of a pose comparison
+        (``wall_correlation``, ``probe_angles_deg``, ``quantity_label``).
 
     Returns
     -------
@@ -224,7 +225,9 @@ def validate(model: SloshModel, case: Path) -> CfdValidation:
 
     The model is driven by the container acceleration the case was driven with (read back
     from its table) and read at the probes' radius through the linear mode shapes; both
-    records are calibrated the same way (`analyse`). A forced run that ends too soon after
+    records are calibrated the same way (`analyse`: the CFD's frequency and damping come from
+    its wall force when it has one, named by ``damping_signal``; the residual amplitude always
+    from its wall elevation). A forced run that ends too soon after
     its excitation still compares the peak elevation during it, with ``None`` for frequency,
     damping and residual amplitude and a `ValidityWarning`.
 
@@ -240,7 +243,8 @@ def validate(model: SloshModel, case: Path) -> CfdValidation:
     CfdValidation
         ``comparison`` rows ``omega_n_rad_s``, ``damping_ratio``, ``peak_elevation_m`` (during
         the excitation) and ``residual_elevation_m`` (fitted amplitude after it), the
-        correlation of the two wall elevations, and both series.
+        correlation of the two wall elevations, ``damping_signal`` (``wall_force``,
+        ``wall_elevation``, or None without a free decay) and both series.
 
     Raises
     ------
@@ -273,11 +277,26 @@ def validate(model: SloshModel, case: Path) -> CfdValidation:
     end = excitation_end(summary)
     during = t <= max(end, t[0])
     cfd_fit: CalibrationResult | None = None
+    cfd_elevation_fit: CalibrationResult | None = None
     model_fit: CalibrationResult | None = None
+    damping_signal: str | None = None
     try:
-        cfd_fit = analyse(case).calibration
+        analysis = analyse(case)
+        cfd_fit = analysis.calibration
+        damping_signal = analysis.damping_signal
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ValidityWarning)
+            cfd_elevation_fit = cfd_fit if damping_signal == "wall_elevation" else None
+            if cfd_elevation_fit is None:  # the residual amplitude is an elevation [m]
+                try:
+                    cfd_elevation_fit = calibrate(
+                        t,
+                        signals.elevation_m,
+                        forcing_end_s=end if end > 0 else None,
+                        source=f"{case} (CFD wall elevation)",
+                    )
+                except InputError:
+                    cfd_elevation_fit = None
             model_fit = calibrate(
                 t, predicted, forcing_end_s=end if end > 0 else None, source="pendulum model"
             )
@@ -308,7 +327,7 @@ def validate(model: SloshModel, case: Path) -> CfdValidation:
             float(np.max(np.abs(predicted[during]))) if end > 0 else None,
         ),
         "residual_elevation_m": comparison_row(
-            value(cfd_fit, "amplitude"), value(model_fit, "amplitude")
+            value(cfd_elevation_fit, "amplitude"), value(model_fit, "amplitude")
         ),
     }
     correlation = float(np.corrcoef(signals.elevation_m, predicted)[0, 1])
@@ -320,6 +339,7 @@ def validate(model: SloshModel, case: Path) -> CfdValidation:
         cfd_elevation_m=np.asarray(signals.elevation_m, dtype=float),
         model_elevation_m=np.asarray(predicted, dtype=float),
         excitation_end_s=end,
+        extra={"damping_signal": damping_signal},
     )
 
 

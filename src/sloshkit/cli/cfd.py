@@ -147,9 +147,18 @@ def _print_analysis(
             "",
         )
     stdout.print(table)
+    stdout.print(_signal_line(payload.get("damping_signal"), payload.get("force_noise_ratio")))
     line = describe(analysis.run_record)
     if line:
         stdout.print(line)
+
+
+def _signal_line(signal: str | None, noise: float | None = None) -> str:
+    """The text output's line naming the signal frequency and damping came from."""
+    if signal == "wall_force":
+        extra = "" if noise is None else f"; high-frequency noise ratio {noise:.2f}"
+        return f"frequency and damping from the wall force{extra}"
+    return "frequency and damping from the probe wall elevation (the wall force was not usable)"
 
 
 def _resumed_spec(spec: Any, case: Path, processes: int | None) -> Any:
@@ -259,8 +268,9 @@ def cfd_analyse_command(
     csv: Annotated[Path | None, typer.Option("--csv", help="Write the CFD signals as CSV.")] = None,
     json_output: Json = False,
 ) -> None:
-    """Frequency and damping from a finished case's wall elevation (calibrate's JSON keys plus
-    cells, simulated_s, wall_clock_s).
+    """Frequency and damping from a finished case's wall force, or its wall elevation when it
+    has no usable force output (calibrate's JSON keys plus cells, simulated_s, wall_clock_s,
+    damping_signal, force_noise_ratio).
 
     Example:
 
@@ -397,6 +407,8 @@ def cfd_validate_command(
                 else f"{100 * row['relative_difference']:+.1f} %",
             )
         stdout.print(table)
+        if summary.get("damping_signal") is not None:
+            stdout.print(f"CFD {_signal_line(summary['damping_signal'])}")
         if summary["correlation"] is not None:
             what = "slosh-height" if summary.get("kind") == "poses" else "wall-elevation"
             stdout.print(f"correlation of the {what} signals: {summary['correlation']:.4f}")

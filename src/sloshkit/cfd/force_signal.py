@@ -1,0 +1,118 @@
+"""The wall force of a CFD case as the signal of its free decay: is it usable, and how much
+spurious high-frequency content (parasitic currents) does it carry.
+
+In free decay the lateral wall force of the first mode oscillates at the same frequency and
+decays at the same rate as the wall elevation: in linear modal theory both are proportional
+to the modal amplitude (Abramson, NASA SP-106, 1966, ch. 2 and 6). The force integrates the
+pressure over the whole wall instead of the volume fraction along a thin column of probes, so
+on coarse meshes (where the slosh amplitude is about one cell) it gives the same frequency and
+damping with far less estimator scatter (the damping study in docs/cfd.md: fit and
+logarithmic decrement agree within 20 % on the wall force in every uniform run, and differ by
+up to 6.4x on the probe elevation).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+#: Noise ratio above which a wall force is taken to carry parasitic currents. The damping
+#: study (docs/cfd.md, "damping"; benchmarks/cfd_damping_estimators.py) measured at most 0.23
+#: in every clean run and at least 0.88 in every run with parasitic currents (graded meshes at
+#: small steps); 0.5 lies between the two groups.
+NOISE_RATIO_LIMIT = 0.5
+
+#: The cutoff of `noise_ratio` as a multiple of the first-mode frequency (15 Hz in the study,
+#: whose first mode is near 5 Hz).
+NOISE_CUTOFF_FACTOR = 3.0
+
+
+def usable_force(force_n: ArrayLike) -> bool:
+    """Whether a wall-force record can carry a calibration: every sample finite and not all
+    equal (a case without force output, or a synthetic one, writes zeros).
+
+    Parameters
+    ----------
+    force_n : array_like
+        Wall force samples [N].
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> usable_force([0.0, 0.0, 0.0]), usable_force([0.0, 1e-4, -1e-4])
+    (False, True)
+    >>> usable_force([0.0, float("nan"), 1.0])
+    False
+    """
+    values = np.asarray(force_n, dtype=float)
+    if values.size < 2 or not np.all(np.isfinite(values)):
+        return False
+    return bool(np.ptp(values) > 1e-12 * max(float(np.max(np.abs(values))), 1e-300))
+
+
+def noise_ratio(
+    time_s: ArrayLike, values: ArrayLike, *, cutoff_hz: float, start_s: float = 0.0
+) -> float:
+    """RMS of the part of a uniformly sampled signal above ``cutoff_hz`` over the RMS of the
+    part below it, after ``start_s``: the spurious high-frequency content that parasitic
+    currents put into the wall force.
+
+    The low-pass part is a zero-phase 4th-order Butterworth filter (``scipy.signal.butter``
+    and ``sosfiltfilt``); the high-pass part is the signal minus it.
+
+    Parameters
+    ----------
+    time_s : array_like
+        Uniform sample times [s].
+    values : array_like
+        The signal.
+    cutoff_hz : float
+        Cutoff [Hz] (the study: three times the first-mode frequency, `NOISE_CUTOFF_FACTOR`).
+    start_s : float
+        Only samples after this time count [s].
+
+    Returns
+    -------
+    float
+        The ratio; nan when it cannot be measured (the cutoff at or above the Nyquist
+        frequency, too few samples, or no low-frequency content).
+
+    References
+    ----------
+    Butterworth, "On the theory of filter amplifiers", Wireless Engineer 7 (1930) 536-541;
+    the threshold `NOISE_RATIO_LIMIT` is the damping study's (docs/cfd.md).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 2.0, 1e-3)
+    >>> clean = np.sin(2 * np.pi * 5.0 * t)
+    >>> round(noise_ratio(t, clean, cutoff_hz=15.0, start_s=0.5), 2)  # filter edge effects
+    0.04
+    >>> noisy = clean + 0.5 * np.sin(2 * np.pi * 80.0 * t)
+    >>> round(noise_ratio(t, noisy, cutoff_hz=15.0, start_s=0.5), 2)
+    0.5
+    """
+    from scipy.signal import butter, sosfiltfilt
+
+    t = np.asarray(time_s, dtype=float)
+    y = np.asarray(values, dtype=float)
+    if t.size < 32 or not math.isfinite(cutoff_hz) or cutoff_hz <= 0:
+        return math.nan
+    sample_rate = 1.0 / float(t[1] - t[0])
+    if cutoff_hz >= 0.5 * sample_rate:
+        return math.nan
+    sos = butter(4, cutoff_hz, fs=sample_rate, output="sos")
+    smooth = sosfiltfilt(sos, y)
+    inside = t > start_s
+    if np.count_nonzero(inside) < 2:
+        return math.nan
+    low = float(np.std(smooth[inside]))
+    if low == 0.0:
+        return math.nan
+    return float(np.std((y - smooth)[inside]) / low)
