@@ -14,13 +14,10 @@ import pytest
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.waypoints import read_waypoints
-from sloshkit.model.geometry import UprightCylinder
-from sloshkit.model.liquids import get_liquid
-from sloshkit.model.modal import SloshModel, equivalent_model
+from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path import path_from_poses, path_from_waypoints
-from sloshkit.plan.path_limits import kinematics
 from sloshkit.plan.path_planner import linear_verifier, plan_path
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import warp_search
@@ -35,16 +32,9 @@ from sloshkit.plan.tilt import tilt_compensated
 from sloshkit.plan.timing import Timing
 from sloshkit.sim.spatial import simulate_spatial
 from tests.conftest import run_entry_point
+from tests.plan.conftest import assert_export_meets_limits
 
 DATA = Path(__file__).parents[1] / "data" / "measured-3d" / "poses"
-
-
-@pytest.fixture(scope="module")
-def robot_vial() -> SloshModel:
-    """The measured series' cylinder: R = 49 mm, h = 80 mm, water, zeta = 0.0066."""
-    return equivalent_model(
-        UprightCylinder(0.049), get_liquid("water-20C"), 0.08, damping_ratio=0.0066
-    )
 
 
 def test_clothoid_blend_has_continuous_curvature_peaking_at_one_over_r() -> None:
@@ -152,16 +142,8 @@ def test_every_plan_meets_its_limits_when_its_export_is_simulated_again(
         out = result.to_csv(tmp_path / "plan.csv") if candidate is result.chosen else None
         poses = candidate.poses
         assert poses is not None
-        trajectory = PoseTrajectory(poses.time_s, poses.position_m, poses.quaternion_xyzw)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", ValidityWarning)
-            response = simulate_spatial(robot_vial, trajectory, nonlinear=True, cutoff_hz=None)
-        assert response.peak_slosh_height_m <= 0.01
-        assert response.residual_slosh_height_m <= 0.002
-        peaks = kinematics(poses)
-        assert peaks["velocity"] <= 1.5 * (1 + 1e-6)
-        assert peaks["acceleration"] <= 8.0 * (1 + 1e-6)
-        assert peaks["jerk"] <= 80.0 * (1 + 1e-6)
+        machine = CartesianLimits(1.5, 8.0, 80.0)
+        assert_export_meets_limits(robot_vial, poses, 0.01, 0.002, machine)
         if out is not None:
             back = read_pose_file(out)
             p, q = back.position_m, back.quaternion_xyzw
@@ -370,14 +352,7 @@ def test_retime_is_never_slower_than_uniform_scaling_of_the_reference(
     found = {candidate.method: candidate for candidate in result.candidates}
     assert found["uniform"].feasible and found["retime"].feasible
     assert found["retime"].duration_s <= found["uniform"].duration_s
-    poses = found["retime"].poses
-    assert poses is not None
-    trajectory = PoseTrajectory(poses.time_s, poses.position_m, poses.quaternion_xyzw)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
-        response = simulate_spatial(robot_vial, trajectory, nonlinear=True, cutoff_hz=None)
-    assert response.peak_slosh_height_m <= 0.012
-    assert response.residual_slosh_height_m <= 0.002
+    assert_export_meets_limits(robot_vial, found["retime"].poses, 0.012, 0.002)
 
 
 def test_warp_search_keeps_the_screen_and_shortens_a_slow_seed(robot_vial: SloshModel) -> None:

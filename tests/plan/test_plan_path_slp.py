@@ -4,23 +4,18 @@
 from __future__ import annotations
 
 import time
-import warnings
 from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from sloshkit.errors import ValidityWarning
-from sloshkit.model.geometry import UprightCylinder
-from sloshkit.model.liquids import get_liquid
-from sloshkit.model.modal import SloshModel, equivalent_model
-from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.model.modal import SloshModel
 from sloshkit.plan import path_improve
 from sloshkit.plan.path import path_from_waypoints
 from sloshkit.plan.path_improve import warped_candidates
 from sloshkit.plan.path_ladder import ladder_seeds
-from sloshkit.plan.path_limits import kinematics, machine_violations
+from sloshkit.plan.path_limits import machine_violations
 from sloshkit.plan.path_planner import plan_retime
 from sloshkit.plan.path_result import verified_candidate, verify
 from sloshkit.plan.path_screen import linear_screen, screen_ok
@@ -34,15 +29,7 @@ from sloshkit.plan.spatial import (
     SpatialSloshLimits,
     sample_path,
 )
-from sloshkit.sim.spatial import simulate_spatial
-
-
-@pytest.fixture(scope="module")
-def robot_vial() -> SloshModel:
-    """The measured series' cylinder: R = 49 mm, h = 80 mm, water, zeta = 0.0066."""
-    return equivalent_model(
-        UprightCylinder(0.049), get_liquid("water-20C"), 0.08, damping_ratio=0.0066
-    )
+from tests.plan.conftest import assert_export_meets_limits
 
 
 def _bend(model: SloshModel) -> PathProblem:
@@ -122,16 +109,7 @@ def test_every_improved_plan_meets_its_limits_when_simulated_again(
     assert found.feasible and found.duration_s < seed.duration_s
     poses = found.poses
     assert poses is not None
-    trajectory = PoseTrajectory(poses.time_s, poses.position_m, poses.quaternion_xyzw)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
-        response = simulate_spatial(robot_vial, trajectory, nonlinear=True, cutoff_hz=None)
-    assert response.peak_slosh_height_m <= 0.012
-    assert response.residual_slosh_height_m <= 0.002
-    peaks = kinematics(poses)
-    assert peaks["velocity"] <= 1.5 * (1 + 1e-6)
-    assert peaks["acceleration"] <= 8.0 * (1 + 1e-6)
-    assert peaks["jerk"] <= 80.0 * (1 + 1e-6)
+    assert_export_meets_limits(robot_vial, poses, 0.012, 0.002, CartesianLimits(1.5, 8.0, 80.0))
     assert np.allclose(poses.position_m[-1], [0.25, 0.15, 0.0], atol=1e-6)
 
 

@@ -24,7 +24,7 @@ from sloshkit.motion.shaping import Shaper
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.retime import ShaperFactory, family_member
 from sloshkit.plan.spatial import PathProblem, PoseSamples, _continuous, sample_path
-from sloshkit.plan.timing import Timing, warp_clock, warped_timing
+from sloshkit.plan.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
 
@@ -257,8 +257,6 @@ WARP_SCREENS = 250
 WARP_SAMPLE_BUDGET = 400_000
 #: Verify-and-tighten rounds of `warped_candidates` per seed.
 WARP_ROUNDS = 5
-#: Smallest warp factor (time may run at most 10x faster than in the seed locally).
-WARP_FLOOR = 0.1
 
 
 def warp_search(

@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 
 from sloshkit.plan.path_screen import linear_screen, screen_outputs
 from sloshkit.plan.spatial import SEARCH_MARGIN, PathProblem, PoseSamples, _continuous
-from sloshkit.plan.timing import Timing, warp_clock, warped_timing
+from sloshkit.plan.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
 #: Warp coefficients of the SLP.
@@ -54,8 +54,6 @@ SLP_BACKOFF = 0.98
 REFERENCE_COST = 8
 #: The share of each limit the reference model's heights must keep to accept a step.
 REFERENCE_KEEP = 0.99
-#: Smallest warp factor (time may run at most 10x faster than in the seed locally).
-SLP_FLOOR = 0.1
 
 
 def slp_search(
@@ -278,7 +276,7 @@ def _lp_step(
             rows.append(row)
             right.append(max(limits[1] - float(current[offset + window]), 0.0))
         offset += windows
-    lower = np.maximum(-radius * factors, SLP_FLOOR - factors)
+    lower = np.maximum(-radius * factors, WARP_FLOOR - factors)
     bounds = [*zip(lower, radius * factors, strict=True), *[(0.0, None)] * bounds_count]
     found = linprog(
         np.concatenate((weights, np.zeros(bounds_count))),

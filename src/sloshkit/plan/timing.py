@@ -23,6 +23,9 @@ from sloshkit.motion.shaping import Shaper
 FloatArray = NDArray[np.float64]
 #: Resolution of the fine time grid the composed timings are tabulated on [s].
 FINE_STEP_S = 5e-4
+#: Smallest factor of a timing warp: time may run at most 10x faster than in the seed locally
+#: (shared by the warp searches, `sloshkit.plan.path_search` and `sloshkit.plan.path_slp`).
+WARP_FLOOR = 0.1
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,0 +1,47 @@
+"""Fixtures and checks shared by the 3-D path-planning tests."""
+
+from __future__ import annotations
+
+import warnings
+
+import pytest
+
+from sloshkit.errors import ValidityWarning
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import SloshModel, equivalent_model
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.plan.path_limits import kinematics
+from sloshkit.plan.spatial import CartesianLimits, PoseSamples
+from sloshkit.sim.spatial import simulate_spatial
+
+
+@pytest.fixture(scope="module")
+def robot_vial() -> SloshModel:
+    """The measured series' cylinder: R = 49 mm, h = 80 mm, water, zeta = 0.0066."""
+    return equivalent_model(
+        UprightCylinder(0.049), get_liquid("water-20C"), 0.08, damping_ratio=0.0066
+    )
+
+
+def assert_export_meets_limits(
+    model: SloshModel,
+    poses: PoseSamples | None,
+    peak_m: float,
+    residual_m: float,
+    machine: CartesianLimits | None = None,
+) -> None:
+    """A plan's sampled export, simulated again with the nonlinear 3-D model, keeps the slosh
+    limits (and, given ``machine``, the Cartesian speed, acceleration and jerk limits)."""
+    assert poses is not None
+    trajectory = PoseTrajectory(poses.time_s, poses.position_m, poses.quaternion_xyzw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        response = simulate_spatial(model, trajectory, nonlinear=True, cutoff_hz=None)
+    assert response.peak_slosh_height_m <= peak_m
+    assert response.residual_slosh_height_m <= residual_m
+    if machine is not None:
+        peaks = kinematics(poses)
+        assert peaks["velocity"] <= machine.max_velocity_m_s * (1 + 1e-6)
+        assert peaks["acceleration"] <= machine.max_acceleration_m_s2 * (1 + 1e-6)
+        assert peaks["jerk"] <= machine.max_jerk_m_s3 * (1 + 1e-6)
