@@ -273,3 +273,15 @@ def test_a_noisy_wall_force_warns_of_parasitic_currents(tmp_path):
     assert payload["damping_signal"] == "wall_force"
     assert payload["force_noise_ratio"] > 0.5
     assert any("parasitic currents" in w for w in payload["warnings"])
+
+
+def test_a_run_whose_time_step_collapsed_is_unfinished_not_an_internal_error(tmp_path):
+    """An adaptive step that collapsed to ~1e-70 s logs the same time again and again (seen on
+    a diverging graded mesh): the case reads as unfinished instead of asking for an endless
+    resampling grid."""
+    case = synthetic_case(tmp_path / "c", 1.0)
+    probes = case / "postProcessing" / "wallProbes" / "0" / "alpha.water"
+    header, *rows = probes.read_text().splitlines()
+    probes.write_text("\n".join([header, *rows[:100], *[rows[99]] * 150]) + "\n")
+    with pytest.raises(InputError, match=r"is unfinished \(simulated 0.198 of 1 s\)"):
+        analyse(case)

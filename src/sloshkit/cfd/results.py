@@ -205,7 +205,13 @@ class CfdSignals:
 
 
 def _uniform(time: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Resample rows logged at adaptive time steps onto a uniform grid (the median step)."""
+    """Resample rows logged at adaptive time steps onto a uniform grid (the median step).
+
+    Rows whose time does not advance are dropped first (the last of equal times is kept): a run
+    whose adaptive step collapsed to ~1e-70 s logs the same time over and over, and a zero
+    median step would ask for an endless grid."""
+    advancing = np.concatenate((np.diff(time) > 0.0, [True]))
+    time, values = time[advancing], values[advancing]
     if time.size < 3:
         return time, values
     steps = np.diff(time)
