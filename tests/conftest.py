@@ -1,4 +1,4 @@
-"""Shared fixtures: the seed paper's vial."""
+"""Shared fixtures: the seed paper's vial, the measured robot series' cylinder."""
 
 from __future__ import annotations
 
@@ -47,6 +47,15 @@ def seed_model() -> SloshModel:
 @pytest.fixture
 def seed_model_table3() -> SloshModel:
     return seed_vial_table3()
+
+
+@pytest.fixture(scope="module")
+def robot_vial() -> SloshModel:
+    """The measured robot series' cylinder (tests/data/measured-3d): R = 49 mm, h = 80 mm,
+    water, zeta = 0.0066."""
+    return equivalent_model(
+        UprightCylinder(0.049), get_liquid("water-20C"), 0.08, damping_ratio=0.0066
+    )
 
 
 def run_entry_point(*args: str) -> subprocess.CompletedProcess[str]:

@@ -32,7 +32,7 @@ from sloshkit.plan.tilt import tilt_compensated
 from sloshkit.plan.timing import Timing
 from sloshkit.sim.spatial import simulate_spatial
 from tests.conftest import run_entry_point
-from tests.plan.conftest import assert_export_meets_limits
+from tests.plan.plan_checks import assert_export_meets_limits
 
 DATA = Path(__file__).parents[1] / "data" / "measured-3d" / "poses"
 

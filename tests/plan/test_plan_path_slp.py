@@ -29,7 +29,7 @@ from sloshkit.plan.spatial import (
     SpatialSloshLimits,
     sample_path,
 )
-from tests.plan.conftest import assert_export_meets_limits
+from tests.plan.plan_checks import assert_export_meets_limits
 
 
 def _bend(model: SloshModel) -> PathProblem:

@@ -16,7 +16,7 @@ from sloshkit.plan.path_tilt import improved_tilt, plan_tilt
 from sloshkit.plan.retime import family_member
 from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.tilt import peak_tilt_rad
-from tests.plan.conftest import assert_export_meets_limits
+from tests.plan.plan_checks import assert_export_meets_limits
 
 
 def test_improved_tilt_is_never_slower_and_meets_its_limits_when_simulated_again(

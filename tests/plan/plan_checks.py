@@ -1,27 +1,15 @@
-"""Fixtures and checks shared by the 3-D path-planning tests."""
+"""A check shared by the 3-D path-planning tests (the vial is `robot_vial` of tests/conftest.py)."""
 
 from __future__ import annotations
 
 import warnings
 
-import pytest
-
 from sloshkit.errors import ValidityWarning
-from sloshkit.model.geometry import UprightCylinder
-from sloshkit.model.liquids import get_liquid
-from sloshkit.model.modal import SloshModel, equivalent_model
+from sloshkit.model.modal import SloshModel
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path_limits import kinematics
 from sloshkit.plan.spatial import CartesianLimits, PoseSamples
 from sloshkit.sim.spatial import simulate_spatial
-
-
-@pytest.fixture(scope="module")
-def robot_vial() -> SloshModel:
-    """The measured series' cylinder: R = 49 mm, h = 80 mm, water, zeta = 0.0066."""
-    return equivalent_model(
-        UprightCylinder(0.049), get_liquid("water-20C"), 0.08, damping_ratio=0.0066
-    )
 
 
 def assert_export_meets_limits(
