@@ -254,3 +254,35 @@ def test_a_signal_inside_an_unraisable_callback_is_raised_again_at_a_safe_point(
             time.sleep(0.001)
     assert stopped.value.signum == signal.SIGTERM
     assert reference() is None
+
+
+def test_a_signal_outside_a_commands_own_handling_still_gets_its_advice(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`cfd run` says how to resume wherever the signal lands: also after its own handling has
+    ended (CI once saw a SIGINT on the way out of a finished run reported as "no partial output
+    was written", without the resume hint)."""
+    import typer
+
+    app_module = importlib.import_module("sloshkit.cli.app")
+    from sloshkit.cli import signals
+
+    tiny = typer.Typer()
+
+    @tiny.command()
+    def work() -> None:
+        signals.set_hint("continue with: sloshkit cfd run --case c --resume")
+        os.kill(os.getpid(), signal.SIGINT)  # lands outside any handling of the command's own
+        time.sleep(5.0)
+
+    @tiny.callback()
+    def root() -> None:
+        """Group."""
+
+    monkeypatch.setattr(app_module, "app", tiny)
+    assert app_module.run(["work"]) == 130
+    lines = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert lines == [
+        "error: interrupted (exit 130); continue with: sloshkit cfd run --case c --resume"
+    ]
+    assert signals.hint() is None  # nothing leaks to the next command

@@ -138,10 +138,12 @@ def _report(failure: BaseException) -> int:
     signum = signals.received()
     if isinstance(failure, signals.Interrupted) or signum is not None:
         code = 128 + (signum if signum is not None else int(getattr(failure, "signum", 2)))
-        messages.error(stderr, f"interrupted (exit {code}); no partial output was written")
+        advice = signals.hint() or "no partial output was written"
+        messages.error(stderr, f"interrupted (exit {code}); {advice}")
         return code
     if isinstance(failure, KeyboardInterrupt):
-        messages.error(stderr, "interrupted (exit 130); no partial output was written")
+        advice = signals.hint() or "no partial output was written"
+        messages.error(stderr, f"interrupted (exit 130); {advice}")
         return 130
     if isinstance(failure, InputError):
         messages.error(stderr, failure)

@@ -90,7 +90,10 @@ def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> 
 @contextlib.contextmanager
 def _clean_interruption(case: Path) -> Iterator[None]:
     """SIGINT, SIGTERM or SIGHUP anywhere in a cfd command (not only while OpenFOAM runs):
-    the tools are stopped, one line says how to continue, exit 128 + the signal number."""
+    the tools are stopped, one line says how to continue, exit 128 + the signal number. The
+    same advice goes to the entry point, for a signal that lands outside this block (while it
+    restores the handlers, or on the way out of the command)."""
+    signals.set_hint(f"continue with: sloshkit cfd run --case {case} --resume")
     try:
         with interruptible([], [0.0]):
             yield

@@ -51,7 +51,7 @@ class Interrupted(KeyboardInterrupt):
         return 128 + self.signum
 
 
-_state: dict[str, Any] = {"received": None, "depth": 0, "reported": False}
+_state: dict[str, Any] = {"received": None, "depth": 0, "reported": False, "hint": None}
 
 
 def _handler(signum: int, frame: FrameType | None) -> None:
@@ -108,6 +108,44 @@ def was_reported() -> bool:
     False
     """
     return bool(_state["reported"])
+
+
+def set_hint(hint: str | None) -> None:
+    """What the interruption line says to do next (e.g. how to ``--resume``), wherever in the
+    command the signal lands, instead of "no partial output was written".
+
+    Parameters
+    ----------
+    hint : str or None
+        The advice, or None for the default line.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> with installed():
+    ...     set_hint("continue with: sloshkit cfd run --case c --resume")
+    ...     hint()
+    'continue with: sloshkit cfd run --case c --resume'
+    """
+    _state["hint"] = hint
+
+
+def hint() -> str | None:
+    """The advice set by `set_hint` for this command, or None.
+
+    Returns
+    -------
+    str or None
+
+    Examples
+    --------
+    >>> hint() is None
+    True
+    """
+    return _state["hint"]  # type: ignore[no-any-return]
 
 
 def check() -> None:
@@ -205,7 +243,7 @@ def installed(restore: bool = True) -> Iterator[None]:
         return
     previous = {sig: signal.getsignal(sig) for sig in HANDLED}
     previous_hook = sys.unraisablehook
-    _state.update(received=None, depth=0, reported=False)
+    _state.update(received=None, depth=0, reported=False, hint=None)
     for sig in HANDLED:
         signal.signal(sig, _handler)
     sys.unraisablehook = _redeliver_unraisable(previous_hook)
@@ -215,4 +253,4 @@ def installed(restore: bool = True) -> Iterator[None]:
         for sig, handler in previous.items():
             signal.signal(sig, handler if restore else signal.SIG_IGN)
         sys.unraisablehook = previous_hook
-        _state.update(received=None, depth=0, reported=False)  # nothing leaks to a next run
+        _state.update(received=None, depth=0, reported=False, hint=None)  # nothing leaks
