@@ -165,11 +165,6 @@ def session_members(session: int) -> list[int]:
 _STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP}
 
 
-def _child_setup() -> None:  # pragma: no cover - runs in the child
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP_SIGNALS)
-    _set_parent_death_signal()
-
-
 def start_tool(
     holder: list[subprocess.Popen[str]], command: list[str], case: Path, stdout: Any
 ) -> subprocess.Popen[str]:
@@ -201,8 +196,15 @@ def start_tool(
     >>> tool.wait(), holder == [tool]
     (0, True)
     """
-    in_main = threading.current_thread() is threading.main_thread()
-    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS) if in_main else None
+    # Held back at the Python level, not with pthread_sigmask: a signal blocked in the main
+    # thread is taken by another thread (rich's progress refresher), and Python then runs the
+    # handler in the main thread anyway, possibly inside Popen after the fork (CI saw mpirun
+    # and its ranks outlive a SIGTERM that way).
+    held: list[int] = []
+    previous: dict[signal.Signals, Any] = {}
+    if threading.current_thread() is threading.main_thread():
+        for signum in _STOP_SIGNALS:
+            previous[signum] = signal.signal(signum, lambda number, frame: held.append(number))
     try:
         process = subprocess.Popen(
             command,
@@ -213,10 +215,12 @@ def start_tool(
             text=True,
             bufsize=1,
             start_new_session=True,
-            preexec_fn=_child_setup,
+            preexec_fn=_set_parent_death_signal,
         )
         holder.append(process)
     finally:
-        if blocked is not None:
-            signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        if held:
+            signal.raise_signal(held[0])  # now the caller's handler stops the registered tool
     return process
