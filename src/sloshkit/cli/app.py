@@ -136,15 +136,11 @@ def _report(failure: BaseException) -> int:
     if isinstance(failure, SystemExit):
         return failure.code if isinstance(failure.code, int) else 1
     signum = signals.received()
-    if isinstance(failure, signals.Interrupted) or signum is not None:
+    if isinstance(failure, KeyboardInterrupt) or signum is not None:  # Interrupted included
         code = 128 + (signum if signum is not None else int(getattr(failure, "signum", 2)))
         advice = signals.hint() or "no partial output was written"
         messages.error(stderr, f"interrupted (exit {code}); {advice}")
         return code
-    if isinstance(failure, KeyboardInterrupt):
-        advice = signals.hint() or "no partial output was written"
-        messages.error(stderr, f"interrupted (exit 130); {advice}")
-        return 130
     if isinstance(failure, InputError):
         messages.error(stderr, failure)
         return 2
