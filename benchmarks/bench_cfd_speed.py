@@ -76,6 +76,8 @@ def bench(
     wall_grading: float = 1.0,
     radial_cells: int | None = None,
     ddt_scheme: str = "Euler",
+    momentum_predictor: bool = False,
+    surface_refinement: int = 2,
 ) -> dict[str, object]:
     """Run one free decay and return its timings and calibration."""
     model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
@@ -93,6 +95,8 @@ def bench(
         wall_grading=wall_grading,
         radial_cells=radial_cells,
         ddt_scheme=ddt_scheme,
+        momentum_predictor=momentum_predictor,
+        surface_refinement=surface_refinement,
     )
     load_before = os.getloadavg()
     cpu_before = children_cpu_s()
@@ -124,6 +128,8 @@ def bench(
         "pressure_correctors": pressure_correctors,
         "adjust_time_step": adjust_time_step,
         "ddt_scheme": ddt_scheme,
+        "momentum_predictor": momentum_predictor,
+        "surface_refinement": surface_refinement,
         "wall_grading": wall_grading,
         "radial_cells": radial_cells,
         "wall_cell_m": result_wall_cell(case),

@@ -85,6 +85,10 @@ def load_runs() -> list[dict[str, Any]]:
                 f"graded {grading:g}" if grading < 1.0 else "uniform" if scheme == "Euler"
                 else "uniform CN 0.9"
             )  # fmt: skip
+            if row.get("momentum_predictor"):
+                label += " predictor"
+            if row.get("surface_refinement", 2) != 2:
+                label += f" band R/{row['surface_refinement']}N"
             estimate = estimates.get((work, case), {})
             runs.append(
                 {

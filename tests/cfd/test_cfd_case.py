@@ -64,6 +64,27 @@ def test_mesh_layout_counts_and_surface_refinement():
     assert layout.cells == layout.cells_per_layer * sum(layout.z_cells)
 
 
+@pytest.mark.parametrize("refinement", [1, 3, 4])
+def test_surface_refinement_sets_the_band_cells_only(refinement):
+    base, fine = (
+        mesh_layout(spec(cells_per_radius=10)),
+        mesh_layout(spec(cells_per_radius=10, surface_refinement=refinement)),
+    )
+    sizes = np.diff(fine.z_levels_m) / np.array(fine.z_cells)
+    band = np.argmin(sizes)
+    assert sizes[band] == pytest.approx(0.0205 / (refinement * 10), rel=0.1)
+    assert fine.z_levels_m == base.z_levels_m  # the band itself does not move
+    others = [k for k in range(len(sizes)) if k != band]
+    assert fine.z_cells[others[0]] == base.z_cells[others[0]]
+
+
+def test_momentum_predictor_reaches_fv_solution():
+    from sloshkit.cfd.system import fv_solution
+
+    assert "momentumPredictor no;" in fv_solution(spec())
+    assert "momentumPredictor yes;" in fv_solution(spec(momentum_predictor=True))
+
+
 def test_block_mesh_dict_geometry():
     case = spec()
     text = block_mesh_dict(case)
@@ -156,6 +177,8 @@ def test_case_files_and_allrun(tmp_path):
         ({"domain_height_m": 0.03}, "domain_height"),
         ({"ddt_scheme": "RK4"}, "ddt_scheme"),
         ({"radius_m": -1.0}, "radius"),
+        ({"surface_refinement": 0}, "surface_refinement"),
+        ({"surface_refinement": 9}, "surface_refinement"),
     ],
 )
 def test_bad_case_specs(kwargs, parameter):

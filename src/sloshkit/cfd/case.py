@@ -326,6 +326,8 @@ def spec_summary(spec: CaseSpec) -> dict[str, Any]:
         "write_interval_s": spec.write_interval_s,
         "ddt_scheme": spec.ddt_scheme,
         "pressure_correctors": spec.pressure_correctors,
+        "momentum_predictor": spec.momentum_predictor,
+        "surface_refinement": spec.surface_refinement,
         "wall_grading": spec.wall_grading,
         "radial_cells": mesh_layout(spec).radial,
         "wall_cell_m": wall_cell_size_m(spec),

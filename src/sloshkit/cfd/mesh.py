@@ -69,8 +69,8 @@ class MeshLayout:
 
 
 def mesh_layout(spec: CaseSpec) -> MeshLayout:
-    """Cell counts for ``spec``: fine vertical cells of R/(2N) within +-0.3 R of the free
-    surface, twice that elsewhere.
+    """Cell counts for ``spec``: fine vertical cells of R/(sN) within +-0.3 R of the free
+    surface (s: ``spec.surface_refinement``, 2 by default), R/N elsewhere.
 
     Parameters
     ----------
@@ -91,7 +91,7 @@ def mesh_layout(spec: CaseSpec) -> MeshLayout:
     """
     n = spec.cells_per_radius
     radius, height, fill = spec.radius_m, spec.height_m, spec.fill_height_m
-    fine = radius / (2 * n)
+    fine = radius / (spec.surface_refinement * n)
     band = 0.3 * radius
     levels = [0.0]
     low, high = max(fill - band, 0.0), min(fill + band, height)
@@ -101,7 +101,7 @@ def mesh_layout(spec: CaseSpec) -> MeshLayout:
     cells = []
     for start, stop in itertools.pairwise(levels):
         in_band = start >= low - 1e-12 and stop <= high + 1e-12
-        size = fine if in_band else 2 * fine
+        size = fine if in_band else radius / n
         cells.append(max(1, round((stop - start) / size)))
     uniform = max(2, round(n * (1 - CORE_FRACTION) * 1.1))
     if spec.wall_grading >= 1.0:

@@ -81,6 +81,8 @@ def case_spec(
     pressure_correctors: int = RECOMMENDED["pressure_correctors"],
     wall_grading: float = 1.0,
     radial_cells: int | None = None,
+    momentum_predictor: bool = False,
+    surface_refinement: int = 2,
 ) -> CaseSpec:
     """A case for ``model``'s container, fill and liquid.
 
@@ -115,6 +117,10 @@ def case_spec(
         Wall refinement (1: uniform; see `CaseSpec`).
     radial_cells : int, optional
         Cells across the ring blocks or the graded wall annulus.
+    momentum_predictor : bool
+        PIMPLE momentum predictor (see `CaseSpec`).
+    surface_refinement : int
+        Vertical refinement near the free surface (see `CaseSpec`).
 
     Returns
     -------
@@ -150,6 +156,8 @@ def case_spec(
         pressure_correctors=pressure_correctors,
         wall_grading=wall_grading,
         radial_cells=radial_cells,
+        momentum_predictor=momentum_predictor,
+        surface_refinement=surface_refinement,
     )
 
 

@@ -74,6 +74,14 @@ class CaseSpec:
         Wall cell / innermost cell of the graded wall annulus (1: uniform).
     radial_cells : int, optional
         Cells across the ring blocks (uniform) or the wall annulus (graded).
+    surface_refinement : int
+        Vertical cells within +-0.3 R of the free surface are R/(surface_refinement x N)
+        high (twice as high elsewhere is R/N): 2 by default; more resolves a slosh amplitude
+        of about one default cell.
+    momentum_predictor : bool
+        Solve the momentum equation before the pressure correctors (PIMPLE
+        ``momentumPredictor``); it keeps the 2-step pressure-velocity oscillation out of
+        wall-graded meshes at small steps (docs/cfd.md, *Damping*).
 
     Returns
     -------
@@ -100,6 +108,8 @@ class CaseSpec:
     pressure_correctors: int = 3
     wall_grading: float = 1.0
     radial_cells: int | None = None
+    momentum_predictor: bool = False
+    surface_refinement: int = 2
 
     def __post_init__(self) -> None:
         require_positive("radius", self.radius_m, "m")
@@ -113,6 +123,7 @@ class CaseSpec:
         require_in_range("max_alpha_courant", self.max_alpha_courant, 0.01, 5.0)
         require_in_range("pressure_correctors", self.pressure_correctors, 1, 5)
         require_in_range("wall_grading", self.wall_grading, 0.005, 1.0)
+        require_in_range("surface_refinement", self.surface_refinement, 1, 8)
         if self.radial_cells is not None:
             require_in_range("radial_cells", self.radial_cells, 2, 200)
         if self.probe_angles:

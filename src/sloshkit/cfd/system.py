@@ -258,7 +258,7 @@ def fv_solution(spec: CaseSpec) -> str:
             },
         },
         "PIMPLE": {
-            "momentumPredictor": "no",
+            "momentumPredictor": "yes" if spec.momentum_predictor else "no",
             "nOuterCorrectors": 1,
             "nCorrectors": spec.pressure_correctors,
             "nNonOrthogonalCorrectors": 0,

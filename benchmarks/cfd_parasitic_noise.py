@@ -1,0 +1,208 @@
+"""What the high-frequency noise of the wall force on wall-graded meshes at small steps is, and
+which solver settings change it: short free decays, one change at a time.
+
+The damping study (docs/cfd.md, *Damping*) found the wall force of every wall-graded O-grid
+swamped by noise at a 0.5 ms step (noise ratio 1.7-2.4), and clean at 2 ms. Each experiment
+here writes the 9-cells-per-radius graded mesh of that study (grading 0.25, 7 annulus cells,
+15,876 cells), 3 deg tilt, fixed 0.5 ms step, 0.6 s of free decay, changes one thing and runs
+it serially. It records, for the pressure and the viscous part of the horizontal wall force
+separately, the noise ratio (as `sloshkit.cfd.force_signal.noise_ratio`, above 15 Hz) over
+0.1-0.3 s and 0.3-0.6 s, and the frequency of the largest spectral line of the noise (1000 Hz
+is the Nyquist frequency of the step: a sign change every step).
+
+Results: docs/cfd-parasitic-noise.json; docs/cfd.md discusses them.
+
+Run: PYTHONPATH=src python benchmarks/cfd_parasitic_noise.py [--only NAME ...] [--jobs 2]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import re
+import subprocess
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from cfd_wall_stability import chain, replace
+
+from sloshkit.cfd.results import read_function_object
+from sloshkit.cfd.run import openfoam_environment, write_case
+from sloshkit.cfd.spec import CaseSpec, FreeDecay
+from sloshkit.model.liquids import get_liquid
+
+ROOT = Path(__file__).resolve().parent.parent
+Edit = Callable[[Path], None]
+CUTOFF_HZ = 15.0  # three times the first-mode frequency, as in the damping study
+WINDOWS_S = ((0.1, 0.3), (0.3, 0.6))
+SOLUTION, SCHEMES = "system/fvSolution", "system/fvSchemes"
+TRANSPORT = "constant/transportProperties"
+
+
+def scale_property(phase: str, name: str, factor: float) -> Edit:
+    """Multiply one property (``nu`` or ``rho``) of one phase in transportProperties."""
+
+    def edit(case: Path) -> None:
+        target = case / TRANSPORT
+        text = target.read_text()
+        pattern = rf"({phase}\s*\{{[^}}]*?\n\s*{name}\s+)([0-9.eE+-]+);"
+        match = re.search(pattern, text)
+        if match is None:
+            raise ValueError(f"{phase}.{name} not in {TRANSPORT}")
+        value = float(match.group(2)) * factor
+        target.write_text(text[: match.start(2)] + f"{value:.10g}" + text[match.end(2) :])
+
+    return edit
+
+
+#: name -> (what it tests, CaseSpec keywords, edit of the written case)
+EXPERIMENTS: dict[str, tuple[str, dict[str, Any], Edit | None]] = {
+    "reference": ("the damping study's settings", {}, None),
+    "reference at 1 ms": ("the step the study found clean", {"delta_t_s": 1e-3}, None),
+    "momentum predictor": (
+        "PIMPLE momentumPredictor on",
+        {"momentum_predictor": True},
+        None,
+    ),
+    "3 outer correctors": (
+        "PIMPLE iterations within the step (nOuterCorrectors 3)",
+        {},
+        replace(SOLUTION, "nOuterCorrectors 1;", "nOuterCorrectors 3;"),
+    ),
+    "2 pressure correctors": ("nCorrectors 2 (the study uses 3)", {"pressure_correctors": 2}, None),
+    "1 pressure corrector": ("nCorrectors 1", {"pressure_correctors": 1}, None),
+    "1 non-orthogonal corrector": (
+        "the non-orthogonal part of the pressure equation solved once more",
+        {},
+        replace(SOLUTION, "nNonOrthogonalCorrectors 0;", "nNonOrthogonalCorrectors 1;"),
+    ),
+    "limited non-orthogonal correction": (
+        "laplacian and snGrad 'limited corrected 0.5'",
+        {},
+        chain(
+            replace(SCHEMES, "Gauss linear corrected;", "Gauss linear limited corrected 0.5;"),
+            replace(SCHEMES, "default         corrected;", "default limited corrected 0.5;"),
+        ),
+    ),
+    "no non-orthogonal correction": (
+        "laplacian and snGrad 'uncorrected'",
+        {},
+        chain(
+            replace(SCHEMES, "Gauss linear corrected;", "Gauss linear uncorrected;"),
+            replace(SCHEMES, "default         corrected;", "default         uncorrected;"),
+        ),
+    ),
+    "Crank-Nicolson 0.9": ("second-order time scheme", {"ddt_scheme": "CrankNicolson 0.9"}, None),
+    "water viscosity x4": ("viscous damping in the liquid", {}, scale_property("water", "nu", 4.0)),
+    "air viscosity x10": ("viscous damping in the gas", {}, scale_property("air", "nu", 10.0)),
+    "air density x10": ("density ratio 84 instead of 840", {}, scale_property("air", "rho", 10.0)),
+    "band R/4N": ("vertical cells near the surface halved", {"surface_refinement": 4}, None),
+}
+
+
+def slug(name: str) -> str:
+    """A folder name for an experiment."""
+    return re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-")
+
+
+def spec_for(settings: dict[str, Any]) -> CaseSpec:
+    """The experiment's case: the study's graded 9/radius mesh, 3 deg tilt, 0.6 s at 0.5 ms."""
+    options: dict[str, Any] = {
+        "cells_per_radius": 9,
+        "wall_grading": 0.25,
+        "radial_cells": 7,
+        "end_time_s": 0.6,
+        "delta_t_s": 5e-4,
+        "write_interval_s": 0.6,
+        "adjust_time_step": False,
+    }
+    options.update(settings)
+    return CaseSpec(0.0205, 0.039, get_liquid("water-25C"), FreeDecay(math.radians(3.0)), **options)
+
+
+def spectral_peak_hz(time_s: np.ndarray, noise: np.ndarray) -> float:
+    """Frequency of the largest line of a (high-passed) signal's spectrum [Hz]."""
+    spectrum = np.abs(np.fft.rfft(noise - noise.mean()))
+    frequencies = np.fft.rfftfreq(noise.size, float(time_s[1] - time_s[0]))
+    return float(frequencies[int(np.argmax(spectrum[1:])) + 1])
+
+
+def measure(case: Path) -> dict[str, Any]:
+    """Noise ratios of the pressure and viscous wall force by window, and the noise's peak.
+
+    The ratio is `sloshkit.cfd.force_signal.noise_ratio`'s (the same 4th-order Butterworth
+    split at `CUTOFF_HZ`, filtered over the whole record) taken over each window."""
+    from scipy.signal import butter, sosfiltfilt
+
+    table = read_function_object(case, "wallForces", "force.dat")
+    t = table[:, 0]
+    step = float(np.median(np.diff(t)))
+    uniform = np.arange(t[0], t[-1] + 0.5 * step, step)
+    sos = butter(4, CUTOFF_HZ, fs=1.0 / step, output="sos")
+    out: dict[str, Any] = {"simulated_s": float(t[-1])}
+    for part, column in (("pressure", 4), ("viscous", 7)):
+        values = np.interp(uniform, t, table[:, column])
+        smooth = sosfiltfilt(sos, values)
+        for start, stop in WINDOWS_S:
+            inside = (uniform > start) & (uniform <= stop)
+            low = float(np.std(smooth[inside])) if np.count_nonzero(inside) > 1 else 0.0
+            out[f"noise_{part}_{start:g}_{stop:g}s"] = (
+                float(np.std((values - smooth)[inside])) / low if low > 0.0 else None
+            )
+        if part == "pressure":
+            late = uniform > WINDOWS_S[0][0]
+            out["noise_peak_hz"] = spectral_peak_hz(uniform[late], (values - smooth)[late])
+    return out
+
+
+def experiment(name: str, work: Path) -> dict[str, Any]:
+    """Run one experiment of `EXPERIMENTS`; its settings and measurements."""
+    purpose, settings, edit = EXPERIMENTS[name]
+    spec = spec_for(settings)
+    case = write_case(spec, work / slug(name), overwrite=True)
+    if edit is not None:
+        edit(case)
+    env = openfoam_environment()
+    for command in ("blockMesh", "setFields"):
+        subprocess.run([command], cwd=case, env=env, capture_output=True, check=True)
+    done = subprocess.run(["interFoam"], cwd=case, env=env, capture_output=True, text=True)
+    (case / "log.interFoam").write_text(done.stdout + done.stderr)
+    times = re.findall(r"^Time = ([0-9.eE+-]+)$", done.stdout, re.M)
+    row: dict[str, Any] = {
+        "experiment": name,
+        "tests": purpose,
+        "step_s": spec.delta_t_s,
+        "blew_up": done.returncode != 0,
+        "reached_s": float(times[-1]) if times else 0.0,
+    }
+    try:
+        row.update(measure(case))
+    except (ValueError, IndexError, OSError) as error:  # no usable force output
+        row["measure_error"] = str(error)
+    return row
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", nargs="*", default=None, help="experiment names")
+    parser.add_argument("--jobs", type=int, default=2, help="experiments run at once")
+    parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-noise"))
+    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-parasitic-noise.json")
+    args = parser.parse_args()
+    stored = json.loads(args.out.read_text()) if args.out.is_file() else []
+    rows = {r["experiment"]: r for r in stored}
+    names = args.only or list(EXPERIMENTS)
+    with ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        for row in pool.map(lambda n: experiment(n, args.work), names):
+            rows[row["experiment"]] = row
+            print(json.dumps(row), flush=True)
+            ordered = [rows[k] for k in EXPERIMENTS if k in rows]
+            args.out.write_text(json.dumps(ordered, indent=2) + "\n", encoding="utf-8")
+
+
+if __name__ == "__main__":
+    main()
