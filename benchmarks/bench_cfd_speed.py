@@ -78,12 +78,13 @@ def bench(
     ddt_scheme: str = "Euler",
     momentum_predictor: bool = False,
     surface_refinement: int = 2,
+    tilt_deg: float = 3.0,
 ) -> dict[str, object]:
     """Run one free decay and return its timings and calibration."""
     model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     spec = case_spec(
         model,
-        FreeDecay(math.radians(3.0)),
+        FreeDecay(math.radians(tilt_deg)),
         cells_per_radius=cells_per_radius,
         end_time_s=end_time_s,
         delta_t_s=max_step_s,
@@ -130,6 +131,7 @@ def bench(
         "ddt_scheme": ddt_scheme,
         "momentum_predictor": momentum_predictor,
         "surface_refinement": surface_refinement,
+        "tilt_deg": tilt_deg,
         "wall_grading": wall_grading,
         "radial_cells": radial_cells,
         "wall_cell_m": result_wall_cell(case),

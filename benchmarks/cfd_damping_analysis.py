@@ -19,7 +19,7 @@ from pathlib import Path
 
 from cfd_damping_converged import SAFETY, analyse
 from cfd_damping_converged_report import figure, render
-from cfd_damping_report import render_stability
+from cfd_damping_report import render_noise, render_stability
 from scipy import integrate
 from scipy.special import j1, jvp
 
@@ -32,6 +32,7 @@ RADIUS_M, FILL_M, GRAVITY = 0.0205, 0.039, 9.81
 XI_1 = 1.8411837813406593  # first zero of J1'
 START, END = "<!-- damping-study:start -->", "<!-- damping-study:end -->"
 WALL_START, WALL_END = "<!-- wall-stability:start -->", "<!-- wall-stability:end -->"
+NOISE_START, NOISE_END = "<!-- parasitic-noise:start -->", "<!-- parasitic-noise:end -->"
 
 
 def stokes_layer_damping(radius_m: float, fill_m: float, nu_m2_s: float) -> dict[str, float]:
@@ -109,8 +110,15 @@ def main() -> None:
     section = render(document)
     grading = json.loads((DOCS / "cfd-wall-grading.json").read_text())
     wall_section = render_stability(grading.get("instability_diagnosis", []))
+    noise_path = DOCS / "cfd-parasitic-noise.json"
+    noise_section = render_noise(json.loads(noise_path.read_text()) if noise_path.is_file() else [])
     text = (DOCS / "cfd.md").read_text()
-    for start, end, body in ((START, END, section), (WALL_START, WALL_END, wall_section)):
+    blocks = (
+        (START, END, section),
+        (WALL_START, WALL_END, wall_section),
+        (NOISE_START, NOISE_END, noise_section),
+    )
+    for start, end, body in blocks:
         if start in text:
             head, rest = text.split(start, 1)
             text = head + start + "\n" + body + "\n" + end + rest.split(end, 1)[1]

@@ -39,6 +39,7 @@ def entry(
     end_s: float = 2.0,
     predictor: bool = False,
     surface: int = 2,
+    tilt: float = 3.0,
 ) -> dict[str, Any]:
     """One planned run, named by its settings."""
     name = f"n{cells}-dt{step_ms:g}ms"
@@ -52,6 +53,8 @@ def entry(
         name += "-mp"
     if surface != 2:
         name += f"-s{surface}"
+    if tilt != 3.0:
+        name += f"-tilt{tilt:g}"
     return {
         "key": name,
         "cells_per_radius": cells,
@@ -62,6 +65,7 @@ def entry(
         "end_time_s": end_s,
         "momentum_predictor": predictor,
         "surface_refinement": surface,
+        "tilt_deg": tilt,
     }
 
 
@@ -96,12 +100,29 @@ PLAN = [
     entry(16, 1.0, grading=0.25, radial=13, predictor=True),
     # session 4: the finest graded mesh, clean at 1 and 2 ms, at a smaller step, and the next
     # mesh of the family (20/radius, 16 annulus cells, 179,200 cells)
-    entry(16, 0.5, grading=0.25, radial=13),
+    entry(16, 0.5, grading=0.25, radial=13),  # stopped at 0.7 s: force noise 0.6-1.1 (below)
     entry(20, 2.0, grading=0.25, radial=16),
     entry(20, 1.0, grading=0.25, radial=16),
     # session 4: is it the free surface? The slosh amplitude at the wall (1.07 mm) is about one
     # vertical cell of the default band (R/2N: 0.85 mm at 12/radius); s4 halves those cells
     entry(12, 2.0, grading=0.25, radial=10, surface=4),
+    # session 4: a 4 ms step on every graded mesh, so that each has three steps of its own
+    # (the steps below 1 ms carry the noise)
+    entry(16, 4.0, grading=0.25, radial=13),
+    entry(12, 4.0, grading=0.25, radial=10),
+    entry(9, 4.0, grading=0.25, radial=7),
+    # session 4: the next mesh after 20/radius at the step where 20/radius did not move
+    entry(24, 2.0, grading=0.25, radial=19),
+    # (not run: 20/radius at 4 ms; 16/radius at 4 ms already had a late Courant number of 1.4)
+    # session 4: a second time scheme on the finest clean graded mesh at the smallest clean step
+    # (the step error of Euler at 1 ms against Crank-Nicolson's); it blew up at 0.05 s
+    entry(16, 1.0, CN, grading=0.25, radial=13),
+    # session 4: twice the tilt (slosh amplitude 2.1 mm at the wall, about 2.5 default cells at
+    # 12/radius): does the damping depend on the amplitude measured in cells?
+    entry(12, 2.0, grading=0.25, radial=10, tilt=6.0),
+    entry(16, 2.0, grading=0.25, radial=13, surface=4),
+    entry(9, 1.0, grading=0.25, radial=7, tilt=6.0),
+    entry(9, 0.5, grading=0.25, radial=7, tilt=6.0),
 ]
 
 
@@ -122,6 +143,7 @@ def run_entry(item: dict[str, Any], work: Path) -> dict[str, Any]:
             ddt_scheme=item["ddt_scheme"],
             momentum_predictor=item.get("momentum_predictor", False),
             surface_refinement=item.get("surface_refinement", 2),
+            tilt_deg=item.get("tilt_deg", 3.0),
         )
     except (CfdError, InputError) as error:
         row = {"failed": str(error).splitlines()[0]}

@@ -85,10 +85,14 @@ def load_runs() -> list[dict[str, Any]]:
                 f"graded {grading:g}" if grading < 1.0 else "uniform" if scheme == "Euler"
                 else "uniform CN 0.9"
             )  # fmt: skip
+            if grading < 1.0 and scheme != "Euler":
+                label += " CN 0.9"
             if row.get("momentum_predictor"):
                 label += " predictor"
             if row.get("surface_refinement", 2) != 2:
                 label += f" band R/{row['surface_refinement']}N"
+            if row.get("tilt_deg", 3.0) != 3.0:
+                label += f" tilt {row['tilt_deg']:g} deg"
             estimate = estimates.get((work, case), {})
             runs.append(
                 {
@@ -301,9 +305,25 @@ def estimator_check(runs: list[dict[str, Any]]) -> dict[str, Any]:
     }
 
 
+#: The families and steps the step-error transfer below is built for; session 4's variants
+#: (momentum predictor, finer surface band, larger tilt, Crank-Nicolson on a graded mesh) and its
+#: 4 ms steps are analysed on their own (benchmarks/cfd_damping_session4.py).
+TRANSFER_FAMILIES = ("uniform", "uniform CN 0.9", "graded 0.1", "graded 0.25")
+LARGEST_TRANSFER_STEP_S = 2e-3
+
+
+def transfer_runs(runs: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The runs of `TRANSFER_FAMILIES` at steps up to `LARGEST_TRANSFER_STEP_S`."""
+    return [
+        r
+        for r in runs
+        if r["family"] in TRANSFER_FAMILIES and r["step_s"] <= LARGEST_TRANSFER_STEP_S * 1.000001
+    ]
+
+
 def analyse(theory: dict[str, float]) -> dict[str, Any]:
     """Every number of the converged damping study (module docstring)."""
-    runs = load_runs()
+    runs = transfer_runs(load_runs())
     reference = series(runs, "uniform", REFERENCE)
     study = step_study(reference)
     cross_check = {}
