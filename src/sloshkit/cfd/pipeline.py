@@ -35,6 +35,7 @@ from sloshkit.cfd.run import (
     run_case,
     write_case,
 )
+from sloshkit.cfd.state import check_graded_step
 from sloshkit.cfd.validation import model_wall_elevation, validate
 from sloshkit.errors import InputError
 from sloshkit.model.modal import SloshModel
@@ -234,6 +235,7 @@ def _check_and_write(spec: CaseSpec, case: Path, resume: bool, overwrite: bool) 
         check_processes(spec.processes, int(summary["cells"]))
     else:
         check_processes(spec.processes, expected_cells(spec))
+        check_graded_step(spec.wall_grading, spec.delta_t_s)
         write_case(spec, case, overwrite=overwrite)
 
 
