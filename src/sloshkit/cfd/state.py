@@ -226,6 +226,11 @@ def check_graded_step(wall_grading: float, delta_t_s: float) -> None:
     delta_t_s : float
         Its fixed step, or the largest step of an adaptive one [s].
 
+    Returns
+    -------
+    None
+        It only warns.
+
     Examples
     --------
     >>> import warnings
