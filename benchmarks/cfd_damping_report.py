@@ -281,8 +281,9 @@ def limits(document: dict[str, Any]) -> list[str]:
         ]
         line = (
             f"- **The finest meshes break the pattern.** {family}, " + "; ".join(parts) + ": "
-            "their damping does not fall as the step shrinks, so the step-error shape of the "
-            "uniform reference does not transfer to them and they have no zero-step value."
+            "their damping does not fall as the step shrinks (a mesh run at one step sits "
+            "among such meshes), so the step-error shape of the uniform reference does not "
+            "transfer to them and they have no zero-step value."
         )
         if kept:
             c, v = max(kept)

@@ -60,9 +60,21 @@ def finish_transfers(
     """Uncertainties of the transferred values of one kind of mesh (in place): the fit spread
     where measured, else ``worst`` (the largest relative spread seen) times the distance; a
     one-step mesh takes the mean slope of the others (a slope of 1 +- 0.25, the same step
-    error as its reference, when there is none)."""
-    slopes = [x["slope"] for x in results.values() if x.get("points", 0) >= 2 and x["slope"] > 0]
+    error as its reference, when there is none), unless one of them has a slope of zero or
+    less: then it has no zero-step value (``invalid``)."""
+    measured = [x["slope"] for x in results.values() if x.get("points", 0) >= 2]
+    slopes = [c for c in measured if c > 0]
     for name, r in results.items():
+        if r.get("points", 0) == 1 and len(slopes) < len(measured):
+            # Session 4: a one-step mesh among meshes whose step error runs against the
+            # reference's (graded 16 and 20/radius) cannot borrow the others' mean slope.
+            r["invalid"] = (
+                "one step only, and meshes of its kind run at two steps do not take the "
+                "reference's step-error shape (slopes "
+                + ", ".join(f"{c:.2f}" for c in measured)
+                + ")"
+            )
+            continue
         if r.get("points", 0) == 1:
             step = r["steps_s"][0]
             c = statistics.fmean(slopes) if slopes else 1.0
