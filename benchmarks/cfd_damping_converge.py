@@ -113,6 +113,7 @@ PLAN = [
     entry(9, 4.0, grading=0.25, radial=7),
     # session 4: the next mesh after 20/radius at the step where 20/radius did not move
     entry(24, 2.0, grading=0.25, radial=19),
+    {**entry(24, 1.0, grading=0.25, radial=19), "processes": 2},  # 2 ranks: 304,128 cells
     # (not run: 20/radius at 4 ms; 16/radius at 4 ms already had a late Courant number of 1.4)
     # session 4: a second time scheme on the finest clean graded mesh at the smallest clean step
     # (the step error of Euler at 1 ms against Crank-Nicolson's); it blew up at 0.05 s
@@ -132,7 +133,7 @@ def run_entry(item: dict[str, Any], work: Path) -> dict[str, Any]:
         row = bench(
             work / item["key"],
             item["cells_per_radius"],
-            1,
+            item.get("processes", 1),
             item["end_time_s"],
             item["step_ms"] * 1e-3,
             0.5,
