@@ -76,12 +76,13 @@ class CaseSpec:
         Cells across the ring blocks (uniform) or the wall annulus (graded).
     surface_refinement : int
         Vertical cells within +-0.3 R of the free surface are R/(surface_refinement x N)
-        high (twice as high elsewhere is R/N): 2 by default; more resolves a slosh amplitude
-        of about one default cell.
+        high (R/N elsewhere): 2 by default. 4 lowered the damping of the 12/radius graded mesh
+        by 12 % and left the 16/radius one unchanged (docs/cfd.md, session 4).
     momentum_predictor : bool
         Solve the momentum equation before the pressure correctors (PIMPLE
-        ``momentumPredictor``); it keeps the 2-step pressure-velocity oscillation out of
-        wall-graded meshes at small steps (docs/cfd.md, *Damping*).
+        ``momentumPredictor``). Off by default: on wall-graded meshes at 0.5 ms it cut the
+        step-to-step pressure oscillation about fourfold without removing it, and the 16/radius
+        graded mesh blew up with it at 1 ms (docs/cfd.md, session 4).
 
     Returns
     -------

@@ -128,8 +128,8 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
                 typer.Option(
                     "--surface-refinement",
                     help="Vertical cells within 0.3 R of the free surface are R/(S x N), S this "
-                    "value (2: twice as fine as elsewhere). 4 resolves a slosh amplitude of "
-                    "about one default cell (docs/cfd.md, damping).",
+                    "value (2: twice as fine as elsewhere). A study option: 4 changed the "
+                    "damping of coarse graded meshes, not of fine ones (docs/cfd.md).",
                 ),
             ],
             2,
