@@ -114,6 +114,7 @@ PLAN = [
     # session 4: the next mesh after 20/radius at the step where 20/radius did not move
     entry(24, 2.0, grading=0.25, radial=19),
     {**entry(24, 1.0, grading=0.25, radial=19), "processes": 2},  # 2 ranks: 304,128 cells
+    {**entry(28, 2.0, grading=0.25, radial=22), "processes": 2},
     # (not run: 20/radius at 4 ms; 16/radius at 4 ms already had a late Courant number of 1.4)
     # session 4: a second time scheme on the finest clean graded mesh at the smallest clean step
     # (the step error of Euler at 1 ms against Crank-Nicolson's); it blew up at 0.05 s

@@ -23,7 +23,7 @@ DOCS = ROOT / "docs"
 WORK = "sloshkit-cfd-damping3"
 START, END = "<!-- damping-session4:start -->", "<!-- damping-session4:end -->"
 STEPS_MS = (4.0, 2.0, 1.0, 0.5)
-MESHES = (9, 12, 16, 20, 24)
+MESHES = (9, 12, 16, 20, 24, 28)
 #: Wall-force noise ratio above which a run carries parasitic currents (the damping study:
 #: clean runs at or below 0.23, runs with parasitic currents at or above 0.88).
 NOISE_LIMIT = 0.5
@@ -63,7 +63,7 @@ def cell(key: str, runs: dict[str, dict[str, Any]], estimates: dict[str, dict[st
 
 def key_of(cells: int, step_ms: float, suffix: str = "") -> str:
     """The run key of the graded 0.25 mesh with ``cells`` per radius (annulus cells as run)."""
-    radial = {9: 7, 12: 10, 16: 13, 20: 16, 24: 19}[cells]
+    radial = {9: 7, 12: 10, 16: 13, 20: 16, 24: 19, 28: 22}[cells]
     return f"n{cells}-dt{step_ms:g}ms-g0.25r{radial}{suffix}"
 
 
