@@ -6,7 +6,7 @@ swamped by noise at a 0.5 ms step (noise ratio 1.7-2.4), and clean at 2 ms. Each
 here writes the 9-cells-per-radius graded mesh of that study (grading 0.25, 7 annulus cells,
 15,876 cells), 3 deg tilt, fixed 0.5 ms step, 0.6 s of free decay, changes one thing and runs
 it serially. It records, for the pressure and the viscous part of the horizontal wall force
-separately, the noise ratio (as `sloshkit.cfd.force_signal.noise_ratio`, above 15 Hz) over
+separately, the noise ratio (`sloshkit.cfd.force_signal.noise_ratio` above 15 Hz) over
 0.1-0.3 s and 0.3-0.6 s, and the frequency of the largest spectral line of the noise (1000 Hz
 is the Nyquist frequency of the step: a sign change every step).
 
@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 from cfd_wall_stability import chain, replace
 
+from sloshkit.cfd.force_signal import noise_ratio
 from sloshkit.cfd.results import read_function_object
 from sloshkit.cfd.run import openfoam_environment, write_case
 from sloshkit.cfd.spec import CaseSpec, FreeDecay
@@ -124,38 +125,31 @@ def spec_for(settings: dict[str, Any]) -> CaseSpec:
     return CaseSpec(0.0205, 0.039, get_liquid("water-25C"), FreeDecay(math.radians(3.0)), **options)
 
 
-def spectral_peak_hz(time_s: np.ndarray, noise: np.ndarray) -> float:
-    """Frequency of the largest line of a (high-passed) signal's spectrum [Hz]."""
-    spectrum = np.abs(np.fft.rfft(noise - noise.mean()))
-    frequencies = np.fft.rfftfreq(noise.size, float(time_s[1] - time_s[0]))
-    return float(frequencies[int(np.argmax(spectrum[1:])) + 1])
+def spectral_peak_hz(time_s: np.ndarray, values: np.ndarray, above_hz: float) -> float:
+    """Frequency of the largest line of a uniformly sampled signal's spectrum above
+    ``above_hz`` [Hz]."""
+    spectrum = np.abs(np.fft.rfft(values - values.mean()))
+    frequencies = np.fft.rfftfreq(values.size, float(time_s[1] - time_s[0]))
+    high = frequencies > above_hz
+    return float(frequencies[high][int(np.argmax(spectrum[high]))])
 
 
 def measure(case: Path) -> dict[str, Any]:
-    """Noise ratios of the pressure and viscous wall force by window, and the noise's peak.
-
-    The ratio is `sloshkit.cfd.force_signal.noise_ratio`'s (the same 4th-order Butterworth
-    split at `CUTOFF_HZ`, filtered over the whole record) taken over each window."""
-    from scipy.signal import butter, sosfiltfilt
-
+    """Noise ratios (`sloshkit.cfd.force_signal.noise_ratio` above `CUTOFF_HZ`) of the
+    pressure and viscous wall force in each window, and the noise's largest spectral line."""
     table = read_function_object(case, "wallForces", "force.dat")
     t = table[:, 0]
     step = float(np.median(np.diff(t)))
     uniform = np.arange(t[0], t[-1] + 0.5 * step, step)
-    sos = butter(4, CUTOFF_HZ, fs=1.0 / step, output="sos")
     out: dict[str, Any] = {"simulated_s": float(t[-1])}
     for part, column in (("pressure", 4), ("viscous", 7)):
         values = np.interp(uniform, t, table[:, column])
-        smooth = sosfiltfilt(sos, values)
         for start, stop in WINDOWS_S:
-            inside = (uniform > start) & (uniform <= stop)
-            low = float(np.std(smooth[inside])) if np.count_nonzero(inside) > 1 else 0.0
-            out[f"noise_{part}_{start:g}_{stop:g}s"] = (
-                float(np.std((values - smooth)[inside])) / low if low > 0.0 else None
-            )
+            ratio = noise_ratio(uniform, values, cutoff_hz=CUTOFF_HZ, start_s=start, stop_s=stop)
+            out[f"noise_{part}_{start:g}_{stop:g}s"] = None if math.isnan(ratio) else ratio
         if part == "pressure":
             late = uniform > WINDOWS_S[0][0]
-            out["noise_peak_hz"] = spectral_peak_hz(uniform[late], (values - smooth)[late])
+            out["noise_peak_hz"] = spectral_peak_hz(uniform[late], values[late], CUTOFF_HZ)
     return out
 
 

@@ -56,11 +56,17 @@ def usable_force(force_n: ArrayLike) -> bool:
 
 
 def noise_ratio(
-    time_s: ArrayLike, values: ArrayLike, *, cutoff_hz: float, start_s: float = 0.0
+    time_s: ArrayLike,
+    values: ArrayLike,
+    *,
+    cutoff_hz: float,
+    start_s: float = 0.0,
+    stop_s: float = math.inf,
 ) -> float:
     """RMS of the part of a uniformly sampled signal above ``cutoff_hz`` over the RMS of the
-    part below it, after ``start_s``: the spurious high-frequency content that parasitic
-    currents put into the wall force.
+    part below it, between ``start_s`` and ``stop_s``: the spurious high-frequency content
+    that parasitic currents put into the wall force. The whole record is filtered; the
+    window only selects the samples compared.
 
     The low-pass part is a zero-phase 4th-order Butterworth filter (``scipy.signal.butter``
     and ``sosfiltfilt``); the high-pass part is the signal minus it.
@@ -73,8 +79,8 @@ def noise_ratio(
         The signal.
     cutoff_hz : float
         Cutoff [Hz] (the study: three times the first-mode frequency, `NOISE_CUTOFF_FACTOR`).
-    start_s : float
-        Only samples after this time count [s].
+    start_s, stop_s : float
+        Only samples after ``start_s`` and up to ``stop_s`` count [s].
 
     Returns
     -------
@@ -97,6 +103,9 @@ def noise_ratio(
     >>> noisy = clean + 0.5 * np.sin(2 * np.pi * 80.0 * t)
     >>> round(noise_ratio(t, noisy, cutoff_hz=15.0, start_s=0.5), 2)
     0.5
+    >>> burst = clean + np.where(t > 1.5, 0.5 * np.sin(2 * np.pi * 80.0 * t), 0.0)
+    >>> round(noise_ratio(t, burst, cutoff_hz=15.0, start_s=0.5, stop_s=1.4), 2)
+    0.0
     """
     from scipy.signal import butter, sosfiltfilt
 
@@ -109,7 +118,7 @@ def noise_ratio(
         return math.nan
     sos = butter(4, cutoff_hz, fs=sample_rate, output="sos")
     smooth = sosfiltfilt(sos, y)
-    inside = t > start_s
+    inside = (t > start_s) & (t <= stop_s)
     if np.count_nonzero(inside) < 2:
         return math.nan
     low = float(np.std(smooth[inside]))
