@@ -35,6 +35,7 @@ from sloshkit.cfd.convergence import (
     observed_order,
     richardson,
 )
+from sloshkit.cfd.force_signal import NOISE_RATIO_LIMIT
 from sloshkit.cfd.mesh import wall_cell_size_m
 from sloshkit.cfd.spec import CaseSpec
 from sloshkit.model.liquids import get_liquid
@@ -45,9 +46,10 @@ OLD_WORK, NEW_WORK = "sloshkit-cfd-damping", "sloshkit-cfd-damping3"
 REFERENCE = 8  # cells per radius of the mesh whose step series is extended
 #: Exponents of the step error: a sqrt(dt) term and Euler's dt (see `two_term`).
 EXPONENTS = (0.5, 1.0)
-#: Largest ratio of high- to low-frequency wall force (`noise_ratio`) of a clean run: clean
-#: runs stay at or below 0.23, runs with parasitic currents at or above 0.88.
-MAX_FORCE_NOISE = 0.5
+#: Largest ratio of high- to low-frequency wall force (`noise_ratio`) of a clean run: the
+#: limit `cfd analyse` warns above (clean runs stay at or below 0.23, runs with parasitic
+#: currents at or above 0.88).
+MAX_FORCE_NOISE = NOISE_RATIO_LIMIT
 SAFETY = 1.25  # Roache's factor for a form whose orders are supported by the data
 #: The estimators whose spread is the estimator's uncertainty: the wall force (where fit and
 #: logdec agree within a few per cent at every step), fit and logdec, three window starts.

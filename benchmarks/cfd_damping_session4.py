@@ -18,15 +18,16 @@ import math
 from pathlib import Path
 from typing import Any
 
+from cfd_damping_report import MAX_LATE_COURANT
+
+from sloshkit.cfd.force_signal import NOISE_RATIO_LIMIT as NOISE_LIMIT
+
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
 WORK = "sloshkit-cfd-damping3"
 START, END = "<!-- damping-session4:start -->", "<!-- damping-session4:end -->"
 STEPS_MS = (4.0, 2.0, 1.0, 0.5)
 MESHES = (9, 12, 16, 20, 24, 28)
-#: Wall-force noise ratio above which a run carries parasitic currents (the damping study:
-#: clean runs at or below 0.23, runs with parasitic currents at or above 0.88).
-NOISE_LIMIT = 0.5
 
 
 def load() -> tuple[dict[str, dict[str, Any]], dict[str, dict[str, Any]]]:
@@ -56,7 +57,7 @@ def cell(key: str, runs: dict[str, dict[str, Any]], estimates: dict[str, dict[st
     notes = []
     if noise > NOISE_LIMIT:
         notes.append(f"noise {noise:.1f}")
-    if courant > 1.0:
+    if courant > MAX_LATE_COURANT:
         notes.append(f"Courant {courant:.1f}")
     return text + (f" ({', '.join(notes)})" if notes else "")
 
@@ -72,7 +73,7 @@ def render(runs: dict[str, dict[str, Any]], estimates: dict[str, dict[str, Any]]
     lines = [
         "Damping ratio from the wall force (damped-sine fit from 0.5 s) of the wall-graded "
         "family (grading 0.25), by mesh and step; in parentheses, a wall-force noise ratio "
-        f"above {NOISE_LIMIT} or a late Courant number above 1:",
+        f"above {NOISE_LIMIT} or a late Courant number above {MAX_LATE_COURANT:g}:",
         "",
         "| cells per radius (cells) | " + " | ".join(f"{s:g} ms" for s in STEPS_MS) + " |",
         "|---|" + "---|" * len(STEPS_MS),
@@ -131,7 +132,7 @@ def finest_meshes(
             estimate is not None
             and math.isfinite(estimate["primary"])
             and estimate["force_noise_ratio"] <= NOISE_LIMIT
-            and (runs[key].get("max_courant_late") or 0.0) <= 1.0
+            and (runs[key].get("max_courant_late") or 0.0) <= MAX_LATE_COURANT
         )
 
     cells = [n for n in MESHES[::-1] if clean(key_of(n, step_ms))][:3]  # finest first
