@@ -194,7 +194,10 @@ def deferred() -> Iterator[None]:
 def _redeliver_unraisable(previous: Callable[[Any], object]) -> Callable[[Any], None]:
     """An unraisable hook: an `Interrupted` raised where Python cannot propagate it is sent to
     the main thread again (`_thread.interrupt_main`, 10 ms later from a timer thread) instead of
-    printed; other unraisable exceptions go to ``previous``."""
+    printed. Once a signal has been received, other unraisable exceptions are dropped: they are
+    finalizers of objects the interruption tore down (llvmlite's ``ObjectRef.__del__`` when
+    numba was compiling), and the command's one line already says it was interrupted.
+    Otherwise they go to ``previous``."""
 
     def hook(unraisable: Any) -> None:
         if isinstance(unraisable.exc_value, Interrupted):
@@ -205,6 +208,8 @@ def _redeliver_unraisable(previous: Callable[[Any], object]) -> Callable[[Any], 
             later = threading.Timer(0.01, _thread.interrupt_main, (unraisable.exc_value.signum,))
             later.daemon = True
             later.start()
+            return
+        if _state["received"] is not None:
             return
         previous(unraisable)
 
