@@ -125,6 +125,13 @@ PLAN = [
     entry(16, 2.0, grading=0.25, radial=13, surface=4),
     entry(9, 1.0, grading=0.25, radial=7, tilt=6.0),
     entry(9, 0.5, grading=0.25, radial=7, tilt=6.0),
+    # session 5: a third step for the finest meshes between the clean 1 ms and the noisy 0.5 ms
+    # (step ratio 1.43), so that each has three steps of its own below 4 ms
+    entry(16, 0.7, grading=0.25, radial=13),
+    entry(20, 0.7, grading=0.25, radial=16),
+    {**entry(24, 0.7, grading=0.25, radial=19), "processes": 2},
+    entry(12, 0.7, grading=0.25, radial=10),
+    entry(9, 0.7, grading=0.25, radial=7),
 ]
 
 

@@ -309,7 +309,7 @@ def estimator_check(runs: list[dict[str, Any]]) -> dict[str, Any]:
 
 #: The families and steps the step-error transfer below is built for; session 4's variants
 #: (momentum predictor, finer surface band, larger tilt, Crank-Nicolson on a graded mesh) and its
-#: 4 ms steps are analysed on their own (benchmarks/cfd_damping_session4.py).
+#: 4 ms steps are analysed on their own (benchmarks/cfd_damping_graded_family.py).
 TRANSFER_FAMILIES = ("uniform", "uniform CN 0.9", "graded 0.1", "graded 0.25")
 LARGEST_TRANSFER_STEP_S = 2e-3
 

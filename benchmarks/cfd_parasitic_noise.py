@@ -21,6 +21,7 @@ import argparse
 import json
 import math
 import re
+import shutil
 import subprocess
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
@@ -28,12 +29,13 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from cfd_wall_stability import chain, replace
+from cfd_wall_stability import QUALITY, chain, replace
 
 from sloshkit.cfd.force_signal import noise_ratio
+from sloshkit.cfd.mesh import CORE_FRACTION, mesh_layout
 from sloshkit.cfd.results import read_function_object
 from sloshkit.cfd.run import openfoam_environment, write_case
-from sloshkit.cfd.spec import CaseSpec, FreeDecay
+from sloshkit.cfd.spec import SCALE, CaseSpec, FreeDecay
 from sloshkit.model.liquids import get_liquid
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -58,6 +60,27 @@ def scale_property(phase: str, name: str, factor: float) -> Edit:
         target.write_text(text[: match.start(2)] + f"{value:.10g}" + text[match.end(2) :])
 
     return edit
+
+
+def core_arcs(case: Path) -> None:
+    """Bow the edges of the O-grid's square core out to arcs concentric with the wall, so that
+    the ring block between the core and the wall annulus is polar (its cell faces radial and
+    orthogonal, like the annulus). The core's corners then become flat (non-orthogonality
+    up to about 60 degrees, inside the liquid, far from the wall)."""
+    spec = spec_for({})
+    layout = mesh_layout(spec)
+    per_level = 4 + 4 * (2 if layout.annulus else 1)  # core square, then one square per ring
+    radius = CORE_FRACTION * spec.radius_m * SCALE
+    midpoints = ((radius, 0.0), (0.0, radius), (-radius, 0.0), (0.0, -radius))
+    arcs = []
+    for level, z in enumerate(layout.z_levels_m):
+        for (a, b), (x, y) in zip(((3, 0), (0, 1), (1, 2), (2, 3)), midpoints, strict=True):
+            first, second = per_level * level + a, per_level * level + b
+            arcs.append(f"    arc {first} {second} ({x:.9g} {y:.9g} {z * SCALE:.9g})")
+    target = case / "system" / "blockMeshDict"
+    text = target.read_text()
+    start = text.index("(", text.index("edges")) + 1
+    target.write_text(text[:start] + "\n" + "\n".join(arcs) + text[start:])
 
 
 #: name -> (what it tests, CaseSpec keywords, edit of the written case)
@@ -102,6 +125,11 @@ EXPERIMENTS: dict[str, tuple[str, dict[str, Any], Edit | None]] = {
     "air viscosity x10": ("viscous damping in the gas", {}, scale_property("air", "nu", 10.0)),
     "air density x10": ("density ratio 84 instead of 840", {}, scale_property("air", "rho", 10.0)),
     "band R/4N": ("vertical cells near the surface halved", {"surface_refinement": 4}, None),
+    "polar middle ring": (
+        "the core's edges bowed to arcs: every cell between core and wall radial (session 5)",
+        {},
+        core_arcs,
+    ),
 }
 
 
@@ -163,6 +191,8 @@ def experiment(name: str, work: Path) -> dict[str, Any]:
     env = openfoam_environment()
     for command in ("blockMesh", "setFields"):
         subprocess.run([command], cwd=case, env=env, capture_output=True, check=True)
+    quality = subprocess.run(["checkMesh"], cwd=case, env=env, capture_output=True, text=True)
+    found = re.search(QUALITY["max_non_orthogonality_deg"], quality.stdout)
     done = subprocess.run(["interFoam"], cwd=case, env=env, capture_output=True, text=True)
     (case / "log.interFoam").write_text(done.stdout + done.stderr)
     times = re.findall(r"^Time = ([0-9.eE+-]+)$", done.stdout, re.M)
@@ -172,6 +202,7 @@ def experiment(name: str, work: Path) -> dict[str, Any]:
         "step_s": spec.delta_t_s,
         "blew_up": done.returncode != 0,
         "reached_s": float(times[-1]) if times else 0.0,
+        "max_non_orthogonality_deg": float(found.group(1)) if found else None,
     }
     try:
         row.update(measure(case))
@@ -180,13 +211,117 @@ def experiment(name: str, work: Path) -> dict[str, Any]:
     return row
 
 
+def read_internal_field(path: Path) -> np.ndarray:
+    """The internal field of an ascii OpenFOAM field file (``nonuniform List``): an (n,) array
+    for scalars, (n, 3) for vectors."""
+    text = path.read_text()
+    match = re.search(r"internalField\s+nonuniform\s+List<(\w+)>\s*(\d+)\s*\(", text)
+    if match is None:
+        raise ValueError(f"{path}: no nonuniform internalField")
+    count, body = int(match.group(2)), text[match.end() :]
+    if match.group(1) == "vector":
+        rows = re.findall(r"\(([^()]*)\)", body)[:count]
+        return np.array([row.split() for row in rows], dtype=float)
+    return np.array(body[: body.index(")")].split(), dtype=float)[:count]
+
+
+def locate(work: Path, steps: int = 6) -> dict[str, Any]:
+    """Where the step-to-step pressure oscillation of the reference experiment lives.
+
+    Copies the reference case (run first if missing) from its end time, continues it for
+    ``steps`` steps writing every step, and takes each cell's alternating part of p_rgh as the
+    mean of |p[n+1] - 2 p[n] + p[n-1]| / 4 (the amplitude of a sign change every step). Reports
+    it by phase, by distance from the side wall, and around the wall cells of each layer, as
+    multiples of the median over all liquid cells.
+    """
+    source = work / slug("reference")
+    if not (source / "0.6").is_dir():
+        experiment("reference", work)
+    case = work / "reference-every-step"
+    if case.exists():
+        shutil.rmtree(case)
+    shutil.copytree(source, case, ignore=shutil.ignore_patterns("postProcessing", "log.*"))
+    spec = spec_for({})
+    start = spec.end_time_s
+    control = case / "system" / "controlDict"
+    text = re.sub(
+        r"(?m)^endTime .*$", f"endTime {start + steps * spec.delta_t_s:.9g};", control.read_text()
+    )
+    text = re.sub(r"(?m)^writeInterval .*$", f"writeInterval {spec.delta_t_s:.9g};", text)
+    control.write_text(text)
+    env = openfoam_environment()
+    subprocess.run(["interFoam"], cwd=case, env=env, capture_output=True, check=True)
+    subprocess.run(
+        ["postProcess", "-func", "writeCellCentres", "-time", f"{start:g}"],
+        cwd=case, env=env, capture_output=True, check=True,
+    )  # fmt: skip
+    times = sorted(
+        (d for d in case.iterdir() if re.fullmatch(r"[0-9.]+", d.name)), key=lambda d: float(d.name)
+    )
+    times = [d for d in times if float(d.name) >= start - 1e-12]
+    pressure = np.array([read_internal_field(d / "p_rgh") for d in times])
+    alternating = np.abs(pressure[2:] - 2 * pressure[1:-1] + pressure[:-2]).mean(axis=0) / 4
+    centres = read_internal_field(times[0] / "C")
+    alpha = read_internal_field(times[0] / "alpha.water")
+    radius = np.hypot(centres[:, 0], centres[:, 1])
+    azimuth = np.degrees(np.arctan2(centres[:, 1], centres[:, 0]))
+    liquid = alpha >= 0.99
+    scale = float(np.median(alternating[liquid]))
+    wall = radius > radius.max() - 1e-6
+    phases = {"liquid": liquid, "interface": (alpha > 0.01) & (alpha < 0.99), "gas": alpha <= 0.01}
+    bands_mm = ((0.0, 0.3), (0.3, 1.0), (1.0, 2.0), (2.0, 5.0), (5.0, 30.0))
+    distance = (radius.max() - radius) / SCALE * 1e3  # mm from the wall cells' centres
+    around: dict[str, float] = {}
+    for angle in sorted({round(a) for a in azimuth[wall & liquid]}):
+        chosen = wall & liquid & (np.abs(azimuth - angle) < 0.5)
+        around[str(angle)] = float(alternating[chosen].mean() / scale)
+    return {
+        "steps": steps,
+        "from_s": start,
+        "unit": "mean |p[n+1] - 2 p[n] + p[n-1]| / 4 of p_rgh over the median of the liquid cells",
+        "by_phase": {name: float(alternating[m].mean() / scale) for name, m in phases.items()},
+        "by_wall_distance_mm": {
+            f"{lo:g}-{hi:g}": float(alternating[(distance >= lo) & (distance < hi)].mean() / scale)
+            for lo, hi in bands_mm
+        },
+        "wall_liquid_cells_by_azimuth_deg": around,
+        "wall_cell_volume_spread_within_layers": volume_spread(case, start, wall, centres[:, 2]),
+    }
+
+
+def volume_spread(case: Path, time_s: float, chosen: np.ndarray, height: np.ndarray) -> float:
+    """Largest relative spread (max - min over mean) of the chosen cells' volumes within one
+    layer of equal height: 0 when the cells around the wall are identical."""
+    volumes, heights = read_cell_volumes(case, time_s, chosen), np.round(height[chosen], 6)
+    spreads = [np.ptp(volumes[heights == z]) / volumes[heights == z].mean() for z in set(heights)]
+    return float(max(spreads))
+
+
+def read_cell_volumes(case: Path, time_s: float, chosen: np.ndarray) -> np.ndarray:
+    """Volumes of the chosen cells [mm^3] (``postProcess -func writeCellVolumes``)."""
+    subprocess.run(
+        ["postProcess", "-func", "writeCellVolumes", "-time", f"{time_s:g}"],
+        cwd=case, env=openfoam_environment(), capture_output=True, check=True,
+    )  # fmt: skip
+    return read_internal_field(case / f"{time_s:g}" / "V")[chosen]
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", nargs="*", default=None, help="experiment names")
     parser.add_argument("--jobs", type=int, default=2, help="experiments run at once")
     parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-noise"))
     parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-parasitic-noise.json")
+    parser.add_argument(
+        "--locate", action="store_true", help="where the oscillation lives (reference case)"
+    )
     args = parser.parse_args()
+    if args.locate:
+        where = locate(args.work)
+        target = args.out.with_name("cfd-parasitic-noise-where.json")
+        target.write_text(json.dumps(where, indent=2) + "\n", encoding="utf-8")
+        print(json.dumps(where, indent=2))
+        return
     stored = json.loads(args.out.read_text()) if args.out.is_file() else []
     rows = {r["experiment"]: r for r in stored}
     names = args.only or list(EXPERIMENTS)
