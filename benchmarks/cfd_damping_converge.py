@@ -132,6 +132,8 @@ PLAN = [
     {**entry(24, 0.7, grading=0.25, radial=19), "processes": 2},
     entry(12, 0.7, grading=0.25, radial=10),
     entry(9, 0.7, grading=0.25, radial=7),
+    # session 5: a test of the step extrapolation from 2/1/0.7 ms on the finest of them
+    {**entry(24, 0.5, grading=0.25, radial=19), "processes": 2},
 ]
 
 

@@ -93,6 +93,15 @@ def test_serial_run_mesh_fill_and_signals(tmp_path):
     assert np.all(np.isfinite(signals.force_x_n))
 
 
+def test_a_fixed_step_that_does_not_divide_the_end_time_completes(tmp_path):
+    # 0.01 s / 0.7 ms = 14.3 steps: interFoam stops after 14 (t = 9.8 ms), half a step short
+    spec = tiny(delta_t_s=7e-4, adjust_time_step=False)
+    case = write_case(spec, tmp_path / "case")
+    result = run_case(case)
+    assert result.simulated_s == pytest.approx(0.0098)
+    assert read_signals(case).time_s[-1] == pytest.approx(0.0098)
+
+
 def test_parallel_run_and_resume(tmp_path):
     spec = tiny(processes=2, end_time_s=0.005, write_interval_s=0.005)
     case = write_case(spec, tmp_path / "case")

@@ -281,7 +281,9 @@ def run_case(
                 courant = float(match.group(1))
         code = process.wait()
     wall = time.perf_counter() - started
-    reached = simulated[0] >= end - 1e-9
+    # interFoam stops once t >= endTime - deltaT/2 (OpenFOAM's Time::run), so a fixed step
+    # that does not divide the end time ends up to half a step short of it.
+    reached = simulated[0] >= end - 0.5 * float(summary["delta_t_s"]) - 1e-9
     if code != 0 or not reached:
         text = log_path.read_text(encoding="utf-8", errors="replace")
         reason = (
