@@ -132,7 +132,10 @@ PLAN = [
     {**entry(24, 0.7, grading=0.25, radial=19), "processes": 2},
     entry(12, 0.7, grading=0.25, radial=10),
     entry(9, 0.7, grading=0.25, radial=7),
-    # session 5: a test of the step extrapolation from 2/1/0.7 ms on the finest of them
+    # session 5: the finest mesh at 1 ms, so that three meshes have a clean 1 ms run (16/radius
+    # at 1 ms carries a trace of the step-to-step oscillation), and a test of the step
+    # extrapolation from 2/1/0.7 ms on 24/radius
+    {**entry(28, 1.0, grading=0.25, radial=22), "processes": 2},
     {**entry(24, 0.5, grading=0.25, radial=19), "processes": 2},
 ]
 

@@ -13,6 +13,9 @@ The study's value of a run (``primary``) is the fit of the wall force from 0.5 s
 ``scatter`` is the half-range of the force estimates (fit and logdec, three starts; the two
 agree within a few per cent on the wall force, not on the probe elevation of coarse meshes).
 
+Each row also carries the wall force's noise ratio above 15 Hz and its step-to-step
+alternation (`sloshkit.cfd.force_signal.step_alternation`), both after 0.5 s.
+
 Writes docs/cfd-damping-estimators.json (one row per case folder).
 
 Run: PYTHONPATH=src python benchmarks/cfd_damping_estimators.py [WORK ...]
@@ -33,7 +36,7 @@ from sloshkit.calibration.decrement import estimate_logdec
 from sloshkit.calibration.estimators import estimate_fit
 from sloshkit.calibration.signals import spectral_peak
 from sloshkit.calibration.window import prepare_signal
-from sloshkit.cfd.force_signal import noise_ratio
+from sloshkit.cfd.force_signal import noise_ratio, step_alternation
 from sloshkit.cfd.results import read_signals
 from sloshkit.errors import InputError, ValidityWarning
 
@@ -115,6 +118,7 @@ def estimate(case: Path) -> dict[str, Any] | None:
         "primary": primary,
         "scatter": scatter,
         "force_noise_ratio": force_noise(t, signals.force_x_n),
+        "force_step_alternation": step_alternation(signals.force_x_n[t > PRIMARY[2]]),
         "estimates": values,
     }
 
@@ -126,11 +130,14 @@ def main() -> None:
     args = parser.parse_args()
     rows = json.loads(args.out.read_text()) if args.out.is_file() else []
     known = {(r["work"], r["case"]) for r in rows}
-    for row in rows:  # rows estimated before the noise ratio was recorded
+    for row in rows:  # rows estimated before the noise ratio or the alternation was recorded
         case = Path("/tmp") / row["work"] / row["case"]
-        if "force_noise_ratio" not in row and case.is_dir():
+        missing = {"force_noise_ratio", "force_step_alternation"} - set(row)
+        if missing and case.is_dir():
             signals = read_signals(case)
-            row["force_noise_ratio"] = force_noise(signals.time_s, signals.force_x_n)
+            t, force = signals.time_s, signals.force_x_n
+            row["force_noise_ratio"] = force_noise(t, force)
+            row["force_step_alternation"] = step_alternation(force[t > PRIMARY[2]])
     for work in args.works:
         for case in sorted(work.iterdir()) if work.is_dir() else []:
             if (work.name, case.name) in known:

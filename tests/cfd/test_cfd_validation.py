@@ -275,6 +275,28 @@ def test_a_noisy_wall_force_warns_of_parasitic_currents(tmp_path):
     assert any("parasitic currents" in w for w in payload["warnings"])
 
 
+def test_a_step_to_step_oscillation_of_the_wall_force_warns(tmp_path):
+    """A sign change at every step, too small for the noise ratio (below its 0.5 limit), is
+    what interFoam's step-to-step pressure oscillation looks like at its onset."""
+    smooth = damped_force(0.003)
+
+    def force_of(t):
+        steps = np.rint((t - t[0]) / (t[1] - t[0]))
+        return smooth(t) + 1.2e-5 * (-1.0) ** steps
+
+    case = synthetic_case(tmp_path / "c", 3.0, force_of=force_of)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        payload = analyse(case).to_dict()
+    doubts = [str(w.message) for w in caught if issubclass(w.category, ValidityWarning)]
+    assert payload["force_noise_ratio"] < 0.5  # the older check does not see it
+    assert payload["force_step_alternation"] > 0.01
+    assert any("changes sign from step to step" in d for d in doubts)
+    assert any("changes sign from step to step" in w for w in payload["warnings"])
+    clean = analyse(synthetic_case(tmp_path / "s", 3.0, force_of=smooth)).to_dict()
+    assert clean["force_step_alternation"] < 0.004
+
+
 def test_a_run_whose_time_step_collapsed_is_unfinished_not_an_internal_error(tmp_path):
     """An adaptive step that collapsed to ~1e-70 s logs the same time again and again (seen on
     a diverging graded mesh): the case reads as unfinished instead of asking for an endless

@@ -15,7 +15,9 @@ from sloshkit.calibration import CalibrationResult, calibrate
 from sloshkit.cfd.force_signal import (
     NOISE_CUTOFF_FACTOR,
     NOISE_RATIO_LIMIT,
+    STEP_ALTERNATION_LIMIT,
     noise_ratio,
+    step_alternation,
     usable_force,
 )
 from sloshkit.cfd.results import CfdSignals, read_function_object, read_signals
@@ -68,6 +70,9 @@ class CfdAnalysis:
     force_noise_ratio : float or None
         High-frequency noise ratio of the wall force (`sloshkit.cfd.force_signal.noise_ratio`)
         when the case has a usable wall force (even if it failed to calibrate).
+    force_step_alternation : float or None
+        Step-to-step alternation of the wall force over the window
+        (`sloshkit.cfd.force_signal.step_alternation`), when the force is usable.
     warnings : tuple of str
         Doubts about the calibration (also issued as `ValidityWarning`).
 
@@ -98,11 +103,13 @@ class CfdAnalysis:
     run_record: dict[str, Any]
     damping_signal: str = "wall_elevation"
     force_noise_ratio: float | None = None
+    force_step_alternation: float | None = None
     warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """The calibrate keys plus cells, simulated_s, wall_clock_s, damping_signal and
-        force_noise_ratio (this analysis's warnings appended to ``warnings``)."""
+        """The calibrate keys plus cells, simulated_s, wall_clock_s, damping_signal,
+        force_noise_ratio and force_step_alternation (this analysis's warnings appended to
+        ``warnings``)."""
         payload = self.calibration.to_dict()
         payload.update(
             cells=self.signals.summary["cells"],
@@ -112,6 +119,7 @@ class CfdAnalysis:
             case=str(self.case),
             damping_signal=self.damping_signal,
             force_noise_ratio=self.force_noise_ratio,
+            force_step_alternation=self.force_step_alternation,
         )
         payload["warnings"] = list(payload.get("warnings", [])) + list(self.warnings)
         return payload
@@ -132,7 +140,10 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
     with a warning when a usable force failed to calibrate. A usable force whose high-frequency
     noise ratio (above three times the measured frequency, over the window) exceeds
     `sloshkit.cfd.force_signal.NOISE_RATIO_LIMIT` carries parasitic currents: a
-    `ValidityWarning` says so.
+    `ValidityWarning` says so; so does a step-to-step alternation of the force
+    (`sloshkit.cfd.force_signal.step_alternation`) above
+    `sloshkit.cfd.force_signal.STEP_ALTERNATION_LIMIT`, the signature of interFoam's
+    step-to-step pressure oscillation, which raised the damping where it appeared.
 
     The window starts at ``start_s`` when given; otherwise, for a forced case, one damped
     period after the excitation ends (``forcing_end_s`` of `sloshkit.calibration.calibrate`:
@@ -152,7 +163,7 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
     -------
     CfdAnalysis
         With ``damping_signal`` (``wall_force`` or ``wall_elevation``) and, when the case
-        has a usable wall force, its ``force_noise_ratio``.
+        has a usable wall force, its ``force_noise_ratio`` and ``force_step_alternation``.
 
     Raises
     ------
@@ -224,11 +235,29 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
             "damping study stay at or below 0.23, runs with parasitic currents reach 0.88 or "
             "more); the damping is not trustworthy (the study saw this on wall-graded meshes at small time steps: use a uniform mesh or a longer step)"
         )
+    alternation = _force_alternation(signals, result) if usable_force(signals.force_x_n) else None
+    if alternation is not None and alternation > STEP_ALTERNATION_LIMIT:
+        doubts.append(
+            f"the wall force changes sign from step to step: its alternating part is "
+            f"{alternation:.3f} of the signal (above {STEP_ALTERNATION_LIMIT:g}; clean runs of "
+            "the damping study stay at or below 0.004); interFoam's step-to-step pressure "
+            "oscillation raised the damping wherever it appeared in the study, so the damping is "
+            "not trustworthy (it appears on wall-graded meshes at small steps: use a longer step "
+            "or a finer mesh)"
+        )
     for doubt in doubts:
         warnings.warn(doubt, ValidityWarning, stacklevel=2)
     record_path = case / "sloshkit-run.json"
     record = json.loads(record_path.read_text(encoding="utf-8")) if record_path.is_file() else {}
-    return CfdAnalysis(case, signals, result, record, signal, ratio, tuple(doubts))
+    return CfdAnalysis(case, signals, result, record, signal, ratio, alternation, tuple(doubts))
+
+
+def _force_alternation(signals: CfdSignals, result: CalibrationResult) -> float | None:
+    """The wall force's step alternation over the calibration window (None when not
+    measurable)."""
+    inside = signals.time_s >= float(result.signal.window_s[0])
+    value = step_alternation(signals.force_x_n[inside])
+    return value if math.isfinite(value) else None
 
 
 def _force_noise(signals: CfdSignals, result: CalibrationResult) -> float | None:

@@ -24,6 +24,14 @@ from numpy.typing import ArrayLike
 #: small steps); 0.5 lies between the two groups.
 NOISE_RATIO_LIMIT = 0.5
 
+#: Step alternation (`step_alternation`) above which a wall force carries interFoam's
+#: step-to-step pressure oscillation. The damping study (docs/cfd.md, "damping";
+#: benchmarks/cfd_damping_estimators.py) measured 0.0002-0.0003 on uniform meshes and at most
+#: 0.004 on the wall-graded runs whose damping agrees across steps, and 0.08-0.86 on the runs
+#: where the oscillation is visible in the force (where it raised the damping by up to a
+#: third); 0.01 lies between the two groups.
+STEP_ALTERNATION_LIMIT = 0.01
+
 #: The cutoff of `noise_ratio` as a multiple of the first-mode frequency (15 Hz in the study,
 #: whose first mode is near 5 Hz).
 NOISE_CUTOFF_FACTOR = 3.0
@@ -125,3 +133,51 @@ def noise_ratio(
     if low == 0.0:
         return math.nan
     return float(np.std((y - smooth)[inside]) / low)
+
+
+def step_alternation(values: ArrayLike) -> float:
+    """RMS of the step-to-step alternating part of a signal sampled at every time step, over
+    the RMS of the signal: how much of a sign change at every step it carries.
+
+    The alternating part is a quarter of the second difference,
+    a[n] = (y[n+1] - 2 y[n] + y[n-1]) / 4. For y = A (-1)^n it is exactly A; for a smooth
+    oscillation y = A sin(w n dt) it is A sin^2(w dt / 2), about (w dt / 2)^2 A (2.5e-4 A for
+    the 5 Hz first mode at a 1 ms step). So the ratio measures a step-to-step oscillation
+    directly, with a background set by the step, unlike a low-pass split (`noise_ratio`),
+    which also counts higher slosh modes.
+
+    Parameters
+    ----------
+    values : array_like
+        The signal, one sample per time step (at least 3).
+
+    Returns
+    -------
+    float
+        The ratio; nan with fewer than 3 samples or a zero signal.
+
+    References
+    ----------
+    The second difference's response to a sampled sinusoid, -4 sin^2(w dt / 2), e.g.
+    R. W. Hamming, *Digital Filters*, 3rd ed., Dover (1998), §3.6; the threshold
+    `STEP_ALTERNATION_LIMIT` is the damping study's (docs/cfd.md).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 2.0, 1e-3)
+    >>> clean = np.sin(2 * np.pi * 5.0 * t)
+    >>> round(step_alternation(clean), 6)  # sin^2(pi * 5 Hz * 1 ms)
+    0.000247
+    >>> flip = 0.1 * (-1.0) ** np.arange(t.size)
+    >>> round(step_alternation(clean + flip), 3)  # 0.1 / sqrt(0.5 + 0.01)
+    0.14
+    """
+    y = np.asarray(values, dtype=float)
+    if y.size < 3:
+        return math.nan
+    scale = float(np.sqrt(np.mean(y**2)))
+    if scale == 0.0 or not math.isfinite(scale):
+        return math.nan
+    alternating = (y[2:] - 2.0 * y[1:-1] + y[:-2]) / 4.0
+    return float(np.sqrt(np.mean(alternating**2)) / scale)
