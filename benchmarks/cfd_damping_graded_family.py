@@ -20,6 +20,7 @@ Run: PYTHONPATH=src python benchmarks/cfd_damping_graded_family.py
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 from pathlib import Path
@@ -28,6 +29,7 @@ from typing import Any
 from cfd_damping_report import MAX_LATE_COURANT
 
 from sloshkit.cfd.force_signal import NOISE_RATIO_LIMIT as NOISE_LIMIT
+from sloshkit.cfd.force_signal import STEP_ALTERNATION_LIMIT as ALTERNATION_LIMIT
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
@@ -35,7 +37,9 @@ WORK = "sloshkit-cfd-damping3"
 START = "<!-- damping-graded-family:start -->"
 END = "<!-- damping-graded-family:end -->"
 STEPS_MS = (4.0, 2.0, 1.0, 0.7, 0.5)
-#: The steps of the step extrapolation: the clean steps of the finest meshes [ms], finest first.
+#: The step of the mesh study of the reported damping [ms], and the steps of the step studies
+#: (finest first): the steps at which the finest meshes run clean.
+MESH_STEP_MS = 1.0
 EXTRAPOLATION_STEPS_MS = (0.7, 1.0, 2.0)
 MESHES = (9, 12, 16, 20, 24, 28)
 
@@ -67,6 +71,9 @@ def cell(key: str, runs: dict[str, dict[str, Any]], estimates: dict[str, dict[st
     notes = []
     if noise > NOISE_LIMIT:
         notes.append(f"noise {noise:.1f}")
+    alternation = estimate.get("force_step_alternation", 0.0)
+    if noise <= NOISE_LIMIT and alternation > ALTERNATION_LIMIT:
+        notes.append(f"alternation {alternation:.3f}")
     if courant > MAX_LATE_COURANT:
         notes.append(f"Courant {courant:.1f}")
     return text + (f" ({', '.join(notes)})" if notes else "")
@@ -83,7 +90,8 @@ def render(runs: dict[str, dict[str, Any]], estimates: dict[str, dict[str, Any]]
     lines = [
         "Damping ratio from the wall force (damped-sine fit from 0.5 s) of the wall-graded "
         "family (grading 0.25), by mesh and step; in parentheses, a wall-force noise ratio "
-        f"above {NOISE_LIMIT} or a late Courant number above {MAX_LATE_COURANT:g}:",
+        f"above {NOISE_LIMIT}, a step alternation above {ALTERNATION_LIMIT:g} or a late Courant "
+        f"number above {MAX_LATE_COURANT:g}:",
         "",
         "| cells per radius (cells) | " + " | ".join(f"{s:g} ms" for s in STEPS_MS) + " |",
         "|---|" + "---|" * len(STEPS_MS),
@@ -130,14 +138,15 @@ def render(runs: dict[str, dict[str, Any]], estimates: dict[str, dict[str, Any]]
 
 
 def clean(key: str, runs: dict[str, dict[str, Any]], estimates: dict[str, dict[str, Any]]) -> bool:
-    """Whether a run finished with a decay, a quiet wall force and a late Courant number within
-    the study's limit."""
+    """Whether a run finished with a decay, a wall force without parasitic noise or
+    step-to-step alternation, and a late Courant number within the study's limits."""
     estimate = estimates.get(key)
     return (
         key in runs
         and estimate is not None
         and math.isfinite(estimate["primary"])
         and estimate["force_noise_ratio"] <= NOISE_LIMIT
+        and estimate.get("force_step_alternation", math.inf) <= ALTERNATION_LIMIT
         and (runs[key].get("max_courant_late") or 0.0) <= MAX_LATE_COURANT
     )
 
@@ -174,40 +183,67 @@ def finest_meshes(
 def step_and_mesh(
     runs: dict[str, dict[str, Any]], estimates: dict[str, dict[str, Any]]
 ) -> dict[str, Any] | None:
-    """The damping with its step and mesh uncertainty (Celik et al. 2008; Roache 1998).
+    """The damping of the finest mesh with its mesh and step uncertainty (Celik et al. 2008;
+    Roache 1998), each direction with the solutions it has.
 
-    On each of the three finest graded meshes with clean runs at every step of
-    `EXTRAPOLATION_STEPS_MS`, Richardson in the step (`richardson`: observed order with
-    safety factor 1.25 when monotonic and plausible, else 3; three times half the range when
-    oscillatory). Then Richardson/GCI in the mesh on the three step-free values. The reported
-    uncertainty is the root-sum-square (`combined_uncertainty`) of the mesh GCI and the finest
-    mesh's step GCI, about the finest mesh's step-free value (as the GCI band is about the
-    finest solution).
+    - Mesh: Richardson/GCI over the three finest graded meshes with a clean run at
+      `MESH_STEP_MS` (`finest_meshes`); the uncertainty taken is the larger of its GCI and
+      that of the same study at every other step of `EXTRAPOLATION_STEPS_MS` where three fine
+      meshes ran clean (a lucky monotonic triplet must not hide the oscillation the family
+      shows at another step).
+    - Step, on the finest of them: Richardson over its clean runs at the steps of
+      `EXTRAPOLATION_STEPS_MS` (three: observed order, factor 1.25, or 3 × half the range when
+      oscillatory; two: Euler's formal order 1 assumed, factor 3).
+    - The same step study on every other mesh with three clean steps, as evidence of how the
+      step error behaves.
+
+    The reported damping is the finest mesh's solution at `MESH_STEP_MS` (both GCI bands are
+    about it), with the root-sum-square (`combined_uncertainty`) of the two uncertainties.
     """
     from sloshkit.cfd.convergence import combined_uncertainty, richardson
 
-    steps = EXTRAPOLATION_STEPS_MS
-    complete = [
-        n for n in MESHES[::-1] if all(clean(key_of(n, s), runs, estimates) for s in steps)
-    ][:3]
-    if len(complete) < 3:
+    mesh_study = finest_meshes(runs, estimates, MESH_STEP_MS)
+    if mesh_study is None:
         return None
-    per_mesh = {}
-    for n in complete:
-        values = [estimates[key_of(n, s)]["primary"] for s in steps]
-        per_mesh[n] = richardson(values, [steps[1] / steps[0], steps[2] / steps[1]])
-    step_free = [per_mesh[n].extrapolated for n in complete]
-    mesh = richardson(step_free, [complete[0] / complete[1], complete[1] / complete[2]])
-    finest = per_mesh[complete[0]]
-    total = combined_uncertainty(mesh.uncertainty, finest.uncertainty)
+    finest = mesh_study["cells_per_radius"][0]
+
+    def step_study(cells: int) -> dict[str, Any] | None:
+        steps = [s for s in EXTRAPOLATION_STEPS_MS if clean(key_of(cells, s), runs, estimates)]
+        if MESH_STEP_MS not in steps or len(steps) < 2:
+            return None
+        values = [estimates[key_of(cells, s)]["primary"] for s in steps]
+        ratios = [b / a for a, b in itertools.pairwise(steps)]
+        order = 1.0 if len(steps) == 2 else None  # Euler's formal order when only two
+        return {"steps_ms": steps, **richardson(values, ratios, order).to_dict()}
+
+    on_finest = step_study(finest)
+    if on_finest is None:
+        return None
+    # the step study is about the finest step; the reported solution is at MESH_STEP_MS
+    if on_finest["steps_ms"][0] != MESH_STEP_MS:
+        return None
+    evidence = {
+        str(n): study
+        for n in MESHES[::-1]
+        if n != finest and (study := step_study(n)) is not None and len(study["steps_ms"]) == 3
+    }
+    value = mesh_study["mesh"]["values"][0]
+    others = [finest_meshes(runs, estimates, s) for s in EXTRAPOLATION_STEPS_MS]
+    mesh_uncertainty = max(
+        [mesh_study["mesh"]["uncertainty"]]
+        + [o["mesh"]["uncertainty"] for o in others if o is not None]
+    )
+    total = combined_uncertainty(mesh_uncertainty, on_finest["uncertainty"])
     return {
-        "cells_per_radius": complete,
-        "steps_ms": list(steps),
-        "step": {str(n): per_mesh[n].to_dict() for n in complete},
-        "mesh": mesh.to_dict(),
-        "damping_ratio": step_free[0],
+        "cells_per_radius": finest,
+        "step_ms": MESH_STEP_MS,
+        "mesh": mesh_study,
+        "mesh_uncertainty": mesh_uncertainty,
+        "step": on_finest,
+        "step_on_other_meshes": evidence,
+        "damping_ratio": value,
         "uncertainty": total,
-        "interval": [mesh.values[0] - total, mesh.values[0] + total],
+        "interval": [value - total, value + total],
     }
 
 
@@ -215,10 +251,8 @@ def summary(study: dict[str, Any]) -> str:
     """One finest-meshes estimate as a sentence."""
     mesh = study["mesh"]
     cells = "/".join(str(c) for c in study["cells_per_radius"])
-    low, high = (
-        mesh["extrapolated"] - mesh["uncertainty"],
-        mesh["extrapolated"] + mesh["uncertainty"],
-    )
+    finest = mesh["values"][0]
+    low, high = finest - mesh["uncertainty"], finest + mesh["uncertainty"]
     how = (
         f"{mesh['behaviour']}, so Celik's uncertainty is {mesh['safety_factor']:g} × half their "
         "range"
@@ -229,8 +263,12 @@ def summary(study: dict[str, Any]) -> str:
     text = (
         f"- At {study['step_ms']:g} ms the three finest graded meshes with a clean run ({cells} "
         f"cells per radius) give {' / '.join(f'{v:.4f}' for v in mesh['values'])}: {how}: "
-        f"**ζ = {mesh['extrapolated']:.4f} ± {mesh['uncertainty']:.4f}** (interval "
-        f"{low:.4f}–{high:.4f})."
+        f"**ζ = {finest:.4f} ± {mesh['uncertainty']:.4f}** (interval {low:.4f}–{high:.4f}"
+        + (
+            f"; Richardson estimate {mesh['extrapolated']:.4f})."
+            if mesh["behaviour"] != "oscillatory"
+            else ")."
+        )
     )
     change = study["step_change_finest"]
     if change is not None:
@@ -241,47 +279,48 @@ def summary(study: dict[str, Any]) -> str:
     return text
 
 
-def step_and_mesh_summary(result: dict[str, Any]) -> str:
-    """The step-and-mesh estimate as a list (markdown)."""
-    steps = "/".join(f"{s:g}" for s in result["steps_ms"])
-    lines = []
-    for cells, study in result["step"].items():
-        values = " / ".join(f"{v:.4f}" for v in study["values"])
-        if study["behaviour"] == "oscillatory":
-            how = f"oscillatory: {study['safety_factor']:g} × half the range"
-        else:
-            how = (
-                f"{study['behaviour']}, order {study['order']:.2f} "
-                + ("(observed)" if study["order_observed"] else "(outside 0.5–4: bound, assumed)")
-                + f", step-free {study['extrapolated']:.4f}"
-            )
-        lines.append(
-            f"  - {cells}/radius at {steps} ms: {values}: {how}; step uncertainty "
-            f"± {study['uncertainty']:.4f}."
+def describe_step_study(study: dict[str, Any]) -> str:
+    """One step study as a phrase."""
+    steps = "/".join(f"{x:g}" for x in study["steps_ms"])
+    values = " / ".join(f"{v:.4f}" for v in study["values"])
+    if study["behaviour"] == "oscillatory":
+        how = f"oscillatory, {study['safety_factor']:g} × half the range"
+    elif study["behaviour"] == "two-level":
+        how = f"two steps, order {study['order']:g} assumed, factor {study['safety_factor']:g}"
+    else:
+        how = f"{study['behaviour']}, order {study['order']:.2f} " + (
+            "(observed)" if study["order_observed"] else "(outside 0.5–4: bound, assumed)"
         )
-    mesh = result["mesh"]
-    cells = "/".join(str(c) for c in result["cells_per_radius"])
-    mesh_how = (
-        f"oscillatory, {mesh['safety_factor']:g} × half the range"
-        if mesh["behaviour"] == "oscillatory"
-        else f"{mesh['behaviour']}, order {mesh['order']:.2f} "
-        + ("(observed)" if mesh["order_observed"] else "(outside 0.5–4: bound, assumed)")
-        + f", extrapolated {mesh['extrapolated']:.4f}"
+    return (
+        f"at {steps} ms {values}: {how}; step-free {study['extrapolated']:.4f}, "
+        f"uncertainty ± {study['uncertainty']:.4f}"
     )
+
+
+def step_and_mesh_summary(result: dict[str, Any]) -> str:
+    """The reported damping with both uncertainties, as a list (markdown)."""
+    mesh = result["mesh"]["mesh"]
+    cells = "/".join(str(c) for c in result["mesh"]["cells_per_radius"])
     low, high = result["interval"]
-    lines.insert(
-        0,
-        f"- **Step and mesh together** (the three finest meshes with clean runs at {steps} ms; "
-        "Richardson in the step on each mesh, then in the mesh on the step-free values):",
-    )
+    lines = [
+        f"- **The damping with its mesh and step uncertainty** ({result['cells_per_radius']} "
+        f"cells per radius at {result['step_ms']:g} ms):",
+        f"  - mesh ({cells}/radius at {result['step_ms']:g} ms): ± {mesh['uncertainty']:.4f}; "
+        f"taken as ± {result['mesh_uncertainty']:.4f}, the largest GCI of the finest meshes at "
+        "any clean step (the bullets above);",
+        f"  - step ({result['cells_per_radius']}/radius) "
+        + describe_step_study(result["step"])
+        + ";",
+    ]
+    for cells_per_radius, study in result["step_on_other_meshes"].items():
+        lines.append(
+            f"  - step on {cells_per_radius}/radius, for comparison: "
+            + describe_step_study(study)
+            + ";"
+        )
     lines.append(
-        f"  - In the mesh ({cells}/radius): "
-        + " / ".join(f"{v:.4f}" for v in mesh["values"])
-        + f": {mesh_how}; mesh uncertainty ± {mesh['uncertainty']:.4f}."
-    )
-    lines.append(
-        f"  - **ζ = {result['damping_ratio']:.4f} ± {result['uncertainty']:.4f}** (mesh and "
-        f"step uncertainties by root-sum-square; interval {low:.4f}–{high:.4f})."
+        f"  - **ζ = {result['damping_ratio']:.4f} ± {result['uncertainty']:.4f}** (root-sum-square "
+        f"of the two; interval {low:.4f}–{high:.4f})."
     )
     return "\n".join(lines)
 
