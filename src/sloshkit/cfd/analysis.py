@@ -143,7 +143,7 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
     `ValidityWarning` says so; so does a step-to-step alternation of the force
     (`sloshkit.cfd.force_signal.step_alternation`) above
     `sloshkit.cfd.force_signal.STEP_ALTERNATION_LIMIT`, the signature of interFoam's
-    step-to-step pressure oscillation, which raised the damping where it appeared.
+    step-to-step pressure oscillation, which made the damping erratic where it appeared.
 
     The window starts at ``start_s`` when given; otherwise, for a forced case, one damped
     period after the excitation ends (``forcing_end_s`` of `sloshkit.calibration.calibrate`:
@@ -240,10 +240,10 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
         doubts.append(
             f"the wall force changes sign from step to step: its alternating part is "
             f"{alternation:.3f} of the signal (above {STEP_ALTERNATION_LIMIT:g}; clean runs of "
-            "the damping study stay at or below 0.004); interFoam's step-to-step pressure "
-            "oscillation raised the damping wherever it appeared in the study, so the damping is "
-            "not trustworthy (it appears on wall-graded meshes at small steps: use a longer step "
-            "or a finer mesh)"
+            "the damping study stay at or below 0.004); where interFoam's step-to-step pressure "
+            "oscillation appeared in the study, the damping moved by up to a third between "
+            "neighbouring steps, so it is not trustworthy (it appears on wall-graded meshes at "
+            "small steps: use a longer step or a finer mesh)"
         )
     for doubt in doubts:
         warnings.warn(doubt, ValidityWarning, stacklevel=2)

@@ -28,8 +28,8 @@ NOISE_RATIO_LIMIT = 0.5
 #: step-to-step pressure oscillation. The damping study (docs/cfd.md, "damping";
 #: benchmarks/cfd_damping_estimators.py) measured 0.0002-0.0003 on uniform meshes and at most
 #: 0.004 on the wall-graded runs whose damping agrees across steps, and 0.08-0.86 on the runs
-#: where the oscillation is visible in the force (where it raised the damping by up to a
-#: third); 0.01 lies between the two groups.
+#: where the oscillation is visible in the force (where the damping moved by up to a third,
+#: up or down, between neighbouring steps); 0.01 lies between the two groups.
 STEP_ALTERNATION_LIMIT = 0.01
 
 #: The cutoff of `noise_ratio` as a multiple of the first-mode frequency (15 Hz in the study,
