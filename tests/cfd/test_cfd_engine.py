@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from sloshkit.cfd.analysis import read_finished_signals
 from sloshkit.cfd.case import CaseSpec, FreeDecay, Harmonic
 from sloshkit.cfd.foam import read_scalar_internal_field
 from sloshkit.cfd.results import read_signals
@@ -100,6 +101,7 @@ def test_a_fixed_step_that_does_not_divide_the_end_time_completes(tmp_path):
     result = run_case(case)
     assert result.simulated_s == pytest.approx(0.0098)
     assert read_signals(case).time_s[-1] == pytest.approx(0.0098)
+    assert read_finished_signals(case).time_s[-1] == pytest.approx(0.0098)  # not "unfinished"
 
 
 def test_parallel_run_and_resume(tmp_path):

@@ -319,10 +319,11 @@ def read_finished_signals(case: Path) -> CfdSignals:
             resume,
         ) from error
     # The solver's own last probe time, not the resampled grid's (which may stop a step short):
-    # a finished run's last line is at the end time itself (8 significant digits), and a run
-    # stopped one step early is unfinished, not nearly finished.
+    # a finished run's last line is at the end time itself (8 significant digits), or up to
+    # half a fixed step short of it (interFoam stops at endTime - deltaT/2), and a run stopped
+    # one step early is unfinished, not nearly finished.
     simulated = float(read_function_object(case, "wallProbes", "alpha.water")[-1, 0])
-    if simulated < end - 1e-6:
+    if simulated < end - 0.5 * float(summary.get("delta_t_s", 0.0)) - 1e-6:
         raise InputError(
             "case", str(case), f"is unfinished (simulated {simulated:.4g} of {end:g} s)", resume
         )
