@@ -227,29 +227,46 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
             f"{forcing_end:g} s, too short to calibrate ({error})",
             "run it longer with --end-time (at least 4 periods after the excitation)",
         ) from error
-    ratio = _force_noise(signals, result) if usable_force(signals.force_x_n) else None
-    if ratio is not None and ratio > NOISE_RATIO_LIMIT:
-        doubts.append(
-            f"the wall force's noise above {NOISE_CUTOFF_FACTOR:g}x the slosh frequency is "
-            f"{ratio:.2f} of the slosh signal (above {NOISE_RATIO_LIMIT:g}: clean runs of the "
-            "damping study stay at or below 0.23, runs with parasitic currents reach 0.88 or "
-            "more); the damping is not trustworthy (the study saw this on wall-graded meshes at small time steps: use a uniform mesh or a longer step)"
-        )
-    alternation = _force_alternation(signals, result) if usable_force(signals.force_x_n) else None
-    if alternation is not None and alternation > STEP_ALTERNATION_LIMIT:
-        doubts.append(
-            f"the wall force changes sign from step to step: its alternating part is "
-            f"{alternation:.3f} of the signal (above {STEP_ALTERNATION_LIMIT:g}; clean runs of "
-            "the damping study stay at or below 0.004); where interFoam's step-to-step pressure "
-            "oscillation appeared in the study, the damping moved by up to a third between "
-            "neighbouring steps, so it is not trustworthy (it appears on wall-graded meshes at "
-            "small steps: use a longer step or a finer mesh)"
-        )
+    ratio, alternation, force_doubts = _force_quality(signals, result)
+    doubts += force_doubts
     for doubt in doubts:
         warnings.warn(doubt, ValidityWarning, stacklevel=2)
     record_path = case / "sloshkit-run.json"
     record = json.loads(record_path.read_text(encoding="utf-8")) if record_path.is_file() else {}
     return CfdAnalysis(case, signals, result, record, signal, ratio, alternation, tuple(doubts))
+
+
+def _force_quality(
+    signals: CfdSignals, result: CalibrationResult
+) -> tuple[float | None, float | None, list[str]]:
+    """The wall force's noise ratio and step alternation over the calibration window (None
+    each when the force is unusable or the measure undefined), and the doubts they raise."""
+    if not usable_force(signals.force_x_n):
+        return None, None, []
+    ratio, alternation = _force_noise(signals, result), _force_alternation(signals, result)
+    checks = (
+        (
+            ratio,
+            NOISE_RATIO_LIMIT,
+            f"the wall force's noise above {NOISE_CUTOFF_FACTOR:g}x the slosh frequency is "
+            f"{ratio or 0.0:.2f} of the slosh signal (above {NOISE_RATIO_LIMIT:g}: clean runs of "
+            "the damping study stay at or below 0.23, runs with parasitic currents reach 0.88 "
+            "or more); the damping is not trustworthy (the study saw this on wall-graded meshes "
+            "at small time steps: use a uniform mesh or a longer step)",
+        ),
+        (
+            alternation,
+            STEP_ALTERNATION_LIMIT,
+            f"the wall force changes sign from step to step: its alternating part is "
+            f"{alternation or 0.0:.3f} of the signal (above {STEP_ALTERNATION_LIMIT:g}; clean "
+            "runs of the damping study stay at or below 0.004); where interFoam's step-to-step "
+            "pressure oscillation appeared in the study, the damping moved by up to a third "
+            "between neighbouring steps, so it is not trustworthy (it appears on wall-graded "
+            "meshes at small steps: use a longer step or a finer mesh)",
+        ),
+    )
+    doubts = [text for value, limit, text in checks if value is not None and value > limit]
+    return ratio, alternation, doubts
 
 
 def _force_alternation(signals: CfdSignals, result: CalibrationResult) -> float | None:
