@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 from cfd_wall_stability import QUALITY, chain, replace
 
+from sloshkit.cfd.foam import read_scalar_internal_field
 from sloshkit.cfd.force_signal import noise_ratio
 from sloshkit.cfd.mesh import CORE_FRACTION, mesh_layout
 from sloshkit.cfd.results import read_function_object
@@ -211,18 +212,9 @@ def experiment(name: str, work: Path) -> dict[str, Any]:
     return row
 
 
-def read_internal_field(path: Path) -> np.ndarray:
-    """The internal field of an ascii OpenFOAM field file (``nonuniform List``): an (n,) array
-    for scalars, (n, 3) for vectors."""
-    text = path.read_text()
-    match = re.search(r"internalField\s+nonuniform\s+List<(\w+)>\s*(\d+)\s*\(", text)
-    if match is None:
-        raise ValueError(f"{path}: no nonuniform internalField")
-    count, body = int(match.group(2)), text[match.end() :]
-    if match.group(1) == "vector":
-        rows = re.findall(r"\(([^()]*)\)", body)[:count]
-        return np.array([row.split() for row in rows], dtype=float)
-    return np.array(body[: body.index(")")].split(), dtype=float)[:count]
+def read_field(path: Path) -> np.ndarray:
+    """A scalar field's internal values (`sloshkit.cfd.foam.read_scalar_internal_field`)."""
+    return read_scalar_internal_field(path.read_text())
 
 
 def locate(work: Path, steps: int = 6) -> dict[str, Any]:
@@ -259,10 +251,10 @@ def locate(work: Path, steps: int = 6) -> dict[str, Any]:
         (d for d in case.iterdir() if re.fullmatch(r"[0-9.]+", d.name)), key=lambda d: float(d.name)
     )
     times = [d for d in times if float(d.name) >= start - 1e-12]
-    pressure = np.array([read_internal_field(d / "p_rgh") for d in times])
+    pressure = np.array([read_field(d / "p_rgh") for d in times])
     alternating = np.abs(pressure[2:] - 2 * pressure[1:-1] + pressure[:-2]).mean(axis=0) / 4
-    centres = read_internal_field(times[0] / "C")
-    alpha = read_internal_field(times[0] / "alpha.water")
+    centres = np.column_stack([read_field(times[0] / f"C{axis}") for axis in "xyz"])
+    alpha = read_field(times[0] / "alpha.water")
     radius = np.hypot(centres[:, 0], centres[:, 1])
     azimuth = np.degrees(np.arctan2(centres[:, 1], centres[:, 0]))
     liquid = alpha >= 0.99
@@ -303,7 +295,7 @@ def read_cell_volumes(case: Path, time_s: float, chosen: np.ndarray) -> np.ndarr
         ["postProcess", "-func", "writeCellVolumes", "-time", f"{time_s:g}"],
         cwd=case, env=openfoam_environment(), capture_output=True, check=True,
     )  # fmt: skip
-    return read_internal_field(case / f"{time_s:g}" / "V")[chosen]
+    return read_field(case / f"{time_s:g}" / "V")[chosen]
 
 
 def main() -> None:
