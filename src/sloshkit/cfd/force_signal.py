@@ -26,8 +26,8 @@ NOISE_RATIO_LIMIT = 0.5
 
 #: Step alternation (`step_alternation`) above which a wall force carries interFoam's
 #: step-to-step pressure oscillation. The damping study (docs/cfd.md, "damping";
-#: benchmarks/cfd_damping_estimators.py) measured 0.0002-0.0003 on uniform meshes and at most
-#: 0.004 on the wall-graded runs whose damping agrees across steps, and 0.08-0.86 on the runs
+#: benchmarks/cfd_damping_estimators.py) measured 0.0002-0.0019 on uniform meshes and at most
+#: 0.0044 on the wall-graded runs whose damping agrees across steps, and 0.013-0.96 on the runs
 #: where the oscillation is visible in the force (where the damping moved by up to a third,
 #: up or down, between neighbouring steps); 0.01 lies between the two groups.
 STEP_ALTERNATION_LIMIT = 0.01
