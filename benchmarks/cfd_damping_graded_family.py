@@ -181,7 +181,9 @@ def finest_meshes(
 
 
 def step_and_mesh(
-    runs: dict[str, dict[str, Any]], estimates: dict[str, dict[str, Any]]
+    runs: dict[str, dict[str, Any]],
+    estimates: dict[str, dict[str, Any]],
+    by_step: dict[float, dict[str, Any]],
 ) -> dict[str, Any] | None:
     """The damping of the finest mesh with its mesh and step uncertainty (Celik et al. 2008;
     Roache 1998), each direction with the solutions it has.
@@ -202,7 +204,7 @@ def step_and_mesh(
     """
     from sloshkit.cfd.convergence import combined_uncertainty, richardson
 
-    mesh_study = finest_meshes(runs, estimates, MESH_STEP_MS)
+    mesh_study = by_step.get(MESH_STEP_MS)
     if mesh_study is None:
         return None
     finest = mesh_study["cells_per_radius"][0]
@@ -228,7 +230,7 @@ def step_and_mesh(
         if n != finest and (study := step_study(n)) is not None and len(study["steps_ms"]) == 3
     }
     value = mesh_study["mesh"]["values"][0]
-    others = [finest_meshes(runs, estimates, s) for s in EXTRAPOLATION_STEPS_MS]
+    others = [by_step.get(s) for s in EXTRAPOLATION_STEPS_MS]
     mesh_uncertainty = max(
         [mesh_study["mesh"]["uncertainty"]]
         + [o["mesh"]["uncertainty"] for o in others if o is not None]
@@ -327,9 +329,13 @@ def step_and_mesh_summary(result: dict[str, Any]) -> str:
 
 def main() -> None:
     runs, estimates = load()
-    studies = [finest_meshes(runs, estimates, step) for step in (2.0, 1.0, 0.7)]
-    studies = [s for s in studies if s is not None]
-    combined = step_and_mesh(runs, estimates)
+    by_step = {
+        step: study
+        for step in (2.0, 1.0, 0.7)
+        if (study := finest_meshes(runs, estimates, step)) is not None
+    }
+    studies = list(by_step.values())
+    combined = step_and_mesh(runs, estimates, by_step)
     section = render(runs, estimates) + "\n\n" + "\n".join(summary(s) for s in studies)
     if combined is not None:
         section += "\n" + step_and_mesh_summary(combined)
