@@ -139,8 +139,11 @@ def test_optimal_plan_is_verified_and_fastest():
     # The quasi-static bound: |a| <= g tan(5 deg) on average gives T >= 2 sqrt(D / (g tan 5)).
     assert optimal.duration_s > 2 * math.sqrt(0.5 / (9.81 * math.tan(math.radians(5.0)))) * 0.9
     # The minimum time of an independent LP bisection and a separate casadi transcription
-    # (issue 19): 1.5663 s.
-    assert optimal.duration_s == pytest.approx(1.5663, rel=1e-4)
+    # (issue 19) with the slosh checked on the 4 ms grid only: 1.5663 s; checked on the 2 ms
+    # slosh grid too (issue 24, a URScript export resamples at 2 ms) the optimum is 0.01 %
+    # longer.
+    assert optimal.duration_s == pytest.approx(1.56646, rel=2e-5)
+    assert optimal.duration_s > 1.5663
     # Minimum: the longest move 0.01 % shorter (a linear program over every move of the
     # class) does not reach the target.
     from sloshkit.plan.optimal import exact_grid_for

@@ -32,6 +32,7 @@ from sloshkit.export.roundtrip import (
 )
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.problem import SloshLimits
+from sloshkit.plan.spatial import SpatialSloshLimits
 from sloshkit.version import __version__
 
 FloatArray = NDArray[np.float64]
@@ -160,7 +161,7 @@ def model_summary(model: SloshModel) -> str:
     )
 
 
-def limits_summary(limits: SloshLimits) -> str:
+def limits_summary(limits: SloshLimits | SpatialSloshLimits) -> str:
     """One-line description of slosh limits for file headers (degrees and metres, as named).
 
     Parameters
@@ -180,6 +181,16 @@ def limits_summary(limits: SloshLimits) -> str:
     >>> limits_summary(SloshLimits(math.radians(10), math.radians(1)))
     '{"max_angle_deg": 10.0, "max_residual_deg": 1.0, "max_wall_elevation_m": null}'
     """
+    if isinstance(limits, SpatialSloshLimits):
+        return json.dumps(
+            {
+                "max_slosh_height_m": limits.max_height_m,
+                "max_residual_height_m": limits.max_residual_height_m,
+                "max_surface_angle_deg": None
+                if limits.max_surface_angle_rad is None
+                else round(math.degrees(limits.max_surface_angle_rad), 9),
+            }
+        )
     return json.dumps(
         {
             "max_angle_deg": round(math.degrees(limits.max_angle_rad), 9),
@@ -199,7 +210,7 @@ def export_plan(
     axis: tuple[float, float, float] = (1.0, 0.0, 0.0),
     sample_period_s: float | None = None,
     model: SloshModel | None = None,
-    limits: SloshLimits | None = None,
+    limits: SloshLimits | SpatialSloshLimits | None = None,
     check: bool = True,
     lookahead_time_s: float = 0.05,
     gain: float = 500.0,
@@ -299,7 +310,7 @@ def check_round_trip(
     *,
     arm: Arm | None = None,
     mounting: Mounting = Mounting(),  # noqa: B008 - frozen dataclass
-    limits: SloshLimits | None = None,
+    limits: SloshLimits | SpatialSloshLimits | None = None,
 ) -> tuple[RoundTrip | None, str]:
     """Parse an exported file back, rebuild the container motion and compare its slosh with
     the plan's (`sloshkit.export.roundtrip`); joint files are also checked against the arm's
@@ -364,7 +375,7 @@ def _metadata(
     stream: PoseStream,
     period: float,
     model: SloshModel | None,
-    limits: SloshLimits | None,
+    limits: SloshLimits | SpatialSloshLimits | None,
     mounting: Mounting,
     arm: Arm | None,
 ) -> dict[str, object]:

@@ -37,6 +37,7 @@ from sloshkit.export.frames import invert, rotation_angle_rad
 from sloshkit.export.plans import PoseStream
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.problem import SloshLimits
+from sloshkit.plan.spatial import SpatialSloshLimits
 from sloshkit.sim.simulate import simulate
 
 FloatArray = NDArray[np.float64]
@@ -144,7 +145,9 @@ def container_poses_in_path(container_in_base: FloatArray, base_to_path: FloatAr
 
 
 def line_metrics(model: SloshModel, time_s: FloatArray, position_m: FloatArray) -> dict[str, float]:
-    """Peak and residual slosh of a 1-D position sample stream (linear model).
+    """Peak and residual slosh of a 1-D position sample stream (linear model), simulated on
+    the planner's slosh check grid (the sample period divided by
+    `sloshkit.plan.verification.slosh_substeps`, at most 2 ms).
 
     Parameters
     ----------
@@ -172,9 +175,11 @@ def line_metrics(model: SloshModel, time_s: FloatArray, position_m: FloatArray) 
     True
     """
     from sloshkit.motion.laws import from_samples
+    from sloshkit.plan.verification import slosh_substeps
 
     motion = from_samples(time_s, position_m=position_m, name="export")
     period = float(time_s[1] - time_s[0])
+    period /= slosh_substeps(period)  # the planner's slosh check grid
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
         response = simulate(
@@ -193,7 +198,7 @@ def compare_line(
     plan: PoseStream,
     time_s: FloatArray,
     container_in_path: FloatArray,
-    limits: SloshLimits | None = None,
+    limits: SloshLimits | SpatialSloshLimits | None = None,
 ) -> RoundTrip:
     """Round trip of a 1-D plan: rebuilt container poses (path frame) against the plan.
 
@@ -309,7 +314,7 @@ def compare_spatial(
     plan: PoseStream,
     time_s: FloatArray,
     container_in_path: FloatArray,
-    limits: SloshLimits | None = None,
+    limits: SloshLimits | SpatialSloshLimits | None = None,
 ) -> RoundTrip:
     """Round trip of a 3-D pose stream: rebuilt container poses (path frame, z up) against
     the plan resampled on the same grid, both simulated with the 3-D model.
@@ -364,12 +369,57 @@ def compare_spatial(
     )
 
 
+def limit_checks(
+    limits: SloshLimits | SpatialSloshLimits | None, metrics: dict[str, float]
+) -> list[tuple[str, float]]:
+    """(metric, limit) pairs of the slosh limits a round trip checks, in the metrics' units
+    (degrees, metres): 1-D limits on the first-mode angle, residual and wall elevation (the
+    slosh height of a 3-D round trip); 3-D limits on the peak and residual slosh height and the
+    surface angle.
+
+    Parameters
+    ----------
+    limits : SloshLimits, SpatialSloshLimits or None
+        The limits (None: nothing to check).
+    metrics : dict
+        The round trip's metrics (`METRICS` or `SPATIAL_METRICS`).
+
+    Returns
+    -------
+    list of tuple
+
+    Examples
+    --------
+    >>> from sloshkit.plan.spatial import SpatialSloshLimits
+    >>> limit_checks(SpatialSloshLimits(0.015, 0.002), {"peak_slosh_height_m": 0.0})
+    [('peak_slosh_height_m', 0.015), ('residual_slosh_height_m', 0.002)]
+    """
+    if limits is None:
+        return []
+    if isinstance(limits, SpatialSloshLimits):
+        checks = [
+            ("peak_slosh_height_m", limits.max_height_m),
+            ("residual_slosh_height_m", limits.max_residual_height_m),
+        ]
+        if limits.max_surface_angle_rad is not None:
+            checks.append(("peak_angle_deg", math.degrees(limits.max_surface_angle_rad)))
+        return checks
+    checks = [
+        ("peak_angle_deg", math.degrees(limits.max_angle_rad)),
+        ("residual_angle_deg", math.degrees(limits.max_residual_rad)),
+    ]
+    if limits.max_wall_elevation_m is not None:
+        height = "peak_wall_elevation_m" if "peak_wall_elevation_m" in metrics else None
+        checks.append((height or "peak_slosh_height_m", limits.max_wall_elevation_m))
+    return checks
+
+
 def _verdict(
     plan_metrics: dict[str, float],
     export_metrics: dict[str, float],
     position_error: float,
     turned: float,
-    limits: SloshLimits | None,
+    limits: SloshLimits | SpatialSloshLimits | None,
     method: str = "1-D linear model (sloshkit.sim.simulate)",
 ) -> RoundTrip:
     differences: dict[str, float] = {}
@@ -397,18 +447,9 @@ def _verdict(
             f"the rebuilt container turns {math.degrees(turned):.3g} deg from the planned "
             f"orientation (> {math.degrees(ORIENTATION_TOLERANCE_RAD):.3g} deg)"
         )
-    if limits is not None:
-        checks = [
-            ("peak_angle_deg", math.degrees(limits.max_angle_rad)),
-            ("residual_angle_deg", math.degrees(limits.max_residual_rad)),
-        ]
-        if limits.max_wall_elevation_m is not None:
-            height = "peak_wall_elevation_m" if "peak_wall_elevation_m" in export_metrics else None
-            height = height or "peak_slosh_height_m"
-            checks.append((height, limits.max_wall_elevation_m))
-        for key, limit in checks:
-            if export_metrics[key] > limit * (1.0 + LIMIT_TOLERANCE):
-                violations.append(f"{key}: export {export_metrics[key]:.6g} > limit {limit:.6g}")
+    for key, limit in limit_checks(limits, export_metrics):
+        if export_metrics[key] > limit * (1.0 + LIMIT_TOLERANCE):
+            violations.append(f"{key}: export {export_metrics[key]:.6g} > limit {limit:.6g}")
     return RoundTrip(
         plan_metrics, export_metrics, differences, position_error, turned, tuple(violations), method
     )

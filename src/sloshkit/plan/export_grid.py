@@ -97,6 +97,7 @@ class ExportGrid:
 
     def __init__(self, limits: Limits, pendulums: list[Pendulum], steps: int) -> None:
         self.limits, self.pendulums, self.steps = limits, pendulums, steps
+        self._fine = steps * limits.substeps  # slosh check sub-samples 1..M
         self.programs = 0
         self.iterations = 0
         self._highs: Any = None
@@ -118,7 +119,7 @@ class ExportGrid:
         h = np.full(n, ts)
         h[-1] = tau
         jmax, amax, vmax = lim.max_jerk_m_s3, lim.max_acceleration_m_s2, lim.max_velocity_m_s
-        width = 3 * n + 2 * len(self.pendulums) * n
+        width = 3 * n + 2 * len(self.pendulums) * self._fine
         steps = np.arange(n)
         inner = steps[1:]
         iu, ia, iv = self._columns()
@@ -141,22 +142,28 @@ class ExportGrid:
         put(n + inner, ia[:-1], -amax * h[1:] / vmax)
         put(n + steps, iu, -jmax * h**2 / (2 * vmax))
         row = 2 * n
-        # Pendulums in s = z + g1 v: s_{k+1} = Phi s_k + g1 v_{k+1} + (Gamma - Phi g1) v_k,
-        # v_k the sample k = node k for k < N (and v_N = 0).
+        # Pendulums on the slosh check grid (m sub-samples per step, m = limits.substeps), in
+        # s = z + g1 v: s_{j+1} = Phi s_j + g1 v_{j+1} + (Gamma - Phi g1) v_j, v_j the velocity
+        # at sub-sample j (a combination of its step's node v, a and jerk; 0 from T on).
+        fine = self._fine
         for index, pend in enumerate(self.pendulums):
             scale = np.array([lim.max_angle_rad, vmax / pend.length_m])
             phi = pend.phi * scale[None, :] / scale[:, None]
             now = pend.g1 * vmax / scale
             before = (pend.gamma - pend.phi @ pend.g1) * vmax / scale
-            base = 3 * n + 2 * n * index
+            base = 3 * n + 2 * fine * index
+            samples = np.arange(fine)  # sub-samples 1..M at positions 0..M-1
             for c in range(2):
-                here = row + 2 * steps + c
-                put(here, base + 2 * steps + c, 1.0)
-                put(here, iv, -now[c])
+                here = row + 2 * samples + c
+                put(here, base + 2 * samples + c, 1.0)
                 for d in range(2):
-                    put(here[1:], base + 2 * inner - 2 + d, -phi[c, d])
-                put(here[1:], iv[:-1], -before[c])
-            row += 2 * n
+                    put(here[1:], base + 2 * samples[:-1] + d, -phi[c, d])
+            for j, column, weight in self._velocity_terms(tau):
+                for c in range(2):
+                    put([row + 2 * (j - 1) + c], [column], -now[c] * weight)
+                    if j < fine:
+                        put([row + 2 * j + c], [column], -before[c] * weight)
+            row += 2 * fine
         equalities = row
         # Two-sided rows |row| <= 1: the velocity within each step (its Bernstein midpoint
         # v_k + a_k h_k / 2 bounds the quadratic with v_k and v_{k+1}), the wall elevation.
@@ -165,30 +172,37 @@ class ExportGrid:
         put(row + mid, ia[mid], amax * h[1:] / (2 * vmax))
         row += n - 1
         if lim.max_wall_elevation_m is not None:
+            samples = np.arange(fine)
             for model in sorted({p.model for p in self.pendulums}):
                 for index, pend in enumerate(self.pendulums):
                     if pend.model == model:
-                        base = 3 * n + 2 * n * index
+                        base = 3 * n + 2 * fine * index
                         factor = pend.wall_factor_m * lim.max_angle_rad / lim.max_wall_elevation_m
-                        put(row + steps, base + 2 * steps, factor)
-                row += n
+                        put(row + samples, base + 2 * samples, factor)
+                row += fine
         two_sided = row
-        # Residual polygon: cos(p) theta_N + sin(p) B_N <= r, B = (theta' + zeta w theta) / w_d
-        # (theta' = y at the last sample, where v = 0).
+        # Residual polygon: cos(p) theta_j + sin(p) B_j <= r, B = (theta' + zeta w theta) / w_d
+        # (theta' = y where v = 0), at each sub-sample of the last step; those before T are
+        # released (`_residual_rows`), so it binds at the first sub-sample at or after T.
         phases = np.linspace(0.0, 2 * math.pi, FACETS, endpoint=False)
+        self._facets: list[tuple[int, int]] = []
         for index, pend in enumerate(self.pendulums):
             if pend.limited:
-                last = 3 * n + 2 * n * index + 2 * (n - 1)
                 damped = pend.omega_rad_s * math.sqrt(1.0 - pend.damping_ratio**2)
                 zeta_w = pend.damping_ratio * pend.omega_rad_s / damped
-                facet = row + np.arange(FACETS)
                 theta = lim.max_angle_rad / lim.max_residual_rad
                 rate = vmax / pend.length_m / lim.max_residual_rad / damped
-                put(
-                    facet, np.full(FACETS, last), theta * (np.cos(phases) + zeta_w * np.sin(phases))
-                )
-                put(facet, np.full(FACETS, last + 1), rate * np.sin(phases))
-                row += FACETS
+                for sub in range(1, lim.substeps + 1):
+                    last = 3 * n + 2 * fine * index + 2 * (fine - lim.substeps + sub - 1)
+                    facet = row + np.arange(FACETS)
+                    put(
+                        facet,
+                        np.full(FACETS, last),
+                        theta * (np.cos(phases) + zeta_w * np.sin(phases)),
+                    )
+                    put(facet, np.full(FACETS, last + 1), rate * np.sin(phases))
+                    self._facets.append((row, sub))
+                    row += FACETS
         # Distance travelled / D: sum over steps of v_k h + a_k h^2 / 2 + u_k h^3 / 6.
         cost = np.zeros(width)
         cost[iu] = jmax * h**3 / 6
@@ -208,7 +222,36 @@ class ExportGrid:
         lower[equalities:two_sided], upper[equalities:two_sided] = -bound, bound
         lower[two_sided:], upper[two_sided:] = -np.inf, bound
         upper[-1] = np.inf
+        for start, sub in self._facets:
+            if not self._residual_active(sub, tau):
+                upper[start : start + FACETS] = np.inf
         return matrix, lower, upper, cost
+
+    def _residual_active(self, sub: int, tau: float) -> bool:
+        """Whether sub-sample ``sub`` (1..m) of the last step is at or after the end T."""
+        return sub * self.limits.slosh_period_s >= tau - 1e-12
+
+    def _velocity_terms(self, tau: float) -> list[tuple[int, int, float]]:
+        """(sub-sample j in 1..M, column, weight): the velocity at j / vmax as a combination
+        of the node velocity, node acceleration and step jerk (scaled variables); the
+        sub-samples of the last step at or after T (offset >= tau) have none (at rest)."""
+        lim, n, m = self.limits, self.steps, self.limits.substeps
+        iu, ia, iv = self._columns()
+        vmax = lim.max_velocity_m_s
+        terms: list[tuple[int, int, float]] = []
+        for j in range(1, self._fine + 1):
+            step, sub = divmod(j, m)
+            if sub == 0:  # a node (node n is fixed at rest)
+                terms.append((j, int(iv[step - 1]), 1.0))
+                continue
+            offset = sub * lim.slosh_period_s
+            if step == n - 1 and offset >= tau - 1e-12:
+                continue
+            if step >= 1:
+                terms.append((j, int(iv[step - 1]), 1.0))
+                terms.append((j, int(ia[step - 1]), lim.max_acceleration_m_s2 * offset / vmax))
+            terms.append((j, int(iu[step]), lim.max_jerk_m_s3 * offset**2 / (2 * vmax)))
+        return terms
 
     def _solver(self, smooth: bool) -> Any:
         """A HiGHS instance holding the program: the longest move, or (``smooth``) the move
@@ -228,7 +271,8 @@ class ExportGrid:
         col_lower[: 3 * n] = -bound
         for index, pend in enumerate(self.pendulums):
             if pend.limited:  # |theta| <= theta_max at samples 1..N
-                col_lower[3 * n + 2 * n * index : 3 * n + 2 * n * (index + 1) : 2] = -bound
+                fine = self._fine
+                col_lower[3 * n + 2 * fine * index : 3 * n + 2 * fine * (index + 1) : 2] = -bound
         col_upper = -col_lower
         _, ia, iv = self._columns()
         col_lower[[ia[-1], iv[-1]]] = col_upper[[ia[-1], iv[-1]]] = 0.0  # at rest at node N
@@ -293,7 +337,7 @@ class ExportGrid:
             lim = self.limits
             jmax, amax, vmax = lim.max_jerk_m_s3, lim.max_acceleration_m_s2, lim.max_velocity_m_s
             last, before, distance_row = n - 1, n - 2, self._matrix.shape[0] - 1
-            bernstein = 2 * n + 2 * len(self.pendulums) * n + before
+            bernstein = 2 * n + 2 * len(self.pendulums) * self._fine + before
             entries = [
                 (last, iu[last], -jmax * tau / amax),
                 (n + last, iu[last], -jmax * tau**2 / (2 * vmax)),
@@ -309,8 +353,44 @@ class ExportGrid:
                 entries.append((distance_row, column, value / lim.distance_m))
                 if solver is self._highs:  # the longest move: the distance is the objective
                     solver.changeColCost(int(column), value / lim.distance_m)
+            if lim.substeps > 1:
+                entries += self._last_step_entries(tau)
+                smooth = solver is not self._highs
+                facet_upper = bound * (math.cos(math.pi / FACETS) if smooth else 1.0)
+                for start, sub in self._facets:
+                    upper = facet_upper if self._residual_active(sub, tau) else np.inf
+                    rows = np.arange(start, start + FACETS, dtype=np.int32)
+                    solver.changeRowsBounds(
+                        FACETS, rows, np.full(FACETS, -np.inf), np.full(FACETS, upper)
+                    )
             for r, column, value in entries:
                 solver.changeCoeff(int(r), int(column), value)
+
+    def _last_step_entries(self, tau: float) -> list[tuple[int, int, float]]:
+        """The recursion coefficients of the last step's sub-samples for a last step ``tau``
+        (those at or after T drop their velocity terms): (row, column, value), every entry of
+        those rows on the last step's columns, zeros included."""
+        lim, n, m, fine = self.limits, self.steps, self.limits.substeps, self._fine
+        iu, ia, iv = self._columns()
+        columns = [int(iu[n - 1])] + ([int(iv[n - 2]), int(ia[n - 2])] if n > 1 else [])
+        first = (n - 1) * m + 1
+        weights: dict[int, dict[int, float]] = {}
+        for j, column, weight in self._velocity_terms(tau):
+            if j >= first - 1 and column in columns:
+                weights.setdefault(j, {})[column] = weight
+        entries = []
+        for index, pend in enumerate(self.pendulums):
+            scale = np.array([lim.max_angle_rad, lim.max_velocity_m_s / pend.length_m])
+            now = pend.g1 * lim.max_velocity_m_s / scale
+            before = (pend.gamma - pend.phi @ pend.g1) * lim.max_velocity_m_s / scale
+            row = 2 * n + 2 * fine * index
+            for j in range(first, fine + 1):
+                for c in range(2):
+                    for column in columns:
+                        value = -now[c] * weights.get(j, {}).get(column, 0.0)
+                        value -= before[c] * weights.get(j - 1, {}).get(column, 0.0)
+                        entries.append((row + 2 * (j - 1) + c, column, float(value)))
+        return entries
 
     def longest(self, duration_s: float) -> Move:
         """The longest move of ``duration_s`` that meets every limit at every exported sample.

@@ -70,6 +70,10 @@ class Limits:
         Wall-elevation limit (every mode), if any.
     sample_period_s : float
         The export grid's step.
+    substeps : int
+        Sub-samples per step at which the slosh is checked (`sloshkit.plan.verification.
+        slosh_substeps`): the limits hold on the grid ``sample_period_s / substeps`` too, the
+        finest controller period a plan is exported to.
 
     Returns
     -------
@@ -77,8 +81,8 @@ class Limits:
 
     Examples
     --------
-    >>> Limits(0.5, 1.5, 20.0, 500.0, 0.087, 0.0044, None, 4e-3).sample_period_s
-    0.004
+    >>> Limits(0.5, 1.5, 20.0, 500.0, 0.087, 0.0044, None, 4e-3, 2).slosh_period_s
+    0.002
     """
 
     distance_m: float
@@ -89,6 +93,12 @@ class Limits:
     max_residual_rad: float
     max_wall_elevation_m: float | None
     sample_period_s: float
+    substeps: int = 1
+
+    @property
+    def slosh_period_s(self) -> float:
+        """The step of the slosh check grid [s]."""
+        return self.sample_period_s / self.substeps
 
 
 @dataclass(frozen=True)
@@ -154,9 +164,10 @@ def measure(
     """Bring a move to rest exactly and measure it against every limit.
 
     The least-norm correction of the jerks that zeroes the final velocity and acceleration
-    (the solver meets its equalities to about 1e-7), then the exported velocity samples
-    simulated with `sloshkit.sim.discretisation.linear_mode_response` (as the verification
-    does) for each pendulum.
+    (the solver meets its equalities to about 1e-7), then the velocity sampled on the slosh
+    check grid (``limits.substeps`` samples per step, at rest from T on) simulated with
+    `sloshkit.sim.discretisation.linear_mode_response` (as the verification does) for each
+    pendulum; the residual is taken at the first check sample at or after T.
 
     Parameters
     ----------
@@ -211,11 +222,11 @@ def measure(
         float(np.max(np.abs(a))) / limits.max_acceleration_m_s2,
         max(float(np.max(np.abs(v))), float(np.max(np.abs(midpoints)))) / limits.max_velocity_m_s,
     ]
-    samples = np.concatenate((v[:-1], [0.0]))  # v(k Ts), k = 0..N; at rest from T on
+    samples = check_velocities(u, a, v, last_step_s, limits)
     walls: dict[int, FloatArray] = {}
     for pend in pendulums:
         theta, rate = linear_mode_response(
-            samples, ts, pend.omega_rad_s, pend.damping_ratio, pend.length_m
+            samples, limits.slosh_period_s, pend.omega_rad_s, pend.damping_ratio, pend.length_m
         )
         if pend.limited:
             ratios.append(float(np.max(np.abs(theta))) / limits.max_angle_rad)
@@ -226,3 +237,54 @@ def measure(
         for wall in walls.values():
             ratios.append(float(np.max(np.abs(wall))) / limits.max_wall_elevation_m)
     return u, distance, max(ratios)
+
+
+def check_velocities(
+    jerks_m_s3: FloatArray,
+    node_acceleration_m_s2: FloatArray,
+    node_velocity_m_s: FloatArray,
+    last_step_s: float,
+    limits: Limits,
+) -> FloatArray:
+    """Velocity of a piecewise-constant-jerk move at t_j = j Ts / substeps, from 0 to the
+    first sample at or after T (at rest from T on).
+
+    Parameters
+    ----------
+    jerks_m_s3 : array
+        Jerk of each of the N steps [m/s^3].
+    node_acceleration_m_s2, node_velocity_m_s : array
+        Acceleration and velocity at the N + 1 nodes [m/s^2, m/s].
+    last_step_s : float
+        Length of the last step [s].
+    limits : Limits
+        Sample period and substeps.
+
+    Returns
+    -------
+    numpy.ndarray
+        The velocity samples [m/s].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> limits = Limits(0.1, 1.5, 20.0, 500.0, 0.0873, 0.00436, None, 4e-3, 2)
+    >>> check_velocities(np.array([1.0e3]), np.array([0.0, 4.0]), np.array([0.0, 8e-3]),
+    ...                  4e-3, limits).tolist()
+    [0.0, 0.002, 0.0]
+    """
+    from sloshkit.motion.sampling import steps_to_reach
+
+    ts, substeps = limits.sample_period_s, limits.substeps
+    n = jerks_m_s3.size
+    end = (n - 1) * ts + last_step_s
+    index = np.arange(steps_to_reach(end, limits.slosh_period_s) + 1)
+    step = np.minimum(index // substeps, n - 1)
+    offset = (index - step * substeps) * limits.slosh_period_s
+    inside = (step < n - 1) | (offset < last_step_s - 1e-12)
+    velocity = (
+        node_velocity_m_s[step]
+        + node_acceleration_m_s2[step] * offset
+        + jerks_m_s3[step] * offset**2 / 2
+    )
+    return np.where(inside, velocity, 0.0)

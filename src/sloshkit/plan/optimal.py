@@ -77,15 +77,17 @@ def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
     1
     """
     from sloshkit.plan.export_grid import ExportGrid, Limits, Pendulum
+    from sloshkit.plan.verification import slosh_substeps
     from sloshkit.sim.discretisation import velocity_driven_discretisation
 
     slosh, machine, ts = problem.slosh, problem.machine, problem.sample_period_s
+    substeps = slosh_substeps(ts)
     keep_all = slosh.max_wall_elevation_m is not None
     pendulums = []
     for index, model in enumerate(problem.models()):
         for order, mode in enumerate(model.modes if keep_all else model.modes[:1]):
             phi, gamma, g1 = velocity_driven_discretisation(
-                mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts
+                mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts / substeps
             )
             pendulums.append(
                 Pendulum(
@@ -109,6 +111,7 @@ def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
         slosh.max_residual_rad,
         slosh.max_wall_elevation_m,
         ts,
+        substeps,
     )
     return ExportGrid(limits, pendulums, steps)
 

@@ -2,7 +2,11 @@
 
 Verification never trusts a planner's internal model: the motion is sampled at the controller's
 period, and the exported velocity samples (linear between samples) are simulated again with the
-exact discretisation of every mode, for every frequency of the robustness band.
+exact discretisation of every mode, for every frequency of the robustness band. The slosh is
+simulated on the *slosh check grid*: the controller period divided into `slosh_substeps`
+equal sub-steps, no longer than `FINEST_CONTROLLER_PERIOD_S` (the 2 ms of URScript ``servoj``),
+so that a plan's limits hold when it is resampled for any supported controller (2 ms URScript,
+4 ms the default, 8 ms and longer for ROS 2 and the others), not only on its own grid.
 """
 
 from __future__ import annotations
@@ -25,13 +29,43 @@ from sloshkit.sim.simulate import simulate
 
 FloatArray = NDArray[np.float64]
 
+#: The finest controller period a plan is exported to [s]: URScript ``servoj`` on the UR
+#: e-Series (500 Hz). A plan's slosh limits are checked on a grid at least this fine.
+FINEST_CONTROLLER_PERIOD_S = 0.002
+
+
+def slosh_substeps(sample_period_s: float) -> int:
+    """Sub-steps of a controller period on the slosh check grid: the fewest equal parts no
+    longer than `FINEST_CONTROLLER_PERIOD_S` (the grid rule, `steps_to_reach`).
+
+    Parameters
+    ----------
+    sample_period_s : float
+        The plan's controller period [s].
+
+    Returns
+    -------
+    int
+        m >= 1; the slosh is checked every ``sample_period_s / m``.
+
+    Examples
+    --------
+    >>> slosh_substeps(0.004), slosh_substeps(0.002), slosh_substeps(0.001), slosh_substeps(0.008)
+    (2, 1, 1, 4)
+    """
+    from sloshkit.motion.sampling import steps_to_reach
+
+    return max(1, steps_to_reach(sample_period_s, FINEST_CONTROLLER_PERIOD_S))
+
 
 def verify(motion: Motion, problem: PlanProblem) -> Verification:
     """Re-simulate the sampled export of ``motion`` and check every limit.
 
-    The exported velocity samples are taken as linear between samples (what the exact
-    first-order-hold discretisation assumes) and simulated for each model of the band. The
-    residual amplitude is taken from the state at the last sample, when the move is over. With
+    The velocity sampled on the slosh check grid (`slosh_substeps` per controller period) is
+    taken as linear between samples (what the exact first-order-hold discretisation assumes)
+    and simulated for each model of the band. The residual amplitude is taken from the state
+    at the last sample, when the move is over. Machine limits and the end position are checked
+    on the controller's samples. With
     ``problem.nonlinear`` the exported accelerations drive the large-angle pendulums instead.
 
     Parameters
@@ -62,8 +96,10 @@ def verify(motion: Motion, problem: PlanProblem) -> Verification:
     peak_angle = residual = peak_wall = 0.0
     if problem.nonlinear:
         peak_angle, residual, peak_wall = _verify_nonlinear(samples, problem)
+    check_period = ts / slosh_substeps(ts)
+    check = velocity if check_period == ts else export_samples(motion, check_period)["velocity_m_s"]
     for model in [] if problem.nonlinear else problem.models():
-        theta, rate = linear_response(model, velocity, ts)
+        theta, rate = linear_response(model, check, check_period)
         first = model.modes[0]
         wall = wall_elevation(wall_elevation_factors(model), theta)
         peak_angle = max(peak_angle, float(np.max(np.abs(theta[0]))))
