@@ -6,6 +6,7 @@ The export options (arm, mounting, servoj parameters, check) form one group, sha
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 from typing import Annotated, Any
@@ -30,12 +31,22 @@ from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 
 
+def _model_line(model: SloshModel | None) -> str:
+    if model is None:
+        return "none (no round trip)"
+    first = model.modes[0]
+    return (
+        f"radius {1e3 * model.radius_m:.4g} mm, fill {1e3 * model.fill_height_m:.4g} mm, "
+        f"{model.liquid.name}, f1 {first.frequency_hz:.4g} Hz, damping {first.damping_ratio:.3g}"
+    )
+
+
 def run_export(
     plan: Any,
     fmt: str,
     out: Path,
     settings: ExportSettings,
-    model: SloshModel,
+    model: SloshModel | None,
     limits: Any,
     sample_period_s: float | None,
 ) -> Any:
@@ -51,8 +62,8 @@ def run_export(
         The file to write.
     settings : ExportSettings
         The parsed export options.
-    model : SloshModel
-        The model the round trip re-simulates.
+    model : SloshModel or None
+        The model the round trip re-simulates (None only without the check).
     limits : SloshLimits or None
         Limits the round trip checks.
     sample_period_s : float or None
@@ -85,21 +96,36 @@ def run_export(
 
     if fmt not in FORMATS:
         raise InputError("format", fmt, "must be one of " + ", ".join(FORMATS))
-    with stderr.status(f"exporting {fmt}"), all_or_nothing(out):
-        return export_plan(
-            plan,
-            fmt,
-            out,
-            arm=settings.arm(fmt),
-            mounting=settings.mounting,
-            axis=settings.axis,
-            sample_period_s=sample_period_s,
-            model=model,
-            limits=limits,
-            check=settings.check,
-            lookahead_time_s=settings.lookahead_time_s,
-            gain=settings.gain,
-        )
+    try:
+        with stderr.status(f"exporting {fmt}"), all_or_nothing(out):
+            result = export_plan(
+                plan,
+                fmt,
+                out,
+                arm=settings.arm(fmt),
+                mounting=settings.mounting,
+                axis=settings.axis,
+                sample_period_s=sample_period_s,
+                model=model,
+                limits=limits,
+                check=settings.check,
+                lookahead_time_s=settings.lookahead_time_s,
+                gain=settings.gain,
+            )
+            if not result.passed:
+                raise RoundTripFailed(result)  # all_or_nothing removes (or restores) the file
+    except RoundTripFailed as failure:
+        return dataclasses.replace(failure.result, written=False)
+    return result
+
+
+class RoundTripFailed(Exception):
+    """Raised inside an all-or-nothing block when an export's round trip fails, so that the
+    file is not left behind; carries the `ExportResult`."""
+
+    def __init__(self, result: Any) -> None:
+        super().__init__("round trip failed")
+        self.result = result
 
 
 def show_export(result: Any) -> None:
@@ -118,7 +144,8 @@ def show_export(result: Any) -> None:
     wrote move.cam.csv (cam-table, 126 samples every 8 ms)
     """
     stdout.print(
-        f"wrote {result.path} ({result.format}, {result.samples} samples every "
+        ("wrote " if result.written else "did not write (the round trip failed) ")
+        + f"{result.path} ({result.format}, {result.samples} samples every "
         f"{1e3 * result.sample_period_s:g} ms)"
     )
     if result.joints is not None:
@@ -271,6 +298,7 @@ def slosh_limits(max_angle: str | None, max_residual: str | None) -> Any:
 @with_model_options
 @with_export_options
 def export_command(
+    context: typer.Context,
     slosh_model: SloshModel,
     export_settings: ExportSettings,
     plan_file: Annotated[
@@ -298,23 +326,34 @@ def export_command(
 
       sloshkit export plan.csv --format urscript --robot ur5e --base-pose=-0.5m,-0.13m,0.39m
     """
+    from sloshkit.cli.plan_files import export_limits, export_model
     from sloshkit.export.exporter import path_beside
 
     target = out if out is not None else path_beside(plan_file, fmt)
     check_export_request(fmt, target, export_settings)
-    from sloshkit.export.plans import read_plan
+    from sloshkit.export.plans import read_plan, read_plan_header
 
-    limits = slosh_limits(max_angle, max_residual)
     with naming("plan_file", plan_file):
         plan = read_plan(plan_file)
+    header = read_plan_header(plan.metadata, str(plan_file))
+    model, model_source = export_model(
+        context, header, slosh_model, export_settings.check, plan_file
+    )
+    limits = export_limits(header, slosh_limits(max_angle, max_residual))
     period = None
     if sample_period is not None:
         period = parse_quantity(sample_period, "time", "sample_period")
         check_output_period(plan, period, sample_period)
-    result = run_export(plan, fmt, target, export_settings, slosh_model, limits, period)
+    result = run_export(plan, fmt, target, export_settings, model, limits, period)
     if json_output:
-        print_json(result.to_dict())
+        from sloshkit.export.plans import limits_document
+
+        payload = result.to_dict()
+        payload["model_source"] = model_source
+        payload["limits"] = None if limits is None else limits_document(limits)
+        print_json(payload)
     else:
+        stdout.print(f"model: {_model_line(model)} (from the {model_source})")
         show_export(result)
     if not result.passed:
         raise typer.Exit(1)

@@ -15,6 +15,7 @@ from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.export import (
     ExportSettings,
+    RoundTripFailed,
     check_export_request,
     run_export,
     show_export,
@@ -37,6 +38,7 @@ from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 @with_model_options
 @with_export_options
 def plan_command(
+    context: typer.Context,
     slosh_model: SloshModel,
     export_settings: ExportSettings,
     distance: Distance = "0.5m",
@@ -239,15 +241,28 @@ def plan_command(
     exported = None
     # The trajectory, its figure and its export are kept together or not at all (a signal or a
     # failed round trip after the CSV was written must not leave the CSV behind).
-    with all_or_nothing(out, plot, _export_target(out, export)):
-        if result.feasible:
-            if out is not None:
-                result.to_csv(out)
-            if plot is not None:
-                result.plot(plot)
-        if result.feasible and export is not None:
-            exported = _export_chosen(result, problem, export, out, export_settings, slosh_model)
-            payload["export"] = exported.to_dict()
+    try:
+        with all_or_nothing(out, plot, _export_target(out, export)):
+            if result.feasible:
+                if out is not None:
+                    from sloshkit.cli.plan_files import plan_file_header
+                    from sloshkit.export.plans import write_plan_csv
+
+                    header = plan_file_header(
+                        context, slosh_model, problem.slosh, problem.sample_period_s
+                    )
+                    write_plan_csv(out, result.columns(), header)
+                if plot is not None:
+                    result.plot(plot)
+            if result.feasible and export is not None:
+                exported = _export_chosen(
+                    result, problem, export, out, export_settings, slosh_model
+                )
+                payload["export"] = exported.to_dict()
+                if not exported.passed:  # nothing is kept: neither the export nor the plan
+                    raise RoundTripFailed(exported)
+    except RoundTripFailed:
+        pass
     if json_output:
         print_json(payload)
     else:
@@ -301,7 +316,11 @@ def plan_command(
                     if payload["speed_up_over_best_paper_law"]
                     else ""
                 )
-                + (f"; wrote {out}" if out is not None else "")
+                + (
+                    f"; wrote {out}"
+                    if out is not None and (exported is None or exported.passed)
+                    else ""
+                )
             )
     if exported is not None and not json_output:
         show_export(exported)

@@ -21,12 +21,14 @@ from sloshkit.model.modal import SloshModel
 LIMIT_OPTIONS = ("max_angle", "max_residual")
 
 
-def given_options(names: tuple[str, ...] | list[str]) -> list[str]:
+def given_options(context: Any, names: tuple[str, ...] | list[str]) -> list[str]:
     """The options among ``names`` (Python names) given on the command line or by the
-    environment of the running command (none outside a command).
+    environment (none without a command context).
 
     Parameters
     ----------
+    context : typer.Context or None
+        The running command's context.
     names : sequence of str
         Parameter names, e.g. ``("radius", "damping_ratio")``.
 
@@ -36,35 +38,36 @@ def given_options(names: tuple[str, ...] | list[str]) -> list[str]:
 
     Examples
     --------
-    >>> given_options(["radius"])
+    >>> given_options(None, ["radius"])
     []
     """
-    import click
-    from click.core import ParameterSource
-
-    context = click.get_current_context(silent=True)
     if context is None:
         return []
-    typed = (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT)
-    return [name for name in names if context.get_parameter_source(name) in typed]
+    sources = {name: context.get_parameter_source(name) for name in names}
+    return [
+        name
+        for name, source in sources.items()
+        if source is not None and source.name in ("COMMANDLINE", "ENVIRONMENT")
+    ]
 
 
-def _typed_model_options() -> dict[str, Any] | None:
-    """The running command's model options as typed (None with ``--model-file`` or outside a
-    command): what a plan file keeps so that an export can change one of them."""
-    import click
-
-    context = click.get_current_context(silent=True)
+def _typed_model_options(context: Any) -> dict[str, Any] | None:
+    """The running command's model options as typed (None with ``--model-file`` or without a
+    context): what a plan file keeps so that an export can change one of them."""
     if context is None or context.params.get("model_file") is not None:
         return None
     return {name: context.params[name] for name in MODEL_OPTIONS if name in context.params}
 
 
-def plan_file_header(model: SloshModel, limits: Any, sample_period_s: float) -> dict[str, Any]:
+def plan_file_header(
+    context: Any, model: SloshModel, limits: Any, sample_period_s: float
+) -> dict[str, Any]:
     """The ``# sloshkit-plan:`` document of the plan the running command writes.
 
     Parameters
     ----------
+    context : typer.Context or None
+        The running command's context (its model options go into the header).
     model : SloshModel
         The model planned for.
     limits : SloshLimits or SpatialSloshLimits
@@ -82,12 +85,12 @@ def plan_file_header(model: SloshModel, limits: Any, sample_period_s: float) -> 
     >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
     >>> from sloshkit.plan.problem import SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
-    >>> plan_file_header(model, SloshLimits(0.1, 0.01), 0.004)["model_options"] is None
+    >>> plan_file_header(None, model, SloshLimits(0.1, 0.01), 0.004)["model_options"] is None
     True
     """
     from sloshkit.export.plans import plan_header
 
-    return plan_header(model, limits, sample_period_s, _typed_model_options())
+    return plan_header(model, limits, sample_period_s, _typed_model_options(context))
 
 
 def model_differences(planned: SloshModel, used: SloshModel) -> list[str]:
@@ -134,7 +137,11 @@ def model_differences(planned: SloshModel, used: SloshModel) -> list[str]:
 
 
 def export_model(
-    header: dict[str, Any] | None, command_model: SloshModel, check: bool, plan_file: Path
+    context: Any,
+    header: dict[str, Any] | None,
+    command_model: SloshModel,
+    check: bool,
+    plan_file: Path,
 ) -> tuple[SloshModel | None, str]:
     """The model an export checks, and where it comes from.
 
@@ -144,6 +151,8 @@ def export_model(
 
     Parameters
     ----------
+    context : typer.Context or None
+        The running command's context (which options were given).
     header : dict or None
         The plan file's ``# sloshkit-plan:`` document.
     command_model : SloshModel
@@ -162,12 +171,12 @@ def export_model(
     --------
     >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
     >>> vial = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
-    >>> export_model(None, vial, False, Path("old.csv"))
+    >>> export_model(None, None, vial, False, Path("old.csv"))
     (None, 'none')
     """
     from sloshkit.model.document import model_from_document
 
-    given = given_options(list(MODEL_OPTIONS))
+    given = given_options(context, list(MODEL_OPTIONS))
     planned = None
     if header is not None and header.get("model") is not None:
         planned = model_from_document(header["model"], f"{plan_file} (# sloshkit-plan)")
@@ -188,9 +197,7 @@ def export_model(
     typed = header.get("model_options") if header is not None else None
     model = command_model
     if isinstance(typed, dict) and "model_file" not in given:
-        import click
-
-        params = click.get_current_context().params
+        params = context.params
         values = {name: params[name] for name in MODEL_OPTIONS if name != "model_file"}
         values.update({name: typed[name] for name in values if name in typed})
         values.update({name: params[name] for name in given})

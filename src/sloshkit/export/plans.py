@@ -568,3 +568,76 @@ def write_plan_csv(
     with atomic_open(path) as handle:
         handle.write(header_lines(metadata) + rows_csv(columns))
     return Path(path)
+
+
+#: A 1-D plan starts and ends at rest when its end speeds are below this fraction of its peak
+#: speed (plus 1e-9 m/s) and its end accelerations below this fraction of its peak
+#: acceleration (plus 1e-9 m/s^2). sloshkit's plans end exactly at rest; the fraction leaves
+#: room for derivatives taken by finite differences in other tools' files (a quintic sampled
+#: at 4 ms: 7e-4), and refuses a move cut off while it still moves.
+REST_TOLERANCE = 0.01
+#: A pose stream (no velocity columns) ends at rest when its speed over the last (first)
+#: sample interval is below this fraction of its peak speed over any interval: a rest-to-rest
+#: jerk-limited move is far slower over its last interval (below 1 % on the README's moves).
+POSE_REST_FRACTION = 0.05
+
+
+def require_rest(plan: LinePlan | PoseStream, source: str = "plan") -> None:
+    """Refuse a plan that does not start and end at rest (`InputError` naming the end speed).
+
+    The export resamples a plan with splines that are at rest at both ends, and a controller
+    that receives a move ending at speed must stop it in one sample: neither is what was
+    planned.
+
+    Parameters
+    ----------
+    plan : LinePlan or PoseStream
+        The plan.
+    source : str
+        The plan's file, for the message.
+
+    Raises
+    ------
+    InputError
+        When the start or end speed (or acceleration, 1-D) is not zero (`REST_TOLERANCE`,
+        `POSE_REST_FRACTION`).
+
+    Examples
+    --------
+    >>> t = np.arange(5) * 0.25
+    >>> try:
+    ...     require_rest(LinePlan(t, t, 1 + 0 * t, 0 * t), "move.csv")
+    ... except InputError as error:
+    ...     print(error)
+    plan_file = 'move.csv': must start and end at rest (start speed 1 m/s, end speed 1 m/s)
+    """
+    if isinstance(plan, LinePlan):
+        speed = np.abs(plan.velocity_m_s)
+        accel = np.abs(plan.acceleration_m_s2)
+        ends_v = (float(speed[0]), float(speed[-1]))
+        ends_a = (float(accel[0]), float(accel[-1]))
+        moving = max(ends_v) > REST_TOLERANCE * float(np.max(speed)) + 1e-9
+        accelerating = max(ends_a) > REST_TOLERANCE * float(np.max(accel)) + 1e-9
+        if moving or accelerating:
+            raise InputError(
+                "plan_file",
+                source,
+                f"must start and end at rest (start speed {ends_v[0]:.4g} m/s, end speed "
+                f"{ends_v[1]:.4g} m/s"
+                + (
+                    f", start acceleration {ends_a[0]:.4g} m/s^2, end acceleration "
+                    f"{ends_a[1]:.4g} m/s^2)"
+                    if accelerating
+                    else ")"
+                ),
+            )
+        return
+    steps = np.linalg.norm(np.diff(plan.position_m, axis=0), axis=1) / plan.sample_period_s
+    peak = float(np.max(steps)) if steps.size else 0.0
+    if peak > 0.0 and max(steps[0], steps[-1]) > POSE_REST_FRACTION * peak:
+        raise InputError(
+            "plan_file",
+            source,
+            f"must start and end at rest (speed over the first sample interval "
+            f"{steps[0]:.4g} m/s, over the last {steps[-1]:.4g} m/s, peak {peak:.4g} m/s)",
+        )

@@ -5,7 +5,11 @@ run when it is sent to them; in a Polyscope Script node, call the function after
 with the metadata as comments inside it. The program moves to the first sample with
 ``movej`` (slowly), then calls
 ``servoj(q, a, v, t, lookahead_time, gain)`` once per sample, ``t`` = 0.002 s (the e-Series
-controller period; ``servoj`` blocks for ``t``), and ends with ``stopj``. ``a`` and ``v`` are
+controller period; ``servoj`` blocks for ``t``). Between the approach and the stream it waits
+``settle_time_s`` (`sloshkit.export.exporter.approach_settle_time`: the approach's slosh decays
+below the plan's residual limit), and after the last sample it holds the last target for
+``hold_time_s`` (one ``servoj`` with that ``t``, marked ``# hold``) before ``stopj``, so the servo
+reaches the last target at rest instead of being stopped while its look-ahead still lags. ``a`` and ``v`` are
 not used by the controller (written as 0). Signature and ranges from the URScript manual
 (Universal Robots, *The URScript Programming Language*, e-Series SW 5.x, ``servoj``):
 ``lookahead_time`` in [0.03, 0.2] s, ``gain`` in [100, 2000].
@@ -13,6 +17,7 @@ not used by the controller (written as 0). Signature and ranges from the URScrip
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -30,6 +35,32 @@ UR_SAMPLE_PERIOD_S = 0.002
 #: Approach to the first sample: joint acceleration [rad/s^2] and speed [rad/s] of ``movej``.
 APPROACH_ACCELERATION_RAD_S2 = 0.5
 APPROACH_SPEED_RAD_S = 0.25
+#: The last target is held for this many look-ahead times (at least `MIN_HOLD_S`) before
+#: ``stopj``: ``servoj`` tracks its targets with a lag of about the look-ahead time.
+HOLD_LOOKAHEADS = 4.0
+MIN_HOLD_S = 0.2
+
+
+def hold_time(lookahead_time_s: float) -> float:
+    """How long the program holds its last target before ``stopj`` [s].
+
+    Parameters
+    ----------
+    lookahead_time_s : float
+        The ``servoj`` look-ahead [s].
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> hold_time(0.05), hold_time(0.1)
+    (0.2, 0.4)
+    """
+    return max(MIN_HOLD_S, HOLD_LOOKAHEADS * float(lookahead_time_s))
+
+
 _SERVOJ = re.compile(
     r"^\s*servoj\(\[([^\]]*)\],\s*([^,]+),\s*([^,]+),\s*([^,]+),\s*([^,]+),\s*([^)]+)\)"
 )
@@ -42,6 +73,8 @@ def write_urscript(
     lookahead_time_s: float = 0.05,
     gain: float = 500.0,
     name: str = "sloshkit_move",
+    settle_time_s: float = 0.0,
+    hold_time_s: float | None = None,
 ) -> Path:
     """Write a URScript program that plays ``joints`` with one ``servoj`` per sample.
 
@@ -53,6 +86,8 @@ def write_urscript(
     lookahead_time_s : servoj ``lookahead_time`` [s], 0.03..0.2
     gain : servoj ``gain``, 100..2000
     name : the program's function name
+    settle_time_s : wait after the approach ``movej`` [s] (`sleep`)
+    hold_time_s : time the last target is held before ``stopj`` [s] (default `hold_time`)
 
     Returns
     -------
@@ -69,8 +104,8 @@ def write_urscript(
     >>> t = np.arange(3) * 0.002
     >>> path = JointPath(t, np.zeros((3, 6)), np.zeros((3, 6)), np.zeros((3, 6)), tuple("abcdef"))
     >>> out = write_urscript(pathlib.Path(tempfile.mkdtemp()) / "m.script", path, {})
-    >>> out.read_text().count("servoj(")
-    3
+    >>> out.read_text().count("servoj(")  # three samples and the hold
+    4
     """
     lookahead = require_in_range("lookahead_time", lookahead_time_s, 0.03, 0.2, "s")
     gain = require_in_range("gain", gain, 100.0, 2000.0)
@@ -96,8 +131,21 @@ def write_urscript(
         f"v={number(APPROACH_SPEED_RAD_S)})\n",
     ]
     tail = f", 0, 0, {number(period)}, {number(lookahead)}, {number(gain)})\n"
+    settle = float(settle_time_s)
+    if not (math.isfinite(settle) and settle >= 0.0):
+        raise InputError("settle_time", settle_time_s, "must be a finite time >= 0 s")
+    hold = hold_time(lookahead) if hold_time_s is None else float(hold_time_s)
+    lines += [
+        f"  # wait {number(settle)} s for the slosh of the approach to settle\n",
+        f"  sleep({number(settle)})\n",
+    ]
     lines += [f"  servoj({q(row)}{tail}" for row in joints.position_rad]
-    lines += ["  stopj(2.0)\n", "end\n"]
+    lines += [
+        f"  servoj({q(joints.position_rad[-1])}, 0, 0, {number(hold)}, {number(lookahead)}, "
+        f"{number(gain)})  # hold the last target\n",
+        "  stopj(2.0)\n",
+        "end\n",
+    ]
     with atomic_open(path) as handle:
         handle.write("".join(lines))
     return Path(path)
@@ -130,6 +178,8 @@ def read_urscript(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.flo
     """
     rows, holds = [], []
     for line in Path(path).read_text(encoding="utf-8").splitlines():
+        if line.rstrip().endswith("# hold the last target"):
+            continue  # at rest on the last sample: not a sample of the move
         match = _SERVOJ.match(line)
         if match:
             rows.append([float(cell) for cell in match.group(1).split(",")])
