@@ -96,6 +96,7 @@ def run_export(
 
     if fmt not in FORMATS:
         raise InputError("format", fmt, "must be one of " + ", ".join(FORMATS))
+    existed = out.exists()
     try:
         with stderr.status(f"exporting {fmt}"), all_or_nothing(out):
             result = export_plan(
@@ -115,8 +116,20 @@ def run_export(
             if not result.passed:
                 raise RoundTripFailed(result)  # all_or_nothing removes (or restores) the file
     except RoundTripFailed as failure:
+        _remove_folder(out, existed)
         return dataclasses.replace(failure.result, written=False)
+    except BaseException:
+        _remove_folder(out, existed)
+        raise
     return result
+
+
+def _remove_folder(out: Path, existed: bool) -> None:
+    """Remove a folder output (a rosbag2) the export created; files are all_or_nothing's."""
+    import shutil
+
+    if not existed and out.is_dir() and not out.is_symlink():
+        shutil.rmtree(out, ignore_errors=True)
 
 
 class RoundTripFailed(Exception):

@@ -14,7 +14,7 @@ from sloshkit.cli.options import with_options
 from sloshkit.errors import InputError, require_in_range
 from sloshkit.io.units import parse_bounded, parse_number, parse_quantity
 
-FORMAT_HELP = "pose-csv, joint-csv, ros2, urscript or cam-table."
+FORMAT_HELP = "pose-csv, joint-csv, ros2, ros2-bag (rosbag2 folder), urscript or cam-table."
 
 Robot = Annotated[
     str | None,

@@ -37,11 +37,12 @@ from sloshkit.version import __version__
 
 FloatArray = NDArray[np.float64]
 
-FORMATS = ("pose-csv", "joint-csv", "ros2", "urscript", "cam-table")
+FORMATS = ("pose-csv", "joint-csv", "ros2", "ros2-bag", "urscript", "cam-table")
 SUFFIXES = {
     "pose-csv": ".poses.csv",
     "joint-csv": ".joints.csv",
     "ros2": ".ros2.yaml",
+    "ros2-bag": ".bag",
     "urscript": ".script",
     "cam-table": ".cam.csv",
 }
@@ -296,6 +297,10 @@ def export_plan(
             joint_csv.write_joint_csv(path, joints, metadata)
         elif fmt == "ros2":
             ros2.write_ros2_yaml(path, joints, arm.base_link, metadata)
+        elif fmt == "ros2-bag":
+            from sloshkit.export.formats.ros2_bag import write_ros2_bag
+
+            write_ros2_bag(path, joints, arm.base_link, metadata)
         else:
             settle, note = approach_settle_time(
                 arm, joints.position_rad[0], mounting, model, limits

@@ -203,8 +203,12 @@ def solve_joint_path(
         # Seed: the previous solution, extrapolated linearly once two are known; the first
         # sample also tries `FIRST_SAMPLE_SEEDS` starts around the seed if that one misses.
         guess = 2.0 * previous - solution[index - 2] if index >= 2 else previous
+        if index == 0:  # the seed's configuration, its base turned towards the first pose
+            guess = facing_seed(arm, targets[0], guess)
         guess = np.clip(guess, arm.lower_rad, arm.upper_rad)
         joints, distance, angle = _solve_and_measure(arm, targets[index], guess)
+        if index == 0 and not _reached(distance, angle):
+            joints, distance, angle = _solve_and_measure(arm, targets[index], previous)
         if index == 0 and not _reached(distance, angle):
             for seed in _first_sample_seeds(arm, guess):
                 candidate = _solve_and_measure(arm, targets[index], seed)
@@ -235,6 +239,55 @@ def solve_joint_path(
 #: Extra IK starts tried for the first sample when the seed misses: the seed with each joint
 #: in turn moved by +-pi/2 (clipped to its range), in a fixed order.
 FIRST_SAMPLE_SEEDS = "each joint +-pi/2"
+
+
+def facing_seed(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
+    """The seed with its first joint turned so that its tip faces the target's azimuth about
+    the base z axis (the direction, + or -, that lands nearer): the seed's configuration
+    (elbow up, wrist not flipped for the UR5e's default) carried to where the target is, so
+    that a local IK from it stays in that configuration instead of reaching over the shoulder.
+
+    Parameters
+    ----------
+    arm : Arm
+        The arm.
+    target : numpy.ndarray
+        The first tip frame (4, 4) in the base frame.
+    seed : numpy.ndarray
+        The configured seed [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        The turned seed (clipped to the joint limits) [rad].
+
+    Examples
+    --------
+    >>> from sloshkit.export.kinematics import load_arm
+    >>> arm = load_arm("ur5e")
+    >>> tip = arm.forward(arm.home_rad[None])[0]
+    >>> behind = tip.copy()
+    >>> behind[:2, 3] *= -1.0  # the same pose on the other side of the base
+    >>> turned = facing_seed(arm, behind, arm.home_rad)
+    >>> round(abs(math.degrees(turned[0] - arm.home_rad[0])), 1)
+    180.0
+    """
+
+    def azimuth(frame: FloatArray) -> float:
+        return math.atan2(float(frame[1, 3]), float(frame[0, 3]))
+
+    aim = azimuth(target)
+    turn = aim - azimuth(arm.forward(np.asarray(seed, dtype=float)[None])[0])
+    turn = (turn + math.pi) % (2 * math.pi) - math.pi
+    best, miss = np.asarray(seed, dtype=float), math.inf
+    for sign in (1.0, -1.0):
+        moved = np.asarray(seed, dtype=float).copy()
+        moved[0] += sign * turn
+        moved = np.clip(moved, arm.lower_rad, arm.upper_rad)
+        off = abs((azimuth(arm.forward(moved[None])[0]) - aim + math.pi) % (2 * math.pi) - math.pi)
+        if off < miss:
+            best, miss = moved, off
+    return best
 
 
 def _first_sample_seeds(arm: Arm, seed: FloatArray) -> list[FloatArray]:

@@ -14,7 +14,7 @@ from sloshkit.export.kinematics import Arm
 FloatArray = NDArray[np.float64]
 
 #: The formats that hold joint positions (read back through forward kinematics).
-JOINT_FORMATS = ("joint-csv", "ros2", "urscript")
+JOINT_FORMATS = ("joint-csv", "ros2", "ros2-bag", "urscript")
 
 
 def rebuild_container_poses(
@@ -83,7 +83,7 @@ def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArr
     Parameters
     ----------
     fmt : str
-        joint-csv, ros2 or urscript.
+        joint-csv, ros2, ros2-bag or urscript.
     path : str or pathlib.Path
         The file.
 
@@ -110,6 +110,11 @@ def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArr
         return joints.time_s, joints.position_rad
     if fmt == "ros2":
         joints, _ = ros2.read_ros2_yaml(path)
+        return joints.time_s, joints.position_rad
+    if fmt == "ros2-bag":
+        from sloshkit.export.formats.ros2_bag import read_ros2_bag
+
+        joints, _ = read_ros2_bag(path)
         return joints.time_s, joints.position_rad
     if fmt == "urscript":
         return urscript.read_urscript(path)
