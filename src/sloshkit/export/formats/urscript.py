@@ -8,10 +8,10 @@ with the metadata as comments inside it. The program moves to the first sample w
 controller period; ``servoj`` blocks for ``t``). Between the approach and the stream it waits
 ``settle_time_s`` (`sloshkit.export.exporter.approach_settle_time`: the approach's slosh decays
 below the plan's residual limit), and after the last sample it holds the last target for
-``hold_time_s`` (one ``servoj`` with that ``t``, marked ``# hold``) before ``stopj``, so the servo
-reaches the last target at rest instead of being stopped while its look-ahead still lags. ``a`` and ``v`` are
-not used by the controller (written as 0). Signature and ranges from the URScript manual
-(Universal Robots, *The URScript Programming Language*, e-Series SW 5.x, ``servoj``):
+``hold_time_s`` (one ``servoj`` with that ``t``, marked ``# hold``) before ``stopj``, so the
+servo reaches the last target at rest instead of being stopped while its look-ahead still
+lags. ``a`` and ``v`` are not used by the controller (written as 0). Signature and ranges
+from the URScript manual (Universal Robots, *The URScript Programming Language*, e-Series SW 5.x, ``servoj``):
 ``lookahead_time`` in [0.03, 0.2] s, ``gain`` in [100, 2000].
 """
 
