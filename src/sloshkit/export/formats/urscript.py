@@ -11,7 +11,8 @@ below the plan's residual limit), and after the last sample it holds the last ta
 ``hold_time_s`` (one ``servoj`` with that ``t``, marked ``# hold``) before ``stopj``, so the
 servo reaches the last target at rest instead of being stopped while its look-ahead still
 lags. ``a`` and ``v`` are not used by the controller (written as 0). Signature and ranges
-from the URScript manual (Universal Robots, *The URScript Programming Language*, e-Series SW 5.x, ``servoj``):
+from the URScript manual (Universal Robots, *The URScript Programming Language*,
+e-Series SW 5.x, ``servoj``):
 ``lookahead_time`` in [0.03, 0.2] s, ``gain`` in [100, 2000].
 """
 
