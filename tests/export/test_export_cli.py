@@ -47,7 +47,10 @@ def test_export_joint_csv_json_contract(tmp_path: Path) -> None:
         "joints",
         "round_trip",
         "passed",
+        "written",  # False when a failed round trip removed the file (issue 24)
         "notes",
+        "model_source",  # the plan file's header, the command line or both (issue 24)
+        "limits",
         "warnings",  # every --json object carries the command's validity warnings (issue 17)
     }
     assert payload["path"] == str(tmp_path / "plan.joints.csv")
@@ -76,7 +79,8 @@ def test_export_exits_1_when_a_limit_is_broken(tmp_path: Path) -> None:
         app,
         [
             *("export", str(plan), "--format", "cam-table", "--out", str(tmp_path / "cam.csv")),
-            *("--max-angle", "0.5deg", "--max-residual", "0.25deg", "--json"),
+            *("--max-angle", "0.5deg", "--max-residual", "0.25deg", "--radius", "20.5mm"),
+            "--json",
         ],
     )
     assert result.exit_code == 1, result.output
@@ -88,8 +92,9 @@ def test_export_exits_1_when_a_limit_is_broken(tmp_path: Path) -> None:
 def test_unreachable_path_is_one_line_exit_2(tmp_path: Path) -> None:
     plan = write_quintic_plan(tmp_path / "plan.csv", duration_s=0.1)
     completed = run_entry_point(
-        "export", str(plan), "--format", "ros2", "--robot", "ur5e", "--base-pose=2m,0,0.3m"
-    )
+        "export", str(plan), "--format", "ros2", "--robot", "ur5e", "--base-pose=2m,0,0.3m",
+        "--radius", "20.5mm",
+    )  # fmt: skip
     assert completed.returncode == 2
     lines = completed.stderr.strip().splitlines()
     assert len(lines) == 1 and "sample 0" in lines[0] and "cannot reach" in lines[0]
@@ -128,7 +133,9 @@ def test_export_of_a_pose_stream_uses_the_3d_model(tmp_path: Path) -> None:
         mounting=Mounting(base_xyz_m=(-0.49, -0.13, 0.39)),
         check=False,
     )
-    result = runner.invoke(app, ["export", str(poses), "--format", "joint-csv", "--json"])
+    result = runner.invoke(
+        app, ["export", str(poses), "--format", "joint-csv", "--radius", "20.5mm", "--json"]
+    )
     assert result.exit_code == 0, result.output
     trip = json.loads(result.output)["round_trip"]
     assert trip["passed"] and "3-D" in trip["method"]
@@ -141,7 +148,7 @@ def test_mounting_and_seed_options_are_parsed_with_units(tmp_path: Path) -> None
         app,
         [
             *("export", str(plan), "--format", "joint-csv", "--axis", "y", "--json"),
-            *("--seed-joints", "0,-90deg,90deg,-90deg,-90deg,0"),
+            *("--seed-joints", "0,-90deg,90deg,-90deg,-90deg,0", "--radius", "20.5mm"),
             *("--tool-offset", "0,0,0.1m", "--tool-rotation", "3.141592653589793,0,0"),
             "--base-pose=-490mm,-0.13m,0.39m,0deg,0deg,90deg",
         ],

@@ -241,9 +241,14 @@ def solve_joint_path(
 FIRST_SAMPLE_SEEDS = "each joint +-pi/2"
 
 
+#: A seed whose tip is within this azimuth of the first pose is used as it is (a local solve
+#: from it stays in its configuration); farther, its first joint is turned (`facing_seed`).
+FACING_TOLERANCE_RAD = math.pi / 4
+
+
 def facing_seed(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
     """The seed with its first joint turned so that its tip faces the target's azimuth about
-    the base z axis (the direction, + or -, that lands nearer): the seed's configuration
+    the base z axis when it is more than `FACING_TOLERANCE_RAD` away (the direction, + or -, that lands nearer): the seed's configuration
     (elbow up, wrist not flipped for the UR5e's default) carried to where the target is, so
     that a local IK from it stays in that configuration instead of reaching over the shoulder.
 
@@ -280,6 +285,8 @@ def facing_seed(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
     turn = aim - azimuth(arm.forward(np.asarray(seed, dtype=float)[None])[0])
     turn = (turn + math.pi) % (2 * math.pi) - math.pi
     best, miss = np.asarray(seed, dtype=float), math.inf
+    if abs(turn) <= FACING_TOLERANCE_RAD:
+        return best
     for sign in (1.0, -1.0):
         moved = np.asarray(seed, dtype=float).copy()
         moved[0] += sign * turn
