@@ -159,7 +159,8 @@ def test_urscript_has_one_servoj_per_2ms_sample(tmp_path: Path, ur5e) -> None:
     servoj = [line for line in lines if line.strip().startswith("servoj(")]
     assert result.sample_period_s == 0.002
     assert len(servoj) == result.samples + 1 == round(0.1 / 0.002) + 2  # and the hold
-    assert all(line.endswith(", 0, 0, 0.002, 0.05, 500)") for line in servoj)
+    assert all(line.endswith(", 0, 0, 0.002, 0.05, 500)") for line in servoj[:-1])
+    assert servoj[-1].endswith(", 0, 0, 0.2, 0.05, 500)  # hold the last target")
     assert lines[0] == "def sloshkit_move():" and lines[-2:] == ["  stopj(2.0)", "end"]
     assert all(line.startswith("  ") for line in lines[1:-1])  # one def ... end block
     assert sum(line.strip().startswith("movej(") for line in lines) == 1

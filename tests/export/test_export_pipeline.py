@@ -69,9 +69,9 @@ def readme_plan(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The README's `sloshkit plan ... --out traj.csv`, run once."""
     folder = tmp_path_factory.mktemp("readme")
     out = folder / "traj.csv"
-    proc = run_entry_point(*README_PLAN, "--out", str(out), "--json")
+    proc = run_entry_point(*README_PLAN, "--out", str(out))
     assert proc.returncode == 0, proc.stderr
-    assert json.loads(proc.stdout)["method"] == "optimal"
+    assert "chosen: optimal" in proc.stdout
     return out
 
 
@@ -103,12 +103,11 @@ def test_readme_plan_with_export_urscript_passes(tmp_path: Path) -> None:
     out = tmp_path / "traj.csv"
     proc = run_entry_point(
         *README_PLAN[:4], "3deg", *README_PLAN[5:], "--out", str(out),
-        "--export", "urscript", "--base-pose=-0.7m,-0.25m,0.3m", "--json",
+        "--export", "urscript", "--base-pose=-0.7m,-0.25m,0.3m",
     )  # fmt: skip
-    assert proc.returncode == 0, proc.stderr
-    payload = json.loads(proc.stdout)
-    assert payload["export"]["passed"], payload["export"]["round_trip"]["violations"]
-    assert (tmp_path / "traj.script").is_file()
+    assert proc.returncode == 0, proc.stderr + proc.stdout  # exit 1 when the round trip fails
+    assert "round trip: passed" in proc.stdout
+    assert (tmp_path / "traj.script").is_file() and out.is_file()
 
 
 @pytest.mark.parametrize("period_s", [0.002, 0.004, 0.008])
