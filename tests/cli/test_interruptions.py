@@ -224,7 +224,7 @@ def test_sigterm_during_a_joint_export_leaves_no_file(tmp_path: Path) -> None:
     out.mkdir()
     args = [
         "export", str(plan), "--format", "joint-csv", "--out", "joints.csv",
-        "--base-pose=-0.5m,-0.13m,0.39m", "--sample-period", "1ms",
+        "--base-pose=-0.5m,-0.13m,0.39m", "--sample-period", "1ms", "--radius", "20.5mm",
     ]  # fmt: skip
     code, stderr = _interrupt(args, out, signal.SIGTERM, 0.3)
     _assert_clean(out, code, 143, stderr)

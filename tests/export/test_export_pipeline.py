@@ -17,15 +17,8 @@ import pytest
 from conftest import run_entry_point
 
 from sloshkit import UprightCylinder, equivalent_model, get_liquid
-from sloshkit.export.plans import (
-    LinePlan,
-    PoseStream,
-    plan_header,
-    read_metadata,
-    read_plan,
-    read_plan_header,
-    write_plan_csv,
-)
+from sloshkit.export.headers import plan_header, read_plan_header, write_plan_csv
+from sloshkit.export.plans import LinePlan, PoseStream, read_metadata, read_plan
 from sloshkit.export.roundtrip import line_metrics
 from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 from sloshkit.plan.spatial import SpatialSloshLimits

@@ -238,7 +238,9 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
         "warnings",  # every --json object carries the command's validity warnings (issue 17)
     }
     assert payload["feasible"] and payload["peak_slosh_height_m"] <= 0.012
-    assert out.read_text().splitlines()[0] == "t,x,y,z,qx,qy,qz,qw"
+    lines = out.read_text().splitlines()
+    assert lines[2] == "t,x,y,z,qx,qy,qz,qw"  # after the plan header and the units (issue 24)
+    assert '"max_slosh_height_m": 0.012' in lines[0]
     failed = run_entry_point(*common, "--max-slosh-height", "0.0001mm")
     assert failed.returncode == 1
     assert "no method meets the limits" in failed.stderr

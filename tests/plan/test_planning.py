@@ -242,9 +242,10 @@ def test_plan_cli_csv_json_and_independent_resimulation(tmp_path):
     ):
         assert key in payload
     assert payload["feasible"] is True
-    lines = out.read_text().splitlines()
+    lines = [line for line in out.read_text().splitlines() if not line.startswith("#")]
     assert lines[0] == "t_s,position_m,velocity_m_s,acceleration_m_s2,jerk_m_s3"
-    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert out.read_text().startswith("# sloshkit-plan: {")  # model and limits (issue 24)
+    data = np.loadtxt(lines[1:], delimiter=",")
     np.testing.assert_allclose(np.diff(data[:, 0]), 0.004, atol=1e-9)
     assert data[0, 0] == 0.0 and data[0, 1] == 0.0
     assert data[-1, 1] == pytest.approx(0.5, abs=1e-9)

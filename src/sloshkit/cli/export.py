@@ -344,22 +344,24 @@ def export_command(
 
     target = out if out is not None else path_beside(plan_file, fmt)
     check_export_request(fmt, target, export_settings)
-    from sloshkit.export.plans import read_plan, read_plan_header
+    from sloshkit.export.headers import read_plan_header
+    from sloshkit.export.plans import read_plan
 
+    command_limits = slosh_limits(max_angle, max_residual)
     with naming("plan_file", plan_file):
         plan = read_plan(plan_file)
-    header = read_plan_header(plan.metadata, str(plan_file))
-    model, model_source = export_model(
-        context, header, slosh_model, export_settings.check, plan_file
-    )
-    limits = export_limits(header, slosh_limits(max_angle, max_residual))
     period = None
     if sample_period is not None:
         period = parse_quantity(sample_period, "time", "sample_period")
         check_output_period(plan, period, sample_period)
+    header = read_plan_header(plan.metadata, str(plan_file))
+    model, model_source = export_model(
+        context, header, slosh_model, export_settings.check, plan_file
+    )
+    limits = export_limits(header, command_limits)
     result = run_export(plan, fmt, target, export_settings, model, limits, period)
     if json_output:
-        from sloshkit.export.plans import limits_document
+        from sloshkit.export.headers import limits_document
 
         payload = result.to_dict()
         payload["model_source"] = model_source

@@ -246,7 +246,7 @@ def plan_command(
             if result.feasible:
                 if out is not None:
                     from sloshkit.cli.plan_files import plan_file_header
-                    from sloshkit.export.plans import write_plan_csv
+                    from sloshkit.export.headers import write_plan_csv
 
                     header = plan_file_header(
                         context, slosh_model, problem.slosh, problem.sample_period_s

@@ -88,7 +88,7 @@ def plan_file_header(
     >>> plan_file_header(None, model, SloshLimits(0.1, 0.01), 0.004)["model_options"] is None
     True
     """
-    from sloshkit.export.plans import plan_header
+    from sloshkit.export.headers import plan_header
 
     return plan_header(model, limits, sample_period_s, _typed_model_options(context))
 
@@ -234,7 +234,7 @@ def export_limits(header: dict[str, Any] | None, command_limits: Any) -> Any:
     >>> export_limits(header, None).max_angle_rad
     0.1
     """
-    from sloshkit.export.plans import limits_document, limits_from_document
+    from sloshkit.export.headers import limits_document, limits_from_document
 
     planned = None
     if header is not None and header.get("limits") is not None:

@@ -241,7 +241,7 @@ def run_path_plan(
     if result.feasible:
         if out is not None:
             from sloshkit.cli.plan_files import plan_file_header
-            from sloshkit.export.plans import write_plan_csv
+            from sloshkit.export.headers import write_plan_csv
 
             header = plan_file_header(None, model, problem.slosh, problem.sample_period_s)
             write_plan_csv(out, result.columns(), header)

@@ -248,9 +248,10 @@ FACING_TOLERANCE_RAD = math.pi / 4
 
 def facing_seed(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
     """The seed with its first joint turned so that its tip faces the target's azimuth about
-    the base z axis when it is more than `FACING_TOLERANCE_RAD` away (the direction, + or -, that lands nearer): the seed's configuration
-    (elbow up, wrist not flipped for the UR5e's default) carried to where the target is, so
-    that a local IK from it stays in that configuration instead of reaching over the shoulder.
+    the base z axis, when it is more than `FACING_TOLERANCE_RAD` away (the direction, + or -,
+    that lands nearer): the seed's configuration (elbow up, wrist not flipped for the UR5e's
+    default) carried to where the target is, so that a local IK from it stays in that
+    configuration instead of reaching over the shoulder.
 
     Parameters
     ----------

@@ -205,7 +205,9 @@ def plan_optimal(
             guess = found.duration_s
     fastest = None
     for margin in (1.02, 1.5):  # the second only when the first range held no feasible move
-        longest = guess * margin * (1 + SMOOTH_PRICE if smooth else 1)
+        # Room for the smooth variant in both: the same program for both variants, so that
+        # the smooth move's price is taken from the very minimum the time-optimal search finds.
+        longest = guess * margin * (1 + SMOOTH_PRICE)
         shape = min(MAX_STEPS, math.ceil(longest / ts) + 4)
         grid = exact_grid_for(problem, shape)
         fastest = _minimum_time(grid, guess, floor.duration_s, DISTANCE_TOLERANCE)

@@ -6,7 +6,7 @@ with the metadata as comments inside it. The program moves to the first sample w
 ``movej`` (slowly), then calls
 ``servoj(q, a, v, t, lookahead_time, gain)`` once per sample, ``t`` = 0.002 s (the e-Series
 controller period; ``servoj`` blocks for ``t``). Between the approach and the stream it waits
-``settle_time_s`` (`sloshkit.export.exporter.approach_settle_time`: the approach's slosh decays
+``settle_time_s`` (`sloshkit.export.approach.approach_settle_time`: the approach's slosh decays
 below the plan's residual limit), and after the last sample it holds the last target for
 ``hold_time_s`` (one ``servoj`` with that ``t``, marked ``# hold``) before ``stopj``, so the
 servo reaches the last target at rest instead of being stopped while its look-ahead still
