@@ -239,7 +239,8 @@ def class_table(rows: list[dict[str, Any]], markdown: bool = False) -> str:
             lines.append(f"| {label} | " + " | ".join(cells) + " |")
         else:
             lines.append(
-                f"{label:>28s}: " + "  ".join(f"{c} {x:>8s}" for c, x in zip(classes, cells))
+                f"{label:>28s}: "
+                + "  ".join(f"{c} {x:>8s}" for c, x in zip(classes, cells, strict=True))
             )
     return "\n".join(lines)
 

@@ -337,8 +337,8 @@ def linear_amplitude(  # type: ignore[no-untyped-def]
     """The linear kernel with each mode's frequency and damping ratio taken from its backbone
     at the wave's current amplitude (`sloshkit.sim.spatial_amplitude`): omega(A) =
     omega_n + omega_slope A^2, zeta(A) = zeta_n + zeta_slope A, A capped at amplitude_cap.
-    A^2 = |x|^2 + |x'|^2 / omega_n^2 with x = theta - u / K the deviation from the quasi-static
-    equilibrium at the start of the step; stiffness and forcing are scaled by
+    A^2 = |x|^2 + |x'|^2 / omega(A)^2 with x = theta - u / K the deviation from the quasi-static
+    equilibrium at the start of the step (omega(A) of the previous step); stiffness and forcing are scaled by
     (omega(A) / omega_n)^2 over the step (the restoring force of the wave, not its equilibrium)."""
     modes, steps, _ = force.shape
     angle = np.zeros((modes, steps, 2))
@@ -354,6 +354,7 @@ def linear_amplitude(  # type: ignore[no-untyped-def]
         ty = rest_force[m, 1] * inv_l / k0
         vx = 0.0
         vy = 0.0
+        ratio = 1.0
         angle[m, 0, 0] = tx
         angle[m, 0, 1] = ty
         for j in range(steps - 1):
@@ -368,8 +369,10 @@ def linear_amplitude(  # type: ignore[no-untyped-def]
             qby = (fb[1] * inv_l - tilt_accel[j + 1, 0]) / kb
             dx = tx - qax
             dy = ty - qay
-            wx = (vx - (qbx - qax) / h) / omega[m]
-            wy = (vy - (qby - qay) / h) / omega[m]
+            # the rate scaled by the current (previous step's) frequency: A is then constant
+            # over a cycle of the free oscillation, however large the shift
+            wx = (vx - (qbx - qax) / h) / (omega[m] * ratio)
+            wy = (vy - (qby - qay) / h) / (omega[m] * ratio)
             amplitude = min(np.sqrt(dx * dx + dy * dy + wx * wx + wy * wy), amplitude_cap[m])
             ratio = max(1.0 + omega_slope[m] * amplitude * amplitude / omega[m], 0.1)
             scale = ratio * ratio

@@ -15,7 +15,7 @@ linear 3-D model as an equivalent linearisation (Krylov-Bogoliubov averaging; Na
 mode's stiffness is K (omega(A) / omega_n)^2 and its damping 2 zeta(A) omega(A), with A the
 current amplitude of the wave,
 
-    A^2 = |x|^2 + |x'|^2 / omega_n^2,    x = theta - theta_qs,
+    A^2 = |x|^2 + |x'|^2 / omega(A)^2,    x = theta - theta_qs,
 
 the deviation from the quasi-static equilibrium theta_qs = u / K (the pendulum hanging along the
 apparent gravity). Only the wave is affected: a static or slow tilt of the apparent gravity
@@ -174,7 +174,8 @@ def from_force_backbone(
     >>> from sloshkit.model.modal import equivalent_model
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08, 1)
     >>> dependence = from_force_backbone(model, -1.0, 0.0, 0.5, "example")
-    >>> round(dependence.omega_slope_rad_s_per_rad2[0], 3), round(dependence.amplitude_cap_rad[0], 3)
+    >>> slope, cap = dependence.omega_slope_rad_s_per_rad2[0], dependence.amplitude_cap_rad[0]
+    >>> round(slope, 3), round(cap, 3)
     (-2.68, 0.305)
     """
     per_radian = force_per_radian(model)
