@@ -337,9 +337,10 @@ def linear_amplitude(  # type: ignore[no-untyped-def]
     """The linear kernel with each mode's frequency and damping ratio taken from its backbone
     at the wave's current amplitude (`sloshkit.sim.spatial_amplitude`): omega(A) =
     omega_n + omega_slope A^2, zeta(A) = zeta_n + zeta_slope A, A capped at amplitude_cap.
-    A^2 = |x|^2 + |x'|^2 / omega(A)^2 with x = theta - u / K the deviation from the quasi-static
-    equilibrium at the start of the step (omega(A) of the previous step); stiffness and forcing are scaled by
-    (omega(A) / omega_n)^2 over the step (the restoring force of the wave, not its equilibrium)."""
+    A^2 = |x|^2 + |x'|^2 / omega(A)^2 with x = theta - u / K the deviation from the
+    quasi-static equilibrium at the start of the step (omega(A) of the previous step);
+    stiffness and forcing are scaled by (omega(A) / omega_n)^2 over the step (the restoring
+    force of the wave, not its equilibrium)."""
     modes, steps, _ = force.shape
     angle = np.zeros((modes, steps, 2))
     rate = np.zeros((modes, steps, 2))
