@@ -166,11 +166,8 @@ def run(
                     raise signals.Interrupted(signals.received() or 2)
                 return code if isinstance(code, int) else 0
             except BaseException as failure:  # the one place that reports
-                if isinstance(failure, InputError):
-                    words = list(argv) if argv is not None else sys.argv[1:]
-                    messages.error(stderr, _as_written(failure, application or app, words))
-                    return 2
-                return _report(failure)
+                words = list(argv) if argv is not None else sys.argv[1:]
+                return _report(failure, application or app, words)
     finally:
         warnings.showwarning = saved_showwarning
         if saved_memory is None:
@@ -179,8 +176,8 @@ def run(
             os.environ[ENVIRONMENT_VARIABLE] = saved_memory
 
 
-def _report(failure: BaseException) -> int:
-    """Print ``failure`` as one line and return its exit code."""
+def _report(failure: BaseException, application: typer.Typer, argv: Sequence[str]) -> int:
+    """Print ``failure`` as one line and return its exit code (``argv``: the command line)."""
     if isinstance(failure, SystemExit):
         return failure.code if isinstance(failure.code, int) else 1
     signum = signals.received()
@@ -190,7 +187,7 @@ def _report(failure: BaseException) -> int:
         messages.error(stderr, f"interrupted (exit {code}); {advice}")
         return code
     if isinstance(failure, InputError):
-        messages.error(stderr, _as_written(failure))
+        messages.error(stderr, _as_written(failure, application, argv))
         return 2
     if isinstance(failure, typer.TyperException):
         if type(failure).__name__ == "NoArgsIsHelpError":
