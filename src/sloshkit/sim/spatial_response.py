@@ -95,7 +95,7 @@ class SpatialResponse(ResultMixin):
     >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
     >>> response = sk.simulate_spatial(model, sk.poses_from_law(sk.septic(0.1, 1.5)))
     >>> sorted(response.to_dict())[:3]
-    ['duration_s', 'height_mapping', 'model']
+    ['amplitude_model', 'duration_s', 'height_mapping']
     """
 
     model: SloshModel
