@@ -27,7 +27,7 @@ import shutil
 import tempfile
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import Any, Final
 
 import numpy as np
 
@@ -39,7 +39,7 @@ from sloshkit.export.ik import JointPath
 TOPIC = "/joint_trajectory_controller/joint_trajectory"
 MESSAGE_TYPE = "trajectory_msgs/msg/JointTrajectory"
 #: rosbag2 metadata version written (8: ROS 2 Iron and later).
-BAG_VERSION = 8
+BAG_VERSION: Final = 8
 
 
 def _typestore() -> Any:
