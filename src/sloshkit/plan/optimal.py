@@ -47,8 +47,10 @@ MAX_STEPS = 8000
 DISTANCE_TOLERANCE = 4e-5
 
 
-def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
-    """The `ExportGrid` program of ``problem`` with room for ``steps`` steps.
+def exact_grid_for(problem: PlanProblem, steps: int, substeps: int | None = None) -> Any:
+    """The `ExportGrid` program of ``problem`` with room for ``steps`` steps, its slosh checked
+    on ``substeps`` sub-samples per step (default `sloshkit.plan.verification.slosh_substeps`,
+    the verification's check grid).
 
     The first mode of every model of the band carries the angle and residual limits; the
     other modes are kept only when the wall elevation is limited (it sums every mode).
@@ -59,6 +61,8 @@ def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
         Distance, limits, model, band and sample period.
     steps : int
         Largest number of export steps.
+    substeps : int, optional
+        Slosh sub-samples per step (1 for the coarse first pass, whose root is only a guess).
 
     Returns
     -------
@@ -81,7 +85,7 @@ def exact_grid_for(problem: PlanProblem, steps: int) -> Any:
     from sloshkit.sim.discretisation import velocity_driven_discretisation
 
     slosh, machine, ts = problem.slosh, problem.machine, problem.sample_period_s
-    substeps = slosh_substeps(ts)
+    substeps = slosh_substeps(ts) if substeps is None else substeps
     keep_all = slosh.max_wall_elevation_m is not None
     pendulums = []
     for index, model in enumerate(problem.models()):
@@ -198,7 +202,7 @@ def plan_optimal(
     programs = iterations = 0
     if factor > 1:
         coarse_problem = replace(problem, sample_period_s=factor * ts)
-        coarse = exact_grid_for(coarse_problem, math.ceil(guess / (factor * ts)) + 2)
+        coarse = exact_grid_for(coarse_problem, math.ceil(guess / (factor * ts)) + 2, 1)
         found = _minimum_time(coarse, guess, floor.duration_s, 1e-3)
         programs, iterations = coarse.programs, coarse.iterations
         if found is not None:
