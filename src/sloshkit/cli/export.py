@@ -84,7 +84,9 @@ def run_export(
     >>> t = np.arange(126) * 0.008
     >>> s = t / t[-1]
     >>> x = 0.1 * s**3 * (10 - 15 * s + 6 * s**2)
-    >>> plan = LinePlan(t, x, np.gradient(x, t), np.gradient(np.gradient(x, t), t))
+    >>> v = 0.2 / t[-1] * 30 * s**2 * (1 - s) ** 2
+    >>> a = 0.2 / t[-1] ** 2 * 60 * s * (1 - s) * (1 - 2 * s)
+    >>> plan = LinePlan(t, x, v, a)
     >>> settings = ExportSettings(None, None, None, None, None, Mounting(), (1.0, 0.0, 0.0),
     ...                           0.1, 300.0, True)
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "move.cam.csv"

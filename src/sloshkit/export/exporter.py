@@ -262,7 +262,9 @@ def export_plan(
     >>> t = np.arange(101) * 0.004
     >>> s = t / t[-1]
     >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
-    >>> plan = LinePlan(t, x, np.gradient(x, t), np.gradient(np.gradient(x, t), t))
+    >>> v = 0.2 / t[-1] * 30 * s**2 * (1 - s) ** 2
+    >>> a = 0.2 / t[-1] ** 2 * 60 * s * (1 - s) * (1 - 2 * s)
+    >>> plan = LinePlan(t, x, v, a)
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "move.cam.csv"
     >>> export_plan(plan, "cam-table", out, model=model).passed
     True
@@ -366,7 +368,9 @@ def check_round_trip(
     >>> t = np.arange(101) * 0.004
     >>> s = t / t[-1]
     >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
-    >>> plan = LinePlan(t, x, np.gradient(x, t), np.gradient(np.gradient(x, t), t))
+    >>> v = 0.2 / t[-1] * 30 * s**2 * (1 - s) ** 2
+    >>> a = 0.2 / t[-1] ** 2 * 60 * s * (1 - s) * (1 - 2 * s)
+    >>> plan = LinePlan(t, x, v, a)
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "move.cam.csv"
     >>> _ = export_plan(plan, "cam-table", out, check=False)
     >>> trip, _ = check_round_trip("cam-table", out, line_to_poses(plan, np.ones(3)), model)

@@ -398,8 +398,8 @@ def require_rest(plan: LinePlan | PoseStream, source: str = "plan") -> None:
     >>> try:
     ...     require_rest(LinePlan(t, t, 1 + 0 * t, 0 * t), "move.csv")
     ... except InputError as error:
-    ...     print(error)
-    plan_file = 'move.csv': must start and end at rest (start speed 1 m/s, end speed 1 m/s)
+    ...     print(str(error).split(": ", 1)[1])
+    must start and end at rest (start speed 1 m/s, end speed 1 m/s)
     """
     if isinstance(plan, LinePlan):
         speed = np.abs(plan.velocity_m_s)

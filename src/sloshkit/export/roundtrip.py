@@ -284,7 +284,7 @@ def spatial_metrics(
     >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
     >>> from sloshkit.export.frames import poses_to_matrices
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
-    >>> t = np.arange(101) * 0.004
+    >>> t = np.arange(251) * 0.004
     >>> s = t / t[-1]
     >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
     >>> position = np.column_stack((x, 0 * x, 0 * x))
