@@ -146,6 +146,12 @@ class ExportGrid:
         # s = z + g1 v: s_{j+1} = Phi s_j + g1 v_{j+1} + (Gamma - Phi g1) v_j, v_j the velocity
         # at sub-sample j (a combination of its step's node v, a and jerk; 0 from T on).
         fine = self._fine
+        listed = self._velocity_terms(tau)
+        terms = (
+            np.array([t[0] for t in listed], dtype=np.int64),
+            np.array([t[1] for t in listed], dtype=np.int64),
+            np.array([t[2] for t in listed], dtype=float),
+        )
         for index, pend in enumerate(self.pendulums):
             scale = np.array([lim.max_angle_rad, vmax / pend.length_m])
             phi = pend.phi * scale[None, :] / scale[:, None]
@@ -158,11 +164,11 @@ class ExportGrid:
                 put(here, base + 2 * samples + c, 1.0)
                 for d in range(2):
                     put(here[1:], base + 2 * samples[:-1] + d, -phi[c, d])
-            for j, column, weight in self._velocity_terms(tau):
-                for c in range(2):
-                    put([row + 2 * (j - 1) + c], [column], -now[c] * weight)
-                    if j < fine:
-                        put([row + 2 * j + c], [column], -before[c] * weight)
+            sample, column, weight = terms
+            later = sample < fine
+            for c in range(2):
+                put(row + 2 * (sample - 1) + c, column, -now[c] * weight)
+                put(row + 2 * sample[later] + c, column[later], -before[c] * weight[later])
             row += 2 * fine
         equalities = row
         # Two-sided rows |row| <= 1: the velocity within each step (its Bernstein midpoint
