@@ -5,9 +5,13 @@ last, shorter step of length tau in (0, Ts], so that T = (N - 1) Ts + tau is con
 slosh is what the verification simulates: the exported velocity samples v_k = v(k Ts) (v_N = 0,
 the move is over at the last sample) drive the exact first-order-hold discretisation of each
 pendulum (Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 3rd ed. (1998)
-§6.3.2): z_{k+1} = Phi z_k + Gamma v_k, theta_k = z_k + g1 v_k. The slosh limits are imposed at
-exactly the samples the verification checks, so the planned move passes it without tightening
-and solving again.
+§6.3.2): z_{k+1} = Phi z_k + Gamma v_k, theta_k = z_k + g1 v_k. The pendulums run on the slosh
+check grid (each step split into ``Limits.substeps`` sub-steps no longer than the finest
+controller period, 2 ms; `sloshkit.plan.verification.slosh_substeps`), driven by the exact
+velocity of the piecewise-constant-jerk move at the sub-samples (linear in the step's node
+velocity, node acceleration and jerk), so that the limits also hold when the plan is resampled
+for a 2 ms controller. The slosh limits are imposed at exactly the samples the verification
+checks, so the planned move passes it without tightening and solving again.
 
 For a fixed duration every constraint is linear in the jerks and homogeneous (the move scaled
 by c in [0, 1] still meets every limit), except the residual circle, which is replaced by an
@@ -189,7 +193,7 @@ class ExportGrid:
         two_sided = row
         # Residual polygon: cos(p) theta_j + sin(p) B_j <= r, B = (theta' + zeta w theta) / w_d
         # (theta' = y where v = 0), at each sub-sample of the last step; those before T are
-        # released (`_residual_rows`), so it binds at the first sub-sample at or after T.
+        # released (`_residual_active`), so it binds at the first sub-sample at or after T.
         phases = np.linspace(0.0, 2 * math.pi, FACETS, endpoint=False)
         self._facets: list[tuple[int, int]] = []
         for index, pend in enumerate(self.pendulums):
