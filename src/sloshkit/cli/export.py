@@ -334,8 +334,12 @@ def export_command(
     """Write a plan in a controller's format and check the round trip.
 
     The file is parsed back, the container's motion rebuilt (forward kinematics for joint
-    formats) and the slosh re-simulated; exit code 1 when peak or residual slosh differ from
-    the plan's by more than 2 % or a given limit is broken.
+    formats) and the slosh re-simulated; exit code 1 (and no file written) when peak or
+    residual slosh differ from the plan's by more than 2 % or a limit is broken. The model and
+    the limits come from the plan file's '# sloshkit-plan:' header (written by 'sloshkit plan
+    --out'); model options and --max-angle/--max-residual given here override it, with a
+    warning when they differ. Without that header give the model options (or --no-check).
+    The plan must start and end at rest.
 
     Example:
 
