@@ -136,7 +136,20 @@ def _remove_folder(out: Path, existed: bool) -> None:
 
 class RoundTripFailed(Exception):
     """Raised inside an all-or-nothing block when an export's round trip fails, so that the
-    file is not left behind; carries the `ExportResult`."""
+    file is not left behind; carries the `ExportResult`.
+
+    Parameters
+    ----------
+    result : ExportResult
+        The failed export.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from sloshkit.export.exporter import ExportResult
+    >>> RoundTripFailed(ExportResult("cam-table", Path("move.cam.csv"), 3, 0.004)).result.samples
+    3
+    """
 
     def __init__(self, result: Any) -> None:
         super().__init__("round trip failed")
