@@ -12,8 +12,8 @@ Methods (all verified the same way, see `verify`):
   slosh limits at every exported sample, for each frequency of the robustness band); by default
   its smooth variant (`sloshkit.plan.optimal.SMOOTH_PRICE` = 0.5 % longer than the minimum time,
   least total variation of the jerk), with ``smooth=False`` the bang-bang time-optimal move;
-  large-angle pendulums (time-optimal only) by multiple shooting (Betts, *Practical Methods for Optimal Control*, 2nd ed.,
-  SIAM (2010) ch. 4);
+  large-angle pendulums (time-optimal only) by multiple shooting (Betts, *Practical Methods for
+  Optimal Control*, 2nd ed., SIAM (2010) ch. 4);
 - ``auto``: all of the above, the fastest that passes verification.
 
 Verification never trusts a planner's internal model: the motion is sampled at the controller's

@@ -218,15 +218,15 @@ def _calibrate(scenario: Scenario, cfd_result: Any | None) -> _Calibration:
                 end_s=options["end"],
                 source=str(options["data"]),
             )
-        values = {"data_file": str(options["data"])}
+        values: dict[str, Any] = {"data_file": str(options["data"])}
         return _Calibration(result.calibrated_model(model), result, "data", found, values)
     if scenario.paper_comparison:
         delta = PAPER_TABLE4["log_decrement"]
         time_s, elevation_m, record = shipped_cfd_free_decay()
-        values = {"paper_delta": delta, "paper_zeta": zeta_from_log_decrement(delta)}
         with recorded_warnings() as found:
             result = calibrate(time_s, elevation_m, source="sloshkit CFD free decay (shipped)")
-        return _Calibration(model, result, "shipped", found, {**values, "record": record})
+        quoted = {"paper_delta": delta, "paper_zeta": zeta_from_log_decrement(delta)}
+        return _Calibration(model, result, "shipped", found, {**quoted, "record": record})
     return _Calibration(model)
 
 
