@@ -52,8 +52,8 @@ from sloshkit.model.theory import (
 #: and the references sloshkit has (the paper's CFD: 3.7 % below theory at Bo = 57, where the
 #: correction is +2.9 %; the measured 49 mm glass cylinder: 0.6 % below at Bo = 323, correction
 #: +0.5 %): neither supports raising the frequency there. Above it the correction dominates the
-#: model's error (a 2 mL vial of radius 8 mm: +17.9 %, and a plan made without it leaves 10x its
-#: residual limit). See docs/user-guide.md.
+#: model's error (a 2 mL vial of radius 8 mm: +17.9 %, and the docs/how-do-i.md plan made
+#: without it leaves 2.0-2.6 deg against its 0.25 deg residual limit). See docs/user-guide.md.
 CAPILLARY_THRESHOLD = 0.05
 
 
