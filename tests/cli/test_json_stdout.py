@@ -141,3 +141,34 @@ def test_a_c_level_write_during_the_work_does_not_reach_stdout(tmp_path):
     assert payload["modes"]
     assert "FD-LEVEL BANNER" in result.stderr
     assert "C-LEVEL BANNER" in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("args", "named"),
+    [
+        (["model", "--radius", "abc"], "error: --radius = 'abc' is invalid"),
+        (["simulate", "--pose-file", "missing.csv"], "error: --pose-file = 'missing.csv'"),
+        (["model", "--fill-height", "1m", "--wall-height", "10mm"], "error: --fill-height ="),
+        (["export", "missing.csv", "--format", "urscript"], "error: PLAN_FILE = 'missing.csv'"),
+    ],
+)
+def test_errors_name_the_option_as_written(args, named, tmp_path):
+    result = subprocess.run(
+        [*entry_point(), *args], cwd=tmp_path, capture_output=True, text=True, timeout=300
+    )
+    assert result.returncode == 2
+    assert result.stderr.startswith(named), result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr
+
+
+def test_help_keeps_units_in_brackets(tmp_path):
+    result = subprocess.run(
+        [*entry_point(), "simulate", "--help"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, "COLUMNS": "200"},
+    )
+    assert result.returncode == 0
+    assert "(t [ms], x [mm])" in result.stdout

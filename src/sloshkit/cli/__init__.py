@@ -113,6 +113,7 @@ def _help_app() -> Any:
         no_args_is_help=True,
         add_completion=False,
         pretty_exceptions_enable=False,
+        rich_markup_mode=None,
     )
     stand_in.callback()(_app_module()._root)
     for command, (_, short) in COMMANDS.items():
