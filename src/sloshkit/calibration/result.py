@@ -258,7 +258,7 @@ def disagreements(estimates: dict[str, Estimate]) -> list[str]:
     []
     >>> vague = Estimate("logdec", 30.0, 0.0024, 30.0, damping_ratio_interval=(0.0, 0.022))
     >>> precise = Estimate("fit", 30.0, 0.0069, 30.0, damping_ratio_interval=(0.0064, 0.0074))
-    >>> [m[:55] for m in disagreements({"fit": precise, "logdec": vague})]
+    >>> [m[:54] for m in disagreements({"fit": precise, "logdec": vague})]
     ['estimators disagree on zeta: fit 0.0069, logdec 0.0024']
     """
     fit, logdec = estimates.get("fit"), estimates.get("logdec")
