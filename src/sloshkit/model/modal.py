@@ -122,7 +122,7 @@ def equivalent_model(
     >>> import warnings
     >>> vial = sk.UprightCylinder(0.008)
     >>> with warnings.catch_warnings(record=True):
-    ...     small = sk.equivalent_model(vial, sk.get_liquid("water-20C"),
+    ...     small = sk.equivalent_model(vial, sk.get_liquid("water-25C"),
     ...                                 vial.fill_height_for_volume(2e-6))
     >>> small.surface_tension_correction
     True
