@@ -47,7 +47,8 @@ class DecayAmplitudeDependence:
     >>> from sloshkit.model.modal import equivalent_model
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08, 1)
     >>> t = np.arange(0.0, 8.0, 0.002)
-    >>> found = decay_amplitude_dependence(model, t, 0.4 * np.exp(-0.13 * t) * np.cos(19.15 * t), 0.0)
+    >>> decay = 0.4 * np.exp(-0.13 * t) * np.cos(19.15 * t)
+    >>> found = decay_amplitude_dependence(model, t, decay, 0.0)
     >>> type(found).__name__, found.dependence.zeta_slope_per_rad[0]
     ('DecayAmplitudeDependence', 0.0)
     """
