@@ -28,9 +28,10 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from sloshkit.errors import InputError, require_in_range, require_positive, warn_validity
-from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
 from sloshkit.model.pendulums import SloshMode, SloshModel
+from sloshkit.model.profile import Container, ProfileContainer
+from sloshkit.model.profile_modal import profile_equivalent_model
 from sloshkit.model.theory import (
     DAMPING_LAWS,
     GRAVITY_M_S2,
@@ -49,7 +50,7 @@ from sloshkit.model.theory import (
 
 
 def equivalent_model(
-    container: UprightCylinder,
+    container: Container,
     liquid: Liquid,
     fill_height_m: float,
     n_modes: int = 3,
@@ -65,10 +66,14 @@ def equivalent_model(
     for very shallow fills, capillary-dominated containers and damping so high that the
     boundary-layer correlations no longer hold.
 
+    A `ProfileContainer` (any axisymmetric container, e.g. a catalogued vial) is modelled by
+    finite elements instead (`sloshkit.model.profile_modal.profile_equivalent_model`); the
+    upright cylinder keeps the closed form.
+
     Parameters
     ----------
-    container : UprightCylinder
-        The upright cylinder (radius, optional wall height).
+    container : UprightCylinder or ProfileContainer
+        The upright cylinder (radius, optional wall height) or an inner profile.
     liquid : Liquid
         Density, viscosity, surface tension.
     fill_height_m : float
@@ -105,6 +110,17 @@ def equivalent_model(
     >>> round(model.modes[0].frequency_hz, 3), round(model.modes[0].length_m * 1e3, 2)  # Hz, mm
     (4.72, 11.15)
     """
+    if isinstance(container, ProfileContainer):
+        return profile_equivalent_model(
+            container,
+            liquid,
+            fill_height_m,
+            n_modes,
+            damping_law=damping_law,
+            damping_ratio=damping_ratio,
+            surface_tension=surface_tension,
+            gravity_m_s2=gravity_m_s2,
+        )
     radius = container.radius_m
     height = container.check_fill_height(fill_height_m)
     gravity = require_positive("gravity", gravity_m_s2, "m/s^2")
@@ -195,7 +211,7 @@ def equivalent_model(
 
 
 def model_family(
-    container: UprightCylinder,
+    container: Container,
     liquid: Liquid,
     *,
     n_modes: int = 3,
@@ -208,8 +224,8 @@ def model_family(
 
     Parameters
     ----------
-    container : UprightCylinder
-        The container.
+    container : UprightCylinder or ProfileContainer
+        The container (a profile's fills are cached: each solved once).
     liquid : Liquid
         The liquid.
     n_modes : int
