@@ -25,13 +25,39 @@ from sloshkit.io.requests import (
     fill_height_request,
     liquid_request,
     model_request,
+    profile_request,
 )
+from sloshkit.model.catalogue import catalogue_names
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import LIQUIDS, Liquid
 from sloshkit.model.modal import SloshModel
 from sloshkit.model.theory import DampingLaw
 
 Radius = Annotated[str, typer.Option("--radius", help="Inner radius, e.g. 20.5mm.")]
+
+
+#: The default of ``--radius`` (the seed paper's vial).
+DEFAULT_RADIUS = "20.5mm"
+
+
+ContainerName = Annotated[
+    str | None,
+    typer.Option(
+        "--container",
+        help="A real container by name instead of --radius (its inner profile, modes by finite "
+        "elements): " + catalogue_names() + ".",
+    ),
+]
+
+
+ProfileFile = Annotated[
+    Path | None,
+    typer.Option(
+        "--profile",
+        help="Inner profile r(z) of an axisymmetric container instead of --radius: CSV "
+        "'z [mm], r [mm]' or TOML (points or primitives; docs/containers.md).",
+    ),
+]
 
 
 FillHeight = Annotated[
@@ -191,6 +217,8 @@ def build_model(
     damping_law: str,
     damping_ratio: float | None,
     surface_tension_correction: bool,
+    container: str | None = None,
+    profile: Path | None = None,
 ) -> SloshModel:
     """Turn the model options (text with units) into a `SloshModel`.
 
@@ -210,6 +238,10 @@ def build_model(
         A damping ratio that replaces the correlation.
     surface_tension_correction : bool
         Apply the capillary frequency correction.
+    container : str or None
+        ``--container``: a catalogue name replacing the radius and wall height.
+    profile : Path or None
+        ``--profile``: a profile file replacing the radius and wall height.
 
     Returns
     -------
@@ -222,12 +254,20 @@ def build_model(
     >>> round(model.fill_height_m * 1e3, 1), round(model.modes[0].frequency_hz, 2)
     (39.0, 4.72)
     """
-    container = build_container(radius, wall_height)
-    height = fill_height_request(container, fill_height, fill_volume)
+    real = profile_request(container, profile)
+    if real is not None and (radius != DEFAULT_RADIUS or wall_height is not None):
+        given = "--container" if container is not None else "--profile"
+        raise InputError(
+            "radius" if radius != DEFAULT_RADIUS else "wall_height",
+            radius if radius != DEFAULT_RADIUS else wall_height,
+            f"is given by {given}; drop it or {given}",
+        )
+    vessel = build_container(radius, wall_height) if real is None else real
+    height = fill_height_request(vessel, fill_height, fill_volume)
     if fill_volume is None:
         check_bare_length(fill_height, height, "fill_height")
     return model_request(
-        container,
+        vessel,
         build_liquid(liquid, density, viscosity, sigma),
         height,
         modes=modes,
@@ -262,7 +302,7 @@ def print_json(payload: object) -> None:
 
 
 MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
-    "radius": (Radius, "20.5mm"),
+    "radius": (Radius, DEFAULT_RADIUS),
     "fill_height": (FillHeight, None),
     "fill_volume": (FillVolume, None),
     "wall_height": (WallHeight, None),
@@ -275,6 +315,8 @@ MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
     "damping_ratio": (DampingRatio, None),
     "surface_tension_correction": (SurfaceTension, False),
     "model_file": (ModelFile, None),
+    "container": (ContainerName, None),
+    "profile": (ProfileFile, None),
 }
 
 

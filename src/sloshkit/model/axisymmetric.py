@@ -164,10 +164,14 @@ def axisymmetric_modes(
     """
     height = profile.check_fill_height(fill_height_m)
     if profile.radius_at(height) <= 0.0:
-        raise InputError("fill_height", f"{height:.6g} m", "must leave a free surface of radius > 0")
+        raise InputError(
+            "fill_height", f"{height:.6g} m", "must leave a free surface of radius > 0"
+        )
     count = int(n_modes)
     if not 1 <= count <= MAX_PROFILE_MODES:
-        raise InputError("modes", count, f"must be 1 .. {MAX_PROFILE_MODES} for a profile container")
+        raise InputError(
+            "modes", count, f"must be 1 .. {MAX_PROFILE_MODES} for a profile container"
+        )
     cells = (
         DEFAULT_RADIAL_CELLS + CELLS_PER_EXTRA_MODE * max(0, count - 3)
         if radial_cells is None
@@ -213,7 +217,8 @@ def meridian_mesh(
     Examples
     --------
     >>> from sloshkit.model.profile import cylinder_profile
-    >>> points, triangles, surface, axis, wall = meridian_mesh(cylinder_profile(0.01, 0.05), 0.01, 4)
+    >>> mesh = meridian_mesh(cylinder_profile(0.01, 0.05), 0.01, 4)
+    >>> points, triangles, surface, axis, wall = mesh
     >>> points.shape, triangles.shape, len(surface), len(axis), len(wall)
     ((2, 25), (3, 32), 5, 5, 5)
     """
@@ -306,7 +311,7 @@ def _solve_unthreaded(
     from scipy.sparse.linalg import splu
     from skfem import Basis, BilinearForm, ElementTriP2, FacetBasis, LinearForm, MeshTri, asm
 
-    points, triangles, surface_nodes, axis_nodes, wall_nodes = meridian_mesh(
+    points, triangles, surface_nodes, _, wall_nodes = meridian_mesh(
         profile, fill_height_m, radial_cells
     )
     mesh = _curved_mesh(profile, MeshTri(points, triangles), wall_nodes)
@@ -380,5 +385,5 @@ def _solve_unthreaded(
         bob_height_m=tuple(float(v) for v in angular / (eigenvalues * moments)),
         wall_elevation_factor_m=tuple(float(v) for v in moments / norms * wall),
         unknowns=int(basis.N - len(axis_dofs)),
-        surface_unknowns=int(len(surface_dofs)),
+        surface_unknowns=len(surface_dofs),
     )

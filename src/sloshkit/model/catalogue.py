@@ -100,9 +100,7 @@ _ISO8362_ROWS = (
 )
 
 #: The ISO 8362-1 vials by size.
-ISO8362_VIALS: dict[str, VialDimensions] = {
-    row[0]: VialDimensions(*row) for row in _ISO8362_ROWS
-}
+ISO8362_VIALS: dict[str, VialDimensions] = {row[0]: VialDimensions(*row) for row in _ISO8362_ROWS}
 
 #: Prefix of the catalogue's names (``iso8362-2R``).
 ISO8362_PREFIX = "iso8362-"

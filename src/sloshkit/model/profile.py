@@ -73,13 +73,16 @@ class ProfileContainer:
             raise InputError("profile", f"first height {z[0]:.6g} m", "must start at z = 0")
         if np.any(np.diff(z) <= HEIGHT_TOLERANCE * max(float(z[-1]), 1e-12)):
             raise InputError(
-                "profile", "heights " + _short(z), "must increase strictly (r must be a function of z)"
+                "profile",
+                "heights " + _short(z),
+                "must increase strictly (r must be a function of z)",
             )
         if r[0] < 0.0 or np.any(r[1:] < RADIUS_RANGE_M[0]) or np.any(r > RADIUS_RANGE_M[1]):
             raise InputError(
                 "profile",
                 "radii " + _short(r),
-                f"must be >= 0 at the bottom and {RADIUS_RANGE_M[0]:g} .. {RADIUS_RANGE_M[1]:g} m above",
+                f"must be >= 0 at the bottom and {RADIUS_RANGE_M[0]:g} .. "
+                f"{RADIUS_RANGE_M[1]:g} m above",
             )
 
     @property
@@ -140,8 +143,7 @@ class ProfileContainer:
                 f"{volume:.6g} m^3",
                 f"must not exceed the brimful volume {cumulative[-1]:.6g} m^3 of {self.name}",
             )
-        index = int(min(np.searchsorted(cumulative, volume) - 1, len(z) - 2))
-        index = max(index, 0)
+        index = max(0, min(int(np.searchsorted(cumulative, volume)) - 1, len(z) - 2))
         rest = volume - cumulative[index]
         dz = z[index + 1] - z[index]
         slope = (r[index + 1] - r[index]) / dz
@@ -230,8 +232,9 @@ class ProfileSegment:
 
     Examples
     --------
-    >>> profile = profile_from_segments([ProfileSegment("cylinder", 0.007, 0.02),
-    ...                                  ProfileSegment("neck", 0.0035, 0.008, shoulder_height_m=0.005)])
+    >>> body = ProfileSegment("cylinder", 0.007, 0.02)
+    >>> neck = ProfileSegment("neck", 0.0035, 0.008, shoulder_height_m=0.005)
+    >>> profile = profile_from_segments([body, neck])
     >>> round(profile.wall_height_m * 1e3, 3), round(profile.radius_at(0.033) * 1e3, 3)
     (33.0, 3.5)
     """
