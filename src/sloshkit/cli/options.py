@@ -430,6 +430,46 @@ def with_model_options(command: Callable[..., None]) -> Callable[..., None]:
     return with_options(MODEL_OPTIONS, "slosh_model", _model_from_options)(command)
 
 
+def _cylinder_model_from_options(values: dict[str, Any]) -> SloshModel:
+    for name in ("container", "profile"):
+        if values[name] is not None:
+            raise InputError(
+                name,
+                str(values[name]),
+                "CFD meshes upright cylinders only (give --radius and --wall-height); a "
+                "container given by its profile is modelled by finite elements, not by CFD",
+            )
+    return _model_from_options(values)
+
+
+def with_cylinder_model_options(command: Callable[..., None]) -> Callable[..., None]:
+    """The shared model options for a command that needs an upright cylinder (CFD): a
+    ``--container`` or ``--profile`` is refused before any model is built.
+
+    Parameters
+    ----------
+    command : callable
+        A command with a ``slosh_model`` parameter.
+
+    Returns
+    -------
+    callable
+        The command with the model options (`MODEL_OPTIONS`) in its signature.
+
+    Examples
+    --------
+    >>> @with_cylinder_model_options
+    ... def command(slosh_model: SloshModel) -> None:
+    ...     print(slosh_model.radius_m)
+    >>> options = {name: default for name, (_, default) in MODEL_OPTIONS.items()}
+    >>> command(**{**options, "container": "iso8362-2R"})
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: container = 'iso8362-2R' is invalid: CFD meshes upright ...
+    """
+    return with_options(MODEL_OPTIONS, "slosh_model", _cylinder_model_from_options)(command)
+
+
 def json_number(value: float) -> float | None:
     """JSON has no infinity: an unbounded value (a jerk impulse) is written as null.
 
