@@ -31,6 +31,7 @@ from sloshkit.model.catalogue import catalogue_names
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import LIQUIDS, Liquid
 from sloshkit.model.modal import SloshModel
+from sloshkit.model.profile import Container
 from sloshkit.model.theory import DampingLaw
 
 Radius = Annotated[str, typer.Option("--radius", help="Inner radius, e.g. 20.5mm.")]
@@ -159,6 +160,47 @@ def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
     return container
 
 
+def build_vessel(
+    radius: str, wall_height: str | None, container: str | None, profile: Path | None
+) -> Container:
+    """The container of the model options: a catalogue name (``--container``), a profile file
+    (``--profile``) or the upright cylinder of ``--radius`` and ``--wall-height``.
+
+    Parameters
+    ----------
+    radius : str
+        ``--radius`` (only its default with a container or profile).
+    wall_height : str or None
+        ``--wall-height`` (not with a container or profile).
+    container : str or None
+        ``--container``.
+    profile : Path or None
+        ``--profile``.
+
+    Returns
+    -------
+    UprightCylinder or ProfileContainer
+
+    Examples
+    --------
+    >>> build_vessel(DEFAULT_RADIUS, None, "iso8362-6R", None).name
+    'iso8362-6R'
+    >>> build_vessel("8mm", None, None, None).radius_m
+    0.008
+    """
+    real = profile_request(container, profile)
+    if real is None:
+        return build_container(radius, wall_height)
+    if radius != DEFAULT_RADIUS or wall_height is not None:
+        given = "--container" if container is not None else "--profile"
+        raise InputError(
+            "radius" if radius != DEFAULT_RADIUS else "wall_height",
+            radius if radius != DEFAULT_RADIUS else wall_height,
+            f"is given by {given}; drop it or {given}",
+        )
+    return real
+
+
 def build_liquid(
     liquid: str, density: str | None, viscosity: str | None, sigma: str | None
 ) -> Liquid:
@@ -254,15 +296,7 @@ def build_model(
     >>> round(model.fill_height_m * 1e3, 1), round(model.modes[0].frequency_hz, 2)
     (39.0, 4.72)
     """
-    real = profile_request(container, profile)
-    if real is not None and (radius != DEFAULT_RADIUS or wall_height is not None):
-        given = "--container" if container is not None else "--profile"
-        raise InputError(
-            "radius" if radius != DEFAULT_RADIUS else "wall_height",
-            radius if radius != DEFAULT_RADIUS else wall_height,
-            f"is given by {given}; drop it or {given}",
-        )
-    vessel = build_container(radius, wall_height) if real is None else real
+    vessel = build_vessel(radius, wall_height, container, profile)
     height = fill_height_request(vessel, fill_height, fill_volume)
     if fill_volume is None:
         check_bare_length(fill_height, height, "fill_height")
