@@ -16,8 +16,8 @@ from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
 from sloshkit.cli.options import (
-    DampingLawOpt,
     ContainerName,
+    DampingLawOpt,
     DampingRatio,
     Density,
     Json,

@@ -17,9 +17,9 @@ from sloshkit.io import schema
 from sloshkit.io.requests import (
     container_request,
     fill_height_request,
-    profile_request,
     liquid_request,
     model_request,
+    profile_request,
 )
 from sloshkit.io.units import parse_range
 from sloshkit.model.modal import SloshModel
