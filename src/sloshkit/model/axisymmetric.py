@@ -226,12 +226,18 @@ def meridian_mesh(
     surface_radius = float(r_points[-1])
     spacing = ROW_SPACING * surface_radius / radial_cells
     corners = z_points[_corner_mask(z_points, r_points)]
+
+    # Rows uniform in the graded coordinate u = ln(1 + depth / R_s) R_s / spacing, whose
+    # step is the local spacing R_s / n (1 + depth / R_s) [ROW_SPACING], between corners.
+    def graded(depth: np.ndarray) -> np.ndarray:
+        return np.asarray(np.log1p(depth / surface_radius) * surface_radius / spacing)
+
     rows = [corners[-1]]
     for upper, lower in zip(corners[::-1][:-1], corners[::-1][1:], strict=True):
-        depth = fill_height_m - (upper + lower) / 2.0
-        limit = spacing * (1.0 + depth / surface_radius)
-        pieces = max(1, math.ceil((upper - lower) / limit - 1e-9))
-        rows.extend(upper - (upper - lower) * np.arange(1, pieces + 1) / pieces)
+        top, bottom = graded(np.array([fill_height_m - upper, fill_height_m - lower]))
+        pieces = max(1, math.ceil(bottom - top - 1e-9))
+        u = top + (bottom - top) * np.arange(1, pieces + 1) / pieces
+        rows.extend(fill_height_m - surface_radius * np.expm1(u * spacing / surface_radius))
     z_rows = np.array(rows[::-1])
     z_rows[0] = 0.0
     r_rows = np.interp(z_rows, z_points, r_points)

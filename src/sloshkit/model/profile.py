@@ -312,7 +312,17 @@ def profile_from_segments(
         for dz, radius_here in points:
             z.append(base + dz)
             r.append(radius_here)
-    return ProfileContainer(tuple(z), tuple(r), name=name, source=source)
+    # Points of an arc too small to resolve (a heel of a micrometre) would repeat a height.
+    keep = [0]
+    scale = HEIGHT_TOLERANCE * 10.0 * max(z)
+    for index in range(1, len(z)):
+        if z[index] - z[keep[-1]] > scale:
+            keep.append(index)
+    if keep[-1] != len(z) - 1:
+        keep[-1] = len(z) - 1
+    return ProfileContainer(
+        tuple(z[i] for i in keep), tuple(r[i] for i in keep), name=name, source=source
+    )
 
 
 def cylinder_profile(
