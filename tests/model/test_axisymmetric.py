@@ -93,11 +93,46 @@ def test_cone_45_degrees_vertex_down_is_exact():
     for cells in (4, 12):
         modes = axisymmetric_modes(cone_profile(0.03, 0.03), 0.012, 2, radial_cells=cells)
         assert modes.eigenvalues_1_m[0] * 0.012 == pytest.approx(1.0, abs=1e-9)
-    # Its wall is a generator of the cone: the slosh mass is the whole liquid for phi = x z.
+    # The same exact mode gives the pendulum in closed form (C = pi h^5/4, N = pi h^6/4,
+    # D = 3 pi h^5/20): m_1 = 3/4 of the liquid, bob at 3h/5, L_1 = h.
     height = 0.012
     volume = math.pi * height**3 / 3
     modes = axisymmetric_modes(cone_profile(0.03, 0.03), height, 1)
-    assert modes.mass_per_density_m3[0] < volume
+    assert modes.mass_per_density_m3[0] == pytest.approx(0.75 * volume, rel=1e-9)
+    assert modes.bob_height_m[0] == pytest.approx(0.6 * height, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("container", "height"),
+    [
+        (sphere_profile(0.01), 0.01),
+        (sphere_profile(0.01), 0.004),
+        (cone_profile(0.02, 0.01), 0.008),
+        (cylinder_profile(0.007, 0.03, 0.0005), 0.0065),
+        (
+            profile_from_segments(
+                [
+                    ProfileSegment("cylinder", 0.007, 0.02, heel_radius_m=0.0005),
+                    ProfileSegment("neck", 0.0035, 0.008, shoulder_height_m=0.005),
+                ]
+            ),
+            0.023,
+        ),
+    ],
+)
+def test_quasi_static_sum_rule_holds_for_any_profile(container, height):
+    """A steady lateral acceleration a tilts the free surface by a/g and shifts the liquid's
+    centre of mass by (a/g) I_S / V, I_S = pi R_s^4 / 4 (the waterplane's second moment); the
+    pendulums, all hanging along the apparent gravity, shift it by sum m_n L_n (a/g) / m_F. So
+    sum_n m_n L_n = rho pi R_s^4 / 4 for any container (Dodge 2000 §1; for the cylinder Abramson
+    1966's m_F R^2 / (4h)); ten modes close it to 1e-3."""
+    modes = axisymmetric_modes(container, height, 10)
+    moment = sum(
+        m / lam for m, lam in zip(modes.mass_per_density_m3, modes.eigenvalues_1_m, strict=True)
+    )
+    assert moment == pytest.approx(math.pi * modes.surface_radius_m**4 / 4, rel=1e-3)
+    assert np.all(np.diff(modes.eigenvalues_1_m) > 0)
+    assert np.all(np.array(modes.mass_per_density_m3) > 0)
 
 
 def test_mciver1989_half_full_sphere_first_mode():

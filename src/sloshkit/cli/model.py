@@ -72,8 +72,10 @@ def model_table(model: SloshModel) -> Table:
 @app.command()
 @with_model_options
 def model(slosh_model: SloshModel, json_output: Json = False) -> None:
-    """Equivalent pendulum model of a filled upright cylinder, or of a real container
-    (--container, --profile: any axisymmetric inner profile, modes by finite elements).
+    """Equivalent pendulum model of a filled upright cylinder or real container.
+
+    A real container (--container from the catalogue, --profile for any axisymmetric inner
+    profile) has its modes computed by finite elements; the cylinder keeps its closed form.
 
     Defaults are the seed paper's vial (R 20.5 mm, h 39 mm, water at 25 °C).
 

@@ -104,8 +104,8 @@ class AxisymmetricModes:
     --------
     >>> from sloshkit.model.profile import cylinder_profile
     >>> modes = axisymmetric_modes(cylinder_profile(0.0205, 0.08), 0.039, 1)
-    >>> round(modes.eigenvalues_1_m[0] * 0.0205, 5)  # xi_1 tanh(xi_1 h / R) = 1.82888
-    1.82888
+    >>> round(modes.eigenvalues_1_m[0] * 0.0205, 5)  # xi_1 tanh(xi_1 h / R) = 1.837847
+    1.83785
     """
 
     fill_height_m: float
@@ -220,7 +220,7 @@ def meridian_mesh(
     >>> mesh = meridian_mesh(cylinder_profile(0.01, 0.05), 0.01, 4)
     >>> points, triangles, surface, axis, wall = mesh
     >>> points.shape, triangles.shape, len(surface), len(axis), len(wall)
-    ((2, 25), (3, 32), 5, 5, 5)
+    ((2, 20), (3, 24), 5, 4, 4)
     """
     z_points, r_points = profile.wetted(fill_height_m)
     surface_radius = float(r_points[-1])
