@@ -88,8 +88,9 @@ def test_cylinder_model_from_the_profile_matches_the_closed_form_model(seed_mode
 
 
 def test_cone_45_degrees_vertex_down_is_exact():
-    """phi = x z solves the cone problem with omega^2 h / g = 1 (Ibrahim 2005 §2; Lamb):
-    quadratic elements hold it to round-off, on any mesh."""
+    """phi = x z solves the cone problem with omega^2 h / g = 1 (harmonic; d phi/dn ~ z - r = 0
+    on the wall z = r; d phi/dz = x = phi / h on the surface): quadratic elements hold it to
+    round-off, on any mesh."""
     for cells in (4, 12):
         modes = axisymmetric_modes(cone_profile(0.03, 0.03), 0.012, 2, radial_cells=cells)
         assert modes.eigenvalues_1_m[0] * 0.012 == pytest.approx(1.0, abs=1e-9)
@@ -124,8 +125,8 @@ def test_quasi_static_sum_rule_holds_for_any_profile(container, height):
     """A steady lateral acceleration a tilts the free surface by a/g and shifts the liquid's
     centre of mass by (a/g) I_S / V, I_S = pi R_s^4 / 4 (the waterplane's second moment); the
     pendulums, all hanging along the apparent gravity, shift it by sum m_n L_n (a/g) / m_F. So
-    sum_n m_n L_n = rho pi R_s^4 / 4 for any container (Dodge 2000 §1; for the cylinder Abramson
-    1966's m_F R^2 / (4h)); ten modes close it to 1e-3."""
+    sum_n m_n L_n = rho pi R_s^4 / 4 for any container (the waterplane's second moment of ship
+    hydrostatics; for the cylinder Abramson 1966's m_F R^2 / (4h)); ten modes close it to 1e-3."""
     modes = axisymmetric_modes(container, height, 10)
     moment = sum(
         m / lam for m, lam in zip(modes.mass_per_density_m3, modes.eigenvalues_1_m, strict=True)
