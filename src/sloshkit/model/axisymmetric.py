@@ -1,6 +1,6 @@
 """Lateral sloshing modes of a liquid in any axisymmetric container, by finite elements.
 
-The linear potential-flow eigenproblem (Ibrahim 2005 §2.2; Faltinsen & Timokha 2009 §4): the
+The linear potential-flow eigenproblem (Ibrahim 2005 §2.2; Faltinsen & Timokha 2009 ch. 4): the
 velocity potential is harmonic in the liquid, dphi/dn = 0 on the wetted wall and
 omega^2 phi = g dphi/dz on the flat free surface z = h. Lateral excitation drives only the first
 azimuthal harmonic, phi = psi(r, z) cos(theta), for which Laplace's equation on the meridian
@@ -11,17 +11,24 @@ r dr dz and the factor pi of the theta integral dropped on both sides,
     M(psi, v) = int_surface psi v r dr,                      K psi = lambda M psi,
 
 gives lambda_n = omega_n^2 / g (a Steklov eigenproblem). It is discretised with quadratic
-triangles (scikit-fem) on a structured, boundary-fitted mesh of the meridian section (the rows
-are the profile's points, so the polyline wall is exact), with psi = 0 on the axis (regularity of
-the m = 1 harmonic), and condensed exactly onto the free-surface unknowns (Schur complement of
-the interior), a small dense generalised symmetric eigenproblem.
+isoparametric triangles (scikit-fem) on a structured, boundary-fitted mesh of the meridian
+section (`meridian_mesh`: rows at the profile's corners and graded with depth; the curved wall
+edges pass through the profile at their ends and midpoints), with psi = 0 on the axis
+(regularity of the m = 1 harmonic), and condensed exactly onto the free-surface unknowns (Schur
+complement of the interior), a small dense generalised symmetric eigenproblem.
 
 The equivalent pendulums follow from matching the modal force and moment on the container for
-an arbitrary lateral motion (Dodge 2000 §1.3 and §3; Ibrahim 2005 §6.2), with
-C_n = int_S x phi_n dS, N_n = int_S phi_n^2 dS and D_n = int_V (z phi_x - x phi_z) dV:
+an arbitrary lateral motion X(t), as Dodge (2000) §3 and Ibrahim (2005) ch. 6 do for the
+cylinder, here for any profile. With the surface elevation eta = sum a_n phi_n|_S and
+C_n = int_S x phi_n dS, N_n = int_S phi_n^2 dS, D_n = int_V (z phi_x - x phi_z) dV, the modal
+equations are a_n'' + omega_n^2 a_n = -lambda_n (C_n / N_n) X''; the liquid's lateral momentum
+(Green's identity with x) is rho sum C_n a_n' and its angular momentum about the bottom's centre
+rho sum (a_n' / lambda_n) D_n. A pendulum of mass m_n, length L_n and bob height z_n reproduces
+both for a_n = (C_n / N_n) theta_n when
 
-    L_n = g / omega_n^2,  m_n = rho lambda_n C_n^2 / N_n,  bob height z_n = D_n / (lambda_n C_n),
-    wall elevation per radian f_n = (C_n / N_n) psi_n(R_s, h).
+    L_n = g / omega_n^2,  m_n = rho lambda_n C_n^2 / N_n,  z_n = D_n / (lambda_n C_n),
+
+and the wall elevation per radian is f_n = (C_n / N_n) psi_n(R_s, h).
 
 For the upright cylinder these reduce to the closed forms of `sloshkit.model.theory`
 (m_n / m_F = 2R tanh(xi_n h/R) / (xi_n (xi_n^2 - 1) h), z_n = h - (2R/xi_n) tanh(xi_n h/(2R)),
