@@ -234,3 +234,28 @@ def test_profile_model_summary_names_the_container():
     assert summary["liquid_volume_m3"] == pytest.approx(math.pi * 0.007**2 * 0.006)
     cylinder = equivalent_model(UprightCylinder(0.007), WATER, 0.006, damping_ratio=0.01)
     assert "container" not in cylinder.to_dict()
+
+
+def test_deep_fill_meets_the_closed_form_with_the_mesh_cut_below_the_modes():
+    """h = 400 R: the mesh stops 8 radii below the surface; omega^2 = g xi / R (deep limit)."""
+    radius, height = 0.005, 2.0
+    errors = relative_errors(radius, height)
+    assert errors.max() <= 1e-3
+    modes = axisymmetric_modes(cylinder_profile(radius, 3.0), height, 1)
+    assert modes.bob_height_m[0] == pytest.approx(height - 2 * radius / 1.8411837813406595)
+
+
+@settings(max_examples=10, deadline=None)
+@given(scale=st.floats(1e-3, 1e3))
+def test_geometric_similarity(scale):
+    """Scaling the container by k scales lambda by 1/k, masses by k^3, heights by k (the solver
+    works in units of the surface radius, so this holds to round-off)."""
+    base = axisymmetric_modes(cone_profile(0.02, 0.03), 0.017, 2)
+    scaled = axisymmetric_modes(cone_profile(0.02 * scale, 0.03 * scale), 0.017 * scale, 2)
+    np.testing.assert_allclose(
+        np.array(scaled.eigenvalues_1_m) * scale, base.eigenvalues_1_m, rtol=1e-9
+    )
+    np.testing.assert_allclose(
+        np.array(scaled.mass_per_density_m3) / scale**3, base.mass_per_density_m3, rtol=1e-9
+    )
+    np.testing.assert_allclose(np.array(scaled.bob_height_m) / scale, base.bob_height_m, rtol=1e-9)

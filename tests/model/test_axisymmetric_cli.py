@@ -94,7 +94,9 @@ def test_scenario_container_by_name():
         {"analyses": ["model"], "container": {"name": "iso8362-6R"}, "fill": {"volume": "3mL"}}
     )
     assert isinstance(scenario.model.container, ProfileContainer)
-    assert scenario.model.liquid_mass_kg == pytest.approx(3e-6 * scenario.model.liquid.density_kg_m3)
+    assert scenario.model.liquid_mass_kg == pytest.approx(
+        3e-6 * scenario.model.liquid.density_kg_m3
+    )
     with pytest.raises(InputError, match="exactly one of radius, name"):
         parse_scenario({"container": {"radius": "7mm", "name": "iso8362-2R"}})
 

@@ -31,7 +31,7 @@ from sloshkit.model.catalogue import catalogue_names
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import LIQUIDS, Liquid
 from sloshkit.model.modal import SloshModel
-from sloshkit.model.profile import Container
+from sloshkit.model.profile import Container, ProfileContainer
 from sloshkit.model.theory import DampingLaw
 
 Radius = Annotated[str, typer.Option("--radius", help="Inner radius, e.g. 20.5mm.")]
@@ -297,6 +297,9 @@ def build_model(
     (39.0, 4.72)
     """
     vessel = build_vessel(radius, wall_height, container, profile)
+    if isinstance(vessel, ProfileContainer) and fill_height is None and fill_volume is None:
+        given = "--container" if container is not None else "--profile"
+        raise InputError("fill_volume", None, f"give --fill-volume or --fill-height with {given}")
     height = fill_height_request(vessel, fill_height, fill_volume)
     if fill_volume is None:
         check_bare_length(fill_height, height, "fill_height")

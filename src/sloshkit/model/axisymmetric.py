@@ -76,6 +76,11 @@ QUADRATURE_ORDER = 6
 #: fine chords needs no row per chord.
 CORNER_ANGLE_RAD = math.radians(10.0)
 
+#: Depth of the mesh below the free surface, in free-surface radii: the first mode's potential
+#: falls as exp(-1.84 depth / R_s), to 4e-7 at 8 radii (the cylinder's eigenvalue changes by
+#: 2 exp(-3.68 depth / R_s) = 3e-13); deeper liquid only makes the elements long and thin.
+MESH_DEPTH = 8.0
+
 #: Row spacing relative to the radial spacing at the free surface.
 ROW_SPACING = 1.0
 
@@ -198,6 +203,7 @@ def meridian_mesh(
     corners below the fill height (`CORNER_ANGLE_RAD`) and the fill height, subdivided so
     that the row spacing is at most R_s / n (1 + depth / R_s) (the modes decay with depth). A
     bottom that is a point on the axis (cone, sphere) collapses the first row into that point.
+    Deeper than `MESH_DEPTH` free-surface radii the liquid is left out (a flat mesh bottom).
 
     Parameters
     ----------
@@ -231,6 +237,13 @@ def meridian_mesh(
     """
     z_points, r_points = profile.wetted(fill_height_m)
     surface_radius = float(r_points[-1])
+    # Below MESH_DEPTH free-surface radii the first mode has decayed to 4e-7: the mesh ends there
+    # on a flat (natural-condition) bottom.
+    cut = fill_height_m - MESH_DEPTH * surface_radius
+    if cut > 0.0:
+        below = z_points > cut
+        z_points = np.concatenate(([cut], z_points[below]))
+        r_points = np.concatenate(([np.interp(cut, profile.z_m, profile.r_m)], r_points[below]))
     spacing = ROW_SPACING * surface_radius / radial_cells
     corners = z_points[_corner_mask(z_points, r_points)]
 
@@ -246,7 +259,7 @@ def meridian_mesh(
         u = top + (bottom - top) * np.arange(1, pieces + 1) / pieces
         rows.extend(fill_height_m - surface_radius * np.expm1(u * spacing / surface_radius))
     z_rows = np.array(rows[::-1])
-    z_rows[0] = 0.0
+    z_rows[0] = z_points[0]
     r_rows = np.interp(z_rows, z_points, r_points)
     fractions = np.linspace(0.0, 1.0, radial_cells + 1)
     columns = radial_cells + 1
@@ -287,9 +300,11 @@ def _corner_mask(z: np.ndarray, r: np.ndarray) -> np.ndarray:
     return mask
 
 
-def _curved_mesh(profile: ProfileContainer, mesh: Any, wall_nodes: np.ndarray) -> Any:
+def _curved_mesh(
+    profile: ProfileContainer, mesh: Any, wall_nodes: np.ndarray, height: float, radius: float
+) -> Any:
     """The quadratic (isoparametric) mesh whose wall edges pass through the profile at their
-    midpoints (the other edges stay straight)."""
+    midpoints (the other edges stay straight); coordinates scaled as in `_solve_unthreaded`."""
     from dataclasses import replace
 
     from skfem import MeshTri2
@@ -300,8 +315,8 @@ def _curved_mesh(profile: ProfileContainer, mesh: Any, wall_nodes: np.ndarray) -
     facets = np.array([facet_of[(int(a), int(b))] for a, b in pairs.T])
     dofs = mesh.nvertices + facets  # the quadratic mesh numbers its vertices, then its edges
     doflocs = curved.doflocs.copy()
-    z_middle = doflocs[1, dofs]
-    doflocs[0, dofs] = np.interp(z_middle, profile.z_m, profile.r_m)
+    z_middle = height + radius * doflocs[1, dofs]
+    doflocs[0, dofs] = np.interp(z_middle, profile.z_m, profile.r_m) / radius
     return replace(curved, doflocs=doflocs)
 
 
@@ -327,13 +342,15 @@ def _solve_unthreaded(
     points, triangles, surface_nodes, _, wall_nodes = meridian_mesh(
         profile, fill_height_m, radial_cells
     )
-    mesh = _curved_mesh(profile, MeshTri(points, triangles), wall_nodes)
+    # Solved in units of the free surface's radius with the surface at z' = 0 (scale-free: the
+    # isoparametric inverse mapping works to an absolute tolerance), then scaled back.
+    radius = float(points[0, surface_nodes[-1]])
+    scaled = np.vstack((points[0] / radius, (points[1] - fill_height_m) / radius))
+    mesh = _curved_mesh(profile, MeshTri(scaled, triangles), wall_nodes, fill_height_m, radius)
     element = ElementTriP2()
     basis = Basis(mesh, element, intorder=QUADRATURE_ORDER)
-    top = float(points[1, surface_nodes[0]])
-    scale = float(points[1].max() - points[1].min()) + float(points[0].max())
-    tolerance = 1e-9 * scale
-    surface_facets = mesh.facets_satisfying(lambda x: x[1] > top - tolerance, boundaries_only=True)
+    tolerance = 1e-9
+    surface_facets = mesh.facets_satisfying(lambda x: x[1] > -tolerance, boundaries_only=True)
     axis_facets = mesh.facets_satisfying(lambda x: x[0] < tolerance, boundaries_only=True)
     surface_basis = FacetBasis(mesh, element, facets=surface_facets, intorder=QUADRATURE_ORDER)
 
@@ -389,14 +406,20 @@ def _solve_unthreaded(
     moments = moment_vector @ shapes
     angular = angular_vector @ shapes
     wall = shapes[wall_dof]
+    # Back to SI: lambda ~ 1/R_s, masses ~ R_s^3, lengths ~ R_s; the bob height measured from
+    # the surface moves to the bottom by h (D = D' + h lambda C, Green's identity with x).
     return AxisymmetricModes(
         fill_height_m=fill_height_m,
-        surface_radius_m=float(points[0, surface_nodes[-1]]),
-        eigenvalues_1_m=tuple(float(v) for v in eigenvalues),
+        surface_radius_m=radius,
+        eigenvalues_1_m=tuple(float(v) / radius for v in eigenvalues),
         # C_n and N_n carry the factor pi of the theta integral that the forms leave out.
-        mass_per_density_m3=tuple(float(v) for v in math.pi * eigenvalues * moments**2 / norms),
-        bob_height_m=tuple(float(v) for v in angular / (eigenvalues * moments)),
-        wall_elevation_factor_m=tuple(float(v) for v in moments / norms * wall),
+        mass_per_density_m3=tuple(
+            float(v) * radius**3 for v in math.pi * eigenvalues * moments**2 / norms
+        ),
+        bob_height_m=tuple(
+            fill_height_m + radius * float(v) for v in angular / (eigenvalues * moments)
+        ),
+        wall_elevation_factor_m=tuple(float(v) * radius for v in moments / norms * wall),
         unknowns=int(basis.N - len(axis_dofs)),
         surface_unknowns=len(surface_dofs),
     )

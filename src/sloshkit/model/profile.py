@@ -65,21 +65,21 @@ class ProfileContainer:
         r = np.asarray(self.r_m, dtype=float)
         if z.ndim != 1 or z.shape != r.shape or len(z) < 2:
             raise InputError(
-                "profile", f"{len(self.z_m)} heights, {len(self.r_m)} radii", "needs >= 2 points"
+                "points", f"{len(self.z_m)} heights, {len(self.r_m)} radii", "needs >= 2 points"
             )
         if not (np.all(np.isfinite(z)) and np.all(np.isfinite(r))):
-            raise InputError("profile", "a non-finite value", "must hold finite numbers")
+            raise InputError("points", "a non-finite value", "must hold finite numbers")
         if z[0] != 0.0:
-            raise InputError("profile", f"first height {z[0]:.6g} m", "must start at z = 0")
+            raise InputError("points", f"first height {z[0]:.6g} m", "must start at z = 0")
         if np.any(np.diff(z) <= HEIGHT_TOLERANCE * max(float(z[-1]), 1e-12)):
             raise InputError(
-                "profile",
+                "points",
                 "heights " + _short(z),
                 "must increase strictly (r must be a function of z)",
             )
         if r[0] < 0.0 or np.any(r[1:] < RADIUS_RANGE_M[0]) or np.any(r > RADIUS_RANGE_M[1]):
             raise InputError(
-                "profile",
+                "points",
                 "radii " + _short(r),
                 f"must be >= 0 at the bottom and {RADIUS_RANGE_M[0]:g} .. "
                 f"{RADIUS_RANGE_M[1]:g} m above",
