@@ -194,6 +194,11 @@ def require_cylinder(slosh_model: SloshModel) -> None:
     slosh_model : SloshModel
         The model the CFD case would be built from or compared with.
 
+    Returns
+    -------
+    None
+        When the model's container is an upright cylinder.
+
     Raises
     ------
     InputError
