@@ -6,8 +6,9 @@ transcribed in LyoPronto.jl (LyoHUB, github.com/LyoHUB/LyoPronto.jl, ``src/get_v
 commit f39d5f545d74a60a3c0f3df8849cccffebaf2eca). Its columns (ISO 8362-1 letters, mm): d1 outer
 body diameter, s1 wall thickness, s2 bottom thickness, h1 overall height, h2 height of the
 cylindrical body (outside, to the shoulder), h3 height of neck and flange, d4 bore (inner
-diameter of the mouth), r2 outer heel radius (r1 is the neck curve, as LyoPronto reads the
-drawing), and the brimful (overflow) capacity with its tolerance [mL].
+diameter of the mouth), r2 (taken here as the outer heel radius: the table's other radius, r1,
+is the neck's curve as LyoPronto reads the drawing; the transcription names neither in words),
+and the brimful (overflow) capacity with its tolerance [mL].
 
 The inner profile built from them (`iso8362_profile`) is an approximation of the drawing,
 stated here so it can be checked: inner body radius d1/2 - s1 from the inner bottom (s2 above
