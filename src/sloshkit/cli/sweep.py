@@ -115,6 +115,9 @@ def sweep_command(
 
     check_folder(out, "out", overwrite)
     container = build_vessel(radius, wall_height, container_name, profile)
+    real = container_name is not None or profile is not None
+    if real and fill_height is None and fill_volume is None:
+        raise InputError("fill_volume", None, "give a --fill-volume or --fill-height range")
     if fill_height is not None and fill_volume is not None:
         raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
     if fill_volume is not None:
