@@ -84,7 +84,7 @@ MESH_DEPTH = 8.0
 #: Row spacing relative to the radial spacing at the free surface.
 ROW_SPACING = 1.0
 
-#: Most modes of a profile model (each costs a finer mesh; 10 modes take about a second).
+#: Most modes of a profile model (each costs a finer mesh; 10 modes take about 1.5 s).
 MAX_PROFILE_MODES = 10
 
 
