@@ -172,19 +172,23 @@ def main() -> None:
         )
     print()
     print("iso8362-2R at 1 mL (heel): first mode against the mesh (self-convergence):")
-    print(f"{rule} cells {rule} unknowns {rule} omega^2 R_s/g {rule} m_1 [g] {rule} bob [mm] "
-          f"{rule} wall factor [mm] {rule}")
+    print(
+        f"{rule} cells {rule} unknowns {rule} omega^2 R_s/g {rule} m_1 [g] {rule} bob [mm] "
+        f"{rule} wall factor [mm] {rule}"
+    )
     if args.markdown:
         print("|---:|---:|---:|---:|---:|---:|")
     vial = catalogue_container("iso8362-2R")
     height = vial.fill_height_for_volume(1e-6)
     for cells in (8, 16, 24, 32, 48, 64):
         modes = axisymmetric.axisymmetric_modes(vial, height, 1, radial_cells=cells)
-        print(f"{rule} {cells} {rule} {modes.unknowns} {rule} "
-              f"{modes.eigenvalues_1_m[0] * modes.surface_radius_m:.6f} {rule} "
-              f"{1e3 * WATER.density_kg_m3 * modes.mass_per_density_m3[0]:.5f} {rule} "
-              f"{1e3 * modes.bob_height_m[0]:.5f} {rule} "
-              f"{1e3 * modes.wall_elevation_factor_m[0]:.5f} {rule}")
+        print(
+            f"{rule} {cells} {rule} {modes.unknowns} {rule} "
+            f"{modes.eigenvalues_1_m[0] * modes.surface_radius_m:.6f} {rule} "
+            f"{1e3 * WATER.density_kg_m3 * modes.mass_per_density_m3[0]:.5f} {rule} "
+            f"{1e3 * modes.bob_height_m[0]:.5f} {rule} "
+            f"{1e3 * modes.wall_elevation_factor_m[0]:.5f} {rule}"
+        )
     print()
     print("ISO 8362-1 vials: brimful volume of the profile against the catalogue:")
     print(
