@@ -112,9 +112,23 @@ def test_cli_model_of_the_real_2r_vial_with_its_heel():
     # The heel takes volume from the bottom corner: the fill is higher than in the plain tube.
     assert payload["fill_height_m"] > 1e-6 / (math.pi * 0.007**2)
     first = payload["modes"][0]
+    # Bo = 6.7: the capillary correction (+22.8 %) is on by default, so omega^2 > g / L.
+    assert payload["surface_tension_correction"] is True
+    assert first["omega_rad_s"] ** 2 > 9.81 / first["length_m"]
+    assert 9.0 < first["frequency_hz"] < 10.0
+    assert any("Bond number" in text for text in payload["warnings"])
+    plain = run_entry_point(
+        "model",
+        "--container",
+        "iso8362-2R",
+        "--fill-volume",
+        "1mL",
+        "--json",
+        "--no-surface-tension-correction",
+    )
+    first = json.loads(plain.stdout)["modes"][0]
     assert first["length_m"] == pytest.approx(9.81 / first["omega_rad_s"] ** 2, rel=1e-9)
     assert 7.0 < first["frequency_hz"] < 8.5
-    assert any("Bond number" in text for text in payload["warnings"])
 
 
 def test_cli_profile_file_and_conflicts(tmp_path):

@@ -113,10 +113,12 @@ DampingRatio = Annotated[
 
 
 SurfaceTension = Annotated[
-    bool,
+    bool | None,
     typer.Option(
         "--surface-tension-correction/--no-surface-tension-correction",
-        help="Raise frequencies by the Bond-number capillary correction.",
+        help="Raise frequencies by the Bond-number capillary correction (default: where it "
+        "raises f₁ by more than 5 %, with a warning).",
+        show_default=False,
     ),
 ]
 
@@ -258,7 +260,7 @@ def build_model(
     modes: int,
     damping_law: str,
     damping_ratio: float | None,
-    surface_tension_correction: bool,
+    surface_tension_correction: bool | None,
     container: str | None = None,
     profile: Path | None = None,
 ) -> SloshModel:
@@ -278,8 +280,8 @@ def build_model(
         The damping correlation.
     damping_ratio : float or None
         A damping ratio that replaces the correlation.
-    surface_tension_correction : bool
-        Apply the capillary frequency correction.
+    surface_tension_correction : bool or None
+        Apply the capillary frequency correction (None: where it matters).
     container : str or None
         ``--container``: a catalogue name replacing the radius and wall height.
     profile : Path or None
@@ -350,7 +352,7 @@ MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
     "modes": (Modes, 3),
     "damping_law": (DampingLawOpt, "seed"),
     "damping_ratio": (DampingRatio, None),
-    "surface_tension_correction": (SurfaceTension, False),
+    "surface_tension_correction": (SurfaceTension, None),
     "model_file": (ModelFile, None),
     "container": (ContainerName, None),
     "profile": (ProfileFile, None),

@@ -16,6 +16,7 @@ from sloshkit.model.liquids import Liquid
 from sloshkit.model.pendulums import SloshMode, SloshModel
 from sloshkit.model.profile import ProfileContainer
 from sloshkit.model.theory import (
+    CAPILLARY_THRESHOLD,
     DAMPING_LAWS,
     GRAVITY_M_S2,
     DampingLaw,
@@ -71,7 +72,7 @@ def profile_equivalent_model(
     n_modes: int = 3,
     damping_law: DampingLaw = "seed",
     damping_ratio: float | None = None,
-    surface_tension: bool = False,
+    surface_tension: bool | None = None,
     gravity_m_s2: float = GRAVITY_M_S2,
 ) -> SloshModel:
     """Equivalent pendulum model of the liquid in an axisymmetric container (finite elements).
@@ -97,8 +98,10 @@ def profile_equivalent_model(
         First-mode damping correlation.
     damping_ratio : float, optional
         Damping ratio for all modes, overriding the correlation.
-    surface_tension : bool
-        Apply the Bond-number frequency correction.
+    surface_tension : bool, optional
+        Apply the Bond-number frequency correction: True always, False never, None (the
+        default) when it raises omega_1 by more than
+        `sloshkit.model.theory.CAPILLARY_THRESHOLD`, with a warning (as for the cylinder).
     gravity_m_s2 : float
         Gravitational acceleration [m/s^2].
 
@@ -141,22 +144,36 @@ def profile_equivalent_model(
     }
     omega = [math.sqrt(gravity * value) for value in modes.eigenvalues_1_m]
     bond = bond_number(liquid.density_kg_m3, radius, liquid.surface_tension_n_m, gravity)
-    if surface_tension:
+    capillary = float(surface_tension_factor(xi[:1], bond)[0])
+    raise_percent = 100 * (capillary - 1)
+    matters = bool(capillary - 1.0 > CAPILLARY_THRESHOLD)
+    applied = matters if surface_tension is None else bool(surface_tension)
+    if applied:
         factors = surface_tension_factor(xi, bond)
         omega = [w * float(f) for w, f in zip(omega, factors, strict=True)]
         provenance["omega"] += (
             f" with capillary correction sqrt(1 + xi^2/Bo) at the surface radius, Bo = {bond:.3g}"
         )
-    capillary = float(surface_tension_factor(xi[:1], bond)[0])
+        if surface_tension is None:
+            provenance["omega"] += (
+                f" (by default: it raises f_1 by more than {100 * CAPILLARY_THRESHOLD:g} %)"
+            )
     if bond < 5.0:
         warn_validity(
             f"Bond number {bond:.3g} < 5: surface tension dominates the free surface "
             "(meniscus, contact line); the potential-flow model is not trustworthy here"
         )
-    elif not surface_tension and capillary > 1.05:
+    if matters and surface_tension is None:
         warn_validity(
-            f"Bond number {bond:.3g}: surface tension raises f_1 by {100 * (capillary - 1):.1f} %; "
-            "consider the surface-tension correction"
+            f"Bond number {bond:.3g}: surface tension raises f_1 by {raise_percent:.1f} % (more "
+            f"than {100 * CAPILLARY_THRESHOLD:g} %), so the capillary correction is applied; "
+            "--no-surface-tension-correction (surface_tension=False) turns it off"
+        )
+    elif matters and not applied:
+        warn_validity(
+            f"Bond number {bond:.3g}: surface tension raises f_1 by {raise_percent:.1f} %; the "
+            "capillary correction is off (--no-surface-tension-correction): the frequencies "
+            "are too low"
         )
     if height / radius < 0.2:
         warn_validity(
@@ -218,6 +235,6 @@ def profile_equivalent_model(
         modes=slosh_modes,
         gravity_m_s2=gravity,
         damping_law=damping_law if damping_ratio is None else "user",
-        surface_tension_correction=surface_tension,
+        surface_tension_correction=applied,
         provenance=provenance,
     )
