@@ -17,6 +17,5 @@
 - `sloshkit.cfd.pipeline`: case from a model, run, and `validate` (CFD against the pendulum
   model), used by the CLI and the report; `sloshkit.cfd.validation` holds its result object.
 - `sloshkit.cfd.spatial`: pose-driven cases against the 3-D model.
-- `sloshkit.cfd.convergence`: Richardson extrapolation and GCI (mesh and time-step studies).
 - `sloshkit.cfd.campaign`: campaigns of cases on Dask.
 """

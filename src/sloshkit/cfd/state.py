@@ -19,10 +19,10 @@ from pathlib import Path
 from sloshkit.errors import InputError, ValidityWarning
 
 #: checkMesh limits beyond which interFoam was seen to diverge here (docs/cfd.md,
-#: docs/cfd-wall-grading.json). On the O-grid cylinder, thin wedge-shaped wall cells amplify
-#: round-off in every pressure corrector (even in one fluid at rest, with any time step) once
-#: the minimum cell determinant falls to 2.3e-4 or below; 9.4e-4 and above stayed stable.
-#: (A flat wall with determinant 2e-5 was stable: the limit is one of thin cells on a curved
+#: studies/cfd-damping/data/cfd-wall-grading.json). On the O-grid cylinder, thin wedge-shaped
+#: wall cells amplify round-off in every pressure corrector (even in one fluid at rest, with
+#: any time step) once the minimum cell determinant falls to 2.3e-4 or below; 9.4e-4 and
+#: above stayed stable. (A flat wall with determinant 2e-5 was stable: the limit is one of thin cells on a curved
 #: wall.) checkMesh itself flags determinants below 0.001, which stable graded meshes have.
 MIN_DETERMINANT = 5e-4
 #: In two-phase runs of 2 s the graded O-grids with the largest aspect ratio 29.6 kept parasitic
