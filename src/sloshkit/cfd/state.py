@@ -37,8 +37,8 @@ MARGINAL_DETERMINANT = 2e-3
 #: Below this step (fixed, or the largest of an adaptive one) a wall-graded mesh runs with a
 #: warning: every graded O-grid of the damping study carried a step-to-step pressure
 #: oscillation at 0.5 ms (wall-force noise ratio 0.3-2.4), and none of 13 solver and property
-#: changes removed it (docs/cfd.md, "The wall force's noise at small steps"). The step where it
-#: starts depends on the mesh (session 5: 2 ms at 9 cells per radius, below 0.7 ms at 20), so
+#: changes removed it (studies/cfd-damping/README.md, "The wall force's noise at small steps").
+#: The step where it starts depends on the mesh (2 ms at 9 cells per radius, below 0.7 ms at 20), so
 #: this is a first warning; `cfd analyse` measures it in the run (force_step_alternation).
 MIN_GRADED_STEP_S = 1e-3
 #: checkMesh failures covered by `MIN_DETERMINANT` instead of its own 0.001.
