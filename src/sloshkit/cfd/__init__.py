@@ -13,6 +13,7 @@
   with progress, interruption and resume; `sloshkit.cfd.processes` starts and stops them (no
   process outlives an interruption). The only modules that start processes.
 - `sloshkit.cfd.results`: parsing of function-object output into signals (pure).
+- `sloshkit.cfd.force_signal`: the wall force as the decay signal (noise ratio, step alternation).
 - `sloshkit.cfd.analysis`: frequency and damping of a finished case.
 - `sloshkit.cfd.pipeline`: case from a model, run, and `validate` (CFD against the pendulum
   model), used by the CLI and the report; `sloshkit.cfd.validation` holds its result object.
