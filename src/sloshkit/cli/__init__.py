@@ -213,10 +213,9 @@ def main() -> None:
     """Entry point: import the command being run (or none, for the root help) and run it.
 
     The command line is ``sys.argv``; the process exits with the command's exit code (see
-    `sloshkit.cli.app`). Until the command installs its handlers, a signal ends the process
-    with its one line and exit code (`sloshkit.entry.exit_on_signal`, which the console
-    script calls before importing this package), and file descriptor 1 is routed to stderr so
-    that only the result reaches stdout (`sloshkit.cli.streams`).
+    `sloshkit.cli.app`). File descriptor 1 is routed to stderr so that only the result reaches
+    stdout (`sloshkit.cli.streams`). The console script starts one step earlier, in
+    `sloshkit.entry.main`, which handles signals before this package is imported.
 
     Returns
     -------
@@ -237,9 +236,7 @@ def main() -> None:
     2
     """
     from sloshkit.cli import streams
-    from sloshkit.entry import exit_on_signal
 
-    exit_on_signal()
     streams.protect_stdout()
     pass_plain_values()
     words = [word for word in sys.argv[1:] if not word.startswith("-")]
