@@ -72,6 +72,7 @@ _MOTION = re.compile(
     r"(\d+(?:\.\d*)?)\s*(%|msec|sec|mm/sec|cm/min|inch/min|deg/sec)\s+"
     r"(FINE|CNT\d{1,3})\b[^;]*;\s*$"
 )
+_MOTION_START = re.compile(r"^\s*\d+:\s*[JLCA]\s+P\[")
 _REMARK = re.compile(r"^\s*(\d+):\s*!([^;]*);\s*$")
 _OTHER = re.compile(r"^\s*(\d+):\s*[^;]*;\s*$")
 _ATTR = re.compile(r"^\s*([A-Z_]+)\s*=\s*(.*?);?\s*$")
@@ -352,7 +353,7 @@ def _parse_instruction(program: TpProgram, line: str, expected: int, where: str)
         match = pattern.match(line)
         if match:
             break
-    else:
+    if match is None or (pattern is _OTHER and _MOTION_START.match(line)):
         raise InputError("file", where, f"not a TP instruction line: {line.strip()!r}")
     if int(match.group(1)) != expected:
         raise InputError("file", where, f"line number {match.group(1)}, expected {expected}")
