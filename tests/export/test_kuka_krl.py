@@ -78,5 +78,5 @@ def test_written_programs_read_back_to_the_written_points(tmp_path: Path) -> Non
 def test_a_program_without_its_data_list_is_refused(tmp_path: Path) -> None:
     out = write_kuka_krl(tmp_path / "move.src", _joints(), {})
     dat_path(out).unlink()
-    with pytest.raises(InputError, match="move.dat"):
+    with pytest.raises(InputError, match=r"move\.dat"):
         read_kuka_krl(out)
