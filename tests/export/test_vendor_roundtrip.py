@@ -73,6 +73,17 @@ def test_each_arm_plays_the_measured_plan_in_its_own_language(
     assert "interpolation period" in result.notes[0]
 
 
+def test_the_staubli_arm_plays_it_as_joint_samples(measured_plan: Path, model, tmp_path: Path):
+    """No VAL3 program is written (VAL3 has no timed joint move, docs/export.md); the TX2-60
+    takes the same plan as joint samples (joint-csv, ros2) for a streaming driver."""
+    result = export_plan(
+        measured_plan, "joint-csv", tmp_path / "move.joints.csv", arm=load_arm("tx2_60"),
+        mounting=Mounting(base_xyz_m=(0.28, -0.05, -0.05)), model=model,
+    )  # fmt: skip
+    assert result.round_trip is not None and result.round_trip.passed
+    assert max(result.round_trip.relative_differences.values()) < 1e-3
+
+
 def test_the_command_line_exports_and_checks_a_fanuc_program(
     measured_plan: Path, tmp_path: Path
 ) -> None:

@@ -37,7 +37,10 @@ from sloshkit.version import __version__
 
 FloatArray = NDArray[np.float64]
 
-FORMATS = ("pose-csv", "joint-csv", "ros2", "urscript", "cam-table", *PROGRAM_FORMATS)
+#: Sample streams (a controller or drive plays them at the file's period) ...
+STREAM_FORMATS = ("pose-csv", "joint-csv", "ros2", "urscript", "cam-table")
+#: ... and industrial-robot programs of timed joint moves (`sloshkit.export.formats.vendors`).
+FORMATS = (*STREAM_FORMATS, *PROGRAM_FORMATS)
 SUFFIXES = {
     "pose-csv": ".poses.csv",
     "joint-csv": ".joints.csv",
