@@ -132,3 +132,26 @@ def test_bad_requests_are_refused_before_any_file(
     assert done.returncode == 2
     assert message in done.stderr and "Traceback" not in done.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_points_too_coarse_for_the_slosh_exit_1(measured_plan: Path, tmp_path: Path) -> None:
+    """48 ms points on the KUKA (4 IPO cycles): the spline through them changes the residual
+    slosh angle by about 6 % (docs/export.md), beyond the 2 % tolerance: exit code 1."""
+    done = run_entry_point(
+        "export", str(measured_plan), "--format", "kuka-krl", "--sample-period", "48ms",
+        "--base-pose=0.40m,-0.05m,0.45m", *VIAL, "--out", str(tmp_path / "coarse.src"), "--json",
+    )  # fmt: skip
+    assert done.returncode == 1, done.stderr
+    payload = json.loads(done.stdout)
+    assert not payload["passed"]
+    assert any("residual" in violation for violation in payload["round_trip"]["violations"])
+
+
+def test_a_move_too_long_for_one_program_names_the_period_that_fits() -> None:
+    from sloshkit.errors import InputError
+    from sloshkit.export.formats.vendors import PROGRAM_FORMATS
+
+    rule = PROGRAM_FORMATS["kuka-krl"].controller
+    rule.check_size(1001, 0.012)  # 12 s in one block: fits
+    with pytest.raises(InputError, match="use --sample-period 24ms or longer"):
+        rule.check_size(1002, 0.012)

@@ -36,6 +36,7 @@ from sloshkit.errors import InputError
 from sloshkit.export.formats.common import header_lines
 from sloshkit.export.formats.controller import (
     Controller,
+    degrees_text,
     program_name,
     segment_times,
     times_from_segments,
@@ -149,7 +150,9 @@ def write_abb_rapid(
     segments = segment_times(joints.time_s)
     externals = ",".join(["9E9"] * 6)
     rows = [
-        "    [[" + ",".join(f"{value:.{JOINT_DECIMALS}f}" for value in row) + f"],[{externals}]]"
+        "    [["
+        + ",".join(degrees_text(value, JOINT_DECIMALS) for value in row)
+        + f"],[{externals}]]"
         for row in values
     ]
     lines = [f"MODULE {title}", header_lines(metadata, prefix="  ! ").rstrip("\n")]

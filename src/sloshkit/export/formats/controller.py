@@ -275,6 +275,29 @@ def interpolate_points(
     return grid, np.asarray(spline(np.clip(grid, times[0], times[-1])), dtype=float)
 
 
+def degrees_text(value: float, decimals: int) -> str:
+    """A joint angle [deg] with ``decimals`` decimals, never ``-0.00...``.
+
+    Parameters
+    ----------
+    value : float
+        The angle [deg].
+    decimals : int
+        Decimals written.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> degrees_text(-1e-9, 5), degrees_text(-12.345678, 5)
+    ('0.00000', '-12.34568')
+    """
+    text = f"{value:.{decimals}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0.0 else text
+
+
 def comment_chunks(metadata: dict[str, object], width: int) -> list[str]:
     """``key: value`` metadata as text pieces of at most ``width`` characters (for languages
     whose comment lines are short, e.g. FANUC TP remarks).

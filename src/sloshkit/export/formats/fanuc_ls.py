@@ -42,6 +42,7 @@ from sloshkit.errors import InputError
 from sloshkit.export.formats.controller import (
     Controller,
     comment_chunks,
+    degrees_text,
     program_name,
     segment_times,
     times_from_segments,
@@ -218,12 +219,13 @@ def write_fanuc_ls(
     values = to_controller_deg(joints.position_rad)
     milliseconds = np.rint(1e3 * segment_times(joints.time_s)).astype(int)
     remarks = [piece.replace(";", ",") for piece in comment_chunks(dict(metadata), REMARK_WIDTH)]
-    body = [f"!{text}" for text in remarks]
-    body.append(f"J P[1] {APPROACH_PERCENT}% FINE")
+    # As the controller prints a program: remarks "  !text ;", motions "J P[i] ...    ;".
+    body = [f"  !{text} ;" for text in remarks]
+    body.append(f"J P[1] {APPROACH_PERCENT}% FINE    ;")
     for index in range(1, count):
         end = "FINE" if index == count - 1 else "CNT100"
-        body.append(f"J P[{index + 1}] {milliseconds[index - 1]}msec {end}")
-    main = [f"{number:4d}:{text}    ;" for number, text in enumerate(body, start=1)]
+        body.append(f"J P[{index + 1}] {milliseconds[index - 1]}msec {end}    ;")
+    main = [f"{number:4d}:{text}" for number, text in enumerate(body, start=1)]
     now = datetime.now(UTC)
     stamp = f"DATE {now:%y-%m-%d}  TIME {now:%H:%M:%S}"
     lines = [
@@ -253,7 +255,7 @@ def write_fanuc_ls(
     ]
     for index, row in enumerate(values, start=1):
         cells = [
-            f"J{axis}={value:{JOINT_WIDTH}.{JOINT_DECIMALS}f} deg"
+            f"J{axis}={degrees_text(value, JOINT_DECIMALS):>{JOINT_WIDTH}} deg"
             for axis, value in enumerate(row, start=1)
         ]
         lines += [

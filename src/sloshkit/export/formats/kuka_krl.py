@@ -36,6 +36,7 @@ from sloshkit.errors import InputError
 from sloshkit.export.formats.common import header_lines
 from sloshkit.export.formats.controller import (
     Controller,
+    degrees_text,
     program_name,
     segment_times,
     times_from_segments,
@@ -152,7 +153,8 @@ def write_kuka_krl(
     data = ["&ACCESS RVP", "&REL 1", f"DEFDAT {title}"]
     for index, row in enumerate(values, start=1):
         cells = ",".join(
-            f"{axis} {value:.{JOINT_DECIMALS}f}" for axis, value in zip(AXES, row, strict=True)
+            f"{axis} {degrees_text(value, JOINT_DECIMALS)}"
+            for axis, value in zip(AXES, row, strict=True)
         )
         data.append(f"DECL E6AXIS XP{index}={{{cells},{externals}}}")
     data.append("ENDDAT")
