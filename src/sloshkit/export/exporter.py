@@ -220,7 +220,8 @@ def export_plan(
     mounting : container in the flange and path in the base (`Mounting`)
     axis : direction of a 1-D plan in the path frame
     sample_period_s : output sample period [s] (default the plan's; ``urscript`` is always
-        0.002 s)
+        0.002 s; robot programs: a whole multiple of the controller's interpolation period,
+        default one point per period)
     model : slosh model for the round trip (required by ``check``)
     limits : slosh limits the plan was made for (checked on the export; written to headers)
     check : parse the file back, rebuild the motion and compare the slosh (`RoundTrip`)
@@ -297,8 +298,9 @@ def export_plan(
     if fmt in PROGRAM_FORMATS:
         rule = PROGRAM_FORMATS[fmt].controller
         notes.append(
-            f"{stream.time_s.size} points every {1e3 * period:g} ms; the round trip joins them "
-            f"at the {rule.language} interpolation period {1e3 * rule.interpolation_period_s:g} ms"
+            f"{stream.time_s.size} points every {1e3 * period:g} ms ({rule.language} "
+            f"interpolates every {1e3 * rule.interpolation_period_s:g} ms); the round trip joins "
+            f"them by a spline and re-simulates every {1e3 * rule.round_trip_step_s:g} ms"
         )
     trip = None
     if check and model is not None:

@@ -13,7 +13,7 @@ The module (ABB, *Technical reference manual - RAPID Instructions, Functions and
 
 Timing: the IRC5/OmniCore motion planner interpolates the path every 4 ms (the period EGM
 and the path planner run at); the point period is a whole multiple of 4 ms (`CONTROLLER`,
-default 20 ms). RAPID ``num`` is a single-precision float: 5 decimals of a degree are about
+default 4 ms). RAPID ``num`` is a single-precision float: 5 decimals of a degree are about
 its resolution. A program pointer that cannot keep ahead of very short segments
 stops the robot with "50024 Corner path failure": raise ``--sample-period`` then.
 
@@ -49,9 +49,9 @@ FloatArray = NDArray[np.float64]
 #: Decimals of the joint angles [deg] written.
 JOINT_DECIMALS = 5
 
-#: Path interpolation every 4 ms; points every 20 ms by default; at most 5000 points per
+#: Path interpolation every 4 ms; one point per 4 ms by default; at most 5000 points per
 #: module (sloshkit's own cap; the controller's limit is its program memory).
-CONTROLLER = Controller("abb-rapid", "ABB RAPID", 0.004, 0.020, 5000, ("irb120",))
+CONTROLLER = Controller("abb-rapid", "ABB RAPID", 0.004, 0.004, 5000, ("irb120",))
 #: Longest RAPID identifier (``<name>_move`` must fit).
 NAME_LIMIT = 27
 #: An external axis that is not there.

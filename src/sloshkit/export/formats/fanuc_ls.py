@@ -19,7 +19,7 @@ controller prints when it saves a program as ASCII) has
 Timing: the controller interpolates every ITP, 8 ms on the R-30iA/R-30iB families; a segment
 time that is not a whole multiple of the ITP is rounded up to one (about 4 ms per 100 ms point
 measured on a 600-point path, which stretches the move), so the point period is a multiple of
-8 ms (`CONTROLLER`, default 16 ms).
+8 ms (`CONTROLLER`, default 8 ms: one point per ITP).
 
 Joints: FANUC's J3 is measured from the horizontal, not from the upper arm (the J2/J3
 interaction of FANUC arms with a parallel J3 drive), so ``J3 = joint_3 - joint_2`` for the
@@ -56,11 +56,11 @@ FloatArray = NDArray[np.float64]
 JOINT_DECIMALS = 5
 JOINT_WIDTH = 12
 
-#: ITP 8 ms; points every 16 ms by default (see docs/export.md for the measured effect of
-#: the point period); at most 2000 points in one program (sloshkit's
+#: ITP 8 ms; one point per ITP by default (docs/export.md: the measured effect of coarser
+#: points); at most 2000 points in one program (sloshkit's
 #: own cap, well inside TP memory; the controller's limit is its free TPP memory,
 #: STATUS > Memory).
-CONTROLLER = Controller("fanuc-ls", "FANUC TP", 0.008, 0.016, 2000, ("lrmate200id",))
+CONTROLLER = Controller("fanuc-ls", "FANUC TP", 0.008, 0.008, 2000, ("lrmate200id",))
 #: Longest remark written per line (TP remarks hold 32 characters on older controllers).
 REMARK_WIDTH = 32
 #: Longest program name (R-30iB; older controllers take 8).

@@ -115,8 +115,11 @@ def default_robot(fmt: str) -> str | None:
 
 
 def read_interpolated(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArray]:
-    """A program's points joined at its controller's interpolation period (the motion the
-    round trip re-simulates; `sloshkit.export.formats.controller.interpolate_points`).
+    """A program's points joined by the spline and sampled on the round trip's grid: the
+    controller's interpolation period, subdivided to 2 ms or less
+    (`sloshkit.export.formats.controller.Controller.round_trip_step_s`), so every
+    interpolation instant is on it (the motion the round trip re-simulates;
+    `sloshkit.export.formats.controller.interpolate_points`).
 
     Parameters
     ----------
@@ -128,7 +131,7 @@ def read_interpolated(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArra
     Returns
     -------
     tuple of numpy.ndarray
-        Times [s] (step: the interpolation period) and joint angles (samples, 6) [rad].
+        Times [s] (step: `Controller.round_trip_step_s`) and joint angles (samples, 6) [rad].
 
     Examples
     --------
@@ -137,12 +140,12 @@ def read_interpolated(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArra
     >>> q = np.zeros((4, 6))
     >>> joints = JointPath(t, q, q, q, tuple("abcdef"))
     >>> out = fanuc_ls.write_fanuc_ls(pathlib.Path(tempfile.mkdtemp()) / "m.ls", joints, {})
-    >>> read_interpolated("fanuc-ls", out)[0].size  # 0.12 s every 8 ms
-    16
+    >>> read_interpolated("fanuc-ls", out)[0].size  # 0.12 s every 2 ms
+    61
     """
     entry = PROGRAM_FORMATS[fmt]
     time, position = entry.read(Path(path))
-    return interpolate_points(time, position, entry.controller.interpolation_period_s)
+    return interpolate_points(time, position, entry.controller.round_trip_step_s)
 
 
 __all__ = ["PROGRAM_FORMATS", "ProgramFormat", "default_robot", "read_interpolated"]
