@@ -103,7 +103,8 @@ class ExportSettings:
     check: bool
 
     def arm(self, fmt: str) -> Any:
-        """The arm for joint formats (UR5e unless ``--urdf`` or ``--robot`` says otherwise)."""
+        """The arm for joint formats (unless ``--urdf`` or ``--robot`` says otherwise: the UR5e,
+        or the vendor's built-in arm for a robot program, e.g. lrmate200id for fanuc-ls)."""
         from sloshkit.export.kinematics import load_arm
         from sloshkit.export.readback import JOINT_FORMATS
 

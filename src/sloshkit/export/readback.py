@@ -84,7 +84,8 @@ def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArr
     Parameters
     ----------
     fmt : str
-        joint-csv, ros2 or urscript.
+        joint-csv, ros2, urscript, or a robot program (fanuc-ls, abb-rapid, kuka-krl: its
+        points joined by the spline on the round trip's 2 ms grid).
     path : str or pathlib.Path
         The file.
 
