@@ -61,7 +61,7 @@ JOINT_WIDTH = 12
 #: own cap, well inside TP memory; the controller's limit is its free TPP memory,
 #: STATUS > Memory).
 CONTROLLER = Controller("fanuc-ls", "FANUC TP", 0.008, 0.008, 2000, ("lrmate200id",))
-#: Longest remark written per line (TP remarks hold 32 characters on older controllers).
+#: Longest remark written per line (short enough for the remark field of any TP editor).
 REMARK_WIDTH = 32
 #: Longest program name (R-30iB; older controllers take 8).
 NAME_LIMIT = 36
@@ -218,7 +218,9 @@ def write_fanuc_ls(
     CONTROLLER.check_size(count, joints.sample_period_s)
     values = to_controller_deg(joints.position_rad)
     milliseconds = np.rint(1e3 * segment_times(joints.time_s)).astype(int)
-    remarks = [piece.replace(";", ",") for piece in comment_chunks(dict(metadata), REMARK_WIDTH)]
+    # A remark ends at ";" and holds no quotes on older controllers: ";" -> ",", '"' -> "'".
+    pieces = comment_chunks(dict(metadata), REMARK_WIDTH)
+    remarks = [piece.replace(";", ",").replace('"', "'") for piece in pieces]
     # As the controller prints a program: remarks "  !text ;", motions "J P[i] ...    ;".
     body = [f"  !{text} ;" for text in remarks]
     body.append(f"J P[1] {APPROACH_PERCENT}% FINE    ;")
