@@ -86,7 +86,7 @@ def plan_command(
         typer.Option(
             "--export",
             help="Also write the chosen move for a controller (see 'sloshkit export'): "
-            "pose-csv, joint-csv, ros2, urscript or cam-table.",
+            "pose-csv, joint-csv, ros2, urscript, cam-table, fanuc-ls, abb-rapid or kuka-krl.",
         ),
     ] = None,
     json_output: Json = False,
