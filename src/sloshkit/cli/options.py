@@ -86,10 +86,12 @@ DampingRatio = Annotated[
 
 
 SurfaceTension = Annotated[
-    bool,
+    bool | None,
     typer.Option(
         "--surface-tension-correction/--no-surface-tension-correction",
-        help="Raise frequencies by the Bond-number capillary correction.",
+        help="Raise frequencies by the Bond-number capillary correction (default: where it "
+        "raises f₁ by more than 5 %, with a warning).",
+        show_default=False,
     ),
 ]
 
@@ -190,7 +192,7 @@ def build_model(
     modes: int,
     damping_law: str,
     damping_ratio: float | None,
-    surface_tension_correction: bool,
+    surface_tension_correction: bool | None,
 ) -> SloshModel:
     """Turn the model options (text with units) into a `SloshModel`.
 
@@ -208,8 +210,8 @@ def build_model(
         The damping correlation.
     damping_ratio : float or None
         A damping ratio that replaces the correlation.
-    surface_tension_correction : bool
-        Apply the capillary frequency correction.
+    surface_tension_correction : bool or None
+        Apply the capillary frequency correction (None: where it matters).
 
     Returns
     -------
@@ -273,7 +275,7 @@ MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
     "modes": (Modes, 3),
     "damping_law": (DampingLawOpt, "seed"),
     "damping_ratio": (DampingRatio, None),
-    "surface_tension_correction": (SurfaceTension, False),
+    "surface_tension_correction": (SurfaceTension, None),
     "model_file": (ModelFile, None),
 }
 

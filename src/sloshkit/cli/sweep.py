@@ -87,7 +87,7 @@ def sweep_command(
     modes: Modes = 3,
     damping_law: DampingLawOpt = "seed",
     damping_ratio: DampingRatio = None,
-    surface_tension_correction: SurfaceTension = False,
+    surface_tension_correction: SurfaceTension = None,
     out: Annotated[
         Path | None, typer.Option("--out", help="Folder for sweep.csv and maps.")
     ] = None,

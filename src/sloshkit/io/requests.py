@@ -178,7 +178,7 @@ def model_request(
     modes: int = 3,
     damping_law: str = "seed",
     damping_ratio: float | None = None,
-    surface_tension_correction: bool = False,
+    surface_tension_correction: bool | None = None,
 ) -> SloshModel:
     """The equivalent model of a request (the damping law checked).
 
@@ -196,8 +196,9 @@ def model_request(
         Damping correlation.
     damping_ratio : float, optional
         Damping ratio overriding the correlation.
-    surface_tension_correction : bool
-        Apply the Bond-number frequency correction.
+    surface_tension_correction : bool, optional
+        Apply the Bond-number frequency correction (None: where it matters, see
+        `sloshkit.model.modal.equivalent_model`).
 
     Returns
     -------
@@ -217,7 +218,9 @@ def model_request(
         n_modes=int(modes),
         damping_law=damping_law_request(damping_law),
         damping_ratio=None if damping_ratio is None else float(damping_ratio),
-        surface_tension=bool(surface_tension_correction),
+        surface_tension=None
+        if surface_tension_correction is None
+        else bool(surface_tension_correction),
     )
 
 

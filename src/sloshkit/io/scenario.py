@@ -188,9 +188,9 @@ def parse_scenario(
         modes=schema.integer(model_table, "model", "modes", 3, 1, 50),
         damping_law=schema.text(model_table, "model", "damping_law", "seed") or "",
         damping_ratio=schema.number(model_table, "model", "damping_ratio"),
-        surface_tension_correction=schema.boolean(
-            model_table, "model", "surface_tension_correction"
-        ),
+        surface_tension_correction=None
+        if "surface_tension_correction" not in model_table
+        else schema.boolean(model_table, "model", "surface_tension_correction"),
     )
     move = schema.section(document, "move")
 
@@ -332,7 +332,8 @@ PAPER_SCENARIO: dict[str, Any] = {
     "container": {"radius": "20.5mm", "wall_height": "60mm"},
     "liquid": {"preset": "water-25C", "density": "1000 kg/m^3"},
     "fill": {"height": "39mm"},
-    "model": {"modes": 3, "damping_ratio": 0.03},
+    # The paper's model has no capillary correction (it would raise f_1 by 2.9 % here).
+    "model": {"modes": 3, "damping_ratio": 0.03, "surface_tension_correction": False},
     "move": {"distance": "0.5m", "peak_velocity": "0.5m/s"},
     "limits": {
         "max_angle": "5deg",
