@@ -81,6 +81,11 @@ class MoveAbsJ:
         The tool data.
     switches : tuple of str
         ``Conc``, ``NoEOffs``, ...
+
+    Examples
+    --------
+    >>> MoveAbsJ("p50", "v1000", 5.0, "fine", "tool0", ("NoEOffs",)).time_s
+    5.0
     """
 
     target: Any
@@ -103,6 +108,11 @@ class RapidModule:
         Name -> (storage, type, value) for every ``CONST``/``PERS``/``VAR`` declaration.
     routines : dict
         ``PROC`` name -> its MoveAbsJ instructions in order.
+
+    Examples
+    --------
+    >>> RapidModule("demo").routines
+    {}
     """
 
     name: str

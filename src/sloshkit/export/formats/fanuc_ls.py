@@ -98,6 +98,11 @@ class Motion:
         ``%``, ``msec``, ``sec``, ``mm/sec``, ``cm/min``, ``inch/min`` or ``deg/sec``.
     termination : str
         ``FINE`` or ``CNTn`` (n in 0..100).
+
+    Examples
+    --------
+    >>> Motion(3, "J", 3, 40.0, "msec", "CNT100").termination
+    'CNT100'
     """
 
     line: int
@@ -124,6 +129,11 @@ class TpProgram:
         The ``!`` remark texts.
     positions : dict
         Position number -> J1..Jn [deg].
+
+    Examples
+    --------
+    >>> TpProgram("MOVE", {"LINE_COUNT": "0"}).positions
+    {}
     """
 
     name: str

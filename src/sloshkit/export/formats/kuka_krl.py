@@ -77,6 +77,11 @@ class KrlProgram:
         ``TIME_BLOCK END`` [s].
     system : dict
         ``$VEL_AXIS[i]`` and ``$ACC_AXIS[i]`` assignments.
+
+    Examples
+    --------
+    >>> KrlProgram("demo").block_time_s is None
+    True
     """
 
     name: str
