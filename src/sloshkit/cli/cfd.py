@@ -40,7 +40,43 @@ cfd_app = typer.Typer(
 app.add_typer(cfd_app, name="cfd")
 
 
-def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> Any:
+def run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> Any:
+    """Run a CFD case with a progress bar on stderr; a failed or interrupted run ends the
+    command.
+
+    A `CfdError` prints one ``error:`` line and exits with 1; an interruption prints where it
+    stopped and how to resume, and exits with 128 + the signal number.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case to run.
+    case : pathlib.Path
+        Its folder.
+    resume : bool
+        Continue the case in ``case`` from its latest complete time folder.
+    overwrite : bool
+        Replace a sloshkit case already in ``case``.
+
+    Returns
+    -------
+    RunResult
+        What `sloshkit.cfd.pipeline.run` returns.
+
+    Examples
+    --------
+    Bad input is refused before any process starts:
+
+    >>> from pathlib import Path
+    >>> import sloshkit as sk
+    >>> from sloshkit.cfd.case import FreeDecay
+    >>> from sloshkit.cfd.pipeline import case_spec
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> run_with_progress(case_spec(model, FreeDecay()), Path("no-case"), True, False)
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: case = 'no-case' is invalid: has no sloshkit case to resume
+    """
     from rich.progress import (
         BarColumn,
         Progress,
@@ -240,7 +276,7 @@ def cfd_run_command(
         spec = spec_from_options(slosh_model, case_options)
         if resume:
             spec = _resumed_spec(spec, case, case_options["np_"])
-        result = _run_with_progress(spec, case, resume, overwrite)
+        result = run_with_progress(spec, case, resume, overwrite)
         try:
             analysis = analyse(case)
         except InputError as error:
@@ -391,7 +427,7 @@ def cfd_validate_command(
     with _clean_interruption(case):
         if not reuse:
             spec = spec_from_options(slosh_model, case_options)
-            _run_with_progress(spec, case, False, overwrite)
+            run_with_progress(spec, case, False, overwrite)
         result = _validate(case, slosh_model)
         if plot is not None:
             result.plot(path=plot)

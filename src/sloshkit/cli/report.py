@@ -13,7 +13,7 @@ from sloshkit.cfd.case import FreeDecay
 from sloshkit.cfd.pipeline import analyse, case_spec
 from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.cfd import _run_with_progress
+from sloshkit.cli.cfd import run_with_progress
 from sloshkit.cli.options import Json, print_json
 from sloshkit.errors import InputError
 from sloshkit.io.outputs import check_folder, mark_folder
@@ -130,7 +130,7 @@ def _cfd_free_decay(slosh_model: SloshModel, case: Path, may_run: bool = True) -
         )
     if not (case / "postProcessing").is_dir():
         stderr.print(f"running the OpenFOAM free decay in {case} (a few minutes)")
-        _run_with_progress(case_spec(slosh_model, FreeDecay(), processes=2), case, False, True)
+        run_with_progress(case_spec(slosh_model, FreeDecay(), processes=2), case, False, True)
     return analyse(case).calibration
 
 

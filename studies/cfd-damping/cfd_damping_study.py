@@ -2,11 +2,11 @@
 
 Runs 2 s of free decay (3 deg tilt, fixed Euler step, serial) on three uniform O-grids
 (`MESHES` cells per radius, refinement ratio about 1.37) at three steps (`STEPS`), one row per
-run in docs/cfd-damping-study.json (resumable: finished rows are kept). ``--analyse`` then
-extrapolates (`sloshkit.cfd.convergence`) and writes the damping section of docs/cfd.md
-between its markers, and the figure docs/figures/cfd_damping_study.png.
+run in data/cfd-damping-study.json (resumable: finished rows are kept). ``--analyse`` then
+extrapolates (`convergence`) and writes the damping section of README.md
+between its markers, and the figure figures/cfd_damping_study.png.
 
-Run: PYTHONPATH=src python benchmarks/cfd_damping_study.py [--analyse-only]
+Run: PYTHONPATH=src python studies/cfd-damping/cfd_damping_study.py [--analyse-only]
 """
 
 from __future__ import annotations
@@ -17,20 +17,22 @@ import re
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+# bench_cfd_speed (the benchmark every run of the study is) lives in benchmarks/.
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 
 from bench_cfd_speed import bench
 
 from sloshkit.cfd.state import CfdError
 
-ROOT = Path(__file__).resolve().parent.parent
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 MESHES = (8, 11, 15)
 STEPS_MS = (2.0, 1.0, 0.5)
 #: cheapest first, so that an interrupted study has complete coarse levels
 PLAN = sorted(((n, dt) for n in MESHES for dt in STEPS_MS), key=lambda row: row[0] ** 2 / row[1])
 
 
-#: Wall-graded meshes (docs/cfd-wall-grading.json): a wall annulus of `radial_cells` graded
+#: Wall-graded meshes (data/cfd-wall-grading.json): a wall annulus of `radial_cells` graded
 #: 0.1 (wall cells 0.105, 0.093, 0.069 mm; the Stokes layer is 0.25 mm). The 9-cell level
 #: (0.121 mm, aspect ratio 30) was run first and replaced: stable at rest, but its two-phase
 #: runs kept Courant numbers of 1-3 from parasitic currents (kept in the JSON, excluded).
@@ -146,21 +148,15 @@ def main() -> None:
     parser.add_argument("--analyse-only", action="store_true")
     parser.add_argument("--end-time", type=float, default=2.0)
     parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-damping"))
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-damping-study.json")
-    parser.add_argument(
-        "--graded-out", type=Path, default=ROOT / "docs" / "cfd-damping-graded.json"
-    )
+    parser.add_argument("--out", type=Path, default=DATA / "cfd-damping-study.json")
+    parser.add_argument("--graded-out", type=Path, default=DATA / "cfd-damping-graded.json")
     parser.add_argument("--graded", action="store_true", help="run the wall-graded meshes")
     parser.add_argument("--backward", action="store_true", help="backward scheme for U")
-    parser.add_argument(
-        "--backward-out", type=Path, default=ROOT / "docs" / "cfd-damping-backward.json"
-    )
+    parser.add_argument("--backward-out", type=Path, default=DATA / "cfd-damping-backward.json")
     parser.add_argument("--backfill", action="store_true", help="add late Courant numbers")
     parser.add_argument("--adaptive", action="store_true", help="graded meshes, adaptive step")
     parser.add_argument("--record-stall", type=int, default=None, help="CELLS of a stalled run")
-    parser.add_argument(
-        "--adaptive-out", type=Path, default=ROOT / "docs" / "cfd-damping-adaptive.json"
-    )
+    parser.add_argument("--adaptive-out", type=Path, default=DATA / "cfd-damping-adaptive.json")
     parser.add_argument("--only", nargs=2, type=float, default=None, help="CELLS STEP_MS")
     args = parser.parse_args()
     if args.record_stall is not None:

@@ -5,7 +5,7 @@ fitted by simulating the 3-D slosh model (`sloshkit.sim.spatial.simulate_spatial
 commanded poses against the measured slosh heights, and compared with the same container's
 force-sensor free decay (omega_d = 19.04 rad/s, zeta = 0.0066; data README).
 
-Run: PYTHONPATH=src python benchmarks/calibrate_measured_3d.py
+Run: PYTHONPATH=src python validation/calibrate_measured_3d.py
 """
 
 from __future__ import annotations

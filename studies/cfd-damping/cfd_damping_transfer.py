@@ -1,5 +1,5 @@
 """Transfer of a reference mesh's step-error shape to a mesh run at fewer steps (the damping
-study of benchmarks/cfd_damping_converged.py): a straight line z_M(dt) = a + c z_ref(dt)
+study of studies/cfd-damping/cfd_damping_converged.py): a straight line z_M(dt) = a + c z_ref(dt)
 through the mesh's runs, evaluated at the reference's zero-step value."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import math
 import statistics
 from typing import Any
 
-from sloshkit.cfd.convergence import combined_uncertainty
+from convergence import combined_uncertainty
 
 
 def transfer(

@@ -1,4 +1,4 @@
-"""Markdown and figure of the converged damping study (benchmarks/cfd_damping_converged.py):
+"""Markdown and figure of the converged damping study (cfd_damping_converged.py):
 every number is taken from the analysis document, none typed by hand."""
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
-"""Markdown for docs/cfd.md: the wall-stability table, the run-exclusion limits of the damping
+"""Markdown for README.md: the wall-stability table, the run-exclusion limits of the damping
 study, and the damping study's conclusions and limits (its tables and figure:
-benchmarks/cfd_damping_converged_report.py). Every number comes from the analysis document."""
+cfd_damping_converged_report.py). Every number comes from the analysis document."""
 
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ MAX_FREQUENCY_ERROR = 0.01
 
 
 def render_stability(rows: list[dict[str, Any]]) -> str:
-    """The table of the wall-stability experiments (benchmarks/cfd_wall_stability.py)."""
+    """The table of the wall-stability experiments (studies/cfd-damping/cfd_wall_stability.py)."""
     lines = [
         "| experiment (what it tests) | wall cell | min. determinant | max. aspect ratio | "
         "outcome | growth per step | largest Courant at the end |",
@@ -42,7 +42,7 @@ def render_stability(rows: list[dict[str, Any]]) -> str:
 
 
 def render_noise(rows: list[dict[str, Any]]) -> str:
-    """The table of the wall-force noise experiments (benchmarks/cfd_parasitic_noise.py)."""
+    """The table of the wall-force noise experiments (cfd_parasitic_noise.py)."""
 
     def ratio(row: dict[str, Any], key: str) -> str:
         value = row.get(key)

@@ -1,11 +1,11 @@
 """The damping of the seed vial with an uncertainty: step and mesh extrapolation of every run
-of the damping study, estimated from the wall force (docs/cfd-damping-estimators.json).
+of the damping study, estimated from the wall force (data/cfd-damping-estimators.json).
 
 1. Every run's damping ratio is re-estimated from its wall force (`PRIMARY` of
-   benchmarks/cfd_damping_estimators.py); the estimator's own scatter is recorded.
+   studies/cfd-damping/cfd_damping_estimators.py); the estimator's own scatter is recorded.
 2. The coarse uniform mesh (8 cells per radius) is run at steps 2 ms to 62.5 us: its observed
    order in the step (Celik et al. 2008) over each triple of steps, and Richardson from the
-   finest triple (`sloshkit.cfd.convergence.richardson`), give its zero-step value z8.
+   finest triple (`convergence.richardson`), give its zero-step value z8.
 3. Every other mesh, run at fewer and larger steps, is extrapolated by *transferring* the
    shape of the coarse mesh's step error: a straight line z_M(dt) = a + c z8(dt) through its
    runs (at steps the coarse mesh also ran), evaluated at z8(0). The uncertainty adds the
@@ -14,7 +14,7 @@ of the damping study, estimated from the wall force (docs/cfd-damping-estimators
    seen, a mesh with one step takes c from the others).
 4. The zero-step values of a mesh family are extrapolated in the mesh (Richardson/GCI).
 
-Used by benchmarks/cfd_damping_analysis.py (docs/cfd-damping.json and the docs section).
+Used by cfd_damping_analysis.py (data/cfd-damping.json and the section of README.md).
 """
 
 from __future__ import annotations
@@ -28,20 +28,20 @@ from typing import Any
 from cfd_damping_estimators import PRIMARY, STARTS_S
 from cfd_damping_report import MAX_FREQUENCY_ERROR, MAX_LATE_COURANT
 from cfd_damping_transfer import finish_transfers, transfer
-
-from sloshkit.cfd.convergence import (
+from convergence import (
     combined_uncertainty,
     fit_error_terms,
     observed_order,
     richardson,
 )
+
 from sloshkit.cfd.force_signal import NOISE_RATIO_LIMIT
 from sloshkit.cfd.mesh import wall_cell_size_m
 from sloshkit.cfd.spec import CaseSpec
 from sloshkit.model.liquids import get_liquid
 
-ROOT = Path(__file__).resolve().parent.parent
-DOCS = ROOT / "docs"
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 OLD_WORK, NEW_WORK = "sloshkit-cfd-damping", "sloshkit-cfd-damping3"
 REFERENCE = 8  # cells per radius of the mesh whose step series is extended
 #: Exponents of the step error: a sqrt(dt) term and Euler's dt (see `two_term`).
@@ -64,7 +64,7 @@ def load_runs() -> list[dict[str, Any]]:
     """Every run of the study (sessions 2 and 3) with its family and re-estimated damping."""
     estimates = {
         (r["work"], r["case"]): r
-        for r in json.loads((DOCS / "cfd-damping-estimators.json").read_text())
+        for r in json.loads((DATA / "cfd-damping-estimators.json").read_text())
     }
     runs = []
     sources = (
@@ -73,7 +73,7 @@ def load_runs() -> list[dict[str, Any]]:
         ("cfd-damping-converge.json", None, NEW_WORK, None),
     )
     for name, family, work, suffix in sources:
-        path = DOCS / name
+        path = DATA / name
         for row in json.loads(path.read_text()) if path.is_file() else []:
             step_ms = round(row.get("max_step_s", row.get("step_ms", 0) * 1e-3) * 1e3, 6)
             case = (
@@ -309,7 +309,7 @@ def estimator_check(runs: list[dict[str, Any]]) -> dict[str, Any]:
 
 #: The families and steps the step-error transfer below is built for; session 4's variants
 #: (momentum predictor, finer surface band, larger tilt, Crank-Nicolson on a graded mesh) and its
-#: 4 ms steps are analysed on their own (benchmarks/cfd_damping_graded_family.py).
+#: 4 ms steps are analysed on their own (studies/cfd-damping/cfd_damping_graded_family.py).
 TRANSFER_FAMILIES = ("uniform", "uniform CN 0.9", "graded 0.1", "graded 0.25")
 LARGEST_TRANSFER_STEP_S = 2e-3
 

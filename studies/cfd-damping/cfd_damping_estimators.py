@@ -16,9 +16,9 @@ agree within a few per cent on the wall force, not on the probe elevation of coa
 Each row also carries the wall force's noise ratio above 15 Hz and its step-to-step
 alternation (`sloshkit.cfd.force_signal.step_alternation`), both after 0.5 s.
 
-Writes docs/cfd-damping-estimators.json (one row per case folder).
+Writes data/cfd-damping-estimators.json (one row per case folder).
 
-Run: PYTHONPATH=src python benchmarks/cfd_damping_estimators.py [WORK ...]
+Run: PYTHONPATH=src python studies/cfd-damping/cfd_damping_estimators.py [WORK ...]
 """
 
 from __future__ import annotations
@@ -40,7 +40,8 @@ from sloshkit.cfd.force_signal import noise_ratio, step_alternation
 from sloshkit.cfd.results import read_signals
 from sloshkit.errors import InputError, ValidityWarning
 
-ROOT = Path(__file__).resolve().parent.parent
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 STARTS_S = (0.3, 0.5, 0.7)
 PRIMARY = ("force", "fit", 0.5)
 NOISE_CUTOFF_HZ = 15.0  # three times the first-mode frequency
@@ -126,7 +127,7 @@ def estimate(case: Path) -> dict[str, Any] | None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("works", nargs="*", type=Path, default=list(WORKS))
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-damping-estimators.json")
+    parser.add_argument("--out", type=Path, default=DATA / "cfd-damping-estimators.json")
     args = parser.parse_args()
     rows = json.loads(args.out.read_text()) if args.out.is_file() else []
     known = {(r["work"], r["case"]) for r in rows}

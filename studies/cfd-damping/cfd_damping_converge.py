@@ -2,12 +2,12 @@
 second-order (Crank-Nicolson) family, and wall-graded meshes that might form a family.
 
 Each entry of `PLAN` is one serial free decay of the seed vial (3 deg tilt, fixed step, the
-same 2 s window as docs/cfd-damping-study.json unless stated); one row per run, keyed by the
-entry's name, goes to docs/cfd-damping-converge.json (resumable: finished keys are kept, a run
-that blows up or is refused is a row with ``failed``). `benchmarks/cfd_damping_analysis.py`
+same 2 s window as data/cfd-damping-study.json unless stated); one row per run, keyed by the
+entry's name, goes to data/cfd-damping-converge.json (resumable: finished keys are kept, a run
+that blows up or is refused is a row with ``failed``). `studies/cfd-damping/cfd_damping_analysis.py`
 reads the rows.
 
-Run: PYTHONPATH=src nice -n 5 python benchmarks/cfd_damping_converge.py [--only KEY ...]
+Run: PYTHONPATH=src nice -n 5 python studies/cfd-damping/cfd_damping_converge.py [--only KEY ...]
 """
 
 from __future__ import annotations
@@ -19,14 +19,16 @@ import sys
 from pathlib import Path
 from typing import Any
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+# bench_cfd_speed (the benchmark every run of the study is) lives in benchmarks/.
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 
 from bench_cfd_speed import bench
 
 from sloshkit.cfd.state import CfdError
 from sloshkit.errors import InputError
 
-ROOT = Path(__file__).resolve().parent.parent
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 CN = "CrankNicolson 0.9"
 
 
@@ -69,7 +71,7 @@ def entry(
     }
 
 
-#: The plan; the rows of docs/cfd-damping-converge.json are in the order actually run (the
+#: The plan; the rows of data/cfd-damping-converge.json are in the order actually run (the
 #: graded 16/radius mesh damped less at 2 ms than its neighbours, so its 1 ms run went before
 #: the cheaper checks).
 PLAN = [
@@ -82,7 +84,7 @@ PLAN = [
     entry(8, 0.25, CN),
     entry(8, 0.0625),
     entry(8, 0.125, CN),
-    # the wall-graded family at a fixed grading of 0.25 (docs/cfd-damping-graded-meshes.json):
+    # the wall-graded family at a fixed grading of 0.25 (data/cfd-damping-graded-meshes.json):
     # cells per radius and annulus cells refined together by about 4/3
     entry(9, 2.0, grading=0.25, radial=7),
     entry(12, 2.0, grading=0.25, radial=10),
@@ -94,7 +96,7 @@ PLAN = [
     # not run: 12/radius at 0.5 ms and 9/radius at 0.25 ms (the 9/radius run at 0.5 ms was
     # already swamped by parasitic currents)
     # session 4: the momentum predictor against the 2-step oscillation of the wall force at
-    # small steps (docs/cfd.md, *Damping*): it did not remove it on 9/radius at 0.5 ms, and the
+    # small steps (README.md, *Damping*): it did not remove it on 9/radius at 0.5 ms, and the
     # 16/radius mesh blew up at its start at 1 ms; the rest of its series was not run
     entry(9, 0.5, grading=0.25, radial=7, predictor=True),
     entry(16, 1.0, grading=0.25, radial=13, predictor=True),
@@ -225,13 +227,13 @@ def check_meshes(work: Path, out: Path) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-damping3"))
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-damping-converge.json")
+    parser.add_argument("--out", type=Path, default=DATA / "cfd-damping-converge.json")
     parser.add_argument("--only", nargs="*", default=None, help="run these keys only")
     parser.add_argument("--list", action="store_true", help="list the plan's keys")
     parser.add_argument("--check-meshes", action="store_true", help="checkMesh the graded grids")
     args = parser.parse_args()
     if args.check_meshes:
-        check_meshes(args.work, ROOT / "docs" / "cfd-damping-graded-meshes.json")
+        check_meshes(args.work, DATA / "cfd-damping-graded-meshes.json")
         return
     if args.list:
         print("\n".join(item["key"] for item in PLAN))

@@ -17,7 +17,7 @@ repository (GiorgioMedico/AntiSloshing, commit 75eb653, MIT licence): 48 series,
 not among the six (a hold-out; baseline: median of the first 5 s of the camera record; peaks
 only, the clocks of those series are not aligned).
 
-Run: PYTHONPATH=src python benchmarks/validate_measured_3d.py [--figure PATH] [--markdown]
+Run: PYTHONPATH=src python validation/validate_measured_3d.py [--figure PATH] [--markdown]
      [--campaign PATH/TO/AntiSloshing]
 """
 

@@ -1,6 +1,6 @@
 """Richardson extrapolation and the grid convergence index (GCI) of a CFD quantity.
 
-Used for the CFD damping ratio of the seed vial (``benchmarks/cfd_damping_analysis.py``):
+Used for the CFD damping ratio of the seed vial (``studies/cfd-damping/cfd_damping_analysis.py``):
 first in the time step on each mesh, then in the mesh on the step-free values. The procedure
 is that of Celik et al. (2008) for three solutions with refinement ratios that need not be
 equal; with two solutions (or an order that is assumed rather than observed) Roache's safety
@@ -357,7 +357,8 @@ def fit_error_terms(
     References
     ----------
     S. A. Richards, "Completed Richardson extrapolation in space and time", Commun. Numer.
-    Methods Eng. 13 (1997) 573-582, doi:10.1002/(SICI)1099-0887(199707)13:7<573::AID-CNM84>3.0.CO;2-6;
+    Methods Eng. 13 (1997) 573-582,
+    doi:10.1002/(SICI)1099-0887(199707)13:7<573::AID-CNM84>3.0.CO;2-6;
     P. J. Roache, *Verification and Validation in Computational Science and Engineering*,
     Hermosa (1998), ch. 5.
 

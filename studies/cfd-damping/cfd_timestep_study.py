@@ -2,20 +2,26 @@
 and the number of pressure correctors change the frequency, the damping and the cost.
 
 Every row is `bench_cfd_speed.bench` (2 s of free decay of the seed paper's vial, 3 deg tilt).
-Results go to docs/cfd-timestep-study.json; docs/cfd.md discusses them.
+Results go to data/cfd-timestep-study.json; README.md discusses them.
 
-Run: PYTHONPATH=src python benchmarks/cfd_timestep_study.py [--np 1] [--cells-per-radius 11]
+Run: PYTHONPATH=src python studies/cfd-damping/cfd_timestep_study.py [--np 1]
+[--cells-per-radius 11]
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import sys
 from pathlib import Path
+
+# bench_cfd_speed (the benchmark every row is) lives in benchmarks/.
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 
 from bench_cfd_speed import bench
 
-ROOT = Path(__file__).resolve().parent.parent
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 
 #: (largest step [ms], Courant limit, pressure correctors)
 PLAN = [
@@ -34,7 +40,7 @@ def main() -> None:
     parser.add_argument("--cells-per-radius", type=int, default=11)
     parser.add_argument("--end-time", type=float, default=2.0)
     parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-timestep"))
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-timestep-study.json")
+    parser.add_argument("--out", type=Path, default=DATA / "cfd-timestep-study.json")
     args = parser.parse_args()
     rows = json.loads(args.out.read_text()) if args.out.is_file() else []
     done = {(r["max_step_s"], r["max_courant"], r["pressure_correctors"]) for r in rows}

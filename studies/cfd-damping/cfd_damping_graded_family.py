@@ -2,20 +2,20 @@
 (sessions 4 and 5), the one-change variants, and the damping with its mesh and step
 uncertainty, from the wall force.
 
-Reads docs/cfd-damping-converge.json (the runs) and docs/cfd-damping-estimators.json (every
+Reads data/cfd-damping-converge.json (the runs) and data/cfd-damping-estimators.json (every
 finished run re-estimated from its wall force: the damped-sine fit from 0.5 s, and the force's
 noise ratio above 15 Hz), and writes the text between ``<!-- damping-graded-family:start -->``
-and ``<!-- damping-graded-family:end -->`` of docs/cfd.md and
-docs/cfd-damping-graded-family.json:
+and ``<!-- damping-graded-family:end -->`` of README.md and
+data/cfd-damping-graded-family.json:
 
 - the tables: what each mesh and step gave;
 - at each step, Richardson/GCI in the mesh over the three finest meshes with a clean run;
 - the damping with both uncertainties (Celik et al. 2008, as in
-  `sloshkit.cfd.convergence`): first Richardson in the step on each of the three finest meshes
+  `convergence`): first Richardson in the step on each of the three finest meshes
   with three clean steps, then Richardson/GCI in the mesh on their step-free values, the
   uncertainties combined by root-sum-square.
 
-Run: PYTHONPATH=src python benchmarks/cfd_damping_graded_family.py
+Run: PYTHONPATH=src python studies/cfd-damping/cfd_damping_graded_family.py
 """
 
 from __future__ import annotations
@@ -31,8 +31,8 @@ from cfd_damping_report import MAX_LATE_COURANT
 from sloshkit.cfd.force_signal import NOISE_RATIO_LIMIT as NOISE_LIMIT
 from sloshkit.cfd.force_signal import STEP_ALTERNATION_LIMIT as ALTERNATION_LIMIT
 
-ROOT = Path(__file__).resolve().parent.parent
-DOCS = ROOT / "docs"
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 WORK = "sloshkit-cfd-damping3"
 START = "<!-- damping-graded-family:start -->"
 END = "<!-- damping-graded-family:end -->"
@@ -46,10 +46,10 @@ MESHES = (9, 12, 16, 20, 24, 28)
 
 def load() -> tuple[dict[str, dict[str, Any]], dict[str, dict[str, Any]]]:
     """The runs by key, and their wall-force estimates by key."""
-    runs = {r["key"]: r for r in json.loads((DOCS / "cfd-damping-converge.json").read_text())}
+    runs = {r["key"]: r for r in json.loads((DATA / "cfd-damping-converge.json").read_text())}
     estimates = {
         r["case"]: r
-        for r in json.loads((DOCS / "cfd-damping-estimators.json").read_text())
+        for r in json.loads((DATA / "cfd-damping-estimators.json").read_text())
         if r["work"] == WORK
     }
     return runs, estimates
@@ -154,10 +154,10 @@ def clean(key: str, runs: dict[str, dict[str, Any]], estimates: dict[str, dict[s
 def finest_meshes(
     runs: dict[str, dict[str, Any]], estimates: dict[str, dict[str, Any]], step_ms: float
 ) -> dict[str, Any] | None:
-    """Richardson/GCI (`sloshkit.cfd.convergence.richardson`) over the three finest graded
+    """Richardson/GCI (`convergence.richardson`) over the three finest graded
     meshes with a clean run at one step, and the finest one's change from the next larger
     step of `STEPS_MS` it ran cleanly."""
-    from sloshkit.cfd.convergence import richardson
+    from convergence import richardson
 
     cells = [n for n in MESHES[::-1] if clean(key_of(n, step_ms), runs, estimates)][:3]
     if len(cells) < 3:
@@ -202,7 +202,7 @@ def step_and_mesh(
     The reported damping is the finest mesh's solution at `MESH_STEP_MS` (both GCI bands are
     about it), with the root-sum-square (`combined_uncertainty`) of the two uncertainties.
     """
-    from sloshkit.cfd.convergence import combined_uncertainty, richardson
+    from convergence import combined_uncertainty, richardson
 
     mesh_study = by_step.get(MESH_STEP_MS)
     if mesh_study is None:
@@ -340,8 +340,8 @@ def main() -> None:
     if combined is not None:
         section += "\n" + step_and_mesh_summary(combined)
     record = {"finest_meshes_by_step": studies, "step_and_mesh": combined}
-    (DOCS / "cfd-damping-graded-family.json").write_text(json.dumps(record, indent=2) + "\n")
-    path = DOCS / "cfd.md"
+    (DATA / "cfd-damping-graded-family.json").write_text(json.dumps(record, indent=2) + "\n")
+    path = STUDY / "README.md"
     text = path.read_text()
     if START in text:
         head, rest = text.split(START, 1)

@@ -6,10 +6,10 @@ and records the largest Courant number of every step. A discrete instability sho
 geometric growth from round-off (Courant 1e-17 at the first steps); the growth factor per
 step is the slope of log(Courant) over the steps where it lies between 1e-14 and 100.
 
-Results go to the ``instability_diagnosis`` entry of docs/cfd-wall-grading.json (the v1
-entries there are kept). docs/cfd.md discusses them.
+Results go to the ``instability_diagnosis`` entry of data/cfd-wall-grading.json (the v1
+entries there are kept). README.md discusses them.
 
-Run: PYTHONPATH=src python benchmarks/cfd_wall_stability.py [--only NAME ...]
+Run: PYTHONPATH=src python studies/cfd-damping/cfd_wall_stability.py [--only NAME ...]
 """
 
 from __future__ import annotations
@@ -29,7 +29,8 @@ from sloshkit.cfd.mesh import wall_cell_size_m
 from sloshkit.cfd.run import openfoam_environment, write_case
 from sloshkit.model.liquids import get_liquid
 
-ROOT = Path(__file__).resolve().parent.parent
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 QUALITY = {
     "max_aspect_ratio": r"Max aspect ratio = ([0-9.eE+-]+)",
     "min_determinant": r"Cell determinant \(wellposedness\) : minimum: ([0-9.eE+-]+)",
@@ -293,7 +294,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", nargs="*", default=None, help="experiment names")
     parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-stability"))
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-wall-grading.json")
+    parser.add_argument("--out", type=Path, default=DATA / "cfd-wall-grading.json")
     parser.add_argument(
         "--regrow", action="store_true", help="only recompute the growth from the stored series"
     )

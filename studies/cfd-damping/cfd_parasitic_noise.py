@@ -1,7 +1,7 @@
 """What the high-frequency noise of the wall force on wall-graded meshes at small steps is, and
 which solver settings change it: short free decays, one change at a time.
 
-The damping study (docs/cfd.md, *Damping*) found the wall force of every wall-graded O-grid
+The damping study (README.md, *Damping*) found the wall force of every wall-graded O-grid
 swamped by noise at a 0.5 ms step (noise ratio 1.7-2.4), and clean at 2 ms. Each experiment
 here writes the 9-cells-per-radius graded mesh of that study (grading 0.25, 7 annulus cells,
 15,876 cells), 3 deg tilt, fixed 0.5 ms step, 0.6 s of free decay, changes one thing and runs
@@ -10,9 +10,9 @@ separately, the noise ratio (`sloshkit.cfd.force_signal.noise_ratio` above 15 Hz
 0.1-0.3 s and 0.3-0.6 s, and the frequency of the largest spectral line of the noise (1000 Hz
 is the Nyquist frequency of the step: a sign change every step).
 
-Results: docs/cfd-parasitic-noise.json; docs/cfd.md discusses them.
+Results: data/cfd-parasitic-noise.json; README.md discusses them.
 
-Run: PYTHONPATH=src python benchmarks/cfd_parasitic_noise.py [--only NAME ...] [--jobs 2]
+Run: PYTHONPATH=src python studies/cfd-damping/cfd_parasitic_noise.py [--only NAME ...] [--jobs 2]
 """
 
 from __future__ import annotations
@@ -39,7 +39,8 @@ from sloshkit.cfd.run import openfoam_environment, write_case
 from sloshkit.cfd.spec import SCALE, CaseSpec, FreeDecay
 from sloshkit.model.liquids import get_liquid
 
-ROOT = Path(__file__).resolve().parent.parent
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 Edit = Callable[[Path], None]
 CUTOFF_HZ = 15.0  # three times the first-mode frequency, as in the damping study
 WINDOWS_S = ((0.1, 0.3), (0.3, 0.6))
@@ -303,7 +304,7 @@ def main() -> None:
     parser.add_argument("--only", nargs="*", default=None, help="experiment names")
     parser.add_argument("--jobs", type=int, default=2, help="experiments run at once")
     parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-noise"))
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-parasitic-noise.json")
+    parser.add_argument("--out", type=Path, default=DATA / "cfd-parasitic-noise.json")
     parser.add_argument(
         "--locate", action="store_true", help="where the oscillation lives (reference case)"
     )

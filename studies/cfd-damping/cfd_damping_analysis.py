@@ -1,14 +1,14 @@
-"""Analysis of the CFD damping study (benchmarks/cfd_damping_study.py): Richardson
-extrapolation in time step and mesh, GCI, boundary-layer theory, figure and the docs section.
+"""Analysis of the CFD damping study (cfd_damping_study.py): Richardson extrapolation in
+time step and mesh, GCI, boundary-layer theory, figure and the section of README.md.
 
-Reads docs/cfd-damping-study.json and docs/cfd-damping-graded.json (session 2),
-docs/cfd-damping-converge.json (session 3) and docs/cfd-damping-estimators.json (every run
-re-estimated from its wall force), extrapolates (benchmarks/cfd_damping_converged.py), and
-writes docs/cfd-damping.json (every number of the section), the figure
-docs/figures/cfd_damping_study.png, and the text between the markers
-``<!-- damping-study:start -->`` and ``<!-- damping-study:end -->`` of docs/cfd.md.
+Reads data/cfd-damping-study.json and data/cfd-damping-graded.json (session 2),
+data/cfd-damping-converge.json (session 3) and data/cfd-damping-estimators.json (every run
+re-estimated from its wall force), extrapolates (studies/cfd-damping/cfd_damping_converged.py), and
+writes data/cfd-damping.json (every number of the section), the figure
+figures/cfd_damping_study.png, and the text between the markers
+``<!-- damping-study:start -->`` and ``<!-- damping-study:end -->`` of README.md.
 
-Run: PYTHONPATH=src python benchmarks/cfd_damping_analysis.py
+Run: PYTHONPATH=src python studies/cfd-damping/cfd_damping_analysis.py
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ from scipy.special import j1, jvp
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.theory import damping_ratio_correlation
 
-ROOT = Path(__file__).resolve().parent.parent
-DOCS = ROOT / "docs"
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 RADIUS_M, FILL_M, GRAVITY = 0.0205, 0.039, 9.81
 XI_1 = 1.8411837813406593  # first zero of J1'
 START, END = "<!-- damping-study:start -->", "<!-- damping-study:end -->"
@@ -105,14 +105,14 @@ def main() -> None:
         "boundary_layer_terms": layer,
         "safety": SAFETY,
     }
-    (DOCS / "cfd-damping.json").write_text(json.dumps(document, indent=2) + "\n")
-    figure(document, DOCS / "figures" / "cfd_damping_study.png")
+    (DATA / "cfd-damping.json").write_text(json.dumps(document, indent=2) + "\n")
+    figure(document, STUDY / "figures" / "cfd_damping_study.png")
     section = render(document)
-    grading = json.loads((DOCS / "cfd-wall-grading.json").read_text())
+    grading = json.loads((DATA / "cfd-wall-grading.json").read_text())
     wall_section = render_stability(grading.get("instability_diagnosis", []))
-    noise_path = DOCS / "cfd-parasitic-noise.json"
+    noise_path = DATA / "cfd-parasitic-noise.json"
     noise_section = render_noise(json.loads(noise_path.read_text()) if noise_path.is_file() else [])
-    text = (DOCS / "cfd.md").read_text()
+    text = (STUDY / "README.md").read_text()
     blocks = (
         (START, END, section),
         (WALL_START, WALL_END, wall_section),
@@ -122,7 +122,7 @@ def main() -> None:
         if start in text:
             head, rest = text.split(start, 1)
             text = head + start + "\n" + body + "\n" + end + rest.split(end, 1)[1]
-    (DOCS / "cfd.md").write_text(text)
+    (STUDY / "README.md").write_text(text)
     print(section)
 
 

@@ -5,9 +5,9 @@ For each (radial cells, wall grading) the script writes the paper's vial case, r
 and ``checkMesh -allGeometry`` and records the wall cell size, the maximum non-orthogonality
 and skewness, the minimum cell determinant and the maximum aspect ratio; with ``--run T`` it
 also runs T seconds of free decay (serial) and records whether the solver survived and its
-largest Courant number. Results: docs/cfd-wall-grading.json.
+largest Courant number. Results: data/cfd-wall-grading.json.
 
-Run: PYTHONPATH=src python benchmarks/cfd_wall_grading.py [--run 0.2]
+Run: PYTHONPATH=src python studies/cfd-damping/cfd_wall_grading.py [--run 0.2]
 """
 
 from __future__ import annotations
@@ -24,7 +24,8 @@ from sloshkit.cfd.mesh import wall_cell_size_m
 from sloshkit.cfd.run import openfoam_environment, write_case
 from sloshkit.model.liquids import get_liquid
 
-ROOT = Path(__file__).resolve().parent.parent
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 PLAN = [(5, 1.0), (10, 0.2), (12, 0.1), (16, 0.05), (20, 0.02)]
 PATTERNS = {
     "max_non_orthogonality_deg": r"Mesh non-orthogonality Max: ([0-9.eE+-]+)",
@@ -47,7 +48,7 @@ def main() -> None:
     parser.add_argument("--only-strong", action="store_true", help="the two finest gradings")
     parser.add_argument("--run", type=float, default=0.0, help="seconds of free decay to run")
     parser.add_argument("--work", type=Path, default=Path("/tmp/sloshkit-cfd-grading"))
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "cfd-wall-grading.json")
+    parser.add_argument("--out", type=Path, default=DATA / "cfd-wall-grading.json")
     args = parser.parse_args()
     rows = []
     for radial, grading in PLAN[3:] if args.only_strong else PLAN:

@@ -3,9 +3,9 @@
 Runs interFoam free decays (3 deg tilt, water, laminar, no surface tension) for several mesh
 resolutions and time steps, calibrates frequency and damping from each, extrapolates the damping
 to zero time step (Euler adds damping proportional to the step), times serial against --np 2,
-and writes docs/cfd-study.json and docs/figures/cfd_study.png.
+and writes data/cfd-study.json and figures/cfd_study.png.
 
-Run (about 30 min on 2 cores): .venv/bin/python benchmarks/cfd_study.py [--end-time 2]
+Run (about 30 min on 2 cores): .venv/bin/python studies/cfd-damping/cfd_study.py [--end-time 2]
 """
 
 from __future__ import annotations
@@ -22,7 +22,8 @@ from sloshkit import UprightCylinder, equivalent_model, get_liquid
 from sloshkit.cfd.case import FreeDecay
 from sloshkit.cfd.pipeline import analyse, case_spec, run
 
-ROOT = Path(__file__).resolve().parent.parent
+STUDY = Path(__file__).resolve().parent
+DATA = STUDY / "data"
 
 
 def main() -> None:
@@ -108,7 +109,7 @@ def write(runs: list[dict], model) -> None:
         "runs": runs,
         "extrapolated": extrapolated,
     }
-    (ROOT / "docs" / "cfd-study.json").write_text(json.dumps(document, indent=2))
+    (DATA / "cfd-study.json").write_text(json.dumps(document, indent=2))
     plot(document)
 
 
@@ -160,7 +161,7 @@ def plot(document: dict) -> None:
         axis.grid(alpha=0.3)
         axis.legend(fontsize=8)
     figure.suptitle("CFD free decay of the paper's vial: mesh and time-step study (Euler)")
-    figure.savefig(ROOT / "docs" / "figures" / "cfd_study.png", dpi=110)
+    figure.savefig(STUDY / "figures" / "cfd_study.png", dpi=110)
 
 
 if __name__ == "__main__":
