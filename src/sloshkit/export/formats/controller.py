@@ -18,7 +18,6 @@ written points, joined smoothly at the controller's rate, keep the planned slosh
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 
@@ -26,6 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.motion.sampling import steps_to_reach
 
 FloatArray = NDArray[np.float64]
 
@@ -76,8 +76,8 @@ class Controller:
     def round_trip_step_s(self) -> float:
         """The round trip's grid [s]: the interpolation period over the smallest whole number
         that brings it to `ROUND_TRIP_STEP_S` or below."""
-        return self.interpolation_period_s / math.ceil(
-            self.interpolation_period_s / ROUND_TRIP_STEP_S - 1e-9
+        return self.interpolation_period_s / steps_to_reach(
+            self.interpolation_period_s, ROUND_TRIP_STEP_S
         )
 
     def point_period(self, requested_s: float | None) -> float:
@@ -130,7 +130,7 @@ class Controller:
         if points <= self.max_points:
             return
         duration = (points - 1) * period_s
-        steps = math.ceil(duration / (self.max_points - 1) / self.interpolation_period_s - 1e-9)
+        steps = steps_to_reach(duration / (self.max_points - 1), self.interpolation_period_s)
         shortest = steps * self.interpolation_period_s
         raise InputError(
             "sample_period",
