@@ -27,7 +27,10 @@ del globals()["app"]
 
 #: Command (or command group) -> (module, short help), in the order of ``sloshkit --help``.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "model": ("sloshkit.cli.model", "Equivalent pendulum model of a filled upright cylinder."),
+    "model": (
+        "sloshkit.cli.model",
+        "Equivalent pendulum model of a filled upright cylinder or real container.",
+    ),
     "simulate": (
         "sloshkit.cli.simulate",
         "Slosh response of the container to one motion law, or to a 3-D pose trajectory.",

@@ -23,8 +23,8 @@ from sloshkit.cfd.run import CfdError, CfdInterrupted, interruptible
 from sloshkit.cfd.validation import CfdValidation
 from sloshkit.cli import display, signals
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.cfd_options import CaseDir, cfd_options, spec_from_options
-from sloshkit.cli.options import Json, print_json, with_model_options, with_options
+from sloshkit.cli.cfd_options import CaseDir, cfd_options, require_cylinder, spec_from_options
+from sloshkit.cli.options import Json, print_json, with_cylinder_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
 from sloshkit.io.models import write_model_file
@@ -215,7 +215,7 @@ def _resumed_spec(spec: Any, case: Path, processes: int | None) -> Any:
 
 
 @cfd_app.command("run")
-@with_model_options
+@with_cylinder_model_options
 @with_options(cfd_options("free-decay", "3s"), "case_options", dict)
 def cfd_run_command(
     slosh_model: SloshModel,
@@ -269,6 +269,7 @@ def cfd_run_command(
     >>> run(["cfd", "run", "--case", "c", "--cells-per-radius", "2"])  # refused: nothing written
     2
     """
+    require_cylinder(slosh_model)
     check_file(model_file_out, "model_file_out", "model")
     check_file(plot, "plot", "figure")
     check_folder(case, "case", overwrite=True)  # a file, /proc, no permission: refused now
@@ -368,7 +369,7 @@ def _validate(case: Path, slosh_model: SloshModel) -> CfdValidation:
 
 
 @cfd_app.command("validate")
-@with_model_options
+@with_cylinder_model_options
 @with_options(cfd_options("harmonic", "4s"), "case_options", dict)
 def cfd_validate_command(
     slosh_model: SloshModel,
@@ -421,6 +422,7 @@ def cfd_validate_command(
     >>> run(["cfd", "validate", "--case", "no-such-case", "--reuse"])  # one line on stderr
     2
     """
+    require_cylinder(slosh_model)
     check_file(plot, "plot", "figure")
     if not reuse:
         check_folder(case, "case", overwrite=True)

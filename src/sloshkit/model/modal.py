@@ -28,10 +28,12 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from sloshkit.errors import InputError, require_in_range, require_positive, warn_validity
-from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
 from sloshkit.model.pendulums import SloshMode, SloshModel
+from sloshkit.model.profile import Container, ProfileContainer
+from sloshkit.model.profile_modal import profile_equivalent_model
 from sloshkit.model.theory import (
+    CAPILLARY_THRESHOLD,
     DAMPING_LAWS,
     GRAVITY_M_S2,
     MAX_MODES,
@@ -47,18 +49,9 @@ from sloshkit.model.theory import (
     wall_elevation_factor,
 )
 
-#: The capillary correction is applied by default when it raises omega_1 by more than this
-#: fraction. Below it the correction is no larger than the gap between the uncorrected theory
-#: and the references sloshkit has (the paper's CFD: 3.7 % below theory at Bo = 57, where the
-#: correction is +2.9 %; the measured 49 mm glass cylinder: 0.6 % below at Bo = 323, correction
-#: +0.5 %): neither supports raising the frequency there. Above it the correction dominates the
-#: model's error (a 2 mL vial of radius 8 mm: +17.9 %, and the docs/how-do-i.md plan made
-#: without it leaves 2.0-2.6 deg against its 0.25 deg residual limit). See docs/user-guide.md.
-CAPILLARY_THRESHOLD = 0.05
-
 
 def equivalent_model(
-    container: UprightCylinder,
+    container: Container,
     liquid: Liquid,
     fill_height_m: float,
     n_modes: int = 3,
@@ -74,10 +67,14 @@ def equivalent_model(
     for very shallow fills, capillary-dominated containers and damping so high that the
     boundary-layer correlations no longer hold.
 
+    A `ProfileContainer` (any axisymmetric container, e.g. a catalogued vial) is modelled by
+    finite elements instead (`sloshkit.model.profile_modal.profile_equivalent_model`); the
+    upright cylinder keeps the closed form.
+
     Parameters
     ----------
-    container : UprightCylinder
-        The upright cylinder (radius, optional wall height).
+    container : UprightCylinder or ProfileContainer
+        The upright cylinder (radius, optional wall height) or an inner profile.
     liquid : Liquid
         Density, viscosity, surface tension.
     fill_height_m : float
@@ -127,6 +124,17 @@ def equivalent_model(
     >>> small.surface_tension_correction
     True
     """
+    if isinstance(container, ProfileContainer):
+        return profile_equivalent_model(
+            container,
+            liquid,
+            fill_height_m,
+            n_modes,
+            damping_law=damping_law,
+            damping_ratio=damping_ratio,
+            surface_tension=surface_tension,
+            gravity_m_s2=gravity_m_s2,
+        )
     radius = container.radius_m
     height = container.check_fill_height(fill_height_m)
     gravity = require_positive("gravity", gravity_m_s2, "m/s^2")
@@ -231,7 +239,7 @@ def equivalent_model(
 
 
 def model_family(
-    container: UprightCylinder,
+    container: Container,
     liquid: Liquid,
     *,
     n_modes: int = 3,
@@ -244,8 +252,8 @@ def model_family(
 
     Parameters
     ----------
-    container : UprightCylinder
-        The container.
+    container : UprightCylinder or ProfileContainer
+        The container (a profile's fills are cached: each solved once).
     liquid : Liquid
         The liquid.
     n_modes : int
