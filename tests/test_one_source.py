@@ -55,7 +55,10 @@ def grid_rule_copies(tree: ast.Module) -> list[int]:
 
 
 def test_only_motion_sampling_writes_the_grid_rule():
-    allowed = {"motion/sampling.py"} | PLAN_PENDING
+    # The profile mesher counts pieces of at most one spacing with the same rounding; model/
+    # sits below motion/ and cannot call it, and these are lengths, not the time grid.
+    mesh_counts = {"model/axisymmetric.py", "model/profile.py"}
+    allowed = {"motion/sampling.py"} | PLAN_PENDING | mesh_counts
     copies = [
         f"{name}:{line}"
         for name, tree in modules().items()

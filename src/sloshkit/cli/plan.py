@@ -88,7 +88,8 @@ def plan_command(
         typer.Option(
             "--export",
             help="Also write the chosen move for a controller (see 'sloshkit export'): "
-            "pose-csv, joint-csv, ros2, ros2-bag, urscript or cam-table.",
+            "pose-csv, joint-csv, ros2, ros2-bag, urscript, cam-table, fanuc-ls, abb-rapid or "
+            "kuka-krl.",
         ),
     ] = None,
     json_output: Json = False,
