@@ -108,7 +108,10 @@ def run(
     2
     """
     from sloshkit.budget import ENVIRONMENT_VARIABLE
+    from sloshkit.cli.display import quiet_library_logging, sane_width_environment
 
+    saved_width = sane_width_environment()  # COLUMNS=0 would hide every line, errors too
+    quiet_library_logging()
     saved_memory = os.environ.get(ENVIRONMENT_VARIABLE)
     saved_showwarning = warnings.showwarning
     warnings.showwarning = _show_warning
@@ -125,6 +128,7 @@ def run(
                 return _report(failure)
     finally:
         warnings.showwarning = saved_showwarning
+        os.environ.update(saved_width)
         if saved_memory is None:
             os.environ.pop(ENVIRONMENT_VARIABLE, None)
         else:

@@ -15,7 +15,17 @@ from sloshkit.errors import InputError
 FloatArray = NDArray[np.float64]
 
 
-def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
+#: Most data rows of a table file (pose, plan, motion and record files alike): 1000 s at
+#: 1 kHz. Longer files are refused while they are read, before their rows are parsed.
+MAX_TABLE_ROWS = 1_000_000
+
+#: Memory a table needs per byte of file, as `sloshkit.budget.require_memory` counts it: every
+#: value takes at least 2 bytes of text ("0,") and 8 bytes as a float, held twice (the rows
+#: read, then the array).
+TABLE_BYTES_PER_FILE_BYTE = 8.0
+
+
+def read_table(path: str | Path, *, max_rows: int = MAX_TABLE_ROWS) -> tuple[list[str], FloatArray]:
     """Read a numeric table: CSV (comma or semicolon) or whitespace-separated, ``#`` comments
     skipped; with semicolons, decimal commas are accepted.
 
@@ -23,12 +33,17 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
     by their index (``"0"``, ``"1"``, ...). OpenFOAM function-object files (``# Time ...``
     headers, vectors in parentheses) are read too: parentheses are dropped, vector components
     become separate columns, and a last comment line naming the columns is used as the header.
-    Raises `InputError` for a missing or empty file or non-numeric cells.
+    The file is read line by line: one with more than ``max_rows`` data rows is refused when
+    its row ``max_rows + 1`` is reached, and its size is checked against the memory limit
+    (`TABLE_BYTES_PER_FILE_BYTE`, `sloshkit.budget`) before anything is read.
+    Raises `InputError` for a missing or empty file, too many rows or non-numeric cells.
 
     Parameters
     ----------
     path : str or Path
         The file (a UTF-8 byte-order mark is removed).
+    max_rows : int
+        Most data rows accepted (default `MAX_TABLE_ROWS`).
 
     Returns
     -------
@@ -43,48 +58,67 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
     >>> read_table(file)
     (['t', 'x [mm]'], array([[0. , 1.5]]))
     """
+    from array import array
+
     source = Path(path)
     if not source.is_file():
         raise InputError("file", str(source), "does not exist or is not a file")
     from sloshkit.budget import require_memory
 
-    # Text, lines and rows of Python floats: about 20 bytes per byte of text.
-    require_memory("file", str(source), 20.0 * source.stat().st_size, "table parsed in memory")
-    text = source.read_text(encoding="utf-8", errors="replace").removeprefix("\ufeff")
+    size = source.stat().st_size
+    require_memory(
+        "file", str(source), TABLE_BYTES_PER_FILE_BYTE * size, f"a {size}-byte table in memory"
+    )
     last_comment = ""
-    lines: list[str] = []
-    for raw in text.splitlines():
-        stripped = raw.strip()
-        if not stripped:
-            continue
-        if stripped.startswith("#"):
-            last_comment = stripped.lstrip("#").strip()
-            continue
-        lines.append(stripped.replace("(", " ").replace(")", " "))
-    if not lines:
-        raise InputError("file", str(source), "has no data rows")
-    # semicolon CSV (spreadsheet exports; decimal commas allowed), comma CSV, or whitespace
-    delimiter = ";" if ";" in lines[0] else ("," if "," in lines[0] else None)
-    first = _split(lines[0], delimiter)
     header: list[str] | None = None
-    if not _is_numeric(first):
-        header = [name.strip() for name in first]
-        lines = lines[1:]
-    if not lines:
+    delimiter: str | None = None
+    values = array("d")
+    width = 0
+    rows = 0
+    first = True
+    with source.open(encoding="utf-8-sig", errors="replace", newline=None) as handle:
+        for raw in handle:
+            stripped = raw.strip()
+            if not stripped:
+                continue
+            if stripped.startswith("#"):
+                last_comment = stripped.lstrip("#").strip()
+                continue
+            line = stripped.replace("(", " ").replace(")", " ")
+            if first:
+                first = False
+                # semicolon CSV (spreadsheet exports; decimal commas allowed), comma CSV, or
+                # whitespace
+                delimiter = ";" if ";" in line else ("," if "," in line else None)
+                cells = _split(line, delimiter)
+                if not _is_numeric(cells):
+                    header = [name.strip() for name in cells]
+                    continue
+            rows += 1
+            if rows > max_rows:
+                raise InputError(
+                    "file",
+                    str(source),
+                    f"has more than {max_rows} data rows (the most a table may have)",
+                    "resample it or split it",
+                )
+            cells = _split(line, delimiter)
+            try:
+                row = [float(cell) if cell.strip() else float("nan") for cell in cells]
+            except ValueError:
+                raise InputError(
+                    "file", f"{source}:{rows}", f"row is not numeric: {line[:60]!r}"
+                ) from None
+            if rows == 1:
+                width = len(row)
+            elif len(row) != width:
+                raise InputError("file", str(source), "rows have different numbers of columns")
+            values.extend(row)
+    if first:
+        raise InputError("file", str(source), "has no data rows")
+    if rows == 0:
         raise InputError("file", str(source), "has a header but no data rows")
-    rows = []
-    for number, line in enumerate(lines, start=1):
-        cells = _split(line, delimiter)
-        try:
-            rows.append([float(cell) if cell.strip() else float("nan") for cell in cells])
-        except ValueError:
-            raise InputError(
-                "file", f"{source}:{number}", f"row is not numeric: {line[:60]!r}"
-            ) from None
-    width = max(len(row) for row in rows)
-    if any(len(row) != width for row in rows):
-        raise InputError("file", str(source), "rows have different numbers of columns")
-    data = np.asarray(rows, dtype=float)
+    data = np.frombuffer(values, dtype=float).reshape(rows, width).copy()
     if header is None and last_comment:
         candidate = last_comment.split()
         header = candidate if len(candidate) == width else None
