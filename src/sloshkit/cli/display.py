@@ -94,7 +94,8 @@ def console_width(stream: TextIO, environ: MutableMapping[str, str] | None = Non
     Examples
     --------
     >>> import io
-    >>> console_width(io.StringIO(), {"COLUMNS": "0"}), console_width(io.StringIO(), {"COLUMNS": "90"})
+    >>> pipe = io.StringIO()
+    >>> console_width(pipe, {"COLUMNS": "0"}), console_width(pipe, {"COLUMNS": "90"})
     (160, 90)
     """
     target = os.environ if environ is None else environ
