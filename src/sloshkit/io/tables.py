@@ -42,7 +42,7 @@ def read_table(path: str | Path, *, max_rows: int = MAX_TABLE_ROWS) -> tuple[lis
     ----------
     path : str or Path
         The file (a UTF-8 byte-order mark is removed).
-    max_rows : int
+    max_rows : int, optional
         Most data rows accepted (default `MAX_TABLE_ROWS`).
 
     Returns
@@ -60,6 +60,7 @@ def read_table(path: str | Path, *, max_rows: int = MAX_TABLE_ROWS) -> tuple[lis
     """
     from array import array
 
+    limit = MAX_TABLE_ROWS if max_rows is None else max_rows
     source = Path(path)
     if not source.is_file():
         raise InputError("file", str(source), "does not exist or is not a file")
@@ -95,11 +96,11 @@ def read_table(path: str | Path, *, max_rows: int = MAX_TABLE_ROWS) -> tuple[lis
                     header = [name.strip() for name in cells]
                     continue
             rows += 1
-            if rows > max_rows:
+            if rows > limit:
                 raise InputError(
                     "file",
                     str(source),
-                    f"has more than {max_rows} data rows (the most a table may have)",
+                    f"has more than {limit} data rows (the most a table may have)",
                     "resample it or split it",
                 )
             cells = _split(line, delimiter)
