@@ -5,6 +5,7 @@ are not Dask schedulers (tiny socket servers on 127.0.0.1, bounded and self-stop
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import socket
@@ -219,10 +220,8 @@ def fake_scheduler(request: pytest.FixtureRequest) -> Iterator[int]:
                 continue
             accepted.append(connection)
             if mode == "garbage":
-                try:
+                with contextlib.suppress(OSError):
                     connection.sendall(bytes(range(256)) * 16)
-                except OSError:
-                    pass
 
     thread = threading.Thread(target=serve, daemon=True)
     thread.start()

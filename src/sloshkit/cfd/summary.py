@@ -8,7 +8,7 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeGuard
 
 from sloshkit.errors import InputError
 
@@ -64,7 +64,7 @@ def _wrong(path: Path, parameter: str, key: str, value: Any, expected: str) -> I
     return InputError(parameter, str(path), f"key {key!r} is {shown}; it must be {expected}")
 
 
-def _is_number(value: Any) -> bool:
+def _is_number(value: Any) -> TypeGuard[float]:
     return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
 
 

@@ -177,9 +177,9 @@ def _read_waypoints(source: FilePath) -> tuple[FloatArray, FloatArray | None]:
     if "yaw" not in base:
         return points, None
     index = base.index("yaw")
-    yaw = data[:, index] * _scale(header[index], "rad", _ANGLE_UNITS, "path")
-    _require_yaw(yaw, header[index], source)
-    return points, yaw
+    yaw_column = data[:, index] * _scale(header[index], "rad", _ANGLE_UNITS, "path")
+    _require_yaw(yaw_column, header[index], source)
+    return points, yaw_column
 
 
 def _require_yaw(yaw_rad: FloatArray, column: str, source: FilePath) -> None:
