@@ -1,21 +1,26 @@
 # The README's two commands: `make demo` and `make test`. Both set themselves up.
 PYTHON ?= python3
-VENV   := .venv
+VENV   ?= .venv
 BIN    := $(VENV)/bin
 DEMO_OUT ?= demo-output
+## The tested dependency set: every package pinned to the version the suite passed with
+## (see docs/dependencies.md; `make lock` refreshes it). Empty: the newest releases.
+CONSTRAINTS ?= constraints.txt
+PIP := $(BIN)/python -m pip install -q $(if $(CONSTRAINTS),-c $(CONSTRAINTS))
+LINT_PATHS := src tests $(wildcard benchmarks examples studies validation)
 
-.PHONY: demo test lint typecheck unit docs system-deps clean
+.PHONY: demo test test-latest lock lint typecheck unit docs system-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install -q --upgrade pip
+	$(PIP) --upgrade pip
 
-$(VENV)/.installed-base: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install -q -e .
+$(VENV)/.installed-base: pyproject.toml $(CONSTRAINTS) | $(BIN)/python
+	$(PIP) -e .
 	touch $@
 
-$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install -q -e '.[test]'
+$(VENV)/.installed-test: pyproject.toml $(CONSTRAINTS) | $(BIN)/python
+	$(PIP) -e '.[test]'
 	touch $@ $(VENV)/.installed-base
 
 ## demo: the seed paper rebuilt end to end on the analytic model (no CFD), as a report.
@@ -38,8 +43,8 @@ system-deps:
 	fi
 
 lint: $(VENV)/.installed-test
-	$(BIN)/ruff check src tests $(wildcard benchmarks examples)
-	$(BIN)/ruff format --check src tests $(wildcard benchmarks examples)
+	$(BIN)/ruff check $(LINT_PATHS)
+	$(BIN)/ruff format --check $(LINT_PATHS)
 	$(BIN)/lint-imports
 
 typecheck: $(VENV)/.installed-test
@@ -55,5 +60,25 @@ docs: $(VENV)/.installed-test
 ## test: lint, types, the whole test suite (with the doctests of src/sloshkit) and the API docs.
 test: lint typecheck unit docs
 
+## test-latest: the same suite against the newest release of every dependency, in a fresh
+## .venv-latest (what a machine installing without the lock would get).
+test-latest:
+	rm -rf .venv-latest
+	$(MAKE) test VENV=.venv-latest CONSTRAINTS=
+
+## lock: resolve the newest releases in a fresh .venv-lock and write them to constraints.txt;
+## then run `make test` (it reinstalls from the new lock) before committing it.
+lock:
+	rm -rf .venv-lock
+	$(PYTHON) -m venv .venv-lock
+	.venv-lock/bin/python -m pip install -q --upgrade pip
+	.venv-lock/bin/python -m pip install -q -e '.[test]'
+	{ echo "# The tested dependency set of sloshkit (pip constraints), written by 'make lock'"; \
+	  echo "# on $$(date -u +%Y-%m-%d) with $$(.venv-lock/bin/python --version)."; \
+	  echo "# make demo and make test install from it; see docs/dependencies.md."; \
+	  .venv-lock/bin/python -m pip freeze --all --exclude-editable | grep -v '^setuptools=='; \
+	} > constraints.txt.tmp && mv constraints.txt.tmp constraints.txt
+	rm -rf .venv-lock
+
 clean:
-	rm -rf $(VENV) $(DEMO_OUT) .pytest_cache .mypy_cache .ruff_cache .hypothesis docs/api/_build
+	rm -rf $(VENV) .venv-latest .venv-lock $(DEMO_OUT) .pytest_cache .mypy_cache .ruff_cache .hypothesis docs/api/_build

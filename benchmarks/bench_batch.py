@@ -36,12 +36,24 @@ from sloshkit.motion.sampling import steps_for
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.sim.batch import batch_metrics
 from sloshkit.sim.batch_kernel import law_metrics
-from sloshkit.sim.discretisation import velocity_driven_filters
+from sloshkit.sim.discretisation import velocity_driven_discretisation
 from sloshkit.sweep import run_sweep
 
 LAWS = ("trapezoidal", "cubic", "quintic", "septic")
 DT = 1e-3
 DISTANCE = 0.5
+
+
+def lfilter_coefficients(
+    omega: float, zeta: float, length: float, step: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(b_theta, a, b_y) of the first-order-hold discretisation as an IIR filter (ss2tf)."""
+    from scipy.signal import ss2tf
+
+    phi, gamma, g1 = velocity_driven_discretisation(omega, zeta, length, step)
+    b_theta, a = ss2tf(phi, gamma[:, None], np.array([[1.0, 0.0]]), np.array([[g1[0]]]))
+    b_y, _ = ss2tf(phi, gamma[:, None], np.array([[0.0, 1.0]]), np.array([[g1[1]]]))
+    return b_theta[0], a, b_y[0]
 
 
 def baseline_case(model, motion, rtol=1e-8, atol=1e-10):
@@ -102,7 +114,7 @@ def lfilter_metrics(model, unit_velocity, durations, chunk=1000):
         rows = np.arange(block.size)
         wall = np.zeros_like(velocity)
         for index, mode in enumerate(model.modes):
-            b_theta, a, b_y, _ = velocity_driven_filters(
+            b_theta, a, b_y = lfilter_coefficients(
                 mode.omega_rad_s, mode.damping_ratio, mode.length_m, DT
             )
             theta = lfilter(b_theta, a, velocity, axis=-1)

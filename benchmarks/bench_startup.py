@@ -4,7 +4,8 @@ Each command runs in a fresh interpreter (``python -m sloshkit ...``), alternati
 numpy reference, ``--repeat`` times; the table gives the best wall time and the best CPU time
 (user + system of the child: on a shared machine the wall clock includes waiting for a core)
 and their ratios to the reference. The last row is the 40,000-case sweep of the README with
-its CSV and both maps (target: under 3 s); ``--breakdown`` adds where the sweep's time goes,
+its CSV and both maps (target: under 3 s), before it the README's 1-D plan of the paper's vial
+(target: under 1 s); ``--breakdown`` adds where the sweep's time goes,
 measured phase by phase in one fresh interpreter that runs the same steps as the command.
 
 Run: .venv/bin/python benchmarks/bench_startup.py [--markdown] [--repeat 5] [--breakdown]
@@ -25,6 +26,11 @@ SWEEP = (
     "--laws trapezoidal,cubic,quintic,septic --max-angle 10deg --max-residual 1deg --out {out}"
 )
 
+#: The README's 1-D plan (the paper's vial; target: under 1 s wall on an idle machine).
+PLAN = (
+    "plan --distance 0.5m --max-angle 5deg --max-residual 0.25deg --vmax 1.5m/s "
+    "--amax 20m/s^2 --jmax 500m/s^3 --json"
+)
 
 PHASES = """
 import sys, tempfile, time
@@ -112,6 +118,12 @@ def main() -> None:
         'python -c "import numpy"': [*python, "-c", "import numpy"],
         "sloshkit --help": [*python, "-m", "sloshkit", "--help"],
         "sloshkit model": [*python, "-m", "sloshkit", "model"],
+        "sloshkit plan (the paper's 1-D problem, --json)": [
+            *python,
+            "-m",
+            "sloshkit",
+            *PLAN.split(),
+        ],
         "sloshkit sweep (40,000 cases, CSV and maps)": [
             *python,
             "-m",
@@ -122,6 +134,7 @@ def main() -> None:
     env_note = os.environ.get("PYTHONPATH", "")
     best = {name: (float("inf"), float("inf")) for name in commands}
     run(commands["sloshkit sweep (40,000 cases, CSV and maps)"])  # numba cache, disk cache
+    run(commands["sloshkit plan (the paper's 1-D problem, --json)"])
     for _ in range(args.repeat):
         for name, command in commands.items():
             wall, cpu = run(command)

@@ -240,7 +240,7 @@ def test_openfoam_style_file(tmp_path):
     [
         ("", [], "no data rows"),
         ("t,eta\n", [], "no data"),
-        ("t,eta\n0,1\n1,2\n", ["--signal-column", "zeta"], "signal_column"),
+        ("t,eta\n0,1\n1,2\n", ["--signal-column", "zeta"], "--signal-column"),
         (
             "t,eta\n0,1\n0,2\n1,3\n2,1\n3,1\n4,1\n5,1\n6,1\n7,1\n",
             ["--signal-column", "eta"],

@@ -204,7 +204,7 @@ def test_cli_defaults_on_a_force_record(tmp_path):
 
 
 def test_readme_example_runs_as_written(tmp_path, monkeypatch):
-    """The calibrate block of README.md, run verbatim on a clean decay.csv."""
+    """The calibrate block of README.md, run verbatim on a clean examples/decay.csv."""
     readme = (Path(__file__).parents[2] / "README.md").read_text(encoding="utf-8")
     section = readme[readme.index("### `sloshkit calibrate`") :]
     block = re.search(r"```sh\n(.*?)```", section, re.S)
@@ -216,7 +216,8 @@ def test_readme_example_runs_as_written(tmp_path, monkeypatch):
     damped = mode.omega_rad_s * math.sqrt(1 - 0.02**2)
     eta = 0.004 * np.exp(-0.02 * mode.omega_rad_s * t) * np.cos(damped * t + 0.4)
     eta += np.random.default_rng(0).normal(0, 2e-5, t.size)
-    _write_record(tmp_path / "decay.csv", t, eta, ("t", "eta"))
+    (tmp_path / "examples").mkdir()
+    _write_record(tmp_path / "examples" / "decay.csv", t, eta, ("t", "eta"))
     monkeypatch.chdir(tmp_path)
     for command in commands:
         words = shlex.split(command)

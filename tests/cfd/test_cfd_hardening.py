@@ -60,7 +60,7 @@ def test_cli_refuses_absurd_np_without_writing_anything(tmp_path):
 def test_cli_refuses_a_bad_surface_refinement_without_writing_anything(tmp_path):
     case = str(tmp_path / "c")
     result = run_entry_point("cfd", "run", "--case", case, "--surface-refinement", "0", *TINY)
-    one_line_error(result, "surface_refinement = '0'", "must be between 1 and 8")
+    one_line_error(result, "--surface-refinement = '0'", "must be between 1 and 8")
     assert not (tmp_path / "c").exists()
 
 

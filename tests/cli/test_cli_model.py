@@ -85,9 +85,9 @@ def test_table_output_has_units():
         (["--radius", "nan"], "radius"),
         (["--radius", "3 furlongs/s"], "radius"),
         (["--radius", "abc"], "radius"),
-        (["--fill-height", "50mm", "--wall-height", "40mm"], "fill_height"),
+        (["--fill-height", "50mm", "--wall-height", "40mm"], "--fill-height"),
         (["--liquid", "mercury"], "liquid"),
-        (["--damping-law", "magic"], "damping_law"),
+        (["--damping-law", "magic"], "--damping-law"),
     ],
 )
 def test_bad_input_is_one_line_and_exit_code_2(args, needle):

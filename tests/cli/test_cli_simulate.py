@@ -145,7 +145,7 @@ def test_compare_writes_table_and_figures(tmp_path):
         (["simulate", "--law", "s-curve", "--vmax", "1m/s"], "amax"),
         (["simulate", "--law", "file:/nonexistent.csv"], "file"),
         (["simulate", "--duration", "1s", "--model", "quantum"], "model"),
-        (["compare", "--peak-velocity", "-1m/s"], "peak_velocity"),
+        (["compare", "--peak-velocity", "-1m/s"], "--peak-velocity"),
     ],
 )
 def test_bad_input_exits_2_with_one_line(args, needle):

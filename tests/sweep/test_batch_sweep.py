@@ -189,7 +189,7 @@ def test_sweep_cli_writes_csv_and_maps(tmp_path):
 @pytest.mark.parametrize(
     ("args", "needle"),
     [
-        (["--fill-height", "10mm:60mm"], "fill_height"),
+        (["--fill-height", "10mm:60mm"], "--fill-height"),
         (["--duration", "1s:2s:x"], "duration"),
         (["--laws", "warp"], "laws"),
         (["--laws", "s-curve"], "s-curve"),

@@ -16,13 +16,8 @@ from __future__ import annotations
 
 import importlib
 import sys
+from types import ModuleType
 from typing import Any
-
-import sloshkit.cli.app as _app_module
-
-# Importing the submodule bound the package attribute ``app`` to it; ``app`` is the typer
-# application (see `__getattr__`).
-del globals()["app"]
 
 #: Command (or command group) -> (module, short help), in the order of ``sloshkit --help``.
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -67,6 +62,16 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 
+def _app_module() -> ModuleType:
+    """`sloshkit.cli.app`, imported on first use (typer and rich are imported with it)."""
+    module = importlib.import_module("sloshkit.cli.app")
+    # Importing the submodule binds the package attribute ``app`` to it; ``app`` is the typer
+    # application (see `__getattr__`).
+    if globals().get("app") is module:
+        del globals()["app"]
+    return module
+
+
 def load_commands() -> Any:
     """Import every command module (registering its commands) and return the typer app.
 
@@ -85,7 +90,7 @@ def load_commands() -> Any:
     """
     for module, _ in COMMANDS.values():
         importlib.import_module(module)
-    return _app_module.app
+    return _app_module().app
 
 
 def __getattr__(name: str) -> Any:
@@ -101,15 +106,16 @@ def _help_app() -> Any:
     only their short help: ``sloshkit --help`` without importing the command modules."""
     import typer
 
-    real = _app_module.app
+    real = _app_module().app
     stand_in = typer.Typer(
         name=real.info.name,
         help=real.info.help,
         no_args_is_help=True,
         add_completion=False,
         pretty_exceptions_enable=False,
+        rich_markup_mode=None,
     )
-    stand_in.callback()(_app_module._root)
+    stand_in.callback()(_app_module()._root)
     for command, (_, short) in COMMANDS.items():
         stand_in.command(command, help=short)(lambda: None)
     return stand_in
@@ -206,7 +212,9 @@ def main() -> None:
     """Entry point: import the command being run (or none, for the root help) and run it.
 
     The command line is ``sys.argv``; the process exits with the command's exit code (see
-    `sloshkit.cli.app`).
+    `sloshkit.cli.app`). Before anything is imported, a signal ends the process with its one
+    line and exit code (`sloshkit.cli.signals.exit_on_signal`), and file descriptor 1 is
+    routed to stderr so that only the result reaches stdout (`sloshkit.cli.streams`).
 
     Returns
     -------
@@ -226,16 +234,20 @@ def main() -> None:
     >>> code
     2
     """
+    from sloshkit.cli import signals, streams
+
+    signals.exit_on_signal()
+    streams.protect_stdout()
     pass_plain_values()
     words = [word for word in sys.argv[1:] if not word.startswith("-")]
     if words and words[0] in COMMANDS:
         importlib.import_module(COMMANDS[words[0]][0])
-        _app_module.main()
+        _app_module().main()
     elif not words and all(word in ("--help", "-h", "--version") for word in sys.argv[1:]):
-        _app_module.main(_help_app())
+        _app_module().main(_help_app())
     else:  # an unknown command: the full application says which exist
         load_commands()
-        _app_module.main()
+        _app_module().main()
 
 
 __all__ = ["COMMANDS", "app", "load_commands", "main", "pass_plain_values"]

@@ -31,6 +31,7 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    rich_markup_mode=None,
 )
 
 
@@ -68,6 +69,49 @@ def _root(
         from sloshkit.budget import ENVIRONMENT_VARIABLE, parse_bytes
 
         os.environ[ENVIRONMENT_VARIABLE] = str(parse_bytes(max_memory))
+
+
+def _parameter_spelling(application: typer.Typer, argv: Sequence[str]) -> dict[str, str]:
+    """Python parameter name -> how the user writes it (``fill_height`` -> ``--fill-height``,
+    ``plan_file`` -> ``PLAN_FILE``) for the command that ``argv`` invokes."""
+    import typer.main
+
+    command = typer.main.get_command(application)
+    for word in argv:
+        nested = getattr(command, "commands", None)
+        if not isinstance(nested, dict):
+            break
+        if word in nested:
+            command = nested[word]
+    spelling: dict[str, str] = {}
+    for parameter in command.params:
+        if parameter.name is None:
+            continue
+        long_names = [o for o in parameter.opts if o.startswith("--")]
+        if long_names:
+            spelling[parameter.name] = long_names[0]
+        elif parameter.param_type_name == "argument":
+            spelling[parameter.name] = parameter.name.upper()
+    return spelling
+
+
+def _as_written(failure: InputError, application: typer.Typer, argv: Sequence[str]) -> str:
+    """The error's message with its parameter named as the user wrote it: the option, when the
+    message starts with the Python name of an option given on the command line (a value from a
+    file keeps the file's key), or the argument as the usage line names it."""
+    message = str(failure)
+    if not message.startswith(f"{failure.parameter} = "):
+        return message
+    try:
+        written = _parameter_spelling(application, argv).get(failure.parameter)
+    except Exception:  # the message as it is is still right
+        return message
+    if written is None or (
+        written.startswith("--")
+        and not any(word == written or word.startswith(written + "=") for word in argv)
+    ):
+        return message  # not an option the user gave (a default, or a key of a file)
+    return written + message[len(failure.parameter) :]
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def]
@@ -125,7 +169,8 @@ def run(
                     raise signals.Interrupted(signals.received() or 2)
                 return code if isinstance(code, int) else 0
             except BaseException as failure:  # the one place that reports
-                return _report(failure)
+                words = list(argv) if argv is not None else sys.argv[1:]
+                return _report(failure, application or app, words)
     finally:
         warnings.showwarning = saved_showwarning
         os.environ.update(saved_width)
@@ -135,8 +180,8 @@ def run(
             os.environ[ENVIRONMENT_VARIABLE] = saved_memory
 
 
-def _report(failure: BaseException) -> int:
-    """Print ``failure`` as one line and return its exit code."""
+def _report(failure: BaseException, application: typer.Typer, argv: Sequence[str]) -> int:
+    """Print ``failure`` as one line and return its exit code (``argv``: the command line)."""
     if isinstance(failure, SystemExit):
         return failure.code if isinstance(failure.code, int) else 1
     signum = signals.received()
@@ -146,7 +191,7 @@ def _report(failure: BaseException) -> int:
         messages.error(stderr, f"interrupted (exit {code}); {advice}")
         return code
     if isinstance(failure, InputError):
-        messages.error(stderr, failure)
+        messages.error(stderr, _as_written(failure, application, argv))
         return 2
     if isinstance(failure, typer.TyperException):
         if type(failure).__name__ == "NoArgsIsHelpError":

@@ -36,6 +36,7 @@ from sloshkit.model.modal import SloshModel
 cfd_app = typer.Typer(
     help="The volume-of-fluid step with OpenFOAM (interFoam): generate, run, analyse, validate.",
     no_args_is_help=True,
+    rich_markup_mode=None,
 )
 app.add_typer(cfd_app, name="cfd")
 

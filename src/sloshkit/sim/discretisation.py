@@ -5,12 +5,15 @@ velocity v (continuous for every rest-to-rest law) instead of its acceleration:
 theta' = y - v/L, y' = -omega^2 theta - 2 zeta omega (y - v/L). It is discretised exactly for a
 velocity that is linear between samples (first-order hold, Franklin, Powell & Workman, *Digital
 Control of Dynamic Systems*, 3rd ed. (1998) §6.3.2): exact for the trapezoidal law and
-second-order accurate for the others. The resulting recursion is a second-order IIR filter run
-by `scipy.signal.lfilter`, vectorised over any number of cases that share a mode.
+second-order accurate for the others. The resulting two-state recursion is run in the
+eigenbasis of its transition matrix as cumulative sums in numpy (`run_recursion`), vectorised
+over any number of cases that share a mode; importing `scipy.signal` for ``lfilter`` would
+cost more than a whole plan.
 """
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
 import numpy as np
@@ -111,28 +114,96 @@ def _expm_stack(matrices: FloatArray) -> FloatArray:
     return np.asarray(result, dtype=float)
 
 
-@lru_cache(maxsize=4096)
-def velocity_driven_filters(
-    omega_rad_s: float, damping_ratio: float, length_m: float, sample_period_s: float
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """IIR coefficients (b_theta, a, b_y, a) of the first-order-hold discretisation.
+#: Largest growth of the scaled terms of one block of `run_recursion` (|lambda|^-block).
+_BLOCK_GROWTH = 1e40
+#: Condition number of the eigenvector matrix above which `run_recursion` filters instead.
+_WORST_EIGENBASIS = 1e4
 
-    ``lfilter(b_theta, a, v)`` gives theta_k and ``lfilter(b_y, a, v)`` gives
-    y_k = theta'_k + v_k / L for velocity samples v_k starting from rest (v_0 = 0).
+
+def run_recursion(
+    phi: FloatArray, gamma: FloatArray, g1: FloatArray, inputs: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Both outputs s_k = z_k + g1 u_k of z_{k+1} = phi z_k + gamma u_k, z_0 = 0.
+
+    Diagonalising phi = V diag(lambda) V^-1 turns the recursion into two first-order ones,
+    w_k = sum_{j<k} lambda^(k-1-j) c u_j with c = V^-1 gamma, evaluated as
+    lambda^k cumsum(lambda^-(j+1) c u_j) in blocks short enough that lambda^-j stays below
+    `_BLOCK_GROWTH` (the scaled terms grow monotonically, so each block's sum keeps full
+    relative precision). Near critical damping the eigenbasis is ill-conditioned (a repeated
+    eigenvalue has none): the recursion then runs as an IIR filter (`scipy.signal.lfilter`).
+
+    Parameters
+    ----------
+    phi : numpy.ndarray
+        Transition matrix (2, 2).
+    gamma, g1 : numpy.ndarray
+        Input vectors (2,) of `velocity_driven_discretisation`.
+    inputs : numpy.ndarray
+        Samples u_k on the last axis (any leading shape).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The two components of s_k, each with the shape of ``inputs``.
+
+    References
+    ----------
+    Franklin, Powell & Workman (1998) §6.3 (the discrete state equation and its modal form).
+
+    Examples
+    --------
+    >>> phi = np.array([[0.5, 0.0], [0.0, 0.25]])
+    >>> first, second = run_recursion(phi, np.array([1.0, 1.0]), np.zeros(2), np.ones(3))
+    >>> first.tolist(), second.tolist()
+    ([0.0, 1.0, 1.5], [0.0, 1.0, 1.25])
     """
-    from scipy.signal import ss2tf  # lazily: keeps start-up short
+    u = np.asarray(inputs, dtype=float)
+    eigenvalues, vectors = np.linalg.eig(phi)
+    if np.linalg.cond(vectors) > _WORST_EIGENBASIS:
+        return _filtered(phi, gamma, g1, u)
+    coefficients = np.linalg.solve(vectors, gamma.astype(complex))
+    count = u.shape[-1]
+    smallest = float(np.min(np.abs(eigenvalues)))
+    decay = -math.log(max(smallest, 1e-300))
+    block = count if decay <= 0.0 else max(1, int(math.log(_BLOCK_GROWTH) / decay))
+    # A complex pair's second modal coordinate is the conjugate of the first: one suffices.
+    pair = abs(eigenvalues[0].imag) > 0.0
+    modes = 1 if pair else 2
+    modal = np.zeros((modes, *u.shape), dtype=complex)
+    carried = np.zeros((modes, *u.shape[:-1]), dtype=complex)
+    for start in range(0, count - 1, block):
+        stop = min(start + block, count - 1)  # inputs u_start..u_stop-1 give w_start+1..w_stop
+        steps = np.arange(1, stop - start + 1)
+        for mode in range(modes):
+            growth = np.exp(steps * np.log(eigenvalues[mode]))
+            terms = u[..., start:stop] * (coefficients[mode] / growth)
+            modal[mode, ..., start + 1 : stop + 1] = growth * (
+                carried[mode][..., None] + np.cumsum(terms, axis=-1)
+            )
+            carried[mode] = modal[mode, ..., stop]
+    if pair:
+        first = 2.0 * (vectors[0, 0] * modal[0]).real
+        second = 2.0 * (vectors[1, 0] * modal[0]).real
+    else:
+        first = (vectors[0, 0] * modal[0] + vectors[0, 1] * modal[1]).real
+        second = (vectors[1, 0] * modal[0] + vectors[1, 1] * modal[1]).real
+    return first + g1[0] * u, second + g1[1] * u
 
-    phi, gamma, g1 = velocity_driven_discretisation(
-        omega_rad_s, damping_ratio, length_m, sample_period_s
-    )
-    b_theta, a_theta = ss2tf(phi, gamma[:, None], np.array([[1.0, 0.0]]), np.array([[g1[0]]]))
-    b_y, a_y = ss2tf(phi, gamma[:, None], np.array([[0.0, 1.0]]), np.array([[g1[1]]]))
-    return (
-        np.asarray(b_theta[0], dtype=float),
-        np.asarray(a_theta, dtype=float),
-        np.asarray(b_y[0], dtype=float),
-        np.asarray(a_y, dtype=float),
-    )
+
+def _filtered(
+    phi: FloatArray, gamma: FloatArray, g1: FloatArray, u: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """`run_recursion` as an IIR filter (`scipy.signal.lfilter`), for a transition matrix
+    whose eigenbasis is ill-conditioned (damping ratio near 1)."""
+    from scipy.signal import lfilter, ss2tf  # only here: importing scipy.signal is slow
+
+    outputs = []
+    for row in range(2):
+        selector = np.zeros((1, 2))
+        selector[0, row] = 1.0
+        b, a = ss2tf(phi, gamma[:, None], selector, np.array([[g1[row]]]))
+        outputs.append(np.asarray(lfilter(b[0], a, u, axis=-1), dtype=float))
+    return outputs[0], outputs[1]
 
 
 def linear_mode_response(
@@ -144,7 +215,8 @@ def linear_mode_response(
 ) -> tuple[FloatArray, FloatArray]:
     """Angle and angular rate of one linear mode for velocity samples (last axis = time).
 
-    The exact first-order-hold discretisation (`velocity_driven_filters`) run as an IIR filter.
+    The exact first-order-hold discretisation (`velocity_driven_discretisation`) run by
+    `run_recursion`.
 
     Parameters
     ----------
@@ -177,13 +249,11 @@ def linear_mode_response(
     >>> theta.tolist()
     [0.0, 0.0, 0.0, 0.0]
     """
-    from scipy.signal import lfilter  # lazily: keeps start-up short
-
-    b_theta, a, b_y, _ = velocity_driven_filters(
+    phi, gamma, g1 = velocity_driven_discretisation(
         float(omega_rad_s), float(damping_ratio), float(length_m), float(sample_period_s)
     )
-    theta = lfilter(b_theta, a, velocity_m_s, axis=-1)
-    rate = lfilter(b_y, a, velocity_m_s, axis=-1) - velocity_m_s / length_m
+    theta, y = run_recursion(phi, gamma, g1, velocity_m_s)
+    rate = y - np.asarray(velocity_m_s, dtype=float) / length_m
     return np.asarray(theta, dtype=float), np.asarray(rate, dtype=float)
 
 
