@@ -5,7 +5,9 @@ rocking tilt), 3 modes, on one core: `simulate_spatial` linear (target < 20 ms) 
 (target < 200 ms), timed end to end (kinematics, drive, integration, metrics), best of 5 after
 a warm-up (numba compilation is cached on disk). Baseline in the same run: the same equations
 integrated by `scipy.integrate.solve_ivp` (RK45, rtol 1e-8, drive interpolated linearly), with
-the agreement of the slosh heights. Also: the batch path for 20 trajectories.
+the agreement of the slosh heights. Also: the batch path for 20 trajectories, and the linear
+model with an amplitude-dependent first mode (`sloshkit.sim.spatial_amplitude`, slopes of the
+measured free decay's backbone) against the plain linear model (target: within 2x).
 
 Run: PYTHONPATH=src python benchmarks/bench_spatial.py
 """
@@ -28,6 +30,7 @@ from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.spatial import simulate_spatial
+from sloshkit.sim.spatial_amplitude import AmplitudeDependence
 from sloshkit.sim.spatial_batch import spatial_batch_metrics
 from sloshkit.sim.spatial_drive import spatial_drive
 
@@ -129,6 +132,16 @@ def main() -> None:
     print(
         f"  peak slosh height linear {1e3 * linear.peak_slosh_height_m:.2f} mm, "
         f"nonlinear {1e3 * nonlinear.peak_slosh_height_m:.2f} mm"
+    )
+    # slopes of the measured free decay (docs/validation-3d.md); their values do not matter here
+    dependence = AmplitudeDependence((-5.83,), (0.0,), (0.22,), "free decay")
+    simulate_spatial(model, poses, amplitude_dependence=dependence, **options)
+    t_amplitude, c_amplitude = best_of(
+        lambda: simulate_spatial(model, poses, amplitude_dependence=dependence, **options)
+    )
+    print(
+        f"  linear + free-decay backbone: {1e3 * t_amplitude:7.1f} / {1e3 * c_amplitude:6.1f} ms"
+        f" (CPU-time ratio to linear {c_amplitude / c_linear:.2f}x, target <= 2x)"
     )
     batch = [trajectory(scale=s) for s in np.linspace(0.5, 1.0, 20)]
     spatial_batch_metrics(model, batch[:2], settle_time_s=0.0)

@@ -119,6 +119,6 @@ def test_bad_pose_input_exits_2(tmp_path: Path) -> None:
     path = _quintic_file(tmp_path / "move.csv")
     proc = run_entry_point("simulate", "--pose-file", str(path), "--tool-offset", "1,2")
     assert proc.returncode == 2
-    assert "tool_offset" in proc.stderr and "Traceback" not in proc.stderr
+    assert "--tool-offset" in proc.stderr and "Traceback" not in proc.stderr
     result = runner.invoke(app, ["simulate", "--pose-file", str(tmp_path / "missing.csv")])
     assert isinstance(result.exception, InputError)

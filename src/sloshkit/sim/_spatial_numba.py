@@ -317,3 +317,91 @@ def nonlinear(force, rest_force, tilt_rate, tilt_accel, length, omega, zeta, h):
             unit[m, j + 1] = u
             velocity[m, j + 1] = v
     return unit, velocity
+
+
+@njit(cache=True)  # type: ignore[untyped-decorator]
+def linear_amplitude(  # type: ignore[no-untyped-def]
+    force,
+    rest_force,
+    tilt_rate,
+    tilt_accel,
+    length,
+    omega,
+    zeta,
+    k_floor,
+    omega_slope,
+    zeta_slope,
+    amplitude_cap,
+    h,
+):
+    """The linear kernel with each mode's frequency and damping ratio taken from its backbone
+    at the wave's current amplitude (`sloshkit.sim.spatial_amplitude`): omega(A) =
+    omega_n + omega_slope A^2, zeta(A) = zeta_n + zeta_slope A, A capped at amplitude_cap.
+    A^2 = |x|^2 + |x'|^2 / omega(A)^2 with x = theta - u / K the deviation from the
+    quasi-static equilibrium at the start of the step (omega(A) of the previous step);
+    stiffness and forcing are scaled by (omega(A) / omega_n)^2 over the step (the restoring
+    force of the wave, not its equilibrium)."""
+    modes, steps, _ = force.shape
+    angle = np.zeros((modes, steps, 2))
+    rate = np.zeros((modes, steps, 2))
+    scaled_a = np.empty(3)
+    scaled_b = np.empty(3)
+    accel_a = np.empty(2)
+    accel_b = np.empty(2)
+    for m in range(modes):
+        inv_l = 1.0 / length[m]
+        k0 = max(-rest_force[m, 2] * inv_l, k_floor[m])
+        tx = rest_force[m, 0] * inv_l / k0
+        ty = rest_force[m, 1] * inv_l / k0
+        vx = 0.0
+        vy = 0.0
+        ratio = 1.0
+        angle[m, 0, 0] = tx
+        angle[m, 0, 1] = ty
+        for j in range(steps - 1):
+            fa = force[m, j]
+            fb = force[m, j + 1]
+            ka = max(-fa[2] * inv_l, k_floor[m])
+            kb = max(-fb[2] * inv_l, k_floor[m])
+            # quasi-static equilibrium u / K at both ends of the step, and its rate
+            qax = (fa[0] * inv_l + tilt_accel[j, 1]) / ka
+            qay = (fa[1] * inv_l - tilt_accel[j, 0]) / ka
+            qbx = (fb[0] * inv_l + tilt_accel[j + 1, 1]) / kb
+            qby = (fb[1] * inv_l - tilt_accel[j + 1, 0]) / kb
+            dx = tx - qax
+            dy = ty - qay
+            # the rate scaled by the current (previous step's) frequency: A is then constant
+            # over a cycle of the free oscillation, however large the shift
+            wx = (vx - (qbx - qax) / h) / (omega[m] * ratio)
+            wy = (vy - (qby - qay) / h) / (omega[m] * ratio)
+            amplitude = min(np.sqrt(dx * dx + dy * dy + wx * wx + wy * wy), amplitude_cap[m])
+            ratio = max(1.0 + omega_slope[m] * amplitude * amplitude / omega[m], 0.1)
+            scale = ratio * ratio
+            damping = max(zeta[m] + zeta_slope[m] * amplitude, 0.0)
+            for k in range(3):
+                scaled_a[k] = fa[k] * scale
+                scaled_b[k] = fb[k] * scale
+            for k in range(2):
+                accel_a[k] = tilt_accel[j, k] * scale
+                accel_b[k] = tilt_accel[j + 1, k] * scale
+            tx, ty, vx, vy = linear_step(
+                tx,
+                ty,
+                vx,
+                vy,
+                scaled_a,
+                scaled_b,
+                tilt_rate[j],
+                tilt_rate[j + 1],
+                accel_a,
+                accel_b,
+                inv_l,
+                2.0 * damping * omega[m] * ratio,
+                k_floor[m] * scale,
+                h,
+            )
+            angle[m, j + 1, 0] = tx
+            angle[m, j + 1, 1] = ty
+            rate[m, j + 1, 0] = vx
+            rate[m, j + 1, 1] = vy
+    return angle, rate

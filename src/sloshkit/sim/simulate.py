@@ -16,7 +16,6 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.integrate import solve_ivp
 
 from sloshkit.errors import InputError, require_positive, warn_validity
 from sloshkit.model.modal import SloshModel
@@ -184,6 +183,8 @@ def _nonlinear_modes(
 
             inside = (time >= start) & (time <= stop)
             t_eval = np.union1d(time[inside], [stop])
+            from scipy.integrate import solve_ivp  # lazily: keeps start-up short
+
             solution = solve_ivp(
                 rhs, (start, stop), state, method="DOP853", rtol=1e-10, atol=1e-12, t_eval=t_eval
             )
@@ -271,6 +272,8 @@ def simulate_cart_pendulum(
         return np.concatenate(([state[1]], [second[0]], state[2 + count :], second[1:]))
 
     time = np.arange(math.floor(end / dt + 1e-9) + 1, dtype=float) * dt
+    from scipy.integrate import solve_ivp  # lazily: keeps start-up short
+
     solution = solve_ivp(
         rhs_function,
         (0.0, float(time[-1])),

@@ -69,6 +69,7 @@ from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, pose_kinematics
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.sim.metrics import default_settle_time
 from sloshkit.sim.simulate import LARGE_ANGLE_DEG
+from sloshkit.sim.spatial_amplitude import AmplitudeDependence, amplitude_pendulums
 from sloshkit.sim.spatial_drive import SpatialDrive, spatial_drive
 from sloshkit.sim.spatial_kernels import linear_pendulums, nonlinear_pendulums
 from sloshkit.sim.spatial_response import HEIGHT_MAPPINGS, HeightMapping, SpatialResponse
@@ -91,6 +92,7 @@ def simulate_spatial(
     cutoff_hz: float | None = DEFAULT_CUTOFF_HZ,
     height_mapping: HeightMapping = "modal",
     wall_height_m: float | None = None,
+    amplitude_dependence: AmplitudeDependence | None = None,
 ) -> SpatialResponse:
     """Slosh of every mode of ``model`` for the container poses ``poses`` (3-D motion).
 
@@ -112,6 +114,9 @@ def simulate_spatial(
         of a nonlinear pendulum is tan of its deflection (exact for a static tilt).
     wall_height_m : wall height above the bottom for the spill warning (default: the
         container's)
+    amplitude_dependence : optional backbone (omega(A), zeta(A) of the wave about its
+        quasi-static equilibrium, e.g. from a free decay) for the linear model
+        (`sloshkit.sim.spatial_amplitude`); None (default): amplitude-independent
 
     Returns
     -------
@@ -134,6 +139,12 @@ def simulate_spatial(
     >>> 0.0 < response.peak_slosh_height_m < 0.01
     True
     """
+    if amplitude_dependence is not None and nonlinear:
+        raise InputError(
+            "amplitude_dependence",
+            amplitude_dependence.source,
+            "applies to the linear model (nonlinear=False)",
+        )
     if height_mapping not in HEIGHT_MAPPINGS:
         raise InputError(
             "height_mapping", height_mapping, "must be one of " + ", ".join(HEIGHT_MAPPINGS)
@@ -192,16 +203,27 @@ def simulate_spatial(
         size = drive.time_s.size
         unit, unit_rate = unit[:, ::substeps][:, :size], unit_rate[:, ::substeps][:, :size]
     else:
-        angle, rate = linear_pendulums(
-            drive.specific_force_m_s2[:count],
-            drive.rest_force_m_s2[:count],
-            drive.tilt_rate_rad_s,
-            drive.tilt_acceleration_rad_s2,
-            length,
-            omega,
-            zeta,
-            dt,
-        )
+        if amplitude_dependence is None:
+            angle, rate = linear_pendulums(
+                drive.specific_force_m_s2[:count],
+                drive.rest_force_m_s2[:count],
+                drive.tilt_rate_rad_s,
+                drive.tilt_acceleration_rad_s2,
+                length,
+                omega,
+                zeta,
+                dt,
+            )
+        else:
+            angle, rate = amplitude_pendulums(
+                drive.specific_force_m_s2[:count],
+                drive.rest_force_m_s2[:count],
+                drive.tilt_rate_rad_s,
+                drive.tilt_acceleration_rad_s2,
+                model,
+                amplitude_dependence,
+                dt,
+            )
         unit = np.concatenate((angle, -np.ones((*angle.shape[:2], 1))), axis=2)
         unit_rate = np.concatenate((rate, np.zeros((*rate.shape[:2], 1))), axis=2)
     response = SpatialResponse(
@@ -212,6 +234,7 @@ def simulate_spatial(
         nonlinear=nonlinear,
         motion_end_s=poses.end_s,
         height_mapping=height_mapping,
+        amplitude_model="none" if amplitude_dependence is None else amplitude_dependence.source,
         motion_name=poses.name,
         elapsed_s=_time.perf_counter() - started,
     )

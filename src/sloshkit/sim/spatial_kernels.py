@@ -42,6 +42,7 @@ def _compile() -> dict[str, Any]:
     return {
         "linear": spatial_numba.linear,
         "linear_batch": spatial_numba.linear_batch,
+        "linear_amplitude": spatial_numba.linear_amplitude,
         "nonlinear": spatial_numba.nonlinear,
         "step": spatial_numba.oscillator_step,
     }
@@ -53,13 +54,14 @@ def kernels() -> dict[str, Any]:
     Returns
     -------
     dict
-        linear, linear_batch, nonlinear and step: the numba functions behind
-        `linear_pendulums`, `nonlinear_pendulums` and `sloshkit.sim.spatial_batch`.
+        linear, linear_batch, linear_amplitude, nonlinear and step: the numba functions
+        behind `linear_pendulums`, `nonlinear_pendulums`, `sloshkit.sim.spatial_batch` and
+        `sloshkit.sim.spatial_amplitude`.
 
     Examples
     --------
     >>> sorted(kernels())
-    ['linear', 'linear_batch', 'nonlinear', 'step']
+    ['linear', 'linear_amplitude', 'linear_batch', 'nonlinear', 'step']
     """
     if not _KERNELS:
         _KERNELS.update(_compile())

@@ -82,6 +82,8 @@ class SpatialResponse(ResultMixin):
     motion_end_s : time of the last pose [s]; the container rests afterwards
     height_mapping : ``"modal"`` (sum over the simulated modes, as in 1-D) or ``"planar"``
         (plus the quasi-static remainder of the modes not simulated: exact planar statics)
+    amplitude_model : ``"none"`` (linear in amplitude) or the source of the backbone used
+        (`sloshkit.sim.spatial_amplitude`)
     motion_name : label of the pose trajectory
     elapsed_s : wall-clock time of the simulation [s]
 
@@ -93,7 +95,7 @@ class SpatialResponse(ResultMixin):
     >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
     >>> response = sk.simulate_spatial(model, sk.poses_from_law(sk.septic(0.1, 1.5)))
     >>> sorted(response.to_dict())[:3]
-    ['duration_s', 'height_mapping', 'model']
+    ['amplitude_model', 'duration_s', 'height_mapping']
     """
 
     model: SloshModel
@@ -103,6 +105,7 @@ class SpatialResponse(ResultMixin):
     nonlinear: bool
     motion_end_s: float
     height_mapping: HeightMapping = "modal"
+    amplitude_model: str = "none"
     motion_name: str = ""
     elapsed_s: float = float("nan")
 
@@ -318,6 +321,7 @@ class SpatialResponse(ResultMixin):
             "simulated_time_s": float(self.time_s[-1] - self.time_s[0]),
             "model": self.kind,
             "height_mapping": self.height_mapping,
+            "amplitude_model": self.amplitude_model,
         }
 
     def columns(self) -> dict[str, FloatArray]:
