@@ -128,7 +128,7 @@ def test_a_table_past_the_row_bound_is_refused_while_read_and_in_bounded_memory(
     (tmp_path / "long.csv").write_text(POSE_HEADER + "\n" + lines + "\n")
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     result = run("simulate", "--pose-file", "long.csv", cwd=tmp_path)
-    one_error(result, "pose_file = 'long.csv'", f"more than {MAX_TABLE_ROWS} data rows")
+    one_error(result, "--pose-file = 'long.csv'", f"more than {MAX_TABLE_ROWS} data rows")
     peak_kib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     if peak_kib > before:  # this child set the peak: it is the child's own
         assert peak_kib < 1_000_000, peak_kib  # < 1 GiB (kB on Linux)

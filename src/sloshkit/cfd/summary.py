@@ -135,6 +135,8 @@ def read_case_summary(case: Path, parameter: str = "case") -> dict[str, Any]:
     if not (isinstance(excitation, dict) and isinstance(excitation.get("type"), str)):
         raise _wrong(path, parameter, "excitation", excitation, 'an object with a "type" name')
     for key in ("duration_s", "tilt_deg", "amplitude_m", "frequency_hz", "cutoff_hz"):
+        if key == "cutoff_hz" and excitation.get(key, 0.0) is None:
+            continue  # a pose excitation without a filter
         if key in excitation and not _is_number(excitation[key]):
             raise _wrong(path, parameter, f"excitation.{key}", excitation[key], "a number")
     for key in ("name", "pose_file", "liquid"):
