@@ -95,6 +95,10 @@ def test_warnings_reach_stderr_with_a_zero_console_width(tmp_path: Path) -> None
         ([b"simulate", b"--csv", b"x\xff.csv"], "csv"),
         ([b"compare", b"--laws", b"quintic", b"--out", b"c\xfe"], "out"),
         ([b"export", b"plan_good.csv", b"--out", b"x\xff.csv"], "out"),
+        ([b"export", b"plan_good.csv", b"--out=x\xff.csv"], "out"),
+        ([b"export", b"plan\xff.csv", b"--out", b"x.csv"], "argument"),  # written as metadata
+        ([b"simulate", b"--pose-file", b"p\xff.csv", b"--json"], "pose-file"),
+        ([b"model", b"--liquid", b"w\xff"], "liquid"),
     ],
 )
 def test_an_output_name_that_is_not_utf8_is_refused_before_any_work(
@@ -110,7 +114,8 @@ def test_an_output_name_that_is_not_utf8_is_refused_before_any_work(
         timeout=300,
         check=False,
     )
-    one_error(result, f"{option} = ", "not valid UTF-8")
+    line = one_error(result, f"{option} = b'", "not valid UTF-8 (byte 0x")
+    assert "\\udc" not in line  # the bytes as given, not Python's surrogate escapes
     assert snapshot(folder) == before
 
 

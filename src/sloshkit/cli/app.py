@@ -162,6 +162,10 @@ def run(
     try:
         with signals.installed(restore=not exiting):
             try:
+                from sloshkit.io.outputs import require_encodable_arguments
+
+                # a name that is not UTF-8 would fail when written into an output, after the work
+                require_encodable_arguments(list(argv) if argv is not None else sys.argv[1:])
                 code = (application or app)(
                     args=list(argv) if argv is not None else None, standalone_mode=False
                 )

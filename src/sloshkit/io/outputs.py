@@ -96,10 +96,45 @@ def require_encodable(path: Path | str, parameter: str) -> None:
         code = ord(bad) - 0xDC00 if 0xDC80 <= ord(bad) <= 0xDCFF else ord(bad)
         raise InputError(
             parameter,
-            text.encode("utf-8", "backslashreplace").decode("ascii", "replace"),
+            os.fsencode(text),  # shown as the bytes given: b'rep\\xff'
             f"the name is not valid UTF-8 (byte 0x{code:02x}); rename it with UTF-8 "
             "characters only",
         ) from None
+
+
+def require_encodable_arguments(argv: list[str]) -> None:
+    """Refuse a command line holding a word that is not valid UTF-8 (file names with a byte
+    such as 0xff arrive as surrogate escapes), naming its option, before any work: every name
+    sloshkit reads or writes may end up in an output (metadata, JSON, reports), all UTF-8.
+
+    Parameters
+    ----------
+    argv : list of str
+        The command line without the program name.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.errors import InputError
+    >>> require_encodable_arguments(["export", "plan.csv", "--out", "x.csv"])
+    >>> try:
+    ...     require_encodable_arguments(["export", "plan\\udcff.csv", "--out", "x.csv"])
+    ... except InputError as error:
+    ...     print(error.parameter)
+    argument
+    """
+    for index, word in enumerate(argv):
+        option, _, value = word.partition("=") if word.startswith("--") else ("", "", word)
+        if option and not value:
+            continue  # an option name: its value is the next word
+        previous = argv[index - 1] if index > 0 else ""
+        if not option and previous.startswith("--") and "=" not in previous:
+            option = previous
+        parameter = option.lstrip("-").replace("-", "_") if option else "argument"
+        require_encodable(value, parameter)
 
 
 def _same_file(first: Path, second: Path) -> bool:
