@@ -70,6 +70,13 @@ def read_table(path: str | Path, *, max_rows: int = MAX_TABLE_ROWS) -> tuple[lis
     require_memory(
         "file", str(source), TABLE_BYTES_PER_FILE_BYTE * size, f"a {size}-byte table in memory"
     )
+    if _data_lines_exceed(source, limit + 1):  # + 1: the header
+        raise InputError(
+            "file",
+            str(source),
+            f"has more than {limit} data rows (the most a table may have)",
+            "resample it or split it",
+        )
     last_comment = ""
     header: list[str] | None = None
     delimiter: str | None = None
@@ -126,6 +133,28 @@ def read_table(path: str | Path, *, max_rows: int = MAX_TABLE_ROWS) -> tuple[lis
     if header is None or len(header) != width:
         header = [str(index) for index in range(width)]
     return header, data
+
+
+def _data_lines_exceed(source: Path, count: int) -> bool:
+    """Whether ``source`` has more than ``count`` lines that are neither blank nor comments,
+    found without parsing a number: newlines are counted in binary chunks first (most files
+    stop there), then lines are classified until the count is passed."""
+    chunk = 1 << 20
+    newlines = 0
+    with source.open("rb") as handle:
+        while block := handle.read(chunk):
+            newlines += block.count(b"\n")
+    if newlines + 1 <= count:
+        return False
+    seen = 0
+    with source.open("rb") as handle:
+        for raw in handle:
+            stripped = raw.strip()
+            if stripped and not stripped.startswith(b"#"):
+                seen += 1
+                if seen > count:
+                    return True
+    return False
 
 
 def select_column(header: list[str], data: FloatArray, column: str, parameter: str) -> FloatArray:
