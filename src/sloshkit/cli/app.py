@@ -162,13 +162,15 @@ def run(
     try:
         with signals.installed(restore=not exiting):
             try:
-                from sloshkit.io.outputs import require_encodable_arguments
+                from sloshkit.io.outputs import command_line, require_encodable_arguments
 
+                words = list(argv) if argv is not None else sys.argv[1:]
                 # a name that is not UTF-8 would fail when written into an output, after the work
-                require_encodable_arguments(list(argv) if argv is not None else sys.argv[1:])
-                code = (application or app)(
-                    args=list(argv) if argv is not None else None, standalone_mode=False
-                )
+                require_encodable_arguments(words)
+                with command_line(words):  # outputs never replace a file named as an input
+                    code = (application or app)(
+                        args=list(argv) if argv is not None else None, standalone_mode=False
+                    )
                 if signals.received() is not None and not signals.was_reported():
                     raise signals.Interrupted(signals.received() or 2)
                 return code if isinstance(code, int) else 0

@@ -13,6 +13,7 @@ the target and is moved into place only when the command succeeds; an error or a
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import os
 import shutil
 import tempfile
@@ -137,6 +138,61 @@ def require_encodable_arguments(argv: list[str]) -> None:
         require_encodable(value, parameter)
 
 
+#: The words of the command line being run (set by the CLI, `command_line`): every existing
+#: file they name is an input the command's outputs must not replace.
+_COMMAND_WORDS: contextvars.ContextVar[tuple[str, ...]] = contextvars.ContextVar(
+    "sloshkit_command_words", default=()
+)
+
+
+@contextlib.contextmanager
+def command_line(argv: list[str]) -> Iterator[None]:
+    """Let `check_file` see the command line while a command runs: an output path that is
+    also a file named elsewhere on it (``simulate --pose-file move.csv --csv move.csv``, any
+    spelling of the same file, a link to it) is refused.
+
+    Parameters
+    ----------
+    argv : list of str
+        The command line without the program name.
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> move = pathlib.Path(tempfile.mkdtemp()) / "move.csv"
+    >>> _ = move.write_text("t,x\\n0,0\\n")
+    >>> with command_line(["simulate", "--pose-file", str(move), "--csv", str(move)]):
+    ...     try:
+    ...         check_file(move, "csv")
+    ...     except InputError as error:
+    ...         print(error.valid.split(";")[0])
+    is also named as an input of the command
+    """
+    token = _COMMAND_WORDS.set(tuple(argv))
+    try:
+        yield
+    finally:
+        _COMMAND_WORDS.reset(token)
+
+
+def _named_files(target: Path) -> list[str]:
+    """The command-line words that name ``target`` (an existing file)."""
+    named = []
+    for word in _COMMAND_WORDS.get():
+        value = word.partition("=")[2] if word.startswith("--") else word
+        value = value.removeprefix("file:")
+        if value and not value.startswith("-"):
+            candidate = Path(value)
+            with contextlib.suppress(OSError, ValueError):
+                if candidate.is_file() and os.path.samefile(candidate, target):
+                    named.append(value)
+    return named
+
+
 def _same_file(first: Path, second: Path) -> bool:
     try:
         if first.exists() and second.exists():
@@ -244,6 +300,13 @@ def check_file(
                 f"is the input {option} {str(source)!r}; an output never replaces an input",
                 "name another file with --out",
             )
+    if target.is_file() and len(_named_files(target)) > (1 if chosen else 0):
+        raise InputError(
+            parameter,
+            str(path),
+            "is also named as an input of the command; an output never replaces an input",
+            "name another file",
+        )
     if not chosen and target.is_file() and not written_by_sloshkit(target):
         raise InputError(
             parameter,
