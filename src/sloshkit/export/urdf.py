@@ -283,11 +283,10 @@ def read_urdf_text(text: str | bytes, source: str) -> UrdfTree:
     return UrdfTree(robot, tuple(links), tuple(joints), source)
 
 
-def _name(element: ET.Element, what: str, source: str, label: str = "") -> str:
+def _name(element: ET.Element, what: str, source: str) -> str:
     name = element.get("name")
-    where = f"{label} " if label else ""
     if name is None:
-        raise InputError("urdf", source, f"a {where}<{what}> element has no name")
+        raise InputError("urdf", source, f"a <{what}> element has no name")
     if not NAME_PATTERN.fullmatch(name):
         raise InputError(
             "urdf",
