@@ -188,3 +188,26 @@ def test_an_output_that_is_a_link_to_the_input_is_refused(tmp_path: Path, folder
     (tmp_path / "plan.csv").write_bytes((folder / "plan_good.csv").read_bytes())
     (tmp_path / "other.csv").symlink_to(tmp_path / "plan.csv")
     one_error(run("export", "plan.csv", "--out", "other.csv", cwd=tmp_path), "is the input")
+
+
+# -- family 11: library log lines stay off stderr -----------------------------------------------
+
+
+def test_library_log_records_never_reach_stderr(tmp_path: Path) -> None:
+    code = (
+        "import logging\n"
+        "from sloshkit.cli.app import run\n"
+        "run(['--version'])\n"
+        "logging.getLogger('matplotlib.font_manager').warning('building the font cache')\n"
+        "logging.getLogger('numba.core').error('a numba note')\n"
+        "import distributed\n"
+        "from sloshkit.cfd.scheduler import quiet_dask_logging\n"
+        "quiet_dask_logging()  # distributed installs its own stderr handler when imported\n"
+        "logging.getLogger('distributed.worker').warning('worker chatter')\n"
+        "logging.getLogger('distributed').error('scheduler chatter')\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=False
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stderr == ""
