@@ -156,7 +156,7 @@ def test_import_sloshkit_is_cheap():
 def test_nothing_refers_outside_the_repository():
     needles = ("../" + "shared", "/work/" + "shared", "/work/" + "main", "/work/" + "wt")
     offenders = []
-    for folder in ("src", "tests", "docs", "benchmarks", "examples"):
+    for folder in ("src", "tests", "docs", "benchmarks", "examples", "studies", "validation"):
         for path in (ROOT / folder).rglob("*"):
             if path.is_file() and path.suffix in {".py", ".md", ".toml", ".rst", ".txt", ".j2"}:
                 text = path.read_text(encoding="utf-8", errors="replace")

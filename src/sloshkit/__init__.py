@@ -39,6 +39,9 @@ _API: dict[str, str] = {
     "SloshMode": "sloshkit.model.modal",
     "SloshModel": "sloshkit.model.modal",
     "equivalent_model": "sloshkit.model.modal",
+    "ProfileContainer": "sloshkit.model.profile",
+    "catalogue_container": "sloshkit.model.catalogue",
+    "read_profile_file": "sloshkit.io.profiles",
     # motion
     "Motion": "sloshkit.motion.profile",
     "LAW_NAMES": "sloshkit.motion.laws",
@@ -100,6 +103,7 @@ __all__ = [
     "PlanProblem",
     "PlanResult",
     "PoseTrajectory",
+    "ProfileContainer",
     "Shaper",
     "SloshLimits",
     "SloshMode",
@@ -112,6 +116,7 @@ __all__ = [
     "ValidityWarning",
     "__version__",
     "calibrate",
+    "catalogue_container",
     "cubic",
     "ei",
     "equivalent_model",
@@ -128,6 +133,7 @@ __all__ = [
     "quintic",
     "read_model_file",
     "read_pose_file",
+    "read_profile_file",
     "run_sweep",
     "s_curve",
     "septic",
@@ -164,9 +170,12 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.export.exporter import export_plan
     from sloshkit.io.models import read_model_file, write_model_file
     from sloshkit.io.poses import read_pose_file
+    from sloshkit.io.profiles import read_profile_file
+    from sloshkit.model.catalogue import catalogue_container
     from sloshkit.model.geometry import UprightCylinder
     from sloshkit.model.liquids import LIQUIDS, Liquid, get_liquid
     from sloshkit.model.modal import SloshMode, SloshModel, equivalent_model
+    from sloshkit.model.profile import ProfileContainer
     from sloshkit.motion.laws import (
         LAW_NAMES,
         cubic,

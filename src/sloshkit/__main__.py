@@ -1,6 +1,6 @@
 """``python -m sloshkit``: the command line."""
 
-from sloshkit.cli import main
+from sloshkit.entry import main
 
 if __name__ == "__main__":
     main()

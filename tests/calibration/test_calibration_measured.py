@@ -2,7 +2,7 @@
 the first-mode frequency from a production move's measured slosh heights (camera, about 60
 frames/s, clocks not synchronised) against the same container's force-sensor free decay,
 omega_d = 19.04 rad/s (data README), through the API and the CLI. The whole table of six series
-is printed by benchmarks/calibrate_measured_3d.py (all within 1.05 %, median 0.47 %)."""
+is printed by validation/calibrate_measured_3d.py (all within 1.05 %, median 0.47 %)."""
 
 from __future__ import annotations
 

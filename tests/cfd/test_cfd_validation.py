@@ -1,5 +1,5 @@
 """CFD comparison, calibration window and mesh limits without OpenFOAM: synthetic cases whose
-probe output encodes a known wall elevation, and Richardson/GCI on manufactured data."""
+probe output encodes a known wall elevation."""
 
 from __future__ import annotations
 
@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 
 from sloshkit.cfd.case import SCALE, CaseSpec, Harmonic
-from sloshkit.cfd.convergence import combined_uncertainty, observed_order, richardson
 from sloshkit.cfd.mesh import probe_columns
 from sloshkit.cfd.pipeline import analyse, model_wall_elevation, validate
 from sloshkit.cfd.run import write_case
@@ -153,34 +152,6 @@ def test_mesh_limit_is_the_measured_determinant_not_checkmesh_s_own():
     other = CHECKMESH.format(aspect=2.0, determinant=0.3, flag=" ***Zero or negative cell volume")
     with pytest.raises(CfdError, match="failed mesh checks"):
         check_mesh_quality(other)
-
-
-@pytest.mark.parametrize("order", [1.0, 2.0])
-def test_richardson_recovers_a_manufactured_solution(order):
-    h = np.array([1.0, 1.3, 1.3 * 1.4])  # unequal refinement ratios
-    exact, c = 0.006, 0.002
-    values = exact + c * h**order
-    study = richardson(values, [h[1] / h[0], h[2] / h[1]])
-    assert study.observed and study.behaviour == "monotonic"
-    assert study.order == pytest.approx(order, rel=1e-6)
-    assert study.extrapolated == pytest.approx(exact, abs=1e-12)
-    low, high = study.interval
-    assert low <= exact <= high
-    assert observed_order(values, [1.3, 1.4]) == pytest.approx(order, rel=1e-6)
-
-
-def test_richardson_two_levels_oscillation_and_bad_input():
-    two = richardson([0.0061, 0.0074], [2.0], order=1.0)
-    assert two.extrapolated == pytest.approx(0.0048)
-    assert two.safety_factor == 3.0 and not two.observed
-    wobbly = richardson([0.0050, 0.0060, 0.0040], [1.4, 1.4])
-    assert wobbly.behaviour == "oscillatory"
-    assert wobbly.uncertainty == pytest.approx(3.0 * 0.0010)
-    with pytest.raises(InputError):
-        richardson([0.005, 0.006], [0.5], order=1.0)
-    with pytest.raises(InputError):
-        richardson([0.005, 0.006], [2.0])
-    assert combined_uncertainty(3.0, 4.0) == 5.0
 
 
 def test_a_case_with_empty_probe_files_is_unfinished(tmp_path):

@@ -314,3 +314,29 @@ def test_a_signal_outside_a_commands_own_handling_still_gets_its_advice(
         "error: interrupted (exit 130); continue with: sloshkit cfd run --case c --resume"
     ]
     assert signals.hint() is None  # nothing leaks to the next command
+
+
+@pytest.mark.parametrize(("signum", "code"), [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_a_signal_while_the_command_is_imported_is_one_line(signum, code, tmp_path):
+    """Ctrl-C or SIGTERM during start-up (here: while the command's module is imported) ends
+    the process with its code and the one interruption line: no KeyboardInterrupt traceback
+    out of an import, no silent death."""
+    program = (
+        "import importlib, os, sys\n"
+        "real = importlib.import_module\n"
+        "def importing(name, *args):\n"
+        "    if name == 'sloshkit.cli.model':\n"
+        f"        os.kill(os.getpid(), {int(signum)})\n"
+        "    return real(name, *args)\n"
+        "importlib.import_module = importing\n"
+        "sys.argv = ['sloshkit', 'model', '--json']\n"
+        "from sloshkit.entry import main\n"
+        "main()\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", program], cwd=tmp_path, capture_output=True, text=True, timeout=120
+    )
+    assert result.returncode == code, result.stderr
+    assert result.stderr == f"error: interrupted (exit {code}); no partial output was written\n"
+    assert result.stdout == ""
+    assert list(tmp_path.iterdir()) == []

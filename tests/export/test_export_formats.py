@@ -17,7 +17,7 @@ import pytest
 import yaml
 
 from sloshkit.errors import InputError
-from sloshkit.export.exporter import FORMATS, SUFFIXES, export_plan
+from sloshkit.export.exporter import STREAM_FORMATS, SUFFIXES, export_plan
 from sloshkit.export.formats.cam_table import read_cam_table
 from sloshkit.export.formats.joint_csv import read_joint_csv
 from sloshkit.export.formats.pose_csv import read_pose_csv
@@ -63,7 +63,7 @@ def assert_matches_golden(path: Path, name: str) -> None:
         np.testing.assert_allclose(values, references, atol=1e-7, err_msg=f"{name}:{number}")
 
 
-@pytest.mark.parametrize("fmt", FORMATS)
+@pytest.mark.parametrize("fmt", STREAM_FORMATS)  # programs: test_vendor_*.py
 def test_golden_file_and_parse_back(fmt: str, tmp_path: Path, ur5e) -> None:
     out = tmp_path / f"quintic{SUFFIXES[fmt]}"
     result = export_plan(quintic_plan(), fmt, out, arm=ur5e, mounting=MOUNTING, check=False)

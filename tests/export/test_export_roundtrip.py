@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from conftest import run_entry_point, seed_vial_table3
 
-from sloshkit.export.exporter import FORMATS, SUFFIXES, check_round_trip, export_plan
+from sloshkit.export.exporter import STREAM_FORMATS, SUFFIXES, check_round_trip, export_plan
 from sloshkit.export.frames import Mounting
 from sloshkit.export.kinematics import load_arm
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
@@ -45,7 +45,7 @@ def ur5e():
     return load_arm("ur5e")
 
 
-@pytest.mark.parametrize("fmt", FORMATS)
+@pytest.mark.parametrize("fmt", STREAM_FORMATS)  # programs: test_vendor_*.py
 def test_every_format_keeps_the_planned_slosh(fmt: str, planned: Path, ur5e, tmp_path: Path):
     result = export_plan(
         planned,

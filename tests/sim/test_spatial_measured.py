@@ -3,7 +3,7 @@
 Each series is predicted from its commanded poses with the container's own parameters
 (R 49 mm, h 80 mm, water at 20 C, damping ratio 0.0066 from the free decay); nothing is
 fitted to the series. Target (issue 12): median |peak error| <= 10 %, 90th percentile <= 25 %.
-The full table with both model variants is printed by benchmarks/validate_measured_3d.py.
+The full table with both model variants is printed by validation/validate_measured_3d.py.
 """
 
 from __future__ import annotations

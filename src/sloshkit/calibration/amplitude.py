@@ -36,6 +36,21 @@ class DecayAmplitudeDependence:
     omega_slope_se_rad_s_per_n2, zeta_slope_se_per_n : float
         Standard errors of the two slopes (weighted least squares, weights F^2 as in
         `backbone`).
+
+    Examples
+    --------
+    Made by `decay_amplitude_dependence`; a linear decay gives no dependence:
+
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08, 1)
+    >>> t = np.arange(0.0, 8.0, 0.002)
+    >>> decay = 0.4 * np.exp(-0.13 * t) * np.cos(19.15 * t)
+    >>> found = decay_amplitude_dependence(model, t, decay, 0.0)
+    >>> type(found).__name__, found.dependence.zeta_slope_per_rad[0]
+    ('DecayAmplitudeDependence', 0.0)
     """
 
     dependence: AmplitudeDependence

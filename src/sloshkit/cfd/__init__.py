@@ -13,10 +13,10 @@
   with progress, interruption and resume; `sloshkit.cfd.processes` starts and stops them (no
   process outlives an interruption). The only modules that start processes.
 - `sloshkit.cfd.results`: parsing of function-object output into signals (pure).
+- `sloshkit.cfd.force_signal`: the wall force as the decay signal (noise ratio, step alternation).
 - `sloshkit.cfd.analysis`: frequency and damping of a finished case.
 - `sloshkit.cfd.pipeline`: case from a model, run, and `validate` (CFD against the pendulum
   model), used by the CLI and the report; `sloshkit.cfd.validation` holds its result object.
 - `sloshkit.cfd.spatial`: pose-driven cases against the 3-D model.
-- `sloshkit.cfd.convergence`: Richardson extrapolation and GCI (mesh and time-step studies).
 - `sloshkit.cfd.campaign`: campaigns of cases on Dask.
 """

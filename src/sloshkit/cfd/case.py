@@ -52,6 +52,7 @@ from sloshkit.cfd.system import (
     fv_schemes,
     fv_solution,
 )
+from sloshkit.model.theory import GRAVITY_M_S2
 
 __all__ = [
     "SCALE",
@@ -200,7 +201,7 @@ def case_files(spec: CaseSpec) -> dict[str, str]:
             "g",
             {
                 "dimensions": Raw("[0 1 -2 0 0 0 0]"),
-                "value": Raw(f"(0 0 {format_number(-9.81 * SCALE)})"),
+                "value": Raw(f"(0 0 {format_number(-GRAVITY_M_S2 * SCALE)})"),
             },
             "constant",
         ),

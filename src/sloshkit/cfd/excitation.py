@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
+from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.motion.pose_kinematics import PoseKinematics
 from sloshkit.motion.poses import PoseTrajectory
 
@@ -126,7 +127,7 @@ class MotionExcitation:
 
 
 #: Gravity in the world frame [m/s^2] (z up), as in constant/g of the case.
-GRAVITY_WORLD = np.array([0.0, 0.0, -9.81])
+GRAVITY_WORLD = np.array([0.0, 0.0, -GRAVITY_M_S2])
 
 
 @dataclass(frozen=True, eq=False)

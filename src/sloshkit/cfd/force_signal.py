@@ -19,16 +19,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 #: Noise ratio above which a wall force is taken to carry parasitic currents. The damping
-#: study (docs/cfd.md, "damping"; benchmarks/cfd_damping_estimators.py) measured at most 0.23
+#: study (studies/cfd-damping/README.md; its cfd_damping_estimators.py) measured at most 0.23
 #: in every clean run and at least 0.88 in every run with parasitic currents (graded meshes at
 #: small steps); 0.5 lies between the two groups.
 NOISE_RATIO_LIMIT = 0.5
 
 #: Step alternation (`step_alternation`) above which a wall force carries interFoam's
-#: step-to-step pressure oscillation. The damping study (docs/cfd.md, "damping";
-#: benchmarks/cfd_damping_estimators.py) measured 0.0002-0.0019 on uniform meshes and at most
-#: 0.0044 on the wall-graded runs whose damping agrees across steps, and 0.013-0.96 on the runs
-#: where the oscillation is visible in the force (where the damping moved by up to a third,
+#: step-to-step pressure oscillation. The damping study (studies/cfd-damping/README.md; its
+#: cfd_damping_estimators.py) measured 0.0002-0.0019 on uniform meshes and at most 0.0044 on
+#: the wall-graded runs whose damping agrees across steps, and 0.013-0.96 on the runs where
+#: the oscillation is visible in the force (where the damping moved by up to a third,
 #: up or down, between neighbouring steps); 0.01 lies between the two groups.
 STEP_ALTERNATION_LIMIT = 0.01
 

@@ -1,4 +1,5 @@
-"""Running OpenFOAM: the only module of sloshkit that starts processes.
+"""Running OpenFOAM: with `sloshkit.cfd.processes` (which starts and stops each tool), the only
+modules of sloshkit that start processes.
 
 Writes a generated case to disk, then runs blockMesh, checkMesh (poor meshes are refused),
 setFields, decomposePar and interFoam (serial, or ``mpirun -np N``), feeding a progress callback

@@ -77,12 +77,12 @@ class CaseSpec:
     surface_refinement : int
         Vertical cells within +-0.3 R of the free surface are R/(surface_refinement x N)
         high (R/N elsewhere): 2 by default. 4 lowered the damping of the 12/radius graded mesh
-        by 12 % and left the 16/radius one unchanged (docs/cfd.md, session 4).
+        by 12 % and left the 16/radius one unchanged (studies/cfd-damping/README.md).
     momentum_predictor : bool
         Solve the momentum equation before the pressure correctors (PIMPLE
         ``momentumPredictor``). Off by default: on wall-graded meshes at 0.5 ms it cut the
         step-to-step pressure oscillation about fourfold without removing it, and the 16/radius
-        graded mesh blew up with it at 1 ms (docs/cfd.md, session 4).
+        graded mesh blew up with it at 1 ms (studies/cfd-damping/README.md).
 
     Returns
     -------

@@ -19,10 +19,10 @@ from pathlib import Path
 from sloshkit.errors import InputError, ValidityWarning
 
 #: checkMesh limits beyond which interFoam was seen to diverge here (docs/cfd.md,
-#: docs/cfd-wall-grading.json). On the O-grid cylinder, thin wedge-shaped wall cells amplify
-#: round-off in every pressure corrector (even in one fluid at rest, with any time step) once
-#: the minimum cell determinant falls to 2.3e-4 or below; 9.4e-4 and above stayed stable.
-#: (A flat wall with determinant 2e-5 was stable: the limit is one of thin cells on a curved
+#: studies/cfd-damping/data/cfd-wall-grading.json). On the O-grid cylinder, thin wedge-shaped
+#: wall cells amplify round-off in every pressure corrector (even in one fluid at rest, with
+#: any time step) once the minimum cell determinant falls to 2.3e-4 or below; 9.4e-4 and
+#: above stayed stable. (A flat wall with determinant 2e-5 was stable: the limit is one of thin cells on a curved
 #: wall.) checkMesh itself flags determinants below 0.001, which stable graded meshes have.
 MIN_DETERMINANT = 5e-4
 #: In two-phase runs of 2 s the graded O-grids with the largest aspect ratio 29.6 kept parasitic
@@ -37,8 +37,8 @@ MARGINAL_DETERMINANT = 2e-3
 #: Below this step (fixed, or the largest of an adaptive one) a wall-graded mesh runs with a
 #: warning: every graded O-grid of the damping study carried a step-to-step pressure
 #: oscillation at 0.5 ms (wall-force noise ratio 0.3-2.4), and none of 13 solver and property
-#: changes removed it (docs/cfd.md, "The wall force's noise at small steps"). The step where it
-#: starts depends on the mesh (session 5: 2 ms at 9 cells per radius, below 0.7 ms at 20), so
+#: changes removed it (studies/cfd-damping/README.md, "The wall force's noise at small steps").
+#: The step where it starts depends on the mesh (2 ms at 9 cells per radius, below 0.7 ms at 20), so
 #: this is a first warning; `cfd analyse` measures it in the run (force_step_alternation).
 MIN_GRADED_STEP_S = 1e-3
 #: checkMesh failures covered by `MIN_DETERMINANT` instead of its own 0.001.

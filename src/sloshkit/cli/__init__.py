@@ -19,9 +19,18 @@ import sys
 from types import ModuleType
 from typing import Any
 
+import sloshkit.cli.app  # noqa: F401 - registers the application module; see below
+
+# Importing the submodule bound the package attribute ``app`` to it; ``app`` is the typer
+# application (see `__getattr__`).
+del globals()["app"]
+
 #: Command (or command group) -> (module, short help), in the order of ``sloshkit --help``.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "model": ("sloshkit.cli.model", "Equivalent pendulum model of a filled upright cylinder."),
+    "model": (
+        "sloshkit.cli.model",
+        "Equivalent pendulum model of a filled upright cylinder or real container.",
+    ),
     "simulate": (
         "sloshkit.cli.simulate",
         "Slosh response of the container to one motion law, or to a 3-D pose trajectory.",
@@ -63,13 +72,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
 
 
 def _app_module() -> ModuleType:
-    """`sloshkit.cli.app`, imported on first use (typer and rich are imported with it)."""
-    module = importlib.import_module("sloshkit.cli.app")
-    # Importing the submodule binds the package attribute ``app`` to it; ``app`` is the typer
-    # application (see `__getattr__`).
-    if globals().get("app") is module:
-        del globals()["app"]
-    return module
+    """`sloshkit.cli.app`, the module that holds the typer application."""
+    return sys.modules["sloshkit.cli.app"]
 
 
 def load_commands() -> Any:
@@ -212,9 +216,9 @@ def main() -> None:
     """Entry point: import the command being run (or none, for the root help) and run it.
 
     The command line is ``sys.argv``; the process exits with the command's exit code (see
-    `sloshkit.cli.app`). Before anything is imported, a signal ends the process with its one
-    line and exit code (`sloshkit.cli.signals.exit_on_signal`), and file descriptor 1 is
-    routed to stderr so that only the result reaches stdout (`sloshkit.cli.streams`).
+    `sloshkit.cli.app`). File descriptor 1 is routed to stderr so that only the result reaches
+    stdout (`sloshkit.cli.streams`). The console script starts one step earlier, in
+    `sloshkit.entry.main`, which handles signals before this package is imported.
 
     Returns
     -------
@@ -234,9 +238,8 @@ def main() -> None:
     >>> code
     2
     """
-    from sloshkit.cli import signals, streams
+    from sloshkit.cli import streams
 
-    signals.exit_on_signal()
     streams.protect_stdout()
     pass_plain_values()
     words = [word for word in sys.argv[1:] if not word.startswith("-")]

@@ -24,8 +24,8 @@ from sloshkit.cfd.summary import read_case_summary
 from sloshkit.cfd.validation import CfdValidation
 from sloshkit.cli import display, messages, signals
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.cfd_options import CaseDir, cfd_options, spec_from_options
-from sloshkit.cli.options import Json, print_json, with_model_options, with_options
+from sloshkit.cli.cfd_options import CaseDir, cfd_options, require_cylinder, spec_from_options
+from sloshkit.cli.options import Json, print_json, with_cylinder_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
 from sloshkit.io.models import write_model_file
@@ -41,7 +41,43 @@ cfd_app = typer.Typer(
 app.add_typer(cfd_app, name="cfd")
 
 
-def _run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> Any:
+def run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> Any:
+    """Run a CFD case with a progress bar on stderr; a failed or interrupted run ends the
+    command.
+
+    A `CfdError` prints one ``error:`` line and exits with 1; an interruption prints where it
+    stopped and how to resume, and exits with 128 + the signal number.
+
+    Parameters
+    ----------
+    spec : CaseSpec
+        The case to run.
+    case : pathlib.Path
+        Its folder.
+    resume : bool
+        Continue the case in ``case`` from its latest complete time folder.
+    overwrite : bool
+        Replace a sloshkit case already in ``case``.
+
+    Returns
+    -------
+    RunResult
+        What `sloshkit.cfd.pipeline.run` returns.
+
+    Examples
+    --------
+    Bad input is refused before any process starts:
+
+    >>> from pathlib import Path
+    >>> import sloshkit as sk
+    >>> from sloshkit.cfd.case import FreeDecay
+    >>> from sloshkit.cfd.pipeline import case_spec
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> run_with_progress(case_spec(model, FreeDecay()), Path("no-case"), True, False)
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: case = 'no-case' is invalid: has no sloshkit case to resume
+    """
     from rich.progress import (
         BarColumn,
         Progress,
@@ -176,7 +212,7 @@ def _resumed_spec(spec: Any, case: Path, processes: int | None) -> Any:
 
 
 @cfd_app.command("run")
-@with_model_options
+@with_cylinder_model_options
 @with_options(cfd_options("free-decay", "3s"), "case_options", dict)
 def cfd_run_command(
     slosh_model: SloshModel,
@@ -230,6 +266,7 @@ def cfd_run_command(
     >>> run(["cfd", "run", "--case", "c", "--cells-per-radius", "2"])  # refused: nothing written
     2
     """
+    require_cylinder(slosh_model)
     check_file(model_file_out, "model_file_out", "model")
     check_file(plot, "plot", "figure")
     check_case_path(case)  # characters OpenFOAM refuses: refused before anything is written
@@ -238,7 +275,7 @@ def cfd_run_command(
         spec = spec_from_options(slosh_model, case_options)
         if resume:
             spec = _resumed_spec(spec, case, case_options["np_"])
-        result = _run_with_progress(spec, case, resume, overwrite)
+        result = run_with_progress(spec, case, resume, overwrite)
         try:
             analysis = analyse(case)
         except InputError as error:
@@ -329,7 +366,7 @@ def _validate(case: Path, slosh_model: SloshModel) -> CfdValidation:
 
 
 @cfd_app.command("validate")
-@with_model_options
+@with_cylinder_model_options
 @with_options(cfd_options("harmonic", "4s"), "case_options", dict)
 def cfd_validate_command(
     slosh_model: SloshModel,
@@ -382,6 +419,7 @@ def cfd_validate_command(
     >>> run(["cfd", "validate", "--case", "no-such-case", "--reuse"])  # one line on stderr
     2
     """
+    require_cylinder(slosh_model)
     check_file(plot, "plot", "figure")
     if not reuse:
         check_case_path(case)
@@ -389,7 +427,7 @@ def cfd_validate_command(
     with _clean_interruption(case):
         if not reuse:
             spec = spec_from_options(slosh_model, case_options)
-            _run_with_progress(spec, case, False, overwrite)
+            run_with_progress(spec, case, False, overwrite)
         result = _validate(case, slosh_model)
         if plot is not None:
             result.plot(path=plot)

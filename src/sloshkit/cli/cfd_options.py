@@ -17,6 +17,7 @@ from sloshkit.io.checks import naming
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_bounded, parse_quantity
 from sloshkit.model.modal import SloshModel
+from sloshkit.model.profile import ProfileContainer
 
 CaseDir = Annotated[Path, typer.Option("--case", help="Case folder.")]
 
@@ -184,6 +185,47 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
     }
 
 
+def require_cylinder(slosh_model: SloshModel) -> None:
+    """Refuse a model of a container given by its profile: the CFD cases are meshes of upright
+    cylinders only.
+
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The model the CFD case would be built from or compared with.
+
+    Returns
+    -------
+    None
+        When the model's container is an upright cylinder.
+
+    Raises
+    ------
+    InputError
+        Naming ``--container`` or ``--profile`` (the option that gave the profile).
+
+    Examples
+    --------
+    >>> from sloshkit.model.catalogue import catalogue_container
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(catalogue_container("iso8362-10R"), get_liquid("water-25C"), 0.01)
+    >>> require_cylinder(model)
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: container = 'iso8362-10R' is invalid: ...
+    """
+    container = slosh_model.container
+    if isinstance(container, ProfileContainer):
+        from_catalogue = container.name.startswith("iso8362-")
+        raise InputError(
+            "container" if from_catalogue else "profile",
+            container.name,
+            "CFD meshes upright cylinders only (--radius, --wall-height); a container given by "
+            "its profile is modelled by finite elements, not by CFD",
+        )
+
+
 def spec_from_options(slosh_model: SloshModel, options: dict[str, Any]) -> CaseSpec:
     """The case described by the values of `cfd_options` (units parsed here).
 
@@ -215,6 +257,7 @@ def spec_from_options(slosh_model: SloshModel, options: dict[str, Any]) -> CaseS
     (2.0, 11, 1.0)
     """
 
+    require_cylinder(slosh_model)
     motion = poses = None
     if options["excitation"] == "poses":
         if options["pose_file"] is None:

@@ -12,8 +12,8 @@ from rich.text import Text
 from sloshkit.cfd.prepare import check_case_path
 from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.cfd import cfd_app
-from sloshkit.cli.cfd_options import cfd_options, spec_from_options
-from sloshkit.cli.options import Json, print_json, with_model_options, with_options
+from sloshkit.cli.cfd_options import cfd_options, require_cylinder, spec_from_options
+from sloshkit.cli.options import Json, print_json, with_cylinder_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.io.outputs import check_folder
 from sloshkit.io.units import parse_count, parse_quantity
@@ -58,7 +58,7 @@ def _split(text: str) -> list[str]:
 
 
 @cfd_app.command("sweep")
-@with_model_options
+@with_cylinder_model_options
 @with_options(cfd_options("free-decay", "3s"), "case_options", dict)
 def cfd_sweep_command(
     slosh_model: SloshModel,
@@ -136,6 +136,7 @@ def cfd_sweep_command(
     from sloshkit.model.liquids import get_liquid
     from sloshkit.model.modal import equivalent_model
 
+    require_cylinder(slosh_model)
     check_case_path(out, "out")  # every case is a folder in it: OpenFOAM's characters only
     check_folder(out, "out", overwrite=True)  # a campaign folder is resumed, so may hold cases
     if scheduler is not None:

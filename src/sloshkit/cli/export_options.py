@@ -14,11 +14,18 @@ from sloshkit.cli.options import with_options
 from sloshkit.errors import InputError, require_in_range
 from sloshkit.io.units import parse_bounded, parse_number, parse_quantity
 
-FORMAT_HELP = "pose-csv, joint-csv, ros2, urscript or cam-table."
+FORMAT_HELP = (
+    "pose-csv, joint-csv, ros2, urscript, cam-table, or a robot program: fanuc-ls, abb-rapid, "
+    "kuka-krl."
+)
 
 Robot = Annotated[
     str | None,
-    typer.Option("--robot", help="Built-in arm for joint formats: ur5e (the default)."),
+    typer.Option(
+        "--robot",
+        help="Built-in arm for joint formats: ur5e (the default), lrmate200id (fanuc-ls), "
+        "irb120 (abb-rapid), kr6r900 (kuka-krl), tx2_60.",
+    ),
 ]
 Urdf = Annotated[Path | None, typer.Option("--urdf", help="URDF of the arm (instead of --robot).")]
 BaseLink = Annotated[str | None, typer.Option("--base-link", help="URDF link the chain starts at.")]
@@ -96,13 +103,17 @@ class ExportSettings:
     check: bool
 
     def arm(self, fmt: str) -> Any:
-        """The arm for joint formats (UR5e unless ``--urdf`` or ``--robot`` says otherwise)."""
+        """The arm for joint formats (unless ``--urdf`` or ``--robot`` says otherwise: the UR5e,
+        or the vendor's built-in arm for a robot program, e.g. lrmate200id for fanuc-ls)."""
         from sloshkit.export.kinematics import load_arm
         from sloshkit.export.readback import JOINT_FORMATS
 
         if fmt not in JOINT_FORMATS:
             return None
-        robot = self.robot if self.robot is not None or self.urdf is not None else "ur5e"
+        from sloshkit.export.formats.vendors import default_robot
+
+        default = default_robot(fmt) or "ur5e"
+        robot = self.robot if self.robot is not None or self.urdf is not None else default
         seed = None if self.seed_rad is None else tuple(self.seed_rad)
         import numpy as np
 

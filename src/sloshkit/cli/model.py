@@ -10,6 +10,7 @@ from rich.text import Text
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.model.modal import SloshMode, SloshModel
+from sloshkit.model.profile import ProfileContainer
 
 
 def model_table(model: SloshModel) -> Table:
@@ -33,9 +34,11 @@ def model_table(model: SloshModel) -> Table:
     >>> len(table.columns), str(table.columns[1].header)
     (4, 'mode 1')
     """
+    container = model.container
+    named = f"{container.name}, surface " if isinstance(container, ProfileContainer) else ""
     table = Table(
         title=(
-            f"Equivalent sloshing model: R = {1e3 * model.radius_m:.2f} mm, "
+            f"Equivalent sloshing model: {named}R = {1e3 * model.radius_m:.2f} mm, "
             f"h = {1e3 * model.fill_height_m:.2f} mm, {model.liquid.name}"
         )
     )
@@ -69,7 +72,10 @@ def model_table(model: SloshModel) -> Table:
 @app.command()
 @with_model_options
 def model(slosh_model: SloshModel, json_output: Json = False) -> None:
-    """Equivalent pendulum model of a filled upright cylinder.
+    """Equivalent pendulum model of a filled upright cylinder or real container.
+
+    A real container (--container from the catalogue, --profile for any axisymmetric inner
+    profile) has its modes computed by finite elements; the cylinder keeps its closed form.
 
     Defaults are the seed paper's vial (R 20.5 mm, h 39 mm, water at 25 °C).
 
@@ -78,6 +84,8 @@ def model(slosh_model: SloshModel, json_output: Json = False) -> None:
       sloshkit model --radius 20.5mm --fill-height 39mm --liquid water-25C
 
       sloshkit model --radius 8mm --fill-volume 2mL --liquid glycerol-50wt-20C --json
+
+      sloshkit model --container iso8362-2R --fill-volume 1mL --json
     """
     if json_output:
         print_json(slosh_model.to_dict())

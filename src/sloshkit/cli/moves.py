@@ -151,7 +151,7 @@ class MoveRequest:
         )
 
 
-def _simulate(
+def simulate_with_options(
     motion: Motion,
     slosh_model: SloshModel,
     model_kind: str,
@@ -159,6 +159,42 @@ def _simulate(
     settle_time: str | None,
     settle_tol: str,
 ) -> SloshResponse:
+    """`sloshkit.sim.simulate.simulate` with the simulation options as the user typed them.
+
+    Parameters
+    ----------
+    motion : Motion
+        The container's motion.
+    slosh_model : SloshModel
+        The equivalent model.
+    model_kind : str
+        ``--model`` (one of `sloshkit.sim.simulate.MODEL_KINDS`).
+    sample_period : str
+        ``--sample-period`` (a time, e.g. ``"1ms"``).
+    settle_time : str or None
+        ``--settle-time`` (a time), or None for the default.
+    settle_tol : str
+        ``--settle-tol`` (an angle).
+
+    Returns
+    -------
+    SloshResponse
+        The simulated response.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"), 0.039)
+    >>> response = simulate_with_options(
+    ...     sk.quintic(0.02, 1.0), model, "linear", "1ms", "0.5s", "0.1deg"
+    ... )
+    >>> round(float(response.time_s[1] - response.time_s[0]), 6)
+    0.001
+    >>> simulate_with_options(sk.quintic(0.02, 1.0), model, "cubic", "1ms", None, "0.1deg")
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: model = 'cubic' is invalid: must be one of linear, nonlinear
+    """
     from sloshkit.sim.simulate import MODEL_KINDS, simulate
 
     if model_kind not in MODEL_KINDS:
@@ -242,7 +278,8 @@ def with_move_options(
     )
 
 
-#: The simulation options, passed on as ``simulation`` (keyword arguments of `_simulate`).
+#: The simulation options, passed on as ``simulation`` (keyword arguments of
+#: `simulate_with_options`).
 with_simulation_options = with_options(SIMULATION_OPTIONS, "simulation", dict)
 
 

@@ -25,13 +25,40 @@ from sloshkit.io.requests import (
     fill_height_request,
     liquid_request,
     model_request,
+    profile_request,
 )
+from sloshkit.model.catalogue import catalogue_names
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import LIQUIDS, Liquid
 from sloshkit.model.modal import SloshModel
+from sloshkit.model.profile import Container, ProfileContainer
 from sloshkit.model.theory import DampingLaw
 
 Radius = Annotated[str, typer.Option("--radius", help="Inner radius, e.g. 20.5mm.")]
+
+
+#: The default of ``--radius`` (the seed paper's vial).
+DEFAULT_RADIUS = "20.5mm"
+
+
+ContainerName = Annotated[
+    str | None,
+    typer.Option(
+        "--container",
+        help="A real container by name instead of --radius (its inner profile, modes by finite "
+        "elements): " + catalogue_names() + ".",
+    ),
+]
+
+
+ProfileFile = Annotated[
+    Path | None,
+    typer.Option(
+        "--profile",
+        help="Inner profile r(z) of an axisymmetric container instead of --radius: CSV "
+        "'z [mm], r [mm]' or TOML (points or primitives; docs/containers.md).",
+    ),
+]
 
 
 FillHeight = Annotated[
@@ -86,10 +113,12 @@ DampingRatio = Annotated[
 
 
 SurfaceTension = Annotated[
-    bool,
+    bool | None,
     typer.Option(
         "--surface-tension-correction/--no-surface-tension-correction",
-        help="Raise frequencies by the Bond-number capillary correction.",
+        help="Raise frequencies by the Bond-number capillary correction (default: where it "
+        "raises f₁ by more than 5 %, with a warning).",
+        show_default=False,
     ),
 ]
 
@@ -131,6 +160,47 @@ def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
     if wall_height is not None and container.wall_height_m is not None:
         check_bare_length(wall_height, container.wall_height_m, "wall_height")
     return container
+
+
+def build_vessel(
+    radius: str, wall_height: str | None, container: str | None, profile: Path | None
+) -> Container:
+    """The container of the model options: a catalogue name (``--container``), a profile file
+    (``--profile``) or the upright cylinder of ``--radius`` and ``--wall-height``.
+
+    Parameters
+    ----------
+    radius : str
+        ``--radius`` (only its default with a container or profile).
+    wall_height : str or None
+        ``--wall-height`` (not with a container or profile).
+    container : str or None
+        ``--container``.
+    profile : Path or None
+        ``--profile``.
+
+    Returns
+    -------
+    UprightCylinder or ProfileContainer
+
+    Examples
+    --------
+    >>> build_vessel(DEFAULT_RADIUS, None, "iso8362-6R", None).name
+    'iso8362-6R'
+    >>> build_vessel("8mm", None, None, None).radius_m
+    0.008
+    """
+    real = profile_request(container, profile)
+    if real is None:
+        return build_container(radius, wall_height)
+    if radius != DEFAULT_RADIUS or wall_height is not None:
+        given = "--container" if container is not None else "--profile"
+        raise InputError(
+            "radius" if radius != DEFAULT_RADIUS else "wall_height",
+            radius if radius != DEFAULT_RADIUS else wall_height,
+            f"is given by {given}; drop it or {given}",
+        )
+    return real
 
 
 def build_liquid(
@@ -190,7 +260,9 @@ def build_model(
     modes: int,
     damping_law: str,
     damping_ratio: float | None,
-    surface_tension_correction: bool,
+    surface_tension_correction: bool | None,
+    container: str | None = None,
+    profile: Path | None = None,
 ) -> SloshModel:
     """Turn the model options (text with units) into a `SloshModel`.
 
@@ -208,8 +280,12 @@ def build_model(
         The damping correlation.
     damping_ratio : float or None
         A damping ratio that replaces the correlation.
-    surface_tension_correction : bool
-        Apply the capillary frequency correction.
+    surface_tension_correction : bool or None
+        Apply the capillary frequency correction (None: where it matters).
+    container : str or None
+        ``--container``: a catalogue name replacing the radius and wall height.
+    profile : Path or None
+        ``--profile``: a profile file replacing the radius and wall height.
 
     Returns
     -------
@@ -222,12 +298,15 @@ def build_model(
     >>> round(model.fill_height_m * 1e3, 1), round(model.modes[0].frequency_hz, 2)
     (39.0, 4.72)
     """
-    container = build_container(radius, wall_height)
-    height = fill_height_request(container, fill_height, fill_volume)
+    vessel = build_vessel(radius, wall_height, container, profile)
+    if isinstance(vessel, ProfileContainer) and fill_height is None and fill_volume is None:
+        given = "--container" if container is not None else "--profile"
+        raise InputError("fill_volume", None, f"give --fill-volume or --fill-height with {given}")
+    height = fill_height_request(vessel, fill_height, fill_volume)
     if fill_volume is None:
         check_bare_length(fill_height, height, "fill_height")
     return model_request(
-        container,
+        vessel,
         build_liquid(liquid, density, viscosity, sigma),
         height,
         modes=modes,
@@ -262,7 +341,7 @@ def print_json(payload: object) -> None:
 
 
 MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
-    "radius": (Radius, "20.5mm"),
+    "radius": (Radius, DEFAULT_RADIUS),
     "fill_height": (FillHeight, None),
     "fill_volume": (FillVolume, None),
     "wall_height": (WallHeight, None),
@@ -273,8 +352,10 @@ MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
     "modes": (Modes, 3),
     "damping_law": (DampingLawOpt, "seed"),
     "damping_ratio": (DampingRatio, None),
-    "surface_tension_correction": (SurfaceTension, False),
+    "surface_tension_correction": (SurfaceTension, None),
     "model_file": (ModelFile, None),
+    "container": (ContainerName, None),
+    "profile": (ProfileFile, None),
 }
 
 
@@ -386,6 +467,46 @@ def with_model_options(command: Callable[..., None]) -> Callable[..., None]:
     4.72
     """
     return with_options(MODEL_OPTIONS, "slosh_model", _model_from_options)(command)
+
+
+def _cylinder_model_from_options(values: dict[str, Any]) -> SloshModel:
+    for name in ("container", "profile"):
+        if values[name] is not None:
+            raise InputError(
+                name,
+                str(values[name]),
+                "CFD meshes upright cylinders only (give --radius and --wall-height); a "
+                "container given by its profile is modelled by finite elements, not by CFD",
+            )
+    return _model_from_options(values)
+
+
+def with_cylinder_model_options(command: Callable[..., None]) -> Callable[..., None]:
+    """The shared model options for a command that needs an upright cylinder (CFD): a
+    ``--container`` or ``--profile`` is refused before any model is built.
+
+    Parameters
+    ----------
+    command : callable
+        A command with a ``slosh_model`` parameter.
+
+    Returns
+    -------
+    callable
+        The command with the model options (`MODEL_OPTIONS`) in its signature.
+
+    Examples
+    --------
+    >>> @with_cylinder_model_options
+    ... def command(slosh_model: SloshModel) -> None:
+    ...     print(slosh_model.radius_m)
+    >>> options = {name: default for name, (_, default) in MODEL_OPTIONS.items()}
+    >>> command(**{**options, "container": "iso8362-2R"})
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: container = 'iso8362-2R' is invalid: CFD meshes upright ...
+    """
+    return with_options(MODEL_OPTIONS, "slosh_model", _cylinder_model_from_options)(command)
 
 
 def json_number(value: float) -> float | None:

@@ -69,11 +69,11 @@ def plan_command(
     smooth: Annotated[
         bool,
         typer.Option(
-            "--smooth",
-            help="Optimal method: the smooth variant (2 % longer, least jerk variation) instead of "
-            "the time-optimal move.",
+            "--smooth/--time-optimal",
+            help="Optimal method: the smooth variant (default: 0.5 % above the minimum time, "
+            "least jerk variation, no chattering) or the bang-bang time-optimal move.",
         ),
-    ] = False,
+    ] = True,
     max_duration: Annotated[
         str | None, typer.Option("--max-duration", help="Longest acceptable move, e.g. 2s.")
     ] = None,
@@ -86,7 +86,7 @@ def plan_command(
         typer.Option(
             "--export",
             help="Also write the chosen move for a controller (see 'sloshkit export'): "
-            "pose-csv, joint-csv, ros2, urscript or cam-table.",
+            "pose-csv, joint-csv, ros2, urscript, cam-table, fanuc-ls, abb-rapid or kuka-krl.",
         ),
     ] = None,
     json_output: Json = False,

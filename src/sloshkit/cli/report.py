@@ -13,7 +13,7 @@ from sloshkit.cfd.case import FreeDecay
 from sloshkit.cfd.pipeline import analyse, case_spec
 from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.cfd import _run_with_progress
+from sloshkit.cli.cfd import run_with_progress
 from sloshkit.cli.options import Json, print_json
 from sloshkit.errors import InputError
 from sloshkit.io.outputs import check_folder, mark_folder
@@ -121,6 +121,9 @@ def _cfd_free_decay(slosh_model: SloshModel, case: Path, may_run: bool = True) -
     """Calibration from a free-decay CFD case: reused when it has results, else (``may_run``)
     run with the recommended settings on 2 MPI ranks (about a minute), with a progress bar.
     A case named with --cfd-case is only reused: it must hold a finished sloshkit case."""
+    from sloshkit.cli.cfd_options import require_cylinder
+
+    require_cylinder(slosh_model)
     if not may_run and not (case / "sloshkit-case.json").is_file():
         raise InputError(
             "cfd-case",
@@ -130,7 +133,7 @@ def _cfd_free_decay(slosh_model: SloshModel, case: Path, may_run: bool = True) -
         )
     if not (case / "postProcessing").is_dir():
         stderr.print(f"running the OpenFOAM free decay in {case} (a few minutes)")
-        _run_with_progress(case_spec(slosh_model, FreeDecay(), processes=2), case, False, True)
+        run_with_progress(case_spec(slosh_model, FreeDecay(), processes=2), case, False, True)
     return analyse(case).calibration
 
 

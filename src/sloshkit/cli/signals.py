@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import _thread
 import contextlib
-import os
 import signal
 import sys
 from collections.abc import Callable, Iterator
@@ -60,41 +59,6 @@ def _handler(signum: int, frame: FrameType | None) -> None:
         _state["received"] = signum
     if _state["depth"] == 0:
         raise Interrupted(signum)
-
-
-def _exit_at_once(signum: int, frame: FrameType | None) -> None:
-    code = 128 + signum
-    try:
-        os.write(2, f"error: interrupted (exit {code}); no partial output was written\n".encode())
-    finally:
-        os._exit(code)
-
-
-def exit_on_signal() -> None:
-    """Until `installed` takes over, SIGINT and SIGTERM print the interruption line and end the
-    process at once with 130/143.
-
-    The console entry point calls it before importing anything heavy: while the command's
-    modules are imported nothing has been written, so there is nothing to clean up, and a
-    Ctrl-C must not print a traceback out of an import (nor a SIGTERM kill the process
-    silently).
-
-    Returns
-    -------
-    None
-
-    Examples
-    --------
-    >>> import signal
-    >>> saved = {sig: signal.getsignal(sig) for sig in HANDLED}
-    >>> exit_on_signal()
-    >>> signal.getsignal(signal.SIGINT).__name__
-    '_exit_at_once'
-    >>> for sig, handler in saved.items():
-    ...     _ = signal.signal(sig, handler)
-    """
-    for sig in HANDLED:
-        signal.signal(sig, _exit_at_once)
 
 
 def received() -> int | None:

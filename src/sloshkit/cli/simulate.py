@@ -14,8 +14,8 @@ from sloshkit.cli.app import app, stdout
 from sloshkit.cli.moves import (
     SIMULATION_OPTIONS,
     MoveRequest,
-    _simulate,
     metrics_json,
+    simulate_with_options,
     with_move_options,
     with_simulation_options,
 )
@@ -89,7 +89,7 @@ def simulate_command(
     if tool_offset is not None:
         raise InputError("tool_offset", tool_offset, "needs --pose-file")
     motion = request.law(law)
-    response = _simulate(motion, slosh_model, **simulation)
+    response = simulate_with_options(motion, slosh_model, **simulation)
     model_kind = simulation["model_kind"]
     with all_or_nothing(csv, plot):  # a failing figure leaves no CSV behind
         if csv is not None:
@@ -144,7 +144,7 @@ def compare_command(
     if not names:
         raise InputError("laws", laws, "give at least one law name")
     motions = [request.law(name) for name in names]
-    responses = [_simulate(motion, slosh_model, **simulation) for motion in motions]
+    responses = [simulate_with_options(motion, slosh_model, **simulation) for motion in motions]
     model_kind = simulation["model_kind"]
     rows = [
         {"law": motion.name, **metrics_json(response)}

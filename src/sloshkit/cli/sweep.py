@@ -16,19 +16,21 @@ from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
 from sloshkit.cli.options import (
+    ContainerName,
     DampingLawOpt,
     DampingRatio,
     Density,
     Json,
     LiquidName,
     Modes,
+    ProfileFile,
     Radius,
     Sigma,
     SurfaceTension,
     Viscosity,
     WallHeight,
-    build_container,
     build_liquid,
+    build_vessel,
     check_damping_law,
     print_json,
 )
@@ -80,6 +82,8 @@ def sweep_command(
     sample_period: SamplePeriod = "1ms",
     radius: Radius = "20.5mm",
     wall_height: WallHeight = None,
+    container_name: ContainerName = None,
+    profile: ProfileFile = None,
     liquid: LiquidName = "water-25C",
     density: Density = None,
     viscosity: Viscosity = None,
@@ -87,7 +91,7 @@ def sweep_command(
     modes: Modes = 3,
     damping_law: DampingLawOpt = "seed",
     damping_ratio: DampingRatio = None,
-    surface_tension_correction: SurfaceTension = False,
+    surface_tension_correction: SurfaceTension = None,
     out: Annotated[
         Path | None, typer.Option("--out", help="Folder for sweep.csv and maps.")
     ] = None,
@@ -110,7 +114,10 @@ def sweep_command(
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
     check_folder(out, "out", overwrite)
-    container = build_container(radius, wall_height)
+    container = build_vessel(radius, wall_height, container_name, profile)
+    real = container_name is not None or profile is not None
+    if real and fill_height is None and fill_volume is None:
+        raise InputError("fill_volume", None, "give a --fill-volume or --fill-height range")
     if fill_height is not None and fill_volume is not None:
         raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
     if fill_volume is not None:

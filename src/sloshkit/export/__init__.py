@@ -1,7 +1,9 @@
 """Export plans to robot and drive controllers, with a round-trip check.
 
 `export_plan` writes a 1-D plan or a pose stream as ``pose-csv``, ``joint-csv``, ``ros2``
-(``trajectory_msgs/JointTrajectory`` YAML), ``urscript`` (``servoj`` at 2 ms) or ``cam-table``;
+(``trajectory_msgs/JointTrajectory`` YAML), ``urscript`` (``servoj`` at 2 ms), ``cam-table``,
+or an industrial-robot program of timed joint moves: ``fanuc-ls`` (FANUC TP), ``abb-rapid``
+(RAPID ``MoveAbsJ \\T``) or ``kuka-krl`` (a KRL ``TIME_BLOCK`` spline);
 joint formats go through inverse kinematics (`load_arm`, ikpy) with the container's mounting
 (`Mounting`). The round trip (`check_round_trip`) parses the file back, rebuilds the motion and
 re-simulates the slosh. See ``docs/export.md``.

@@ -19,9 +19,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.export.formats.vendors import PROGRAM_FORMATS
 from sloshkit.export.frames import Mounting, invert, matrices_to_poses, poses_to_matrices
 from sloshkit.export.ik import JointPath, joint_limit_violations, solve_joint_path
-from sloshkit.export.kinematics import Arm
+from sloshkit.export.kinematics import Arm, robot_names
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
 from sloshkit.export.readback import JOINT_FORMATS, read_joint_samples, rebuild_container_poses
 from sloshkit.export.roundtrip import (
@@ -36,13 +37,17 @@ from sloshkit.version import __version__
 
 FloatArray = NDArray[np.float64]
 
-FORMATS = ("pose-csv", "joint-csv", "ros2", "urscript", "cam-table")
+#: Sample streams (a controller or drive plays them at the file's period) ...
+STREAM_FORMATS = ("pose-csv", "joint-csv", "ros2", "urscript", "cam-table")
+#: ... and industrial-robot programs of timed joint moves (`sloshkit.export.formats.vendors`).
+FORMATS = (*STREAM_FORMATS, *PROGRAM_FORMATS)
 SUFFIXES = {
     "pose-csv": ".poses.csv",
     "joint-csv": ".joints.csv",
     "ros2": ".ros2.yaml",
     "urscript": ".script",
     "cam-table": ".cam.csv",
+    **{name: entry.suffix for name, entry in PROGRAM_FORMATS.items()},
 }
 
 
@@ -215,7 +220,8 @@ def export_plan(
     mounting : container in the flange and path in the base (`Mounting`)
     axis : direction of a 1-D plan in the path frame
     sample_period_s : output sample period [s] (default the plan's; ``urscript`` is always
-        0.002 s)
+        0.002 s; robot programs: a whole multiple of the controller's interpolation period,
+        default one point per period)
     model : slosh model for the round trip (required by ``check``)
     limits : slosh limits the plan was made for (checked on the export; written to headers)
     check : parse the file back, rebuild the motion and compare the slosh (`RoundTrip`)
@@ -255,6 +261,9 @@ def export_plan(
     period = _output_period(fmt, stream, sample_period_s)
     planned = stream
     stream = stream.resample(period)
+    if fmt in PROGRAM_FORMATS:  # refuse a bad name or a program too long before any IK
+        PROGRAM_FORMATS[fmt].check_target(Path(out))
+        PROGRAM_FORMATS[fmt].controller.check_size(int(stream.time_s.size), period)
     metadata = _metadata(fmt, stream, period, model, limits, mounting, arm)
     base_to_path = mounting.base_to_path
     container = base_to_path[None] @ poses_to_matrices(stream.position_m, stream.quaternion_xyzw)
@@ -273,15 +282,26 @@ def export_plan(
     else:
         if arm is None:
             raise InputError("robot", None, f"format {fmt} needs an arm (--robot or --urdf)")
+        if fmt in PROGRAM_FORMATS:
+            PROGRAM_FORMATS[fmt].controller.check_robot(arm.name, robot_names())
         flange = container @ invert(mounting.flange_to_container)[None]
         joints = solve_joint_path(arm, flange, stream.time_s)
-        if fmt == "joint-csv":
+        if fmt in PROGRAM_FORMATS:
+            PROGRAM_FORMATS[fmt].write(path, joints, metadata)
+        elif fmt == "joint-csv":
             joint_csv.write_joint_csv(path, joints, metadata)
         elif fmt == "ros2":
             ros2.write_ros2_yaml(path, joints, arm.base_link, metadata)
         else:
             urscript.write_urscript(path, joints, metadata, lookahead_time_s, gain)
     notes: list[str] = []
+    if fmt in PROGRAM_FORMATS:
+        rule = PROGRAM_FORMATS[fmt].controller
+        notes.append(
+            f"{stream.time_s.size} points every {1e3 * period:g} ms ({rule.language} "
+            f"interpolates every {1e3 * rule.interpolation_period_s:g} ms); the round trip joins "
+            f"them by a spline and re-simulates every {1e3 * rule.round_trip_step_s:g} ms"
+        )
     trip = None
     if check and model is not None:
         trip, note = check_round_trip(
@@ -352,6 +372,8 @@ def check_round_trip(
 def _output_period(fmt: str, stream: PoseStream, requested: float | None) -> float:
     from sloshkit.export.formats.urscript import UR_SAMPLE_PERIOD_S
 
+    if fmt in PROGRAM_FORMATS:
+        return PROGRAM_FORMATS[fmt].controller.point_period(requested)
     if fmt == "urscript":
         if requested is not None and abs(requested - UR_SAMPLE_PERIOD_S) > 1e-12:
             raise InputError("sample_period", requested, "urscript streams at 0.002 s (2ms)")
@@ -398,6 +420,8 @@ def _metadata(
         metadata["units"] = (
             "joint positions [rad]; servoj t and lookahead_time [s]"
             if fmt == "urscript"
+            else "joint positions [deg] as the controller counts them; segment times as written"
+            if fmt in PROGRAM_FORMATS
             else "time [s]; joint positions [rad], velocities [rad/s], accelerations [rad/s^2]"
         )
     if fmt != "cam-table":

@@ -16,6 +16,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
+from sloshkit.motion.quaternions import sign_continuous
+
 FloatArray = NDArray[np.float64]
 
 
@@ -150,37 +152,7 @@ def matrices_to_poses(matrices: FloatArray) -> tuple[FloatArray, FloatArray]:
     ([[0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
     """
     quaternion = Rotation.from_matrix(matrices[:, :3, :3]).as_quat()
-    return np.array(matrices[:, :3, 3]), continuous_quaternions(quaternion)
-
-
-def continuous_quaternions(quaternion_xyzw: FloatArray) -> FloatArray:
-    """Flip signs so that consecutive quaternions have a non-negative dot product (q and -q
-    are the same rotation), with w >= 0 at the first sample.
-
-    Parameters
-    ----------
-    quaternion_xyzw : numpy.ndarray
-        Quaternions (N, 4), scalar last.
-
-    Returns
-    -------
-    numpy.ndarray
-        The same rotations, sign-continuous.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> flipped = continuous_quaternions(np.array([[0, 0, 0, -1.0], [0, 0, 0.1, -0.995]]))
-    >>> (flipped + 0.0).tolist()  # + 0.0 turns -0.0 into 0.0
-    [[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, -0.1, 0.995]]
-    """
-    quaternion = np.array(quaternion_xyzw, dtype=float)
-    if quaternion.shape[0] and quaternion[0, 3] < 0.0:
-        quaternion[0] = -quaternion[0]
-    for row in range(1, quaternion.shape[0]):
-        if float(quaternion[row] @ quaternion[row - 1]) < 0.0:
-            quaternion[row] = -quaternion[row]
-    return quaternion
+    return np.array(matrices[:, :3, 3]), sign_continuous(quaternion)
 
 
 def invert(matrix: FloatArray) -> FloatArray:

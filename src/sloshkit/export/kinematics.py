@@ -36,6 +36,17 @@ ROBOTS: dict[str, tuple[str, str, str, tuple[float, ...]]] = {
         "tool0",
         (0.0, -math.pi / 2, math.pi / 2, -math.pi / 2, -math.pi / 2, 0.0),
     ),
+    # Industrial arms (sources in robots/README.md): seeds with the upper arm upright, the
+    # forearm level and the flange pointing down.
+    "lrmate200id": ("lrmate200id.urdf", "base", "tool0", (0.0, 0.0, 0.0, 0.0, -math.pi / 2, 0.0)),
+    "irb120": ("irb120.urdf", "base", "tool0", (0.0, 0.0, 0.0, 0.0, math.pi / 2, 0.0)),
+    "kr6r900": (
+        "kr6r900.urdf",
+        "base",
+        "tool0",
+        (0.0, -math.pi / 2, math.pi / 2, 0.0, math.pi / 2, 0.0),
+    ),
+    "tx2_60": ("tx2_60.urdf", "base", "tool0", (0.0, 0.0, math.pi / 2, 0.0, math.pi / 2, 0.0)),
 }
 
 #: IK must reproduce the tip frame to this distance [m] and angle [rad].

@@ -16,7 +16,6 @@ container upright.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -26,7 +25,8 @@ from scipy.interpolate import BPoly, make_interp_spline
 from scipy.spatial.transform import Rotation, RotationSpline
 
 from sloshkit.errors import InputError, require_positive
-from sloshkit.export.frames import continuous_quaternions
+from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.sampling import steps_to_reach
 
 FloatArray = NDArray[np.float64]
 
@@ -96,7 +96,7 @@ class LinePlan:
         array([0.  , 0.01, 0.04])
         """
         period = require_positive("sample_period", sample_period_s, "s")
-        count = math.ceil(self.duration_s / period - 1e-9)
+        count = steps_to_reach(self.duration_s, period)
         times = np.arange(count + 1, dtype=float) * period
         position, velocity, acceleration = self.evaluate(times)
         return LinePlan(times, position, velocity, acceleration, self.source, dict(self.metadata))
@@ -182,7 +182,7 @@ class PoseStream:
                 self.line.resample(period), self.axis, self.position_m[0], self.metadata
             )
         end = float(self.time_s[-1])
-        count = math.ceil(end / period - 1e-9)
+        count = steps_to_reach(end, period)
         times = np.arange(count + 1, dtype=float) * period
         inside = np.minimum(times, end)
         if times.shape == self.time_s.shape and np.allclose(times, self.time_s, atol=1e-12):
@@ -193,7 +193,7 @@ class PoseStream:
         return PoseStream(
             times,
             np.asarray(spline(inside), dtype=float),
-            continuous_quaternions(rotations(inside).as_quat()),
+            sign_continuous(rotations(inside).as_quat()),
             self.source,
             dict(self.metadata),
         )
@@ -307,7 +307,7 @@ def read_plan(path: str | Path) -> LinePlan | PoseStream:
         return PoseStream(
             _uniform_time(table.time_s, path),
             table.position_m,
-            continuous_quaternions(table.quaternion_xyzw),
+            sign_continuous(table.quaternion_xyzw),
             source=str(path),
             metadata=metadata,
         )

@@ -8,13 +8,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.export.formats.vendors import PROGRAM_FORMATS, read_interpolated
 from sloshkit.export.frames import Mounting, poses_to_matrices
 from sloshkit.export.kinematics import Arm
 
 FloatArray = NDArray[np.float64]
 
 #: The formats that hold joint positions (read back through forward kinematics).
-JOINT_FORMATS = ("joint-csv", "ros2", "urscript")
+JOINT_FORMATS = ("joint-csv", "ros2", "urscript", *PROGRAM_FORMATS)
 
 
 def rebuild_container_poses(
@@ -83,7 +84,8 @@ def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArr
     Parameters
     ----------
     fmt : str
-        joint-csv, ros2 or urscript.
+        joint-csv, ros2, urscript, or a robot program (fanuc-ls, abb-rapid, kuka-krl: its
+        points joined by the spline on the round trip's 2 ms grid).
     path : str or pathlib.Path
         The file.
 
@@ -113,4 +115,6 @@ def read_joint_samples(fmt: str, path: str | Path) -> tuple[FloatArray, FloatArr
         return joints.time_s, joints.position_rad
     if fmt == "urscript":
         return urscript.read_urscript(path)
+    if fmt in PROGRAM_FORMATS:  # the points joined at the controller's interpolation period
+        return read_interpolated(fmt, path)
     raise InputError("format", fmt, "is not a joint format: " + ", ".join(JOINT_FORMATS))

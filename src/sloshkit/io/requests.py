@@ -6,12 +6,16 @@ scenario tables only name their values.
 from __future__ import annotations
 
 import typing
+from pathlib import Path
 
 from sloshkit.errors import InputError
+from sloshkit.io.profiles import read_profile_file
 from sloshkit.io.units import parse_quantity
+from sloshkit.model.catalogue import catalogue_container
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid, get_liquid
 from sloshkit.model.modal import SloshModel, equivalent_model
+from sloshkit.model.profile import Container, ProfileContainer
 from sloshkit.model.theory import DAMPING_LAWS, DampingLaw
 
 #: Fill height when neither a height nor a volume is given on the command line.
@@ -44,6 +48,51 @@ def container_request(radius: Quantity, wall_height: Quantity | None = None) -> 
         parse_quantity(radius, "length", "radius"),
         None if wall_height is None else parse_quantity(wall_height, "length", "wall_height"),
     )
+
+
+def profile_request(
+    container: str | None,
+    profile: str | Path | None,
+    *,
+    container_parameter: str = "container",
+    profile_parameter: str = "profile",
+) -> ProfileContainer | None:
+    """The container of a catalogue name or a profile file (at most one), or None for neither.
+
+    Parameters
+    ----------
+    container : str, optional
+        A catalogue name, e.g. ``iso8362-2R`` (`sloshkit.model.catalogue`).
+    profile : str or Path, optional
+        A profile file (`sloshkit.io.profiles`).
+    container_parameter, profile_parameter : str
+        Their names in error messages.
+
+    Returns
+    -------
+    ProfileContainer or None
+
+    Examples
+    --------
+    >>> profile_request("iso8362-2R", None).name
+    'iso8362-2R'
+    >>> profile_request(None, None) is None
+    True
+    """
+    if container is not None and profile is not None:
+        raise InputError(
+            profile_parameter,
+            str(profile),
+            f"give {container_parameter} or {profile_parameter}, not both",
+        )
+    if container is not None:
+        try:
+            return catalogue_container(container)
+        except InputError as error:
+            raise InputError(container_parameter, container, error.valid) from None
+    if profile is not None:
+        return read_profile_file(profile, profile_parameter)
+    return None
 
 
 def liquid_request(
@@ -125,7 +174,7 @@ def damping_law_request(name: str) -> DampingLaw:
 
 
 def fill_height_request(
-    container: UprightCylinder,
+    container: Container,
     height: Quantity | None,
     volume: Quantity | None,
     *,
@@ -137,8 +186,8 @@ def fill_height_request(
 
     Parameters
     ----------
-    container : UprightCylinder
-        The container (for the volume and the wall check).
+    container : UprightCylinder or ProfileContainer
+        The container (for the volume, through its profile, and the wall check).
     height : str or float, optional
         Fill height.
     volume : str or float, optional
@@ -171,21 +220,21 @@ def fill_height_request(
 
 
 def model_request(
-    container: UprightCylinder,
+    container: Container,
     liquid: Liquid,
     fill_height_m: float,
     *,
     modes: int = 3,
     damping_law: str = "seed",
     damping_ratio: float | None = None,
-    surface_tension_correction: bool = False,
+    surface_tension_correction: bool | None = None,
 ) -> SloshModel:
     """The equivalent model of a request (the damping law checked).
 
     Parameters
     ----------
-    container : UprightCylinder
-        The container.
+    container : UprightCylinder or ProfileContainer
+        The container (a profile is modelled by finite elements).
     liquid : Liquid
         The liquid.
     fill_height_m : float
@@ -196,8 +245,9 @@ def model_request(
         Damping correlation.
     damping_ratio : float, optional
         Damping ratio overriding the correlation.
-    surface_tension_correction : bool
-        Apply the Bond-number frequency correction.
+    surface_tension_correction : bool, optional
+        Apply the Bond-number frequency correction (None: where it matters, see
+        `sloshkit.model.modal.equivalent_model`).
 
     Returns
     -------
@@ -217,7 +267,9 @@ def model_request(
         n_modes=int(modes),
         damping_law=damping_law_request(damping_law),
         damping_ratio=None if damping_ratio is None else float(damping_ratio),
-        surface_tension=bool(surface_tension_correction),
+        surface_tension=None
+        if surface_tension_correction is None
+        else bool(surface_tension_correction),
     )
 
 

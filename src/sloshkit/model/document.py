@@ -13,6 +13,7 @@ from sloshkit.errors import InputError
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
 from sloshkit.model.modal import SloshMode, SloshModel
+from sloshkit.model.profile import Container, ProfileContainer
 
 #: Version of the model document (``sloshkit_model_version``).
 MODEL_FILE_VERSION = 1
@@ -75,7 +76,27 @@ def model_to_document(model: SloshModel) -> dict[str, Any]:
     }
     if container.wall_height_m is not None:
         document["container"]["wall_height_m"] = container.wall_height_m
+    if isinstance(container, ProfileContainer):
+        # The profile itself, so the model file names the container it was computed for.
+        document["container"]["profile"] = {
+            "name": container.name,
+            "source": container.source,
+            "z_m": list(container.z_m),
+            "r_m": list(container.r_m),
+        }
     return document
+
+
+def _container_from_table(table: dict[str, Any]) -> Container:
+    profile = table.get("profile")
+    if profile is None:
+        return UprightCylinder(float(table["radius_m"]), table.get("wall_height_m"))
+    return ProfileContainer(
+        tuple(float(z) for z in profile["z_m"]),
+        tuple(float(r) for r in profile["r_m"]),
+        name=str(profile.get("name", "profile")),
+        source=str(profile.get("source", "model file")),
+    )
 
 
 def model_from_document(document: dict[str, Any], source: str = "document") -> SloshModel:
@@ -110,10 +131,7 @@ def model_from_document(document: dict[str, Any], source: str = "document") -> S
     True
     """
     try:
-        container = UprightCylinder(
-            float(document["container"]["radius_m"]),
-            document["container"].get("wall_height_m"),
-        )
+        container = _container_from_table(document["container"])
         liquid_table = document["liquid"]
         liquid = Liquid(
             name=str(liquid_table["name"]),

@@ -28,10 +28,12 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from sloshkit.errors import InputError, require_in_range, require_positive, warn_validity
-from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
 from sloshkit.model.pendulums import SloshMode, SloshModel
+from sloshkit.model.profile import Container, ProfileContainer
+from sloshkit.model.profile_modal import profile_equivalent_model
 from sloshkit.model.theory import (
+    CAPILLARY_THRESHOLD,
     DAMPING_LAWS,
     GRAVITY_M_S2,
     MAX_MODES,
@@ -49,13 +51,13 @@ from sloshkit.model.theory import (
 
 
 def equivalent_model(
-    container: UprightCylinder,
+    container: Container,
     liquid: Liquid,
     fill_height_m: float,
     n_modes: int = 3,
     damping_law: DampingLaw = "seed",
     damping_ratio: float | None = None,
-    surface_tension: bool = False,
+    surface_tension: bool | None = None,
     gravity_m_s2: float = GRAVITY_M_S2,
 ) -> SloshModel:
     """Equivalent pendulum model of the first ``n_modes`` antisymmetric (lateral) modes.
@@ -65,10 +67,14 @@ def equivalent_model(
     for very shallow fills, capillary-dominated containers and damping so high that the
     boundary-layer correlations no longer hold.
 
+    A `ProfileContainer` (any axisymmetric container, e.g. a catalogued vial) is modelled by
+    finite elements instead (`sloshkit.model.profile_modal.profile_equivalent_model`); the
+    upright cylinder keeps the closed form.
+
     Parameters
     ----------
-    container : UprightCylinder
-        The upright cylinder (radius, optional wall height).
+    container : UprightCylinder or ProfileContainer
+        The upright cylinder (radius, optional wall height) or an inner profile.
     liquid : Liquid
         Density, viscosity, surface tension.
     fill_height_m : float
@@ -79,16 +85,19 @@ def equivalent_model(
         First-mode correlation, see `sloshkit.model.modal.damping_ratio_correlation`.
     damping_ratio : float, optional
         If given, overrides the correlation (all modes) [-].
-    surface_tension : bool
+    surface_tension : bool, optional
         Apply the Bond-number frequency correction
-        (`sloshkit.model.modal.surface_tension_factor`).
+        (`sloshkit.model.modal.surface_tension_factor`): True always, False never, None (the
+        default) when it raises omega_1 by more than `CAPILLARY_THRESHOLD`, with a
+        `ValidityWarning` that says so.
     gravity_m_s2 : float
         Gravitational acceleration g [m/s^2].
 
     Returns
     -------
     SloshModel
-        The model, with the provenance of every value.
+        The model, with the provenance of every value (``surface_tension_correction`` says
+        whether the correction was applied).
 
     References
     ----------
@@ -104,7 +113,28 @@ def equivalent_model(
     ...                             fill_height_m=0.039)
     >>> round(model.modes[0].frequency_hz, 3), round(model.modes[0].length_m * 1e3, 2)  # Hz, mm
     (4.72, 11.15)
+
+    A 2 mL vial of radius 8 mm: surface tension raises f_1 by 17.9 %, so the correction is on.
+
+    >>> import warnings
+    >>> vial = sk.UprightCylinder(0.008)
+    >>> with warnings.catch_warnings(record=True):
+    ...     small = sk.equivalent_model(vial, sk.get_liquid("water-25C"),
+    ...                                 vial.fill_height_for_volume(2e-6))
+    >>> small.surface_tension_correction
+    True
     """
+    if isinstance(container, ProfileContainer):
+        return profile_equivalent_model(
+            container,
+            liquid,
+            fill_height_m,
+            n_modes,
+            damping_law=damping_law,
+            damping_ratio=damping_ratio,
+            surface_tension=surface_tension,
+            gravity_m_s2=gravity_m_s2,
+        )
     radius = container.radius_m
     height = container.check_fill_height(fill_height_m)
     gravity = require_positive("gravity", gravity_m_s2, "m/s^2")
@@ -119,18 +149,32 @@ def equivalent_model(
     omega = natural_frequency(radius, height, xi, gravity)
     bond = bond_number(liquid.density_kg_m3, radius, liquid.surface_tension_n_m, gravity)
     capillary = surface_tension_factor(xi[:1], bond)[0]
-    if surface_tension:
+    raise_percent = 100 * (capillary - 1)
+    matters = bool(capillary - 1.0 > CAPILLARY_THRESHOLD)
+    applied = matters if surface_tension is None else bool(surface_tension)
+    if applied:
         omega = omega * surface_tension_factor(xi, bond)
         provenance["omega"] += f" with capillary correction sqrt(1 + xi^2/Bo), Bo = {bond:.3g}"
+        if surface_tension is None:
+            provenance["omega"] += (
+                f" (by default: it raises f_1 by more than {100 * CAPILLARY_THRESHOLD:g} %)"
+            )
     if bond < 5.0:
         warn_validity(
             f"Bond number {bond:.3g} < 5: surface tension dominates the free surface "
             "(meniscus, contact line); the potential-flow model is not trustworthy here"
         )
-    elif not surface_tension and capillary > 1.05:
+    if matters and surface_tension is None:
         warn_validity(
-            f"Bond number {bond:.3g}: surface tension raises f_1 by {100 * (capillary - 1):.1f} %; "
-            "consider the surface-tension correction"
+            f"Bond number {bond:.3g}: surface tension raises f_1 by {raise_percent:.1f} % (more "
+            f"than {100 * CAPILLARY_THRESHOLD:g} %), so the capillary correction is applied; "
+            "--no-surface-tension-correction (surface_tension=False) turns it off"
+        )
+    elif matters and not applied:
+        warn_validity(
+            f"Bond number {bond:.3g}: surface tension raises f_1 by {raise_percent:.1f} %; the "
+            "capillary correction is off (--no-surface-tension-correction): the frequencies "
+            "are too low"
         )
     if height / radius < 0.2:
         warn_validity(
@@ -189,27 +233,27 @@ def equivalent_model(
         modes=modes,
         gravity_m_s2=gravity,
         damping_law=damping_law if damping_ratio is None else "user",
-        surface_tension_correction=surface_tension,
+        surface_tension_correction=applied,
         provenance=provenance,
     )
 
 
 def model_family(
-    container: UprightCylinder,
+    container: Container,
     liquid: Liquid,
     *,
     n_modes: int = 3,
     damping_law: DampingLaw = "seed",
     damping_ratio: float | None = None,
-    surface_tension: bool = False,
+    surface_tension: bool | None = None,
     gravity_m_s2: float = GRAVITY_M_S2,
 ) -> Callable[[float], SloshModel]:
     """The `equivalent_model` of one container and liquid as a function of the fill height.
 
     Parameters
     ----------
-    container : UprightCylinder
-        The container.
+    container : UprightCylinder or ProfileContainer
+        The container (a profile's fills are cached: each solved once).
     liquid : Liquid
         The liquid.
     n_modes : int
@@ -218,8 +262,9 @@ def model_family(
         Damping correlation (see `equivalent_model`).
     damping_ratio : float, optional
         Damping ratio overriding the correlation [-].
-    surface_tension : bool
-        Apply the Bond-number frequency correction.
+    surface_tension : bool, optional
+        Apply the Bond-number frequency correction (None: where it matters, see
+        `equivalent_model`).
     gravity_m_s2 : float
         Gravitational acceleration [m/s^2].
 
@@ -254,6 +299,7 @@ def model_family(
 # The v1 names of this module (the formulas now live in sloshkit.model.theory, the objects in
 # sloshkit.model.pendulums) stay importable from here.
 __all__ = [
+    "CAPILLARY_THRESHOLD",
     "DAMPING_LAWS",
     "GRAVITY_M_S2",
     "MAX_MODES",

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field, replace
 from sloshkit.errors import require_in_range, require_positive
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
+from sloshkit.model.profile import ProfileContainer
 from sloshkit.model.theory import GRAVITY_M_S2, bond_number
 
 
@@ -99,8 +100,9 @@ class SloshModel:
 
     Parameters
     ----------
-    container : UprightCylinder
-        The container.
+    container : UprightCylinder or ProfileContainer
+        The container (a profile's model comes from finite elements,
+        `sloshkit.model.profile_modal`).
     liquid : Liquid
         The liquid.
     fill_height_m : float
@@ -130,7 +132,7 @@ class SloshModel:
     (3, 51.3)
     """
 
-    container: UprightCylinder
+    container: UprightCylinder | ProfileContainer
     liquid: Liquid
     fill_height_m: float
     modes: tuple[SloshMode, ...]
@@ -141,12 +143,17 @@ class SloshModel:
 
     @property
     def radius_m(self) -> float:
-        """Inner radius R [m]."""
+        """Inner radius R [m]; for a profile, the free surface's radius r(h)."""
+        if isinstance(self.container, ProfileContainer):
+            return self.container.radius_at(self.fill_height_m)
         return self.container.radius_m
 
     @property
     def liquid_mass_kg(self) -> float:
-        """Liquid mass m_F = rho pi R^2 h [kg]."""
+        """Liquid mass m_F = rho pi R^2 h (rho V(h) through a profile) [kg]."""
+        if isinstance(self.container, ProfileContainer):
+            volume = self.container.volume_for_fill_height(self.fill_height_m)
+            return self.liquid.density_kg_m3 * volume
         return self.liquid.density_kg_m3 * self.container.cross_section_m2 * self.fill_height_m
 
     @property
@@ -156,7 +163,10 @@ class SloshModel:
 
     @property
     def cg_height_m(self) -> float:
-        """Height of the static liquid's centre of gravity above the bottom, h/2 [m]."""
+        """Height of the static liquid's centre of gravity above the bottom, h/2 (the centroid
+        through a profile) [m]."""
+        if isinstance(self.container, ProfileContainer):
+            return self.container.centroid_height_m(self.fill_height_m)
         return self.fill_height_m / 2.0
 
     @property
@@ -193,7 +203,23 @@ class SloshModel:
         return replace(self, modes=modes, provenance=provenance)
 
     def to_dict(self) -> dict[str, object]:
-        """JSON-ready summary in SI with unit-suffixed keys (the ``model --json`` format)."""
+        """JSON-ready summary in SI with unit-suffixed keys (the ``model --json`` format); a
+        profile's model adds ``container``, ``surface_radius_m``, ``liquid_volume_m3`` and
+        ``brimful_volume_m3``."""
+        summary = self._summary()
+        if isinstance(self.container, ProfileContainer):
+            profile = self.container
+            summary = {
+                "container": profile.name,
+                "container_source": profile.source,
+                "surface_radius_m": self.radius_m,
+                "liquid_volume_m3": profile.volume_for_fill_height(self.fill_height_m),
+                "brimful_volume_m3": profile.brimful_volume_m3,
+                **summary,
+            }
+        return summary
+
+    def _summary(self) -> dict[str, object]:
         return {
             "radius_m": self.radius_m,
             "wall_height_m": self.container.wall_height_m,

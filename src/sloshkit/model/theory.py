@@ -33,6 +33,17 @@ DAMPING_LAWS: tuple[str, ...] = get_args(DampingLaw)
 MAX_MODES = 50
 
 
+#: The capillary correction is applied by default when it raises omega_1 by more than this
+#: fraction. Below it the correction is no larger than the gap between the uncorrected theory
+#: and the references sloshkit has (the paper's CFD: 3.7 % below theory at Bo = 57, where the
+#: correction is +2.9 %; the measured 49 mm glass cylinder: 0.6 % below at Bo = 323, correction
+#: +0.5 %): neither supports raising the frequency there. Above it the correction dominates the
+#: model's error (a 2 mL vial of radius 8 mm: +17.9 %, and the docs/how-do-i.md plan made
+#: without it leaves 2.0-2.6 deg against its 0.25 deg residual limit). See docs/user-guide.md.
+#: (Defined here so the profile models of `sloshkit.model.profile_modal` use the same one.)
+CAPILLARY_THRESHOLD = 0.05
+
+
 def bessel_roots(n_modes: int) -> np.ndarray:
     """First ``n_modes`` roots xi_n of J1'(x) = 0 (1.841184, 5.331443, 8.536316, ...) [-].
 

@@ -34,7 +34,7 @@ from scipy.interpolate import PPoly
 
 from sloshkit.errors import InputError, require_in_range, require_positive
 from sloshkit.motion.profile import Motion as Motion  # re-exported (v1 path)
-from sloshkit.motion.profile import _piecewise_constant_jerk as _piecewise_constant_jerk
+from sloshkit.motion.profile import piecewise_constant_jerk
 from sloshkit.motion.recorded import from_samples as from_samples  # re-exported (v1 path)
 
 #: Move durations the laws accept [s]: 1 us to about 30 years (a polynomial law divides the
@@ -261,7 +261,7 @@ def trapezoidal(
         accel_time = fraction * duration
     acceleration = velocity / accel_time
     cruise = duration - 2.0 * accel_time
-    return _piecewise_constant_jerk(
+    return piecewise_constant_jerk(
         "trapezoidal",
         durations=[accel_time, cruise, accel_time],
         jerks=[0.0, 0.0, 0.0],
@@ -324,7 +324,7 @@ def s_curve(
     if result != Result.Working:
         raise InputError("s-curve limits", limits, f"ruckig could not plan the move ({result})")
     profile = trajectory.profiles[0][0]
-    motion = _piecewise_constant_jerk("s-curve", list(profile.t), list(profile.j))
+    motion = piecewise_constant_jerk("s-curve", list(profile.t), list(profile.j))
     return Motion("s-curve", motion.position_pp)
 
 
@@ -451,3 +451,8 @@ def make_law(
             distance_m, peak_velocity_m_s, None, acceleration_fraction
         ).duration_s
     return builders[name](distance_m, duration_s)
+
+
+#: The former private name, kept only for plan/transcription.py (the 3-D planner's rewrite
+#: moves it to `sloshkit.motion.profile.piecewise_constant_jerk`).
+_piecewise_constant_jerk = piecewise_constant_jerk

@@ -33,6 +33,7 @@ from sloshkit.budget import require_samples
 from sloshkit.errors import InputError, require_increasing, require_positive
 from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ, PoseKinematics, pose_kinematics
 from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.sampling import steps_to_reach
 
 FloatArray = NDArray[np.float64]
 
@@ -220,7 +221,7 @@ class PoseTrajectory:
         if settle <= 0.0:
             return self
         dt = self.sample_period_s if sample_period_s is None else float(sample_period_s)
-        extra = self.end_s + np.arange(1, math.ceil(settle / dt - 1e-9) + 1) * dt
+        extra = self.end_s + np.arange(1, steps_to_reach(settle, dt) + 1) * dt
         times = np.concatenate((self.time_s, extra))
         position = np.vstack((self.position_m, np.repeat(self.position_m[-1:], extra.size, 0)))
         quaternion = np.vstack(

@@ -193,14 +193,44 @@ def _peak_abs_by_piece(coefficients: FloatArray, widths: FloatArray) -> float:
     return best
 
 
-def _piecewise_constant_jerk(
+def piecewise_constant_jerk(
     name: str,
     durations: list[float],
     jerks: list[float],
     start_accelerations: list[float] | None = None,
 ) -> Motion:
-    """Integrate segments of constant jerk (acceleration may jump between segments when
-    ``start_accelerations`` is given) from rest at 0 into an exact cubic `PPoly`."""
+    """A motion of segments of constant jerk, integrated exactly from rest at 0.
+
+    Position, velocity and acceleration are continuous from segment to segment (the
+    acceleration may jump at a segment's start when ``start_accelerations`` is given); the
+    result is an exact cubic `scipy.interpolate.PPoly`. Segments of zero or negative length
+    are skipped.
+
+    Parameters
+    ----------
+    name : str
+        Name of the motion.
+    durations : list of float
+        Length of each segment [s].
+    jerks : list of float
+        Jerk of each segment [m/s^3].
+    start_accelerations : list of float, optional
+        Acceleration at the start of each segment [m/s^2], replacing the one carried over.
+
+    Returns
+    -------
+    Motion
+        The motion, from t = 0 to the sum of the durations.
+
+    Examples
+    --------
+    Jerk +J for tau, then -J for tau: the acceleration rises to J tau and falls back to 0, and
+    the distance is J tau^3:
+
+    >>> motion = piecewise_constant_jerk("bump", [0.5, 0.5], [8.0, -8.0])
+    >>> motion.duration_s, round(float(motion.position(1.0)), 12)
+    (1.0, 1.0)
+    """
     position = velocity = 0.0
     acceleration = 0.0
     breaks = [0.0]
@@ -216,3 +246,8 @@ def _piecewise_constant_jerk(
         acceleration += jerk * width
         breaks.append(breaks[-1] + width)
     return Motion(name, PPoly(np.asarray(columns, dtype=float).T, np.asarray(breaks)))
+
+
+#: The former private name, kept only for the modules of plan/ that still import it (the 3-D
+#: planner's rewrite moves them to `piecewise_constant_jerk`); nothing else may use it.
+_piecewise_constant_jerk = piecewise_constant_jerk

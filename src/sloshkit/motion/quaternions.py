@@ -34,9 +34,11 @@ def sign_continuous(quaternion_xyzw: ArrayLike) -> FloatArray:
     --------
     >>> sign_continuous([[0, 0, 0, -1.0], [0, 0, 0, 1.0]]).tolist()
     [[-0.0, -0.0, -0.0, 1.0], [0.0, 0.0, 0.0, 1.0]]
+    >>> sign_continuous(np.empty((0, 4))).shape
+    (0, 4)
     """
     q = np.array(quaternion_xyzw, dtype=float, copy=True)
-    if q[0, 3] < 0.0:
+    if q.shape[0] and q[0, 3] < 0.0:
         q[0] = -q[0]
     dots = np.einsum("ij,ij->i", q[1:], q[:-1])
     flips = np.cumsum(dots < 0.0) % 2 == 1

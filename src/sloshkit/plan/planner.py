@@ -9,10 +9,11 @@ Methods (all verified the same way, see `verify`):
   searched so that the shaped move meets every limit (a vectorised grid, then a bisection);
 - ``optimal``: minimum-time control as linear programs (HiGHS), transcribed on the controller's
   export grid (piecewise-constant jerk per sample period, the pendulums' exact discretisation, the
-  slosh limits at every exported sample, for each frequency of the robustness band), or its
-  smooth variant (``smooth=True``: 2 % longer, least total variation of the jerk); large-angle
-  pendulums by multiple shooting (Betts, *Practical Methods for Optimal Control*, 2nd ed.,
-  SIAM (2010) ch. 4);
+  slosh limits at every exported sample, for each frequency of the robustness band); by default
+  its smooth variant (`sloshkit.plan.optimal.SMOOTH_PRICE` = 0.5 % longer than the minimum time,
+  least total variation of the jerk), with ``smooth=False`` the bang-bang time-optimal move;
+  large-angle pendulums (time-optimal only) by multiple shooting (Betts, *Practical Methods for
+  Optimal Control*, 2nd ed., SIAM (2010) ch. 4);
 - ``auto``: all of the above, the fastest that passes verification.
 
 Verification never trusts a planner's internal model: the motion is sampled at the controller's
@@ -153,7 +154,7 @@ def plan(
     method: str = "auto",
     nonlinear_optimal: bool = False,
     progress: Callable[[str], None] | None = None,
-    smooth: bool = False,
+    smooth: bool = True,
 ) -> PlanResult:
     """Run the requested method(s) and return the fastest verified candidate.
 
@@ -172,9 +173,10 @@ def plan(
     progress : callable, optional
         Called with a short message before each method.
     smooth : bool
-        The optimal method returns its smooth variant (`sloshkit.plan.optimal.SMOOTH_PRICE`
-        longer than the minimum time, least total variation of the jerk) instead of the time-optimal
-        move; ``PlanResult.to_dict()["variant"]`` says which.
+        The optimal method returns its smooth variant (the default: `sloshkit.plan.optimal.
+        SMOOTH_PRICE` longer than the minimum time, least total variation of the jerk, no
+        chattering); False returns the bang-bang time-optimal move (always so with
+        ``nonlinear_optimal``). ``PlanResult.to_dict()["variant"]`` says which.
 
     Returns
     -------

@@ -1,7 +1,7 @@
 """Figures of 3-D slosh responses: path (top view) and slosh height, measured against predicted.
 
 Draws `sloshkit.sim.spatial_response.SpatialResponse` objects (registered for ``plot()``) and
-the measured-data comparison of ``benchmarks/validate_measured_3d.py``.
+the measured-data comparison of ``validation/validate_measured_3d.py``.
 """
 
 from __future__ import annotations

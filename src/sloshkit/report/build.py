@@ -19,7 +19,7 @@ from typing import Any
 import markupsafe
 
 from sloshkit.io.scenario import Scenario
-from sloshkit.report.model_sections import _calibration_section, _model_section
+from sloshkit.report.model_sections import _calibrate, _calibration_section, _model_section
 from sloshkit.report.motion_sections import (
     _compare_section,
     _plan_section,
@@ -120,12 +120,18 @@ def build_report(
     try:
         writer = ReportWriter(staging)
         model = scenario.model
-        if "model" in scenario.analyses:
-            say("equivalent model")
-            _model_section(writer, scenario)
+        calibration = None
         if "calibrate" in scenario.analyses or "cfd" in scenario.analyses:
             say("calibration")
-            model = _calibration_section(writer, scenario, cfd_calibration)
+            calibration = _calibrate(scenario, cfd_calibration)
+            # One model for the whole report: a calibration's damping and omega_1 reach the
+            # model table and the summary as well as the laws, maps and plan.
+            model = calibration.model
+        if "model" in scenario.analyses:
+            say("equivalent model")
+            _model_section(writer, scenario, model)
+        if calibration is not None:
+            _calibration_section(writer, scenario, calibration)
         if "compare" in scenario.analyses:
             say("motion laws")
             _compare_section(writer, scenario, model)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import typing
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -22,8 +23,9 @@ from sloshkit.report.paper import PAPER_TABLE3, PAPER_TABLE4
 from sloshkit.report.writer import ReportWriter, recorded_warnings, render
 
 
-def _model_section(writer: ReportWriter, scenario: Scenario) -> None:
-    model = scenario.model
+def _model_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -> None:
+    """The model every later section uses (``model``: the scenario's, or calibrated), with
+    where its damping comes from; the paper's Table 3 beside the scenario's theory."""
     rows = [
         {
             "mode": mode.n,
@@ -46,13 +48,16 @@ def _model_section(writer: ReportWriter, scenario: Scenario) -> None:
         "slosh_mass_g": 1e3 * first.slosh_mass_kg,
         "length_mm": 1e3 * first.length_m,
         "damping_ratio": first.damping_ratio,
+        "damping_source": _damping_source(model, scenario),
         "liquid": model.liquid.name,
     }
     model_table = writer.table("model", rows, "Equivalent pendulum model", {"mode": "d"})
     warnings = writer.warning_note("Equivalent model", _model_warnings(model), "about the model")
     table3 = (
         writer.table(
-            "table3_comparison", _table3_rows(model), "The paper's Table 3 beside sloshkit"
+            "table3_comparison",
+            _table3_rows(scenario.model),
+            "The paper's Table 3 beside sloshkit",
         )
         if scenario.paper_comparison
         else None
@@ -60,12 +65,29 @@ def _model_section(writer: ReportWriter, scenario: Scenario) -> None:
     body = render(
         "sections/model.html.j2",
         model=model,
+        damping_source=writer.facts["model"]["damping_source"],
+        calibrated=model is not scenario.model,
+        table3_zeta=scenario.model.modes[0].damping_ratio,
         asterisk=_asterisk_note(model),
         model_table=model_table,
         warnings=warnings,
         table3=table3,
     )
     writer.section("Equivalent model", body)
+
+
+def _damping_source(model: SloshModel, scenario: Scenario) -> str:
+    """Where the damping ratio of ``model`` comes from, in words (calibration, the scenario or
+    a correlation)."""
+    calibrated = model.provenance.get("damping_ratio_1")
+    if calibrated:
+        return calibrated
+    given = model.provenance.get("damping_ratio", "")
+    if given == "user":
+        if scenario.paper_comparison:
+            return "the paper's Table 3, as the scenario gives it"
+        return "the scenario's [model] damping_ratio"
+    return given or "the model"
 
 
 def _model_warnings(model: SloshModel) -> list[str]:
@@ -83,7 +105,9 @@ def _model_warnings(model: SloshModel) -> list[str]:
             n_modes=len(model.modes),
             damping_law=typing.cast(typing.Any, law),
             damping_ratio=model.modes[0].damping_ratio if user_zeta else None,
-            surface_tension=model.surface_tension_correction,
+            # None: the default, so an automatic correction says so again (the Bond number does
+            # not depend on the fill height); False: a correction the scenario turned off.
+            surface_tension=None if model.surface_tension_correction else False,
             gravity_m_s2=model.gravity_m_s2,
         )
     return found
@@ -143,7 +167,7 @@ def _table3_rows(model: SloshModel) -> list[dict[str, Any]]:
             "quantity": "damping coefficient σ [N s/m]",
             "paper": paper["damping_coefficient"],
             "sloshkit": mode.damping_coefficient_n_s_m,
-            "explanation": "2ζm₁ω₁ with ζ = 0.03 and our m₁",
+            "explanation": f"2ζm₁ω₁ with the paper's ζ = {mode.damping_ratio:.3g} and our m₁",
         },
         {
             "quantity": "'hinge location' [m]",
@@ -160,21 +184,28 @@ def _table3_rows(model: SloshModel) -> list[dict[str, Any]]:
     ]
 
 
-def _calibration_section(
-    writer: ReportWriter, scenario: Scenario, cfd_result: Any | None
-) -> SloshModel:
-    """Calibrate from the scenario's data file, from CFD, or (paper) demonstrate on a
-    synthetic free decay; returns the model the later sections use."""
+@dataclass(frozen=True)
+class _Calibration:
+    """What the calibration found: its result (None without data), where the record came from
+    (``cfd``, ``data``, ``shipped`` or ""), its warnings, the values its text quotes and the
+    model every later section uses."""
 
+    model: SloshModel
+    result: Any | None = None
+    source: str = ""
+    found: list[str] = field(default_factory=list)
+    values: dict[str, Any] = field(default_factory=dict)
+
+
+def _calibrate(scenario: Scenario, cfd_result: Any | None) -> _Calibration:
+    """Calibrate from the scenario's data file, from CFD, or (paper) demonstrate on the shipped
+    CFD free decay. A CFD or data calibration replaces the model's omega_1 and damping for the
+    whole report (its model table and summary included); the demonstration keeps the model."""
     model = scenario.model
-    result = None
-    source = ""
-    found: list[str] = []
-    values: dict[str, Any] = {}
     if cfd_result is not None:
-        result = cfd_result
-        source = "cfd"
-    elif scenario.calibrate:
+        found = list(getattr(cfd_result, "warnings", ()))
+        return _Calibration(cfd_result.calibrated_model(model), cfd_result, "cfd", found)
+    if scenario.calibrate:
         options = scenario.calibrate
         header, table = read_table(options["data"])
         scale = parse_quantity(f"1 {options['time_unit']}", "time", "time_unit")
@@ -187,15 +218,23 @@ def _calibration_section(
                 end_s=options["end"],
                 source=str(options["data"]),
             )
-        source = "data"
-        values["data_file"] = str(options["data"])
-    elif scenario.paper_comparison:
+        values: dict[str, Any] = {"data_file": str(options["data"])}
+        return _Calibration(result.calibrated_model(model), result, "data", found, values)
+    if scenario.paper_comparison:
         delta = PAPER_TABLE4["log_decrement"]
         time_s, elevation_m, record = shipped_cfd_free_decay()
-        values.update(paper_delta=delta, paper_zeta=zeta_from_log_decrement(delta), record=record)
         with recorded_warnings() as found:
             result = calibrate(time_s, elevation_m, source="sloshkit CFD free decay (shipped)")
-        source = "shipped"
+        quoted = {"paper_delta": delta, "paper_zeta": zeta_from_log_decrement(delta)}
+        return _Calibration(model, result, "shipped", found, {**quoted, "record": record})
+    return _Calibration(model)
+
+
+def _calibration_section(writer: ReportWriter, scenario: Scenario, found_: _Calibration) -> None:
+    """The calibration section: the estimators against theory and the paper's Table 4, the
+    fit's intervals and the figures."""
+    model = scenario.model
+    result, source, found, values = found_.result, found_.source, found_.found, found_.values
     shipped = source == "shipped"
     if result is None:
         writer.section(
@@ -205,7 +244,7 @@ def _calibration_section(
                 damping_source=model.provenance.get("damping_ratio", "its correlation"),
             ),
         )
-        return model
+        return
     payload = result.to_dict()
     rows = []
     for name, estimate in payload["estimates"].items():
@@ -224,7 +263,8 @@ def _calibration_section(
             "estimator": "equivalent model (theory)",
             "omega_n [rad/s]": first.omega_rad_s,
             "f_n [Hz]": first.frequency_hz,
-            "zeta": first.damping_ratio,
+            # A calibration replaces the damping everywhere: the scenario's is not shown again.
+            "zeta": first.damping_ratio if found_.model is model else None,
             "log decrement": None,
         }
     )
@@ -269,7 +309,7 @@ def _calibration_section(
         }
     label = (
         "wall elevation (detrended) [m]"
-        if not scenario.calibrate or cfd_result is not None
+        if source != "data"
         else _signal_label(str(scenario.calibrate["signal_column"]))
     )
     figures = [
@@ -279,7 +319,7 @@ def _calibration_section(
             "Free decay, detected peaks and fitted envelope (the paper's Fig. 5b)",
         )
     ]
-    if cfd_result is not None or shipped:
+    if source == "cfd" or shipped:
         figures.append(
             writer.figure(
                 "fig9_cfd_vs_model",
@@ -296,12 +336,10 @@ def _calibration_section(
         warnings=warnings,
         intervals=intervals,
         figures=figures,
+        calibrated_zeta=found_.model.modes[0].damping_ratio,
         **values,
     )
     writer.section("Calibration", body)
-    if cfd_result is not None or scenario.calibrate:
-        return typing.cast(SloshModel, result.calibrated_model(model))
-    return model
 
 
 def _signal_label(column: str) -> str:

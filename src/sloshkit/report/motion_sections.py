@@ -162,11 +162,16 @@ def _sweep_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) 
     options = scenario.sweep
     heights = linspace_inclusive(*options["fill_height"])
     durations = linspace_inclusive(*options["duration"])
+    # Every model option of the scenario reaches the maps: the report's one damping ratio, the
+    # capillary correction as the scenario's model has it (the Bond number does not depend on
+    # the fill height) and gravity.
     family = model_family(
         model.container,
         model.liquid,
         n_modes=len(model.modes),
         damping_ratio=model.modes[0].damping_ratio,
+        surface_tension=model.surface_tension_correction,
+        gravity_m_s2=model.gravity_m_s2,
     )
 
     def model_at(fill_height_m: float) -> SloshModel:

@@ -130,6 +130,18 @@ def force_per_radian(model: SloshModel, mode_index: int = 0) -> float:
     m_n L_n omega_n^2 (Abramson, NASA SP-106 (1966) ch. 6: the pendulum's bob acceleration);
     m_n g for the theoretical omega_n.
 
+    Parameters
+    ----------
+    model : SloshModel
+        The equivalent model.
+    mode_index : int
+        Which mode (0: the first).
+
+    Returns
+    -------
+    float
+        Force amplitude per radian of pendulum amplitude [N/rad].
+
     Examples
     --------
     >>> from sloshkit.model.geometry import UprightCylinder
@@ -200,6 +212,22 @@ def amplitude_pendulums(
 
     The arguments are those of `sloshkit.sim.spatial_kernels.linear_pendulums`, with the
     modes' L_n, omega_n, zeta_n from ``model``; see the module docstring for the model.
+
+    Parameters
+    ----------
+    force : numpy.ndarray
+        Specific force at each mode's hinge (modes, steps, 3) in the non-spinning frame
+        [m/s^2] (`sloshkit.sim.spatial_drive.SpatialDrive`).
+    rest_force : numpy.ndarray
+        The same at rest in the first pose (modes, 3).
+    tilt_rate, tilt_accel : numpy.ndarray
+        Lateral angular velocity (steps, 2) [rad/s] and its derivative [rad/s^2].
+    model : SloshModel
+        The modes' L_n, omega_n and damping ratios.
+    dependence : AmplitudeDependence
+        The first mode's frequency and damping slopes and the amplitude cap.
+    sample_period_s : float
+        Step [s].
 
     Returns
     -------

@@ -1,0 +1,140 @@
+"""One source for each convention (docs/conventions.md): the grid rule, the gravity constant,
+and private names that stay inside their module. Each check reads the source with `ast`, so a
+copy written differently (spacing, names, line breaks) is still found, and a docstring or an
+example that quotes the expression is not."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "src" / "sloshkit"
+
+#: Modules of plan/ that still write the grid rule, the gravity constant or import private
+#: names: the 3-D planner's rewrite (issue 25, helper planner3d) moves them to the shared
+#: helpers, and then their entries go. No module outside plan/ may be added here.
+PLAN_PENDING = {
+    "plan/grid_moves.py",
+    "plan/path_search.py",
+    "plan/path_slp.py",
+    "plan/retime.py",
+    "plan/searches.py",
+    "plan/spatial.py",
+}
+
+
+def modules() -> dict[str, ast.Module]:
+    """Every module of src/sloshkit, by its path relative to the package."""
+    return {
+        path.relative_to(PACKAGE).as_posix(): ast.parse(path.read_text(encoding="utf-8"))
+        for path in sorted(PACKAGE.rglob("*.py"))
+    }
+
+
+def grid_rule_copies(tree: ast.Module) -> list[int]:
+    """Lines of ``ceil(a / b - eps)`` with a small float ``eps``: the grid rule written out."""
+    lines = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Call):
+            continue
+        name = node.func.attr if isinstance(node.func, ast.Attribute) else ""
+        name = name or (node.func.id if isinstance(node.func, ast.Name) else "")
+        if name != "ceil":
+            continue
+        for inner in ast.walk(node):
+            if (
+                isinstance(inner, ast.BinOp)
+                and isinstance(inner.op, ast.Sub)
+                and isinstance(inner.right, ast.Constant)
+                and isinstance(inner.right.value, float)
+                and 0.0 < inner.right.value < 1e-6
+            ):
+                lines.append(node.lineno)
+    return lines
+
+
+def test_only_motion_sampling_writes_the_grid_rule():
+    # The profile mesher counts pieces of at most one spacing with the same rounding; model/
+    # sits below motion/ and cannot call it, and these are lengths, not the time grid.
+    mesh_counts = {"model/axisymmetric.py", "model/profile.py"}
+    allowed = {"motion/sampling.py"} | PLAN_PENDING | mesh_counts
+    copies = [
+        f"{name}:{line}"
+        for name, tree in modules().items()
+        if name not in allowed
+        for line in grid_rule_copies(tree)
+    ]
+    assert copies == [], f"call sloshkit.motion.sampling.steps_to_reach instead: {copies}"
+
+
+def test_the_grid_rule_finder_finds_a_copy_and_not_a_quote():
+    copy = ast.parse("import math\nn = math.ceil(duration / period - 1e-9)\n")
+    quote = ast.parse('"""ceil(T / Ts - 1e-9)"""\nn = math.ceil(x / y)\n')
+    assert grid_rule_copies(copy) == [2] and grid_rule_copies(quote) == []
+
+
+#: Standard gravity and its usual rounding [m/s^2]: a module that writes either number writes
+#: its own gravity constant.
+GRAVITY_VALUES = {9.81, 9.80665, 9.8}
+
+
+def gravity_literals(tree: ast.Module) -> list[int]:
+    """Lines where a number equal to a value of `GRAVITY_VALUES` is written (not in strings)."""
+    return [
+        node.lineno
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Constant)
+        and isinstance(node.value, float)
+        and node.value in GRAVITY_VALUES
+    ]
+
+
+def test_only_model_theory_writes_the_gravity_constant():
+    allowed = {
+        "model/theory.py",  # GRAVITY_M_S2, the one constant
+        "model/document.py",  # its default for a missing key: helper containers owns model/
+    } | PLAN_PENDING
+    literals = [
+        f"{name}:{line}"
+        for name, tree in modules().items()
+        if name not in allowed
+        for line in gravity_literals(tree)
+    ]
+    assert literals == [], f"import sloshkit.model.theory.GRAVITY_M_S2 instead: {literals}"
+
+
+#: Private names still imported from another module, and why: each goes when its owner makes it
+#: public or keeps it inside. No entry may be added.
+PRIVATE_IMPORTS_PENDING = {
+    # report/ (helper defaults24): the section builders of report/build.py
+    ("report/build.py", "sloshkit.report.model_sections", "_calibrate"),
+    ("report/build.py", "sloshkit.report.model_sections", "_calibration_section"),
+    ("report/build.py", "sloshkit.report.model_sections", "_model_section"),
+    ("report/build.py", "sloshkit.report.motion_sections", "_compare_section"),
+    ("report/build.py", "sloshkit.report.motion_sections", "_plan_section"),
+    ("report/build.py", "sloshkit.report.motion_sections", "_sweep_section"),
+    # sim/spatial* (helper fidelity): the module of numba kernels behind its typed entry points
+    ("sim/spatial_kernels.py", "sloshkit.sim", "_spatial_numba"),
+}
+
+
+def private_imports(tree: ast.Module) -> list[tuple[str, str]]:
+    """(module, name) of every ``from sloshkit... import _name`` (dunder names excepted)."""
+    return [
+        (node.module, alias.name)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("sloshkit")
+        for alias in node.names
+        if alias.name.startswith("_") and not alias.name.startswith("__")
+    ]
+
+
+def test_no_module_imports_a_private_name_of_another():
+    found = {
+        (name, module, private)
+        for name, tree in modules().items()
+        if not name.startswith("plan/")  # the 3-D planner's rewrite (see PLAN_PENDING)
+        for module, private in private_imports(tree)
+    }
+    assert sorted(found - PRIVATE_IMPORTS_PENDING) == [], "make the name public or keep it inside"
