@@ -229,8 +229,10 @@ def test_analyse_without_force_output_uses_the_elevation(tmp_path):
     assert payload["damping_signal"] == "wall_elevation"
     assert payload["force_noise_ratio"] is None
     assert payload["damping_ratio"] == pytest.approx(0.006, rel=0.1)
+    # NaN rows are a damaged or diverged output: an error, never a silent switch of signal
     nan_force = synthetic_case(tmp_path / "n", 3.0, force_of=lambda t: np.where(t > 1, np.nan, t))
-    assert analyse(nan_force).damping_signal == "wall_elevation"
+    with pytest.raises(InputError, match=r"force\.dat holds nan"):
+        analyse(nan_force)
 
 
 def test_a_noisy_wall_force_warns_of_parasitic_currents(tmp_path):

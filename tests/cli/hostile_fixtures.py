@@ -86,6 +86,15 @@ def _pose_files() -> dict[str, str]:
 def _waypoint_files() -> dict[str, str]:
     good = "x [mm],y [mm],z [mm]\n0,0,0\n100,0,0\n100,100,0\n"
     return {
+        # issue 30: millimetres without a unit (300 m), a yaw of 1e9 deg
+        "w_mm_as_m.csv": "x,y,z\n0,0,0\n150,0,0\n150,150,0\n",
+        "w_mm_as_m.toml": "waypoints = [[0, 0, 0], [150, 0, 0], [150, 150, 0]]\n",
+        "w_yaw_huge.csv": "x,y,z,yaw [deg]\n0,0,0,0\n0.1,0,0,1e9\n0.1,0.1,0,0\n",
+        "w_yaw_huge.toml": "waypoints = [[0, 0, 0], [0.1, 0, 0]]\nyaw_deg = [0, 1e9]\n",
+        "w_yaw_rad_huge.csv": "x,y,z,yaw\n0,0,0,0\n0.1,0,0,100\n",
+        "w_yaw_nan.toml": "waypoints = [[0, 0, 0], [0.1, 0, 0]]\nyaw_deg = [0, nan]\n",
+        "w_repeat.csv": "x,y,z\n0,0,0\n0.1,0,0\n0.1,0,0\n0.2,0,0\n",
+        "w_back.csv": "x,y,z\n0,0,0\n0.1,0,0\n0,0,0\n",
         "w_good.csv": good,
         "w_nan.csv": good.replace("100,0,0", "nan,0,0"),
         "w_inf.csv": good.replace("100,0,0", "inf,0,0"),
@@ -118,8 +127,19 @@ def _plan_files() -> dict[str, str]:
     rows = [[f"{c:.9g}" for c in row] for row in zip(t, x, v, a, strict=True)]
     backwards = [list(r) for r in rows]
     backwards[50][0] = "0.1"
+    big = "".join(",".join(row) + "\n" for row in rows) * 40  # 10,000 rows, ~500 kB
     return {
         "plan_good.csv": _csv(header, rows),
+        "plan_good.script": _csv(header, rows),  # a plan named like a URScript program
+        "plan_user.csv": _csv(header, rows),
+        "plan_user.poses.csv": "my own notes, not written by sloshkit\n",
+        "plan_user.script": "def my_program():\n  movej([0, 0, 0, 0, 0, 0])\nend\n",
+        "plan_big.csv": header + "\n" + big,
+        "plan_huge_position.csv": _csv(header, _with(rows, 30, 1, "1e300")),
+        "plan_mm.csv": _csv(
+            "t [ms],position [mm],velocity [mm/s],acceleration [mm/s^2]",
+            [[f"{1e3 * float(r[0]):.9g}", *(f"{1e3 * float(c):.9g}" for c in r[1:])] for r in rows],
+        ),
         "plan_nan.csv": _csv(header, _with(rows, 30, 1, "nan")),
         "plan_one_row.csv": _csv(header, rows[:1]),
         "plan_backwards.csv": _csv(header, backwards),
@@ -149,12 +169,105 @@ EXTERNAL_ENTITY = """<?xml version="1.0"?>
 """
 
 
+_REVOLUTE = (
+    '<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
+    '<origin xyz="0 0 0.1" rpy="0 0 0"/><axis xyz="0 0 1"/>'
+    '<limit lower="-3" upper="3" velocity="3"/></joint>'
+)
+
+
+def _arm(joints: list[str], links: tuple[str, ...] = ("base", "a", "tool")) -> str:
+    return (
+        '<?xml version="1.0"?>\n<robot name="r">'
+        + "".join(f'<link name="{link}"/>' for link in links)
+        + "".join(joints)
+        + "</robot>\n"
+    )
+
+
+def _broken(old: str, new: str) -> str:
+    """The two-joint arm with one piece of its first joint replaced."""
+    joint = _REVOLUTE.format(name="j1", parent="base", child="a")
+    assert old in joint, old
+    return _arm([joint.replace(old, new, 1), _REVOLUTE.format(name="j2", parent="a", child="tool")])
+
+
+def _chain(count: int) -> str:
+    links = ("base", *[f"l{k}" for k in range(1, count)], "tool")
+    return _arm(
+        [_REVOLUTE.format(name=f"j{k}", parent=links[k], child=links[k + 1]) for k in range(count)],
+        links,
+    )
+
+
 def _urdf_files() -> dict[str, str]:
+    cycle = _arm(
+        [
+            _REVOLUTE.format(name="jt", parent="b", child="tool"),
+            _REVOLUTE.format(name="j1", parent="a", child="b"),
+            _REVOLUTE.format(name="j2", parent="b", child="a"),
+        ],
+        ("base", "a", "b", "tool"),
+    )
+    two_parents = _arm(
+        [
+            _REVOLUTE.format(name="j1", parent="base", child="a"),
+            _REVOLUTE.format(name="j2", parent="a", child="tool"),
+            _REVOLUTE.format(name="j3", parent="base", child="tool"),
+        ]
+    )
     return {
         "u_laughs.urdf": BILLION_LAUGHS,
         "u_external.urdf": EXTERNAL_ENTITY,
         "u_not_xml.urdf": "this is not XML <robot\n",
         "u_no_joints.urdf": '<?xml version="1.0"?>\n<robot name="r"><link name="a"/></robot>\n',
+        "u_good.urdf": _broken('type="revolute"', 'type="revolute"'),
+        # issue 30, family 1: each exited 3 (or hung) before the URDF was checked
+        "u_cycle.urdf": cycle,
+        "u_no_child.urdf": _broken('<child link="a"/>', ""),
+        "u_no_joint_name.urdf": _broken('name="j1" ', ""),
+        "u_no_link_name.urdf": _arm(
+            [_REVOLUTE.format(name="j1", parent="base", child="tool")], ("base", "tool")
+        ).replace('<link name="tool"/>', '<link name="tool"/><link/>'),
+        "u_no_type.urdf": _broken(' type="revolute"', ""),
+        "u_lower_abc.urdf": _broken('lower="-3"', 'lower="abc"'),
+        "u_floating.urdf": _broken('type="revolute"', 'type="floating"'),
+        "u_origin_nan.urdf": _broken('xyz="0 0 0.1"', 'xyz="nan 0 0.1"'),
+        "u_origin_huge.urdf": _broken('xyz="0 0 0.1"', 'xyz="1e308 0 0.1"'),
+        "u_velocity_nan.urdf": _broken('velocity="3"', 'velocity="nan"'),
+        "u_chain50.urdf": _chain(50),
+        "u_name_quote.urdf": _broken('name="j1"', "name=\"j1', 'j0\""),
+        "u_name_comma.urdf": _broken('name="j1"', 'name="j1,x"'),
+        # new instances of the family
+        "u_two_parents.urdf": two_parents,
+        "u_duplicate_joint.urdf": _arm(
+            [
+                _REVOLUTE.format(name="j1", parent="base", child="a"),
+                _REVOLUTE.format(name="j1", parent="a", child="tool"),
+            ]
+        ),
+        "u_duplicate_link.urdf": _broken('type="revolute"', 'type="revolute"').replace(
+            '<link name="a"/>', '<link name="a"/><link name="a"/>'
+        ),
+        "u_planar.urdf": _broken('type="revolute"', 'type="planar"'),
+        "u_unknown_parent.urdf": _broken('<parent link="base"/>', '<parent link="ghost"/>'),
+        "u_no_parent.urdf": _broken('<parent link="base"/>', ""),
+        "u_origin_inf.urdf": _broken('rpy="0 0 0"', 'rpy="0 inf 0"'),
+        "u_origin_text.urdf": _broken('xyz="0 0 0.1"', 'xyz="0 0"'),
+        "u_axis_zero.urdf": _broken('<axis xyz="0 0 1"/>', '<axis xyz="0 0 0"/>'),
+        "u_axis_text.urdf": _broken('<axis xyz="0 0 1"/>', '<axis xyz="z"/>'),
+        "u_lower_above_upper.urdf": _broken('lower="-3"', 'lower="4"'),
+        "u_upper_inf.urdf": _broken('upper="3"', 'upper="inf"'),
+        "u_velocity_negative.urdf": _broken('velocity="3"', 'velocity="-1"'),
+        "u_velocity_zero.urdf": _broken('velocity="3"', 'velocity="0"'),
+        "u_name_newline.urdf": _broken('name="j1"', 'name="j1&#10;x"'),
+        "u_name_unicode.urdf": _broken('name="j1"', 'name="gelenk_\u00e4"'),
+        "u_name_space.urdf": _broken('name="j1"', 'name="joint 1"'),
+        "u_name_yaml.urdf": _broken('name="j1"', 'name="j1: [x]"'),
+        "u_self_loop.urdf": _broken('<child link="a"/>', '<child link="base"/>'),
+        "u_chain12.urdf": _chain(12),
+        "u_root_tag.urdf": '<?xml version="1.0"?>\n<sdf><link name="base"/></sdf>\n',
+        "u_big.urdf": "<robot name='r'>" + "<!-- padding -->" * 600_000 + "</robot>",
     }
 
 
@@ -181,6 +294,8 @@ def make_spatial_fixtures(folder: Path) -> None:
     for files in (_pose_files(), _waypoint_files(), _plan_files(), _urdf_files()):
         for name, text in files.items():
             (folder / name).write_text(text, encoding="utf-8")
+    many = _pose_rows(count=12_400, duration_s=12.4)  # ~600 kB: above --max-memory 1MiB / 8
+    (folder / "p_big.csv").write_text(_csv(POSE_HEADER, many), encoding="utf-8")
     (folder / "p_binary.csv").write_bytes(b"t,x,y,z,qx,qy,qz,qw\n" + bytes(range(256)) * 8)
     (folder / "p_latin1.csv").write_bytes(
         ("t [\u00b5s],x,y,z,qx,qy,qz,qw\n" + "0,0,0,0,0,0,0,1\n1,0,0,0,0,0,0,1\n").encode("latin-1")

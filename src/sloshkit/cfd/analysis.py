@@ -4,7 +4,6 @@ decay (the seed paper's Table 4), from the wall force when the case has one
 
 from __future__ import annotations
 
-import json
 import math
 import warnings
 from dataclasses import dataclass
@@ -21,6 +20,7 @@ from sloshkit.cfd.force_signal import (
     usable_force,
 )
 from sloshkit.cfd.results import CfdSignals, read_function_object, read_signals
+from sloshkit.cfd.summary import read_case_summary, read_run_record
 from sloshkit.errors import InputError, ValidityWarning
 
 
@@ -228,11 +228,10 @@ def analyse(case: Path, method: str = "fit", start_s: float | None = None) -> Cf
             "run it longer with --end-time (at least 4 periods after the excitation)",
         ) from error
     ratio, alternation, force_doubts = _force_quality(signals, result)
-    doubts += force_doubts
+    doubts += force_doubts + list(signals.notes)
     for doubt in doubts:
         warnings.warn(doubt, ValidityWarning, stacklevel=2)
-    record_path = case / "sloshkit-run.json"
-    record = json.loads(record_path.read_text(encoding="utf-8")) if record_path.is_file() else {}
+    record = read_run_record(case)
     return CfdAnalysis(case, signals, result, record, signal, ratio, alternation, tuple(doubts))
 
 
@@ -318,16 +317,13 @@ def read_finished_signals(case: Path) -> CfdSignals:
     ...
     sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
     """
-    summary_path = case / "sloshkit-case.json"
-    if not summary_path.is_file():
-        raise InputError("case", str(case), "is not a sloshkit CFD case (no sloshkit-case.json)")
-    summary = json.loads(summary_path.read_text(encoding="utf-8"))
+    summary = read_case_summary(case)
     end = float(summary["end_time_s"])
     resume = f"continue it with: sloshkit cfd run --case {case} --resume"
     if not (case / "postProcessing" / "wallProbes").is_dir():
         raise InputError("case", str(case), f"is unfinished (simulated 0 of {end:g} s)", resume)
     try:
-        signals = read_signals(case)
+        probes = read_function_object(case, "wallProbes", "alpha.water")
     except InputError as error:  # probe files created but nothing written in them yet
         raise InputError(
             "case",
@@ -339,9 +335,9 @@ def read_finished_signals(case: Path) -> CfdSignals:
     # a finished run's last line is at the end time itself (8 significant digits), or up to
     # half a fixed step short of it (interFoam stops at endTime - deltaT/2), and a run stopped
     # one step early is unfinished, not nearly finished.
-    simulated = float(read_function_object(case, "wallProbes", "alpha.water")[-1, 0])
+    simulated = float(probes[-1, 0])
     if simulated < end - 0.5 * float(summary.get("delta_t_s", 0.0)) - 1e-6:
         raise InputError(
             "case", str(case), f"is unfinished (simulated {simulated:.4g} of {end:g} s)", resume
         )
-    return signals
+    return read_signals(case)  # a finished case: every signal read and checked

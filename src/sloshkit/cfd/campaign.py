@@ -16,7 +16,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from collections.abc import Callable, Sequence
@@ -27,8 +26,11 @@ from typing import Any
 import numpy as np
 
 from sloshkit.cfd.pipeline import analyse
+from sloshkit.cfd.prepare import check_case_path
 from sloshkit.cfd.run import run_case, write_case
+from sloshkit.cfd.scheduler import HANDSHAKE_TIMEOUT_S, quiet_dask_logging, redact
 from sloshkit.cfd.spec import CaseSpec
+from sloshkit.cfd.summary import read_case_summary, read_json_file
 from sloshkit.errors import InputError
 from sloshkit.files import write_json, write_rows_csv
 
@@ -116,7 +118,7 @@ def run_one(folder: str, processes: int, theory_frequency_hz: float) -> dict[str
     ('failed', 768)
     """
     case = Path(folder)
-    summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
+    summary = read_case_summary(case)
     row: dict[str, Any] = {name: None for name in COLUMNS}
     row.update(
         case=case.name,
@@ -247,25 +249,24 @@ def run_campaign(
     names = [c.name for c in cases]
     if len(set(names)) != len(names):
         raise InputError("cases", len(names), "case names must be unique")
+    check_case_path(folder, "folder")  # before anything is written
     import dask.distributed
 
     distributed: Any = dask.distributed  # untyped library
+    quiet_dask_logging()
 
-    folder.mkdir(parents=True, exist_ok=True)
     rows: dict[str, dict[str, Any]] = {}
     pending = []
     for item in cases:
-        case = folder / item.name
-        result = case / RESULT_FILE
+        result = folder / item.name / RESULT_FILE
         if result.is_file():
-            rows[item.name] = json.loads(result.read_text(encoding="utf-8"))
+            rows[item.name] = read_json_file(result, "out")
             continue
-        if not (case / "sloshkit-case.json").is_file():
-            write_case(item.spec, case, overwrite=False)
         pending.append(item)
     skipped = len(rows)
     total = len(cases)
     if pending:
+        # The cluster first: a scheduler that does not answer leaves nothing written.
         if scheduler is None:
             # Threads in this process (inproc:// transport); the scheduler's and the
             # worker's HTTP (dashboard, metrics) servers on loopback only.
@@ -278,8 +279,21 @@ def run_campaign(
             )
             client = distributed.Client(cluster)
         else:
-            cluster, client = None, distributed.Client(scheduler)
+            cluster = None
+            try:
+                client = distributed.Client(scheduler, timeout=HANDSHAKE_TIMEOUT_S)
+            except Exception as error:  # Dask raises OSError, TimeoutError or its own
+                raise InputError(
+                    "scheduler",
+                    redact(scheduler),
+                    f"no Dask scheduler answered within {HANDSHAKE_TIMEOUT_S:g} s "
+                    f"({str(error).splitlines()[0][:120] if str(error) else type(error).__name__})",
+                ) from None
+        quiet_dask_logging()
         try:
+            for item in pending:
+                if not (folder / item.name / "sloshkit-case.json").is_file():
+                    write_case(item.spec, folder / item.name, overwrite=False)
             started = time.perf_counter()
             futures = [
                 client.submit(

@@ -36,6 +36,7 @@ from sloshkit.cfd.run import (
     write_case,
 )
 from sloshkit.cfd.state import check_graded_step
+from sloshkit.cfd.summary import read_case_summary
 from sloshkit.cfd.validation import model_wall_elevation, validate
 from sloshkit.errors import InputError
 from sloshkit.model.modal import SloshModel
@@ -231,7 +232,7 @@ def _check_and_write(spec: CaseSpec, case: Path, resume: bool, overwrite: bool) 
     if resume:
         if not (case / "sloshkit-case.json").is_file():
             raise InputError("case", str(case), "has no sloshkit case to resume")
-        summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
+        summary = read_case_summary(case)
         check_processes(spec.processes, int(summary["cells"]))
     else:
         check_processes(spec.processes, expected_cells(spec))

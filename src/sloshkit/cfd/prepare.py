@@ -82,6 +82,65 @@ def require_openfoam(processes: int = 1) -> None:
                 )
 
 
+#: Characters OpenFOAM v1912 takes in a case's absolute path: its file names refuse white
+#: space and quotes, expand ``$`` and ``~``, and the case's Allrun is a shell script, so
+#: only these are accepted (ASCII letters, digits and ``/ . _ - + = , @``).
+CASE_PATH_CHARACTERS = frozenset(
+    "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789/._-+=,@"
+)
+
+
+def check_case_path(case: Path | str, parameter: str = "case") -> Path:
+    """Refuse a case folder whose absolute path OpenFOAM would not accept, before anything is
+    written (a relative path is checked with the working folder in front of it).
+
+    Parameters
+    ----------
+    case : Path or str
+        The case folder (``--case``; a campaign folder for ``cfd sweep --out``).
+    parameter : str
+        The option that named it.
+
+    Returns
+    -------
+    Path
+        ``case`` as a Path.
+
+    Raises
+    ------
+    InputError
+        Naming the first character OpenFOAM would refuse and where it is.
+
+    Examples
+    --------
+    >>> check_case_path("/tmp/vial-decay").name
+    'vial-decay'
+    >>> from sloshkit.errors import InputError
+    >>> try:
+    ...     check_case_path("/tmp/my vial")
+    ... except InputError as error:
+    ...     print(error.valid.split(";")[0])
+    holds ' ' (a space) at character 8 of the absolute path /tmp/my vial
+    """
+    path = Path(case)
+    absolute = os.path.abspath(path)
+    for position, character in enumerate(absolute, start=1):
+        if character not in CASE_PATH_CHARACTERS:
+            names = {" ": "a space", "\n": "a line break", "\t": "a tab"}
+            shown = names.get(character, "not ASCII" if ord(character) > 127 else "")
+            visible = character.encode("utf-8", "backslashreplace").decode("ascii", "replace")
+            printable = absolute.encode("utf-8", "backslashreplace").decode("ascii", "replace")
+            raise InputError(
+                parameter,
+                str(path).encode("utf-8", "backslashreplace").decode("ascii", "replace"),
+                f"holds {visible!r}{f' ({shown})' if shown else ''} at character {position} of "
+                f"the absolute path {printable}; OpenFOAM v1912 takes only ASCII letters, "
+                "digits and / . _ - + = , @ in a case path",
+                "choose a folder whose full path has none of the others",
+            )
+    return path
+
+
 def write_case(spec: CaseSpec, case: Path, overwrite: bool = False) -> Path:
     """Write the case files into ``case`` (sloshkit-case.json last: it marks a whole case).
 
@@ -118,6 +177,7 @@ def write_case(spec: CaseSpec, case: Path, overwrite: bool = False) -> Path:
     >>> (case / "Allrun").is_file(), (case / "sloshkit-case.json").is_file()
     (True, True)
     """
+    check_case_path(case)
     if case.exists() and not case.is_dir():
         raise InputError("case", str(case), "is a file, not a folder")
     if case.exists() and any(case.iterdir()):

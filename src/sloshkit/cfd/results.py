@@ -7,7 +7,6 @@ folders win where they overlap).
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,6 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.cfd.case import SCALE
+from sloshkit.cfd.summary import read_case_summary
 from sloshkit.errors import InputError
 
 FloatArray = NDArray[np.float64]
@@ -141,6 +141,8 @@ class CfdSignals:
         Wall force along x [N].
     summary : dict
         The case's ``sloshkit-case.json``.
+    notes : tuple of str
+        What the signals lack (e.g. no wall-force rows), for the analysis's warnings.
 
     Returns
     -------
@@ -162,6 +164,7 @@ class CfdSignals:
     tilt_rad: FloatArray
     force_x_n: FloatArray
     summary: dict[str, object]
+    notes: tuple[str, ...] = ()
 
     def _column(self, angle: float) -> FloatArray:
         distance = np.abs(np.angle(np.exp(1j * (self.angles_rad - angle))))
@@ -253,10 +256,9 @@ def read_signals(case: Path) -> CfdSignals:
     ...
     sloshkit.errors.InputError: case = 'no-such-case' is invalid: is not a sloshkit CFD case ...
     """
-    if not (case / "sloshkit-case.json").is_file():
-        raise InputError("case", str(case), "is not a sloshkit CFD case (no sloshkit-case.json)")
-    summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
+    summary = read_case_summary(case)
     probes = read_function_object(case, "wallProbes", "alpha.water")
+    require_finite_table(probes, case, "wallProbes/*/alpha.water")
     count = int(summary["probes_per_column"])
     angles = np.asarray(summary.get("probe_angles_rad", [0.0, math.pi]), dtype=float)
     if probes.shape[1] != 1 + angles.size * count:
@@ -270,8 +272,19 @@ def read_signals(case: Path) -> CfdSignals:
     alpha = np.clip(probes[:, 1:], 0.0, 1.0).reshape(probes.shape[0], angles.size, count)
     elevations = alpha.sum(axis=2) * dz - fill
     tilt_table = read_function_object(case, "surfaceTilt", "volFieldValue.dat")
+    require_finite_table(tilt_table, case, "surfaceTilt/*/volFieldValue.dat")
     tilt = np.arctan2(tilt_table[:, 1], -tilt_table[:, 3])
-    forces = read_function_object(case, "wallForces", "force.dat")
+    notes: tuple[str, ...] = ()
+    try:
+        forces = read_function_object(case, "wallForces", "force.dat")
+    except InputError:  # a force.dat with its header only: no wall force, said so
+        forces = np.zeros((2, 2))
+        forces[1, 0] = 1.0
+        notes = (
+            "the case has no wall-force rows (postProcessing/wallForces/*/force.dat holds only "
+            "its header); frequency and damping are from the probe wall elevation",
+        )
+    require_finite_table(forces, case, "wallForces/*/force.dat")
     force_x = forces[:, 1] / SCALE**4  # mm units: N' = kg mm s^-2 scaled; see case.py
     raw_time = probes[:, 0]
     stacked = np.column_stack(
@@ -289,4 +302,37 @@ def read_signals(case: Path) -> CfdSignals:
         tilt_rad=stacked[:, angles.size],
         force_x_n=stacked[:, angles.size + 1],
         summary=summary,
+        notes=notes,
     )
+
+
+def require_finite_table(table: FloatArray, case: Path, name: str) -> None:
+    """`InputError` naming the function-object file and time of the first non-finite value:
+    a NaN in a signal is a damaged or diverged output, never a reason to switch signals.
+
+    Parameters
+    ----------
+    table : ndarray
+        A merged function-object table (`read_function_object`; first column time).
+    case : Path
+        The case folder.
+    name : str
+        The file, relative to postProcessing (for the message).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> require_finite_table(np.array([[0.0, 1.0], [0.1, 2.0]]), Path("c"), "p/0/f")
+    """
+    bad = ~np.isfinite(table)
+    if np.any(bad):
+        row = int(np.argmax(bad.any(axis=1)))
+        raise InputError(
+            "case",
+            str(case),
+            f"postProcessing/{name} holds {table[row][bad[row]][0]} in data row {row + 1} "
+            f"(t = {table[row, 0]:.6g} s): a damaged file or a diverged run",
+        )

@@ -18,7 +18,6 @@ because Open MPI 4.1's out-of-band listener binds to every interface.
 
 from __future__ import annotations
 
-import json
 import re
 import shutil
 import subprocess
@@ -50,6 +49,7 @@ from sloshkit.cfd.state import (
     tail,
     time_folders,
 )
+from sloshkit.cfd.summary import read_case_summary
 from sloshkit.errors import InputError, ValidityWarning
 
 __all__ = [
@@ -241,15 +241,15 @@ def run_case(
     Examples
     --------
     >>> from pathlib import Path
-    >>> import shutil
-    >>> if shutil.which("interFoam"):  # no case there: the run cannot start
-    ...     try:
-    ...         run_case(Path("no-such-case"))
-    ...     except (OSError, CfdError):
-    ...         pass
+    >>> from sloshkit.errors import InputError
+    >>> try:  # no case there (or no OpenFOAM): the run cannot start
+    ...     run_case(Path("no-such-case"))
+    ... except (InputError, CfdError) as error:
+    ...     print(type(error).__name__ in ("InputError", "CfdError"))
+    True
     """
     require_openfoam(processes)
-    summary = json.loads((case / "sloshkit-case.json").read_text(encoding="utf-8"))
+    summary = read_case_summary(case)
     end = float(summary["end_time_s"])
     check_processes(processes, int(summary["cells"]))
     started = time.perf_counter()

@@ -152,16 +152,25 @@ def run(
     2
     """
     from sloshkit.budget import ENVIRONMENT_VARIABLE
+    from sloshkit.cli.display import quiet_library_logging, sane_width_environment
 
+    saved_width = sane_width_environment()  # COLUMNS=0 would hide every line, errors too
+    quiet_library_logging()
     saved_memory = os.environ.get(ENVIRONMENT_VARIABLE)
     saved_showwarning = warnings.showwarning
     warnings.showwarning = _show_warning
     try:
         with signals.installed(restore=not exiting):
             try:
-                code = (application or app)(
-                    args=list(argv) if argv is not None else None, standalone_mode=False
-                )
+                from sloshkit.io.outputs import command_line, require_encodable_arguments
+
+                words = list(argv) if argv is not None else sys.argv[1:]
+                # a name that is not UTF-8 would fail when written into an output, after the work
+                require_encodable_arguments(words)
+                with command_line(words):  # outputs never replace a file named as an input
+                    code = (application or app)(
+                        args=list(argv) if argv is not None else None, standalone_mode=False
+                    )
                 if signals.received() is not None and not signals.was_reported():
                     raise signals.Interrupted(signals.received() or 2)
                 return code if isinstance(code, int) else 0
@@ -170,6 +179,7 @@ def run(
                 return _report(failure, application or app, words)
     finally:
         warnings.showwarning = saved_showwarning
+        os.environ.update(saved_width)
         if saved_memory is None:
             os.environ.pop(ENVIRONMENT_VARIABLE, None)
         else:

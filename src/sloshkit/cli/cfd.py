@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
-import json
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Annotated, Any
@@ -19,9 +18,11 @@ from sloshkit.cfd.pipeline import (
     validate,
 )
 from sloshkit.cfd.pipeline import run as run_cfd
+from sloshkit.cfd.prepare import check_case_path
 from sloshkit.cfd.run import CfdError, CfdInterrupted, interruptible
+from sloshkit.cfd.summary import read_case_summary
 from sloshkit.cfd.validation import CfdValidation
-from sloshkit.cli import display, signals
+from sloshkit.cli import display, messages, signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.cfd_options import CaseDir, cfd_options, require_cylinder, spec_from_options
 from sloshkit.cli.options import Json, print_json, with_cylinder_model_options, with_options
@@ -109,17 +110,16 @@ def run_with_progress(spec: Any, case: Path, resume: bool, overwrite: bool) -> A
         try:
             return run_cfd(spec, case, resume=resume, overwrite=overwrite, progress=advance)
         except CfdError as error:
-            stderr.print(Text("error: ", style="red") + Text(str(error)), highlight=False)
+            messages.error(stderr, error)
             raise typer.Exit(1) from None
         except CfdInterrupted as stop:
             bar.stop()
             signals.reported()  # the resume hint below is the one line
-            stderr.print(
-                Text(
-                    f"interrupted at t = {stop.simulated_s:.4g} s of {spec.end_time_s:g} s; "
-                    f"continue with: sloshkit cfd run --case {case} --resume"
-                ),
-                highlight=False,
+            messages.error(  # the documented "error: interrupted ..." line
+                stderr,
+                f"interrupted (exit {128 + int(stop.signum)}) at t = {stop.simulated_s:.4g} s "
+                f"of {spec.end_time_s:g} s; continue with: sloshkit cfd run --case {case} "
+                "--resume",
             )
             raise typer.Exit(128 + int(stop.signum)) from None
 
@@ -136,12 +136,10 @@ def _clean_interruption(case: Path) -> Iterator[None]:
             yield
     except CfdInterrupted as stop:
         signals.reported()  # the resume hint below is the one line
-        stderr.print(
-            Text(
-                f"interrupted (signal {int(stop.signum)}); continue with: "
-                f"sloshkit cfd run --case {case} --resume"
-            ),
-            highlight=False,
+        messages.error(
+            stderr,
+            f"interrupted (exit {128 + int(stop.signum)}); continue with: "
+            f"sloshkit cfd run --case {case} --resume",
         )
         raise typer.Exit(128 + int(stop.signum)) from None
 
@@ -203,10 +201,9 @@ def _signal_line(signal: str | None, noise: float | None = None) -> str:
 
 def _resumed_spec(spec: Any, case: Path, processes: int | None) -> Any:
     """A resumed case keeps its own end time and (unless --np is given) its process count."""
-    summary_path = case / "sloshkit-case.json"
-    if not summary_path.is_file():
+    if not (case / "sloshkit-case.json").is_file():
         raise InputError("case", str(case), "has no sloshkit case to resume")
-    summary = json.loads(summary_path.read_text(encoding="utf-8"))
+    summary = read_case_summary(case)
     return dataclasses.replace(
         spec,
         end_time_s=float(summary["end_time_s"]),
@@ -272,6 +269,7 @@ def cfd_run_command(
     require_cylinder(slosh_model)
     check_file(model_file_out, "model_file_out", "model")
     check_file(plot, "plot", "figure")
+    check_case_path(case)  # characters OpenFOAM refuses: refused before anything is written
     check_folder(case, "case", overwrite=True)  # a file, /proc, no permission: refused now
     with _clean_interruption(case):
         spec = spec_from_options(slosh_model, case_options)
@@ -358,10 +356,9 @@ def cfd_analyse_command(
 
 def _validate(case: Path, slosh_model: SloshModel) -> CfdValidation:
     """The 1-D comparison, or the 3-D one for a case driven by a pose trajectory."""
-    summary_path = case / "sloshkit-case.json"
-    if summary_path.is_file():
-        summary = json.loads(summary_path.read_text(encoding="utf-8"))
-        if summary.get("excitation", {}).get("type") == "PoseExcitation":
+    if (case / "sloshkit-case.json").is_file():
+        summary = read_case_summary(case)
+        if summary["excitation"]["type"] == "PoseExcitation":
             from sloshkit.cfd.spatial import validate_poses
 
             return validate_poses(slosh_model, case)
@@ -425,6 +422,7 @@ def cfd_validate_command(
     require_cylinder(slosh_model)
     check_file(plot, "plot", "figure")
     if not reuse:
+        check_case_path(case)
         check_folder(case, "case", overwrite=True)
     with _clean_interruption(case):
         if not reuse:

@@ -9,6 +9,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from sloshkit.cfd.prepare import check_case_path
 from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.cfd import cfd_app
 from sloshkit.cli.cfd_options import cfd_options, require_cylinder, spec_from_options
@@ -23,15 +24,15 @@ MAX_CASES = 500
 
 
 def check_scheduler(address: str, timeout_s: float = 5.0) -> str:
-    """Check a Dask scheduler address before any case is written: ``[tcp://|tls://]HOST:PORT``
-    with a port in 1..65535, and something accepting connections there.
+    """Check a Dask scheduler before any case is written: the address, then a Dask handshake
+    within ``timeout_s`` (`sloshkit.cfd.scheduler.check_scheduler`; credentials never printed).
 
     Parameters
     ----------
     address : str
         The ``--scheduler`` option as typed.
     timeout_s : float
-        How long to wait for the connection [s].
+        How long to wait for the connection and the scheduler's answer [s].
 
     Returns
     -------
@@ -47,28 +48,9 @@ def check_scheduler(address: str, timeout_s: float = 5.0) -> str:
     ...     print(error.valid)
     must be [tcp://|tls://]HOST:PORT, e.g. tcp://10.0.0.5:8786
     """
-    import re
-    import socket
+    from sloshkit.cfd.scheduler import check_scheduler as handshake
 
-    match = re.fullmatch(
-        r"(?:(tcp|tls)://)?(\[[0-9a-fA-F:.]+\]|[A-Za-z0-9._-]+):([0-9]{1,5})", address
-    )
-    if match is None or not 1 <= int(match.group(3)) <= 65535:
-        raise InputError(
-            "scheduler", address, "must be [tcp://|tls://]HOST:PORT, e.g. tcp://10.0.0.5:8786"
-        )
-    host, port = match.group(2).strip("[]"), int(match.group(3))
-    try:
-        with socket.create_connection((host, port), timeout=timeout_s):
-            pass
-    except OSError as error:
-        raise InputError(
-            "scheduler",
-            address,
-            f"nothing accepts connections there ({error.strerror or error})",
-            "start the scheduler first, or leave --scheduler out for the local cluster",
-        ) from None
-    return address
+    return handshake(address, timeout_s)
 
 
 def _split(text: str) -> list[str]:
@@ -155,6 +137,7 @@ def cfd_sweep_command(
     from sloshkit.model.modal import equivalent_model
 
     require_cylinder(slosh_model)
+    check_case_path(out, "out")  # every case is a folder in it: OpenFOAM's characters only
     check_folder(out, "out", overwrite=True)  # a campaign folder is resumed, so may hold cases
     if scheduler is not None:
         check_scheduler(scheduler)

@@ -219,7 +219,12 @@ def show_export(result: Any) -> None:
 
 
 def check_export_request(
-    fmt: str, target: Path, settings: ExportSettings, option: str = "format"
+    fmt: str,
+    target: Path,
+    settings: ExportSettings,
+    option: str = "format",
+    inputs: tuple[tuple[str, Path | None], ...] = (),
+    chosen: bool = True,
 ) -> Any:
     """Check an export before any work: the format, the output file, the arm (robot or URDF).
 
@@ -233,6 +238,10 @@ def check_export_request(
         The parsed export options.
     option : str
         The option that named the format (``format``; ``export`` for ``plan --export``).
+    inputs : tuple of (str, Path) pairs
+        The command's input files (the output never replaces one, `check_file`).
+    chosen : bool
+        The user named ``target`` (False: the default beside the plan).
 
     Returns
     -------
@@ -251,7 +260,7 @@ def check_export_request(
 
     if fmt not in FORMATS:
         raise InputError(option, fmt, "must be one of " + ", ".join(FORMATS))
-    check_file(target, "out")
+    check_file(target, "out", inputs=inputs, chosen=chosen)
     return settings.arm(fmt)
 
 
@@ -362,7 +371,8 @@ def export_command(
     from sloshkit.export.exporter import path_beside
 
     target = out if out is not None else path_beside(plan_file, fmt)
-    check_export_request(fmt, target, export_settings)
+    inputs = (("plan_file", plan_file), ("urdf", export_settings.urdf))
+    check_export_request(fmt, target, export_settings, inputs=inputs, chosen=out is not None)
     from sloshkit.export.headers import read_plan_header
     from sloshkit.export.plans import read_plan
 

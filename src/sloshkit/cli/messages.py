@@ -7,7 +7,6 @@ line: line breaks inside user text are shown as ``\\n``.
 
 from __future__ import annotations
 
-import os
 import sys
 
 from rich.console import Console
@@ -33,9 +32,12 @@ def console(stderr: bool = False) -> Console:
     >>> console().print("[red]x[/red] :x:")
     [red]x[/red] :x:
     """
-    # The terminal's width, or $COLUMNS (e.g. COLUMNS=80 when piping), else 160 columns.
+    # $COLUMNS when usable (e.g. COLUMNS=80 when piping), else the terminal's width, else 160
+    # columns; COLUMNS=0 or text never makes the lines vanish (sloshkit.cli.display).
+    from sloshkit.cli.display import console_width
+
     stream = sys.stderr if stderr else sys.stdout
-    width = None if stream.isatty() or "COLUMNS" in os.environ else 160
+    width = console_width(stream)
     return Console(
         stderr=stderr,
         width=width,

@@ -162,7 +162,14 @@ def plan_command(
     if export is not None and path is None and path_from_poses is None:
         target = _export_target(out, export)  # as _export_chosen names it
         assert target is not None
-        check_export_request(export, target, export_settings, "export")  # before planning
+        check_export_request(  # before planning; the default path never replaces a user file
+            export,
+            target,
+            export_settings,
+            "export",
+            inputs=(("out", out), ("urdf", export_settings.urdf)),
+            chosen=False,
+        )
     if path is not None or path_from_poses is not None:
         from sloshkit.cli.plan_path import run_path_plan
 

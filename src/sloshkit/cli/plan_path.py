@@ -30,9 +30,10 @@ from sloshkit.cli import messages
 from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.options import print_json
 from sloshkit.errors import InputError
+from sloshkit.io.checks import naming
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_bounded, parse_quantity
-from sloshkit.io.waypoints import read_waypoints
+from sloshkit.io.waypoints import read_waypoints, require_path_work
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
 from sloshkit.plan.path_planner import plan_path
@@ -195,9 +196,18 @@ def run_path_plan(
     else:
         assert path_file is not None
         points, yaw = read_waypoints(path_file)
-        path = path_from_waypoints(
-            points, parse_quantity(blend_radius, "length", "blend_radius"), yaw, path_file.name
-        )
+        radius = parse_quantity(blend_radius, "length", "blend_radius")
+        with naming("path", path_file, keep=("blend_radius",)):  # errors name --path, the file
+            path = path_from_waypoints(points, radius, yaw, path_file.name)
+    # the planner's work grows with the samples: refuse a path far too long before any of it
+    require_path_work(
+        path.length_m,
+        parse_quantity(str(vmax), "velocity", "vmax"),
+        parse_quantity(sample_period, "time", "sample_period"),
+        "path" if path_file is not None else "path_from_poses",
+        path_file if path_file is not None else poses_file,
+        sample_period,
+    )
     problem = PathProblem(
         path=path,
         machine=CartesianLimits(

@@ -14,6 +14,7 @@ from sloshkit.cli import display
 from sloshkit.cli.app import stdout
 from sloshkit.cli.options import json_number, print_json
 from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.io.checks import naming
 from sloshkit.io.poses import parse_tool_offset, read_pose_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
@@ -108,16 +109,21 @@ def simulate_poses(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", ValidityWarning)
         poses = read_pose_file(pose_file, tool_offset_m=offset)
-        response = simulate_spatial(
-            slosh_model,
-            poses,
-            nonlinear=model_kind == "nonlinear",
-            settle_time_s=None if settle is None else parse_quantity(settle, "time", "settle_time"),
-            sample_period_s=parse_quantity(simulation["sample_period"], "time", "sample_period")
+        settle_s = None if settle is None else parse_quantity(settle, "time", "settle_time")
+        period_s = (
+            parse_quantity(simulation["sample_period"], "time", "sample_period")
             if sample_period_explicit
-            else None,
-            height_mapping=height_mapping,  # type: ignore[arg-type]
+            else None
         )
+        with naming("pose_file", pose_file, keep=("settle_time", "sample_period", "model")):
+            response = simulate_spatial(  # the samples' memory estimate names --pose-file
+                slosh_model,
+                poses,
+                nonlinear=model_kind == "nonlinear",
+                settle_time_s=settle_s,
+                sample_period_s=period_s,
+                height_mapping=height_mapping,  # type: ignore[arg-type]
+            )
     messages = []
     for item in caught:
         if issubclass(item.category, ValidityWarning):

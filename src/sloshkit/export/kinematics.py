@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 import warnings
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -244,42 +243,34 @@ def load_arm(
 
 def _arm_from_urdf(path: Path, base_link: str, tip_link: str, home_rad: FloatArray | None) -> Arm:
     from ikpy.chain import Chain
-    from ikpy.link import OriginLink
-    from ikpy.urdf.URDF import get_urdf_parameters
+    from ikpy.link import OriginLink, URDFLink
 
-    if not path.is_file():
-        raise InputError("urdf", str(path), "does not exist or is not a file")
-    try:
-        root = ET.parse(path).getroot()
-    except ET.ParseError as error:
-        raise InputError("urdf", str(path), f"is not valid XML ({error})") from None
-    joints = _joint_path(root, base_link, tip_link, str(path))
-    elements = [base_link]
-    for joint in joints:
-        elements += [joint.attrib["name"], joint.find("child").attrib["link"]]  # type: ignore[union-attr]
-    links = get_urdf_parameters(str(path), base_elements=elements, symbolic=False)
-    links = links[: len(joints)]  # ikpy follows children past the tip: cut there
-    mask = [False] + [link.joint_type != "fixed" for link in links]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        chain = Chain([OriginLink(), *links], active_links_mask=mask, name=root.get("name", ""))
-    movable = [joint for joint in joints if joint.attrib.get("type") != "fixed"]
+    from sloshkit.export.urdf import read_urdf
+
+    tree = read_urdf(path)  # validated before any use (sloshkit.export.urdf)
+    joints = tree.chain_between(base_link, tip_link)
+    movable = [joint for joint in joints if joint.movable]
     if not movable:
         raise InputError("tip_link", tip_link, f"no movable joint between {base_link} and it")
-    lower, upper, velocity = [], [], []
-    for joint in movable:
-        limit = joint.find("limit")
-        kind = joint.attrib.get("type")
-        if kind not in ("revolute", "continuous", "prismatic"):
-            raise InputError("urdf", f"joint {joint.attrib['name']}", f"type {kind} unsupported")
-        if kind == "continuous" or limit is None:
-            lower.append(-math.inf)
-            upper.append(math.inf)
-        else:
-            lower.append(float(limit.get("lower", "0")))
-            upper.append(float(limit.get("upper", "0")))
-        velocity.append(float(limit.get("velocity", "inf")) if limit is not None else math.inf)
-    low, high = np.asarray(lower), np.asarray(upper)
+    links = [
+        URDFLink(
+            name=joint.name,
+            origin_translation=list(joint.origin_xyz_m),
+            origin_orientation=list(joint.origin_rpy_rad),
+            rotation=list(joint.axis) if joint.kind in ("revolute", "continuous") else None,
+            translation=list(joint.axis) if joint.kind == "prismatic" else None,
+            bounds=(joint.lower, joint.upper),
+            use_symbolic_matrix=False,
+            joint_type=joint.kind,
+        )
+        for joint in joints
+    ]
+    mask = [False] + [joint.movable for joint in joints]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        chain = Chain([OriginLink(), *links], active_links_mask=mask, name=tree.name)
+    low = np.asarray([joint.lower for joint in movable])
+    high = np.asarray([joint.upper for joint in movable])
     if home_rad is None:
         home = np.where(np.isfinite(low) & np.isfinite(high), (low + high) / 2.0, 0.0)
     else:
@@ -287,34 +278,13 @@ def _arm_from_urdf(path: Path, base_link: str, tip_link: str, home_rad: FloatArr
         if home.shape != low.shape:
             raise InputError("seed_joints", home.tolist(), f"needs {low.size} joint values")
     return Arm(
-        name=root.get("name", path.stem),
-        joint_names=tuple(joint.attrib["name"] for joint in movable),
+        name=tree.name,
+        joint_names=tuple(joint.name for joint in movable),
         lower_rad=low,
         upper_rad=high,
-        velocity_limit_rad_s=np.asarray(velocity),
+        velocity_limit_rad_s=np.asarray([joint.velocity for joint in movable]),
         home_rad=home,
         base_link=base_link,
         tip_link=tip_link,
         chain=chain,
     )
-
-
-def _joint_path(root: ET.Element, base_link: str, tip_link: str, source: str) -> list[ET.Element]:
-    """The URDF joints from ``base_link`` to ``tip_link`` (walking up from the tip)."""
-    links = {link.attrib["name"] for link in root.findall("link")}
-    for name, value in (("base_link", base_link), ("tip_link", tip_link)):
-        if value not in links:
-            raise InputError(name, value, f"is not a link of {source}: " + ", ".join(sorted(links)))
-    parent_joint = {
-        joint.find("child").attrib["link"]: joint  # type: ignore[union-attr]
-        for joint in root.findall("joint")
-    }
-    path: list[ET.Element] = []
-    current = tip_link
-    while current != base_link:
-        joint = parent_joint.get(current)
-        if joint is None:
-            raise InputError("tip_link", tip_link, f"is not below {base_link} in {source}")
-        path.append(joint)
-        current = joint.find("parent").attrib["link"]  # type: ignore[union-attr]
-    return path[::-1]

@@ -268,15 +268,16 @@ def read_metadata(path: str | Path) -> dict[str, str]:
     {'law': 'quintic', 'distance_m': '0.2'}
     """
     metadata: dict[str, str] = {}
-    for raw in Path(path).read_text(encoding="utf-8", errors="replace").splitlines():
-        line = raw.strip()
-        if not line:
-            continue
-        if not line.startswith("#"):
-            break
-        key, colon, value = line.lstrip("#").partition(":")
-        if colon and key.strip() and " " not in key.strip():
-            metadata[key.strip()] = value.strip()
+    with Path(path).open(encoding="utf-8", errors="replace") as handle:  # the top lines only
+        for raw in handle:
+            line = raw.strip()
+            if not line:
+                continue
+            if not line.startswith("#"):
+                break
+            key, colon, value = line.lstrip("#").partition(":")
+            if colon and key.strip() and " " not in key.strip():
+                metadata[key.strip()] = value.strip()
     return metadata
 
 
@@ -300,50 +301,30 @@ def read_plan(path: str | Path) -> LinePlan | PoseStream:
     >>> type(read_plan(folder / "p.csv")).__name__
     'PoseStream'
     """
-    from sloshkit.export.tables import read_csv_table
-    from sloshkit.io.checks import require_finite_rows
+    from sloshkit.io.poses import read_plan_file
 
-    header, data = read_csv_table(path)
-    require_finite_rows(data, {name: k for k, name in enumerate(header)}, "plan", path)
+    # The one reader of pose and plan files (sloshkit.io.poses): its bounds, units and
+    # tolerances hold for export as for every other command.
+    table = read_plan_file(path, parameter="plan")
     metadata = read_metadata(path)
-    names = [name.strip().lower() for name in header]
-    if all(column in names for column in POSE_COLUMNS):
-        columns = [data[:, names.index(column)] for column in POSE_COLUMNS]
-        time = _uniform_time(columns[0], path)
-        quaternion = np.column_stack(columns[4:])
-        norms = np.linalg.norm(quaternion, axis=1)
-        if np.any(np.abs(norms - 1.0) > 1e-6):
-            row = int(np.argmax(np.abs(norms - 1.0)))
-            raise InputError(
-                "quaternion", f"row {row + 1}", f"is not a unit quaternion ({norms[row]:.6g})"
-            )
+    if not isinstance(table, dict):
         return PoseStream(
-            time,
-            np.column_stack(columns[1:4]),
-            sign_continuous(quaternion / norms[:, None]),
+            _uniform_time(table.time_s, path),
+            table.position_m,
+            sign_continuous(table.quaternion_xyzw),
             source=str(path),
             metadata=metadata,
         )
-    if "t_s" in names and "position_m" in names:
-        time = _uniform_time(data[:, names.index("t_s")], path)
-        position = data[:, names.index("position_m")]
-        if "velocity_m_s" in names and "acceleration_m_s2" in names:
-            velocity = data[:, names.index("velocity_m_s")]
-            acceleration = data[:, names.index("acceleration_m_s2")]
-        else:
-            from sloshkit.motion.laws import from_samples
+    time = _uniform_time(table["t_s"], path)
+    position = table["position_m"]
+    if "velocity_m_s" in table and "acceleration_m_s2" in table:
+        velocity, acceleration = table["velocity_m_s"], table["acceleration_m_s2"]
+    else:
+        from sloshkit.motion.laws import from_samples
 
-            motion = from_samples(time, position_m=position)
-            velocity, acceleration = motion.velocity(time), motion.acceleration(time)
-        return LinePlan(time, position, velocity, acceleration, str(path), metadata)
-    raise InputError(
-        "plan",
-        str(path),
-        "needs columns t_s, position_m[, velocity_m_s, acceleration_m_s2] (a 1-D plan) or "
-        + ",".join(POSE_COLUMNS)
-        + " (a pose stream); found "
-        + ", ".join(header),
-    )
+        motion = from_samples(time, position_m=position)
+        velocity, acceleration = motion.velocity(time), motion.acceleration(time)
+    return LinePlan(time, position, velocity, acceleration, str(path), metadata)
 
 
 def _uniform_time(time: FloatArray, path: str | Path) -> FloatArray:

@@ -13,6 +13,7 @@ the target and is moved into place only when the command succeeds; an error or a
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import os
 import shutil
 import tempfile
@@ -29,6 +30,176 @@ MODEL_SUFFIXES: tuple[str, ...] = (".toml", ".json")
 
 #: File sloshkit leaves in each output folder it wrote; such a folder may be rewritten.
 MARKER = ".sloshkit-output"
+
+#: The line every exported file carries in its first `MARK_BYTES` (``# format: sloshkit
+#: urscript``): an existing file at a default output path is replaced only when it has it.
+FILE_MARK = b"format: sloshkit "
+MARK_BYTES = 4096
+
+
+def written_by_sloshkit(path: Path | str) -> bool:
+    """Whether a file carries sloshkit's mark (`FILE_MARK`) in its first `MARK_BYTES`.
+
+    Parameters
+    ----------
+    path : Path or str
+        An existing file.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "a.script").write_text("def move():\\n  # format: sloshkit urscript\\n")
+    >>> _ = (folder / "mine.script").write_text("def move():\\n  movej(home)\\n")
+    >>> written_by_sloshkit(folder / "a.script"), written_by_sloshkit(folder / "mine.script")
+    (True, False)
+    """
+    try:
+        with open(path, "rb") as handle:
+            return FILE_MARK in handle.read(MARK_BYTES)
+    except OSError:
+        return False
+
+
+def require_encodable(path: Path | str, parameter: str) -> None:
+    """Refuse a path whose name is not valid UTF-8 (a byte such as 0xff in it), before any work:
+    every output that names a path (JSON, CSV metadata, reports) is UTF-8.
+
+    Parameters
+    ----------
+    path : Path or str
+        The path as given (undecodable bytes arrive as surrogate escapes).
+    parameter : str
+        Its option name.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.errors import InputError
+    >>> try:
+    ...     require_encodable("rep\\udcff", "out")
+    ... except InputError as error:
+    ...     print(error.valid)
+    the name is not valid UTF-8 (byte 0xff); rename it with UTF-8 characters only
+    """
+    text = str(path)
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as error:
+        bad = text[error.start]
+        code = ord(bad) - 0xDC00 if 0xDC80 <= ord(bad) <= 0xDCFF else ord(bad)
+        raise InputError(
+            parameter,
+            os.fsencode(text),  # shown as the bytes given: b'rep\\xff'
+            f"the name is not valid UTF-8 (byte 0x{code:02x}); rename it with UTF-8 "
+            "characters only",
+        ) from None
+
+
+def require_encodable_arguments(argv: list[str]) -> None:
+    """Refuse a command line holding a word that is not valid UTF-8 (file names with a byte
+    such as 0xff arrive as surrogate escapes), naming its option, before any work: every name
+    sloshkit reads or writes may end up in an output (metadata, JSON, reports), all UTF-8.
+
+    Parameters
+    ----------
+    argv : list of str
+        The command line without the program name.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> from sloshkit.errors import InputError
+    >>> require_encodable_arguments(["export", "plan.csv", "--out", "x.csv"])
+    >>> try:
+    ...     require_encodable_arguments(["export", "plan\\udcff.csv", "--out", "x.csv"])
+    ... except InputError as error:
+    ...     print(error.parameter)
+    argument
+    """
+    for index, word in enumerate(argv):
+        option, _, value = word.partition("=") if word.startswith("--") else ("", "", word)
+        if option and not value:
+            continue  # an option name: its value is the next word
+        previous = argv[index - 1] if index > 0 else ""
+        if not option and previous.startswith("--") and "=" not in previous:
+            option = previous
+        parameter = option.lstrip("-").replace("-", "_") if option else "argument"
+        require_encodable(value, parameter)
+
+
+#: The words of the command line being run (set by the CLI, `command_line`): every existing
+#: file they name is an input the command's outputs must not replace.
+_COMMAND_WORDS: contextvars.ContextVar[tuple[str, ...]] = contextvars.ContextVar(
+    "sloshkit_command_words", default=()
+)
+
+
+@contextlib.contextmanager
+def command_line(argv: list[str]) -> Iterator[None]:
+    """Let `check_file` see the command line while a command runs: an output path that is
+    also a file named elsewhere on it (``simulate --pose-file move.csv --csv move.csv``, any
+    spelling of the same file, a link to it) is refused.
+
+    Parameters
+    ----------
+    argv : list of str
+        The command line without the program name.
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> move = pathlib.Path(tempfile.mkdtemp()) / "move.csv"
+    >>> _ = move.write_text("t,x\\n0,0\\n")
+    >>> with command_line(["simulate", "--pose-file", str(move), "--csv", str(move)]):
+    ...     try:
+    ...         check_file(move, "csv")
+    ...     except InputError as error:
+    ...         print(error.valid.split(";")[0])
+    is also named as an input of the command
+    """
+    token = _COMMAND_WORDS.set(tuple(argv))
+    try:
+        yield
+    finally:
+        _COMMAND_WORDS.reset(token)
+
+
+def _named_files(target: Path) -> list[str]:
+    """The command-line words that name ``target`` (an existing file)."""
+    named = []
+    for word in _COMMAND_WORDS.get():
+        value = word.partition("=")[2] if word.startswith("--") else word
+        value = value.removeprefix("file:")
+        if value and not value.startswith("-"):
+            candidate = Path(value)
+            with contextlib.suppress(OSError, ValueError):
+                if candidate.is_file() and os.path.samefile(candidate, target):
+                    named.append(value)
+    return named
+
+
+def _same_file(first: Path, second: Path) -> bool:
+    try:
+        if first.exists() and second.exists():
+            return os.path.samefile(first, second)
+    except OSError:
+        pass
+    return os.path.abspath(first) == os.path.abspath(second)
 
 
 def _existing_ancestor(path: Path, parameter: str) -> Path:
@@ -66,8 +237,20 @@ def _require_writable(folder: Path, path: Path, parameter: str) -> None:
         ) from None
 
 
-def check_file(path: Path | str | None, parameter: str, kind: str = "file") -> Path | None:
+def check_file(
+    path: Path | str | None,
+    parameter: str,
+    kind: str = "file",
+    *,
+    inputs: tuple[tuple[str, Path | str | None], ...] = (),
+    chosen: bool = True,
+) -> Path | None:
     """Check an output file path before any work; return it (None passes through).
+
+    The one output-path rule: an output is never one of the command's input files (the same
+    file by any name, links included), and an output path sloshkit picked itself (a default
+    beside the input, ``chosen=False``) never replaces an existing file that sloshkit did not
+    write (`written_by_sloshkit`); a path the user named replaces the file there.
 
     Parameters
     ----------
@@ -78,6 +261,10 @@ def check_file(path: Path | str | None, parameter: str, kind: str = "file") -> P
     kind : str
         ``"file"`` (any), ``"figure"`` (a `FIGURE_SUFFIXES` extension) or ``"model"``
         (``.toml``/``.json``).
+    inputs : tuple of (str, path) pairs
+        The command's input files with their option names (None skipped).
+    chosen : bool
+        The user named the path (False: a default picked by sloshkit).
 
     Returns
     -------
@@ -87,7 +274,8 @@ def check_file(path: Path | str | None, parameter: str, kind: str = "file") -> P
     Raises
     ------
     InputError
-        For a folder, a parent that is a file, a read-only file or folder, a wrong extension.
+        For a folder, a parent that is a file, a read-only file or folder, a wrong extension,
+        a name that is not UTF-8, an input file, or (for a default path) a user's file.
 
     References
     ----------
@@ -103,6 +291,29 @@ def check_file(path: Path | str | None, parameter: str, kind: str = "file") -> P
     target = Path(path)
     if str(path).strip() == "" or target.name in ("", ".", ".."):
         raise InputError(parameter, str(path), "must name a file")
+    require_encodable(path, parameter)
+    for option, source in inputs:
+        if source is not None and _same_file(target, Path(source)):
+            raise InputError(
+                parameter,
+                str(path),
+                f"is the input {option} {str(source)!r}; an output never replaces an input",
+                "name another file with --out",
+            )
+    if target.is_file() and len(_named_files(target)) > (1 if chosen else 0):
+        raise InputError(
+            parameter,
+            str(path),
+            "is also named as an input of the command; an output never replaces an input",
+            "name another file",
+        )
+    if not chosen and target.is_file() and not written_by_sloshkit(target):
+        raise InputError(
+            parameter,
+            str(path),
+            "exists and was not written by sloshkit; the default output never replaces it",
+            "name it with --out to replace it",
+        )
     if target.is_dir():
         raise InputError(parameter, str(path), "is a folder; give a file name")
     if target.exists() and not target.is_file():
@@ -151,6 +362,7 @@ def check_folder(path: Path | str | None, parameter: str, overwrite: bool = Fals
     target = Path(path)
     if str(path).strip() == "":
         raise InputError(parameter, str(path), "must name a folder")
+    require_encodable(path, parameter)
     if target.exists() and not target.is_dir():
         raise InputError(parameter, str(path), "is a file; give a folder")
     if target.is_dir():

@@ -120,6 +120,17 @@ def _read_poses(
     path: str | Path, tool_offset_m: Sequence[float] | None, name: str | None, parameter: str
 ) -> PoseTrajectory:
     header, data = read_table(path)
+    return _poses_from_table(path, header, data, tool_offset_m, name, parameter)
+
+
+def _poses_from_table(
+    path: str | Path,
+    header: list[str],
+    data: FloatArray,
+    tool_offset_m: Sequence[float] | None,
+    name: str | None,
+    parameter: str,
+) -> PoseTrajectory:
     if all(cell.isdigit() for cell in header):
         raise InputError(
             "pose_file", str(path), "needs a header naming t, x, y, z and qx, qy, qz, qw"
@@ -167,6 +178,81 @@ def _read_poses(
     if tool_offset_m is not None:
         poses = poses.with_tool_offset(tool_offset_m)
     return poses
+
+
+#: Columns of a 1-D plan (`sloshkit plan --out`): unit-free name -> (quantity kind, SI key).
+PLAN_COLUMNS: dict[str, tuple[str, str]] = {
+    "t": ("time", "t_s"),
+    "position": ("length", "position_m"),
+    "velocity": ("velocity", "velocity_m_s"),
+    "acceleration": ("acceleration", "acceleration_m_s2"),
+}
+
+
+def read_plan_file(
+    path: str | Path, *, parameter: str = "plan"
+) -> PoseTrajectory | dict[str, FloatArray]:
+    """A plan file for export: a pose stream, or a 1-D plan's columns in SI.
+
+    The one reader of pose and plan files: the same table reader, bounds
+    (`sloshkit.io.tables.MAX_TABLE_ROWS`, the memory limit), units in the header, finite
+    values, `MAX_POSITION_M` and quaternion tolerance
+    (`sloshkit.motion.poses.QUATERNION_NORM_TOLERANCE`) as `read_pose_file`. A file with
+    columns x, y, z is a pose stream (`read_pose_file`); one with ``t`` and ``position``
+    (``t_s, position_m[, velocity_m_s, acceleration_m_s2]``, or with units such as
+    ``position [mm]``) is a 1-D plan.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    parameter : str
+        The option that named the file (in every error).
+
+    Returns
+    -------
+    PoseTrajectory or dict of str to ndarray
+        The poses, or the 1-D plan's columns keyed ``t_s``, ``position_m`` and, when present,
+        ``velocity_m_s``, ``acceleration_m_s2``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "plan.csv").write_text("t [ms],position [mm]\\n0,0\\n4,1\\n8,2\\n")
+    >>> read_plan_file(folder / "plan.csv")["position_m"].tolist()
+    [0.0, 0.001, 0.002]
+    """
+    with naming(parameter, path):
+        header, data = read_table(path)
+        bases = [base_name(cell) for cell in header]
+        if all(axis in bases for axis in "xyz"):
+            return _poses_from_table(path, header, data, None, None, parameter)
+        if "position" not in bases or not any(name in bases for name in _TIME_NAMES):
+            raise InputError(
+                parameter,
+                str(path),
+                "needs columns t_s, position_m[, velocity_m_s, acceleration_m_s2] (a 1-D plan) "
+                "or t, x, y, z, qx, qy, qz, qw (a pose stream); found " + ", ".join(header),
+            )
+        columns: dict[str, FloatArray] = {}
+        time_header = header[0]
+        for base, (kind, key) in PLAN_COLUMNS.items():
+            names = _TIME_NAMES if base == "t" else (base,)
+            index = next((bases.index(name) for name in names if name in bases), None)
+            if index is None:
+                continue
+            require_finite_rows(data, {header[index]: index}, parameter, path)
+            _, unit = split_column_name(header[index])
+            time_header = header[index] if base == "t" else time_header
+            columns[key] = np.asarray(data[:, index], dtype=float) * _scale(
+                unit, kind, header[index]
+            )
+        require_increasing_rows(columns["t_s"], time_header, parameter, path)
+        require_bounded_rows(
+            columns["position_m"], "position", MAX_POSITION_M, "m", parameter, path
+        )
+        return columns
 
 
 def parse_tool_offset(text: str) -> tuple[float, float, float]:

@@ -15,7 +15,17 @@ from sloshkit.errors import InputError
 FloatArray = NDArray[np.float64]
 
 
-def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
+#: Most data rows of a table file (pose, plan, motion and record files alike): 1000 s at
+#: 1 kHz. Longer files are refused while they are read, before their rows are parsed.
+MAX_TABLE_ROWS = 1_000_000
+
+#: Memory a table needs per byte of file, as `sloshkit.budget.require_memory` counts it: every
+#: value takes at least 2 bytes of text ("0,") and 8 bytes as a float, held twice (the rows
+#: read, then the array).
+TABLE_BYTES_PER_FILE_BYTE = 8.0
+
+
+def read_table(path: str | Path, *, max_rows: int = MAX_TABLE_ROWS) -> tuple[list[str], FloatArray]:
     """Read a numeric table: CSV (comma or semicolon) or whitespace-separated, ``#`` comments
     skipped; with semicolons, decimal commas are accepted.
 
@@ -23,12 +33,17 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
     by their index (``"0"``, ``"1"``, ...). OpenFOAM function-object files (``# Time ...``
     headers, vectors in parentheses) are read too: parentheses are dropped, vector components
     become separate columns, and a last comment line naming the columns is used as the header.
-    Raises `InputError` for a missing or empty file or non-numeric cells.
+    The file is read line by line: one with more than ``max_rows`` data rows is refused when
+    its row ``max_rows + 1`` is reached, and its size is checked against the memory limit
+    (`TABLE_BYTES_PER_FILE_BYTE`, `sloshkit.budget`) before anything is read.
+    Raises `InputError` for a missing or empty file, too many rows or non-numeric cells.
 
     Parameters
     ----------
     path : str or Path
         The file (a UTF-8 byte-order mark is removed).
+    max_rows : int, optional
+        Most data rows accepted (default `MAX_TABLE_ROWS`).
 
     Returns
     -------
@@ -43,54 +58,103 @@ def read_table(path: str | Path) -> tuple[list[str], FloatArray]:
     >>> read_table(file)
     (['t', 'x [mm]'], array([[0. , 1.5]]))
     """
+    from array import array
+
+    limit = MAX_TABLE_ROWS if max_rows is None else max_rows
     source = Path(path)
     if not source.is_file():
         raise InputError("file", str(source), "does not exist or is not a file")
     from sloshkit.budget import require_memory
 
-    # Text, lines and rows of Python floats: about 20 bytes per byte of text.
-    require_memory("file", str(source), 20.0 * source.stat().st_size, "table parsed in memory")
-    text = source.read_text(encoding="utf-8", errors="replace").removeprefix("\ufeff")
+    size = source.stat().st_size
+    require_memory(
+        "file", str(source), TABLE_BYTES_PER_FILE_BYTE * size, f"a {size}-byte table in memory"
+    )
+    if _data_lines_exceed(source, limit + 1):  # + 1: the header
+        raise InputError(
+            "file",
+            str(source),
+            f"has more than {limit} data rows (the most a table may have)",
+            "resample it or split it",
+        )
     last_comment = ""
-    lines: list[str] = []
-    for raw in text.splitlines():
-        stripped = raw.strip()
-        if not stripped:
-            continue
-        if stripped.startswith("#"):
-            last_comment = stripped.lstrip("#").strip()
-            continue
-        lines.append(stripped.replace("(", " ").replace(")", " "))
-    if not lines:
-        raise InputError("file", str(source), "has no data rows")
-    # semicolon CSV (spreadsheet exports; decimal commas allowed), comma CSV, or whitespace
-    delimiter = ";" if ";" in lines[0] else ("," if "," in lines[0] else None)
-    first = _split(lines[0], delimiter)
     header: list[str] | None = None
-    if not _is_numeric(first):
-        header = [name.strip() for name in first]
-        lines = lines[1:]
-    if not lines:
+    delimiter: str | None = None
+    values = array("d")
+    width = 0
+    rows = 0
+    first = True
+    with source.open(encoding="utf-8-sig", errors="replace", newline=None) as handle:
+        for raw in handle:
+            stripped = raw.strip()
+            if not stripped:
+                continue
+            if stripped.startswith("#"):
+                last_comment = stripped.lstrip("#").strip()
+                continue
+            line = stripped.replace("(", " ").replace(")", " ")
+            if first:
+                first = False
+                # semicolon CSV (spreadsheet exports; decimal commas allowed), comma CSV, or
+                # whitespace
+                delimiter = ";" if ";" in line else ("," if "," in line else None)
+                cells = _split(line, delimiter)
+                if not _is_numeric(cells):
+                    header = [name.strip() for name in cells]
+                    continue
+            rows += 1
+            if rows > limit:
+                raise InputError(
+                    "file",
+                    str(source),
+                    f"has more than {limit} data rows (the most a table may have)",
+                    "resample it or split it",
+                )
+            cells = _split(line, delimiter)
+            try:
+                row = [float(cell) if cell.strip() else float("nan") for cell in cells]
+            except ValueError:
+                raise InputError(
+                    "file", f"{source}:{rows}", f"row is not numeric: {line[:60]!r}"
+                ) from None
+            if rows == 1:
+                width = len(row)
+            elif len(row) != width:
+                raise InputError("file", str(source), "rows have different numbers of columns")
+            values.extend(row)
+    if first:
+        raise InputError("file", str(source), "has no data rows")
+    if rows == 0:
         raise InputError("file", str(source), "has a header but no data rows")
-    rows = []
-    for number, line in enumerate(lines, start=1):
-        cells = _split(line, delimiter)
-        try:
-            rows.append([float(cell) if cell.strip() else float("nan") for cell in cells])
-        except ValueError:
-            raise InputError(
-                "file", f"{source}:{number}", f"row is not numeric: {line[:60]!r}"
-            ) from None
-    width = max(len(row) for row in rows)
-    if any(len(row) != width for row in rows):
-        raise InputError("file", str(source), "rows have different numbers of columns")
-    data = np.asarray(rows, dtype=float)
+    data = np.frombuffer(values, dtype=float).reshape(rows, width).copy()
     if header is None and last_comment:
         candidate = last_comment.split()
         header = candidate if len(candidate) == width else None
     if header is None or len(header) != width:
         header = [str(index) for index in range(width)]
     return header, data
+
+
+def _data_lines_exceed(source: Path, count: int) -> bool:
+    """Whether ``source`` has more than ``count`` lines that are neither blank nor comments,
+    found without parsing a number: newlines are counted in binary chunks first (most files
+    stop there), then lines are classified until the count is passed."""
+    chunk = 1 << 20
+    newlines = 0
+    with source.open("rb") as handle:
+        while block := handle.read(chunk):
+            newlines += block.count(b"\n")
+    if newlines + 1 <= count:
+        return False
+    seen = 0
+    with source.open("rb") as handle:
+        for raw in handle:
+            stripped = raw.strip()
+            if stripped and not stripped.startswith(b"#"):
+                seen += 1
+                if seen > count:
+                    return True
+    return False
 
 
 def select_column(header: list[str], data: FloatArray, column: str, parameter: str) -> FloatArray:

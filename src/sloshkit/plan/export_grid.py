@@ -39,6 +39,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import sparse
 
+from sloshkit.highs import new_highs
 from sloshkit.plan.grid_moves import Limits, Move, Pendulum, measure, steps_for_duration
 
 FloatArray = NDArray[np.float64]
@@ -317,9 +318,7 @@ class ExportGrid:
         lp.a_matrix_.index_ = matrix.indices.astype(np.int32)
         lp.a_matrix_.value_ = matrix.data
         lp.sense_ = highspy.ObjSense.kMinimize if smooth else highspy.ObjSense.kMaximize
-        solver = highspy.Highs()  # type: ignore[no-untyped-call]
-        solver.setOptionValue("output_flag", False)
-        solver.setOptionValue("threads", 1)
+        solver = new_highs(threads=1)
         solver.setOptionValue("solver", "simplex")
         solver.passModel(lp)
         return solver
