@@ -154,7 +154,10 @@ def test_export_reads_pose_headers_with_units_as_every_command(tmp_path: Path) -
     np.testing.assert_allclose(first.time_s, second.time_s, atol=1e-12)
     np.testing.assert_allclose(first.position_m, second.position_m, rtol=0, atol=1e-9)  # printed
     np.testing.assert_allclose(first.quaternion_xyzw, second.quaternion_xyzw, atol=1e-12)
-    result = run("export", "mm.csv", "--out", "mm.poses.csv", "--json", cwd=tmp_path)
+    # No plan header: the model is given (issue 24: no silent default container).
+    result = run(
+        "export", "mm.csv", "--out", "mm.poses.csv", "--radius", "20.5mm", "--json", cwd=tmp_path
+    )
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "mm.poses.csv").is_file()
 
@@ -177,9 +180,10 @@ def test_export_never_replaces_its_input_nor_a_users_file(tmp_path: Path, folder
     one_error(run("export", "plan_user.csv", cwd=tmp_path), "not written by sloshkit")
     assert snapshot(tmp_path) == before
     # its own output, at the default path, may be rewritten; a file named by --out is replaced
-    assert run("export", "plan_good.csv", cwd=tmp_path).returncode == 0
-    assert run("export", "plan_good.csv", cwd=tmp_path).returncode == 0
-    result = run("export", "plan_user.csv", "--out", "plan_user.poses.csv", cwd=tmp_path)
+    model = ("--radius", "20.5mm")  # the fixtures carry no plan header (issue 24)
+    assert run("export", "plan_good.csv", *model, cwd=tmp_path).returncode == 0
+    assert run("export", "plan_good.csv", *model, cwd=tmp_path).returncode == 0
+    result = run("export", "plan_user.csv", "--out", "plan_user.poses.csv", *model, cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert "format: sloshkit pose-csv" in (tmp_path / "plan_user.poses.csv").read_text()
 
