@@ -56,9 +56,11 @@ def test_default_move_is_smooth_and_within_one_percent_of_the_minimum_time():
     assert default.chosen.duration_s >= fastest.chosen.duration_s * (1 - 1e-9)
     jumps, reversals = chattering(default.samples()["acceleration_m_s2"], 4e-3)
     assert jumps <= MAX_JERK_JUMPS_IN_JMAX * JMAX and reversals <= MAX_REVERSALS
-    # The metric tells the two apart: the bang-bang optimum (the old default) chatters.
+    # The metric tells the two apart: the bang-bang optimum (the old default) fails it. Since
+    # its slosh is checked on the 2 ms grid it chatters less (14,057 m/s^3 of jerk jumps and 46
+    # reversals, against 275,212 and 360 on the controller grid alone), but still beyond both.
     jumps, reversals = chattering(fastest.samples()["acceleration_m_s2"], 4e-3)
-    assert jumps > 10 * MAX_JERK_JUMPS_IN_JMAX * JMAX and reversals > 10 * MAX_REVERSALS
+    assert jumps > MAX_JERK_JUMPS_IN_JMAX * JMAX and reversals > 2 * MAX_REVERSALS
 
 
 def test_chattering_metric_on_closed_forms():
