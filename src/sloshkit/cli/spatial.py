@@ -10,7 +10,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from sloshkit.cli import display
+from sloshkit.cli import display, signals
 from sloshkit.cli.app import stdout
 from sloshkit.cli.options import json_number, print_json
 from sloshkit.errors import InputError, ValidityWarning
@@ -115,7 +115,12 @@ def simulate_poses(
             if sample_period_explicit
             else None
         )
-        with naming("pose_file", pose_file, keep=("settle_time", "sample_period", "model")):
+        # The compiled kernels must not see a signal's exception in the middle of a call (a
+        # SIGTERM there could crash the process): it is recorded and raised after the kernel.
+        with (
+            signals.deferred(),
+            naming("pose_file", pose_file, keep=("settle_time", "sample_period", "model")),
+        ):
             response = simulate_spatial(  # the samples' memory estimate names --pose-file
                 slosh_model,
                 poses,
