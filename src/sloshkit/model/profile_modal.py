@@ -24,6 +24,7 @@ from sloshkit.model.theory import (
     bond_number,
     damping_ratio_correlation,
     surface_tension_factor,
+    warn_capillary,
 )
 
 #: Largest relative difference between the liquid's volume and that of the cylinder of the free
@@ -158,23 +159,7 @@ def profile_equivalent_model(
             provenance["omega"] += (
                 f" (by default: it raises f_1 by more than {100 * CAPILLARY_THRESHOLD:g} %)"
             )
-    if bond < 5.0:
-        warn_validity(
-            f"Bond number {bond:.3g} < 5: surface tension dominates the free surface "
-            "(meniscus, contact line); the potential-flow model is not trustworthy here"
-        )
-    if matters and surface_tension is None:
-        warn_validity(
-            f"Bond number {bond:.3g}: surface tension raises f_1 by {raise_percent:.1f} % (more "
-            f"than {100 * CAPILLARY_THRESHOLD:g} %), so the capillary correction is applied; "
-            "--no-surface-tension-correction (surface_tension=False) turns it off"
-        )
-    elif matters and not applied:
-        warn_validity(
-            f"Bond number {bond:.3g}: surface tension raises f_1 by {raise_percent:.1f} %; the "
-            "capillary correction is off (--no-surface-tension-correction): the frequencies "
-            "are too low"
-        )
+    warn_capillary(bond, raise_percent, matters, applied, surface_tension)
     if height / radius < 0.2:
         warn_validity(
             f"fill height / surface radius = {height / radius:.3g} < 0.2: shallow liquid sloshes "

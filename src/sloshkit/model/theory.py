@@ -18,7 +18,7 @@ from typing import Literal, get_args
 
 import numpy as np
 
-from sloshkit.errors import InputError, require_in_range
+from sloshkit.errors import InputError, require_in_range, warn_validity
 
 #: Gravitational acceleration used by the seed paper and our defaults [m/s^2].
 GRAVITY_M_S2 = 9.81
@@ -379,3 +379,53 @@ def damping_ratio_correlation(
     )
     prefactor = 2.89 / math.pi if law == "seed" else 4.98 / (2.0 * math.pi)
     return prefactor * math.sqrt(ga) * bracket
+
+
+def warn_capillary(
+    bond: float, raise_percent: float, matters: bool, applied: bool, surface_tension: bool | None
+) -> None:
+    """The validity warnings of the capillary (Bond-number) correction, for every model.
+
+    Parameters
+    ----------
+    bond : float
+        Bond number of the free surface.
+    raise_percent : float
+        How much the correction raises f_1 [%].
+    matters : bool
+        The raise is above `CAPILLARY_THRESHOLD`.
+    applied : bool
+        The correction is applied.
+    surface_tension : bool or None
+        The caller's choice (None: the default rule).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_capillary(57.1, 2.9, False, False, None)
+    >>> caught
+    []
+    """
+    if bond < 5.0:
+        warn_validity(
+            f"Bond number {bond:.3g} < 5: surface tension dominates the free surface "
+            "(meniscus, contact line); the potential-flow model is not trustworthy here"
+        )
+    if matters and surface_tension is None:
+        warn_validity(
+            f"Bond number {bond:.3g}: surface tension raises f_1 by {raise_percent:.1f} % (more "
+            f"than {100 * CAPILLARY_THRESHOLD:g} %), so the capillary correction is applied; "
+            "--no-surface-tension-correction (surface_tension=False) turns it off"
+        )
+    elif matters and not applied:
+        warn_validity(
+            f"Bond number {bond:.3g}: surface tension raises f_1 by {raise_percent:.1f} %; the "
+            "capillary correction is off (--no-surface-tension-correction): the frequencies "
+            "are too low"
+        )
