@@ -33,11 +33,10 @@ rate).
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import sparse
 
 from sloshkit.highs import new_highs
 from sloshkit.plan.grid_moves import Limits, Move, Pendulum, measure, steps_for_duration
@@ -60,6 +59,35 @@ FACETS = 256
 #: crossover (measured on the benchmark's problems: 0.67 s against the dual simplex's 1.0 s at
 #: 830 steps x 3 pendulums, 0.23 against 0.29 s at 441 x 3, 0.09 against 0.06 s at 392 x 1).
 IPM_SIZE = 1000
+
+
+class Triplets(NamedTuple):
+    """A sparse matrix as (row, column, value) entries, duplicates summed."""
+
+    rows: NDArray[np.int64]
+    columns: NDArray[np.int64]
+    values: FloatArray
+    shape: tuple[int, int]
+
+    @classmethod
+    def summed(
+        cls, rows: NDArray[np.int64], columns: NDArray[np.int64], values: FloatArray,
+        shape: tuple[int, int],
+    ) -> Triplets:
+        """The entries sorted by column, then row, with duplicate positions summed."""
+        order = np.lexsort((rows, columns))
+        rows, columns, values = rows[order], columns[order], values[order]
+        first = np.ones(rows.size, dtype=bool)
+        first[1:] = (rows[1:] != rows[:-1]) | (columns[1:] != columns[:-1])
+        starts = np.flatnonzero(first)
+        return cls(rows[starts], columns[starts], np.add.reduceat(values, starts), shape)
+
+    def compressed_columns(self) -> tuple[NDArray[np.int32], NDArray[np.int32], FloatArray]:
+        """(start, index, value): the column-wise layout HiGHS takes (the entries are sorted
+        by column)."""
+        counts = np.bincount(self.columns, minlength=self.shape[1])
+        start = np.concatenate(([0], np.cumsum(counts))).astype(np.int32)
+        return start, self.rows.astype(np.int32), np.asarray(self.values, dtype=float)
 
 
 class ExportGrid:
@@ -118,8 +146,8 @@ class ExportGrid:
         steps = np.arange(n)
         return steps, n + steps, 2 * n + steps
 
-    def _assemble(self, tau: float) -> tuple[Any, FloatArray, FloatArray, FloatArray]:
-        """Constraint matrix (CSC), row bounds and the distance / D per variable."""
+    def _assemble(self, tau: float) -> tuple[Triplets, FloatArray, FloatArray, FloatArray]:
+        """Constraint matrix, row bounds and the distance / D per variable."""
         lim, ts, n = self.limits, self.limits.sample_period_s, self.steps
         h = np.full(n, ts)
         h[-1] = tau
@@ -222,11 +250,9 @@ class ExportGrid:
         cost /= lim.distance_m
         put(np.full(width, row), np.arange(width), cost)
         row += 1
-        matrix = sparse.csc_matrix(
-            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-            shape=(row, width),
+        matrix = Triplets.summed(
+            np.concatenate(rows), np.concatenate(cols), np.concatenate(vals), (row, width)
         )
-        matrix.sum_duplicates()
         bound = 1.0 - SAFETY_MARGIN
         lower = np.zeros(row)
         upper = np.zeros(row)
@@ -293,15 +319,21 @@ class ExportGrid:
             # The polygon inscribed in the residual circle (nothing is scaled afterwards).
             row_upper[np.isneginf(row_lower)] *= math.cos(math.pi / FACETS)
             jumps = n + 1
-            difference = sparse.diags([1.0, -1.0], [0, -1], shape=(jumps, n))  # u_k - u_{k-1}
-            pad = sparse.csc_matrix((jumps, width - n))
-            eye = sparse.identity(jumps)
-            extra = sparse.vstack(
-                (sparse.hstack((-difference, pad, eye)), sparse.hstack((difference, pad, eye)))
+            # Rows d_k - (u_k - u_{k-1}) >= 0 and d_k + (u_k - u_{k-1}) >= 0 (u_n = u_{-1} = 0).
+            k = np.arange(jumps)
+            rows_d, cols_d, vals_d = [matrix.rows], [matrix.columns], [matrix.values]
+            for block, sign in ((0, -1.0), (1, 1.0)):
+                first = matrix.shape[0] + block * jumps
+                now, before = k[k < n], k[k >= 1]
+                rows_d += [first + now, first + before, first + k]
+                cols_d += [now, before - 1, width + k]
+                vals_d += [np.full(now.size, sign), np.full(before.size, -sign), np.ones(jumps)]
+            matrix = Triplets.summed(
+                np.concatenate(rows_d),
+                np.concatenate(cols_d),
+                np.concatenate(vals_d),
+                (matrix.shape[0] + 2 * jumps, width + jumps),
             )
-            matrix = sparse.vstack(
-                (sparse.hstack((matrix, sparse.csc_matrix((matrix.shape[0], jumps)))), extra)
-            ).tocsc()
             row_lower = np.concatenate((row_lower, np.zeros(2 * jumps)))
             row_upper = np.concatenate((row_upper, np.full(2 * jumps, np.inf)))
             col_lower = np.concatenate((col_lower, np.zeros(jumps)))
@@ -314,9 +346,9 @@ class ExportGrid:
         lp.col_lower_, lp.col_upper_ = col_lower, col_upper
         lp.row_lower_, lp.row_upper_ = row_lower, row_upper
         lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-        lp.a_matrix_.start_ = matrix.indptr.astype(np.int32)
-        lp.a_matrix_.index_ = matrix.indices.astype(np.int32)
-        lp.a_matrix_.value_ = matrix.data
+        lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = (
+            matrix.compressed_columns()
+        )
         lp.sense_ = highspy.ObjSense.kMinimize if smooth else highspy.ObjSense.kMaximize
         solver = new_highs(threads=1)
         solver.setOptionValue("solver", "simplex")

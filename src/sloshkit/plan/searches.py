@@ -37,14 +37,22 @@ FloatArray = NDArray[np.float64]
 def _screen(
     velocities: FloatArray, durations: FloatArray, problem: PlanProblem, dt: float
 ) -> NDArray[np.bool_]:
-    """Slosh feasibility of many (samples x cases) velocity histories, with the search margin."""
+    """Slosh feasibility of many (samples x cases) velocity histories, with the search margin.
+
+    The angle and residual limits concern the first mode only: without a wall-elevation limit
+    the other modes are not simulated. The recursion runs in numpy (`batch_metrics` with
+    ``use_numba=False``): for the few hundred cases of a search, loading the compiled kernel
+    costs more than it saves.
+    """
     keep = np.ones(durations.size, dtype=bool)
     slosh = problem.slosh
+    walls = slosh.max_wall_elevation_m is not None
     for model in problem.models():
-        metrics = batch_metrics(model, velocities, durations, dt)
+        screened = model if walls else replace(model, modes=model.modes[:1])
+        metrics = batch_metrics(screened, velocities, durations, dt, use_numba=False)
         keep &= metrics.peak_angle_rad <= slosh.max_angle_rad * (1 - SEARCH_MARGIN)
         keep &= metrics.residual_angle_rad <= slosh.max_residual_rad * (1 - SEARCH_MARGIN)
-        if slosh.max_wall_elevation_m is not None:
+        if walls:
             keep &= metrics.peak_wall_elevation_m <= slosh.max_wall_elevation_m * (
                 1 - SEARCH_MARGIN
             )
