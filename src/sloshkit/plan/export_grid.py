@@ -130,7 +130,6 @@ class ExportGrid:
 
     def __init__(self, limits: Limits, pendulums: list[Pendulum], steps: int) -> None:
         self.limits, self.pendulums, self.steps = limits, pendulums, steps
-        self._fine = steps * limits.substeps  # slosh check sub-samples 1..M
         self.programs = 0
         self.iterations = 0
         self._highs: Any = None
@@ -152,7 +151,7 @@ class ExportGrid:
         h = np.full(n, ts)
         h[-1] = tau
         jmax, amax, vmax = lim.max_jerk_m_s3, lim.max_acceleration_m_s2, lim.max_velocity_m_s
-        width = 3 * n + 2 * len(self.pendulums) * self._fine
+        width = self._end_base(len(self.pendulums))
         steps = np.arange(n)
         inner = steps[1:]
         iu, ia, iv = self._columns()
@@ -175,50 +174,69 @@ class ExportGrid:
         put(n + inner, ia[:-1], -amax * h[1:] / vmax)
         put(n + steps, iu, -jmax * h**2 / (2 * vmax))
         row = 2 * n
-        # Pendulums on the slosh check grid (m sub-samples per step, m = limits.substeps), in
-        # s = z + g1 v: s_{j+1} = Phi s_j + g1 v_{j+1} + (Gamma - Phi g1) v_j, v_j the velocity
-        # at sub-sample j (a combination of its step's node v, a and jerk; 0 from T on).
-        fine = self._fine
-        listed = self._velocity_terms(tau)
-        terms = (
-            np.array([t[0] for t in listed], dtype=np.int64),
-            np.array([t[1] for t in listed], dtype=np.int64),
-            np.array([t[2] for t in listed], dtype=float),
-        )
-        for index, pend in enumerate(self.pendulums):
-            scale = np.array([lim.max_angle_rad, vmax / pend.length_m])
-            phi = pend.phi * scale[None, :] / scale[:, None]
-            now = pend.g1 * vmax / scale
-            before = (pend.gamma - pend.phi @ pend.g1) * vmax / scale
-            base = 3 * n + 2 * fine * index
-            samples = np.arange(fine)  # sub-samples 1..M at positions 0..M-1
+        # Pendulums: the state s = (theta, y) at the nodes 1..N are variables, each node the
+        # previous one propagated over the step's m sub-steps of the slosh check grid
+        # (m = limits.substeps; `_substep_maps`). The sub-samples inside a step are
+        # combinations of the step's first node state and its v, a and jerk, so their angle
+        # limits are rows, not variables and equalities; only the last step's sub-samples
+        # (their coefficients change with tau) are variables (`_end_base`), for the residual.
+        full = [self._substep_maps(pend, None) for pend in self.pendulums]
+        end = [self._substep_maps(pend, tau) for pend in self.pendulums]
+        m = lim.substeps
+        self._node_rows, self._end_rows = [], []
+        for index in range(len(self.pendulums)):
+            base = self._state_base(index)
+            self._node_rows.append(row)
             for c in range(2):
-                here = row + 2 * samples + c
-                put(here, base + 2 * samples + c, 1.0)
+                node = row + 2 * steps + c  # node k + 1, reached by step k
+                put(node, base + 2 * steps + c, 1.0)
                 for d in range(2):
-                    put(here[1:], base + 2 * samples[:-1] + d, -phi[c, d])
-            sample, column, weight = terms
-            later = sample < fine
-            for c in range(2):
-                put(row + 2 * (sample - 1) + c, column, -now[c] * weight)
-                put(row + 2 * sample[later] + c, column[later], -before[c] * weight[later])
-            row += 2 * fine
+                    put(node[1:], base + 2 * (inner - 1) + d, -full[index][0][m, c, d])
+                put(node[:-1], iu[:-1], -full[index][1][m, c, 2])
+                put(node[1:-1], iv[: n - 2], -full[index][1][m, c, 0])
+                put(node[1:-1], ia[: n - 2], -full[index][1][m, c, 1])
+            row += 2 * n
+        for index in range(len(self.pendulums)):
+            self._end_rows.append(row)
+            for sub in range(1, m):
+                for c in range(2):
+                    put([row], [self._end_base(index) + 2 * (sub - 1) + c], 1.0)
+                    if n > 1:
+                        for d in range(2):
+                            put([row], [self._state_base(index) + 2 * (n - 2) + d],
+                                -full[index][0][sub, c, d])
+                    row += 1
+        for r, column, value in self._last_step_entries(tau, end):
+            put([r], [column], value)
         equalities = row
         # Two-sided rows |row| <= 1: the velocity within each step (its Bernstein midpoint
-        # v_k + a_k h_k / 2 bounds the quadratic with v_k and v_{k+1}), the wall elevation.
+        # v_k + a_k h_k / 2 bounds the quadratic with v_k and v_{k+1}), the angle at the
+        # sub-samples inside the steps but the last, the wall elevation.
+        self._bernstein = row
         mid = np.arange(n - 1)
         put(row + mid, iv[mid], 1.0)
         put(row + mid, ia[mid], amax * h[1:] / (2 * vmax))
         row += n - 1
+        for index, pend in enumerate(self.pendulums):
+            if pend.limited:
+                for sub in range(1, m):
+                    row = self._put_inside(put, row, [(index, 1.0)], full, sub)
         if lim.max_wall_elevation_m is not None:
-            samples = np.arange(fine)
             for model in sorted({p.model for p in self.pendulums}):
-                for index, pend in enumerate(self.pendulums):
-                    if pend.model == model:
-                        base = 3 * n + 2 * fine * index
-                        factor = pend.wall_factor_m * lim.max_angle_rad / lim.max_wall_elevation_m
-                        put(row + samples, base + 2 * samples, factor)
-                row += fine
+                members = [
+                    (index, pend.wall_factor_m * lim.max_angle_rad / lim.max_wall_elevation_m)
+                    for index, pend in enumerate(self.pendulums)
+                    if pend.model == model
+                ]
+                for index, factor in members:  # at the nodes 1..N
+                    put(row + steps, self._state_base(index) + 2 * steps, factor)
+                row += n
+                for sub in range(1, m):  # inside the steps but the last
+                    row = self._put_inside(put, row, members, full, sub)
+                for sub in range(1, m):  # inside the last step
+                    for index, factor in members:
+                        put([row], [self._end_base(index) + 2 * (sub - 1)], factor)
+                    row += 1
         two_sided = row
         # Residual polygon: cos(p) theta_j + sin(p) B_j <= r, B = (theta' + zeta w theta) / w_d
         # (theta' = y where v = 0), at each sub-sample of the last step; those before T are
@@ -231,8 +249,12 @@ class ExportGrid:
                 zeta_w = pend.damping_ratio * pend.omega_rad_s / damped
                 theta = lim.max_angle_rad / lim.max_residual_rad
                 rate = vmax / pend.length_m / lim.max_residual_rad / damped
-                for sub in range(1, lim.substeps + 1):
-                    last = 3 * n + 2 * fine * index + 2 * (fine - lim.substeps + sub - 1)
+                for sub in range(1, m + 1):
+                    last = (
+                        self._state_base(index) + 2 * (n - 1)
+                        if sub == m
+                        else self._end_base(index) + 2 * (sub - 1)
+                    )
                     facet = row + np.arange(FACETS)
                     put(
                         facet,
@@ -268,27 +290,72 @@ class ExportGrid:
         """Whether sub-sample ``sub`` (1..m) of the last step is at or after the end T."""
         return sub * self.limits.slosh_period_s >= tau - 1e-12
 
-    def _velocity_terms(self, tau: float) -> list[tuple[int, int, float]]:
-        """(sub-sample j in 1..M, column, weight): the velocity at j / vmax as a combination
-        of the node velocity, node acceleration and step jerk (scaled variables); the
-        sub-samples of the last step at or after T (offset >= tau) have none (at rest)."""
-        lim, n, m = self.limits, self.steps, self.limits.substeps
-        iu, ia, iv = self._columns()
-        vmax = lim.max_velocity_m_s
-        terms: list[tuple[int, int, float]] = []
-        for j in range(1, self._fine + 1):
-            step, sub = divmod(j, m)
-            if sub == 0:  # a node (node n is fixed at rest)
-                terms.append((j, int(iv[step - 1]), 1.0))
-                continue
+    def _state_base(self, index: int) -> int:
+        """First column of pendulum ``index``'s node states (theta, y at nodes 1..N)."""
+        return 3 * self.steps + 2 * self.steps * index
+
+    def _end_base(self, index: int) -> int:
+        """First column of pendulum ``index``'s states at the last step's inner sub-samples
+        (theta, y at sub-samples 1..m-1); ``index`` = the number of pendulums: the width."""
+        m = self.limits.substeps
+        return 3 * self.steps + 2 * self.steps * len(self.pendulums) + 2 * (m - 1) * index
+
+    def _substep_maps(self, pend: Pendulum, tau: float | None) -> tuple[FloatArray, FloatArray]:
+        """(P, q), shapes (m + 1, 2, 2) and (m + 1, 2, 3): the pendulum's scaled state at
+        sub-sample i of a step is P[i] s_k + q[i] (v_k, a_k, jerk_k) (scaled variables, s_k
+        the state at the step's first node), by the check grid's recursion in s = z + g1 v:
+        s_{i+1} = Phi s_i + g1 v_{i+1} + (Gamma - Phi g1) v_i, v_i = v_k + a_k o + j o^2 / 2 at
+        the offset o = i Ts / m (Franklin, Powell & Workman (1998) §6.3.2). ``tau``: the last
+        step, ``tau`` long, at rest from its end on; None: a full step."""
+        lim, m = self.limits, self.limits.substeps
+        state = np.array([lim.max_angle_rad, lim.max_velocity_m_s / pend.length_m])
+        inputs = np.array(
+            [lim.max_velocity_m_s, lim.max_acceleration_m_s2, lim.max_jerk_m_s3]
+        )
+        before = pend.gamma - pend.phi @ pend.g1
+
+        def velocity(sub: int) -> FloatArray:  # v at sub-sample ``sub`` per (v_k, a_k, j_k)
             offset = sub * lim.slosh_period_s
-            if step == n - 1 and offset >= tau - 1e-12:
-                continue
-            if step >= 1:
-                terms.append((j, int(iv[step - 1]), 1.0))
-                terms.append((j, int(ia[step - 1]), lim.max_acceleration_m_s2 * offset / vmax))
-            terms.append((j, int(iu[step]), lim.max_jerk_m_s3 * offset**2 / (2 * vmax)))
-        return terms
+            if tau is not None and offset >= tau - 1e-12:
+                return np.zeros(3)
+            return np.array([1.0, offset, offset**2 / 2])
+
+        propagate = np.zeros((m + 1, 2, 2))
+        inject = np.zeros((m + 1, 2, 3))
+        propagate[0] = np.eye(2)
+        for sub in range(m):
+            propagate[sub + 1] = pend.phi @ propagate[sub]
+            inject[sub + 1] = (
+                pend.phi @ inject[sub]
+                + np.outer(pend.g1, velocity(sub + 1))
+                + np.outer(before, velocity(sub))
+            )
+        scaled_propagate = propagate * state[None, None, :] / state[None, :, None]
+        scaled_inject = inject * inputs[None, None, :] / state[None, :, None]
+        return scaled_propagate, scaled_inject
+
+    def _put_inside(
+        self,
+        put: Any,
+        row: int,
+        members: list[tuple[int, float]],
+        maps: list[tuple[FloatArray, FloatArray]],
+        sub: int,
+    ) -> int:
+        """Rows sum_p weight_p theta_p at sub-sample ``sub`` of every step but the last (one
+        row per step, from ``row``); returns the next free row."""
+        n = self.steps
+        iu, ia, iv = self._columns()
+        here = row + np.arange(n - 1)
+        for index, weight in members:
+            propagate, inject = maps[index]
+            base = self._state_base(index)
+            for d in range(2):
+                put(here[1:], base + 2 * np.arange(n - 2) + d, weight * propagate[sub, 0, d])
+            put(here, iu[: n - 1], weight * inject[sub, 0, 2])
+            put(here[1:], iv[: n - 2], weight * inject[sub, 0, 0])
+            put(here[1:], ia[: n - 2], weight * inject[sub, 0, 1])
+        return row + n - 1
 
     def _solver(self, smooth: bool) -> Any:
         """A HiGHS instance holding the program: the longest move, or (``smooth``) the move
@@ -307,9 +374,10 @@ class ExportGrid:
         col_lower = np.full(width, -np.inf)
         col_lower[: 3 * n] = -bound
         for index, pend in enumerate(self.pendulums):
-            if pend.limited:  # |theta| <= theta_max at samples 1..N
-                fine = self._fine
-                col_lower[3 * n + 2 * fine * index : 3 * n + 2 * fine * (index + 1) : 2] = -bound
+            if pend.limited:  # |theta| <= theta_max at the nodes and the last step's samples
+                base, inner = self._state_base(index), self._end_base(index)
+                col_lower[base : base + 2 * n : 2] = -bound
+                col_lower[inner : inner + 2 * (self.limits.substeps - 1) : 2] = -bound
         col_upper = -col_lower
         _, ia, iv = self._columns()
         col_lower[[ia[-1], iv[-1]]] = col_upper[[ia[-1], iv[-1]]] = 0.0  # at rest at node N
@@ -378,7 +446,7 @@ class ExportGrid:
             lim = self.limits
             jmax, amax, vmax = lim.max_jerk_m_s3, lim.max_acceleration_m_s2, lim.max_velocity_m_s
             last, before, distance_row = n - 1, n - 2, self._matrix.shape[0] - 1
-            bernstein = 2 * n + 2 * len(self.pendulums) * self._fine + before
+            bernstein = self._bernstein + before
             entries = [
                 (last, iu[last], -jmax * tau / amax),
                 (n + last, iu[last], -jmax * tau**2 / (2 * vmax)),
@@ -407,30 +475,26 @@ class ExportGrid:
             for r, column, value in entries:
                 solver.changeCoeff(int(r), int(column), value)
 
-    def _last_step_entries(self, tau: float) -> list[tuple[int, int, float]]:
-        """The recursion coefficients of the last step's sub-samples for a last step ``tau``
-        (those at or after T drop their velocity terms): (row, column, value), every entry of
-        those rows on the last step's columns, zeros included."""
-        lim, n, m, fine = self.limits, self.steps, self.limits.substeps, self._fine
+    def _last_step_entries(
+        self, tau: float, maps: list[tuple[FloatArray, FloatArray]] | None = None
+    ) -> list[tuple[int, int, float]]:
+        """The coefficients of the last step's v, a and jerk in the rows of node N and of the
+        last step's inner sub-samples, for a last step ``tau`` (the sub-samples at or after T
+        drop their velocity terms): (row, column, value), zeros included."""
+        n, m = self.steps, self.limits.substeps
         iu, ia, iv = self._columns()
-        columns = [int(iu[n - 1])] + ([int(iv[n - 2]), int(ia[n - 2])] if n > 1 else [])
-        first = (n - 1) * m + 1
-        weights: dict[int, dict[int, float]] = {}
-        for j, column, weight in self._velocity_terms(tau):
-            if j >= first - 1 and column in columns:
-                weights.setdefault(j, {})[column] = weight
+        columns = [(int(iu[n - 1]), 2)] + ([(int(iv[n - 2]), 0), (int(ia[n - 2]), 1)] if n > 1 else [])
+        if maps is None:
+            maps = [self._substep_maps(pend, tau) for pend in self.pendulums]
         entries = []
-        for index, pend in enumerate(self.pendulums):
-            scale = np.array([lim.max_angle_rad, lim.max_velocity_m_s / pend.length_m])
-            now = pend.g1 * lim.max_velocity_m_s / scale
-            before = (pend.gamma - pend.phi @ pend.g1) * lim.max_velocity_m_s / scale
-            row = 2 * n + 2 * fine * index
-            for j in range(first, fine + 1):
-                for c in range(2):
-                    for column in columns:
-                        value = -now[c] * weights.get(j, {}).get(column, 0.0)
-                        value -= before[c] * weights.get(j - 1, {}).get(column, 0.0)
-                        entries.append((row + 2 * (j - 1) + c, column, float(value)))
+        for index, (_, inject) in enumerate(maps):
+            for c in range(2):
+                for column, which in columns:
+                    node = self._node_rows[index] + 2 * (n - 1) + c
+                    entries.append((node, column, -float(inject[m, c, which])))
+                    for sub in range(1, m):
+                        inner = self._end_rows[index] + 2 * (sub - 1) + c
+                        entries.append((inner, column, -float(inject[sub, c, which])))
         return entries
 
     def longest(self, duration_s: float) -> Move:
