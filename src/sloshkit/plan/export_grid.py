@@ -537,6 +537,27 @@ class ExportGrid:
         factor = (1.0 - SAFETY_MARGIN) / ratio
         return Move(jerks * factor, duration_s, tau, distance * factor, status)
 
+    def _smooth_start(self, duration_s: float) -> Any:
+        """A starting basis for the smooth program at ``duration_s``: the longest move's
+        optimal basis at that duration (one more, warm, program), the jerk-jump variables at
+        zero and their rows basic. Dual feasible for the smooth program (its costs are on the
+        jerk jumps only), it halves the dual simplex's work there against a start from
+        scratch (measured on the benchmark's problems: 0.13 against 0.29 s on the paper's).
+        None when that program does not solve."""
+        import highspy
+
+        if self.longest(duration_s).status != "Optimal":
+            return None
+        basis = self._highs.getBasis()
+        if not basis.valid:
+            return None
+        jumps = self.steps + 1
+        start = highspy.HighsBasis()
+        start.col_status = [*basis.col_status, *[highspy.HighsBasisStatus.kLower] * jumps]
+        start.row_status = [*basis.row_status, *[highspy.HighsBasisStatus.kBasic] * (2 * jumps)]
+        start.valid = True
+        return start
+
     def smoothest(self, duration_s: float) -> Move | None:
         """The move of ``duration_s`` over the distance with the least total variation of the
         jerk that meets every limit (None when the solver or the check fails).
@@ -552,7 +573,12 @@ class ExportGrid:
             Its jerks (ending exactly at rest on the target).
         """
         solver = self._solver(smooth=True)
-        if self.steps * len(self.pendulums) > IPM_SIZE:
+        basis = self._smooth_start(duration_s)
+        if basis is not None:
+            solver.setBasis(basis)
+            solver.setOptionValue("presolve", "off")
+            solver.setOptionValue("simplex_strategy", 1)  # the dual simplex
+        elif self.steps * len(self.pendulums) > IPM_SIZE:
             solver.setOptionValue("solver", "ipm")
         effective, tau = steps_for_duration(duration_s, self.limits.sample_period_s)
         self._set(solver, effective, tau, (-1, -1.0), self._bound(True))

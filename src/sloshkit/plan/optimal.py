@@ -235,7 +235,11 @@ def plan_optimal(
         needed = math.ceil(duration / ts) + 1
         if needed > grid.steps:
             grid = exact_grid_for(problem, needed)
+        before = grid.programs, grid.iterations
         smoothed = grid.smoothest(duration)
+        # Its warm start (the longest move at that duration) and its own program.
+        programs += grid.programs - before[0]
+        iterations += grid.iterations - before[1]
         if smoothed is None:
             note = {
                 "note": "the smooth program failed its check: the time-optimal move is returned"
@@ -258,7 +262,7 @@ def plan_optimal(
         variant=variant,
         minimum_duration_s=fastest.duration_s,
         steps=int(jerks.size),
-        programs=programs + (1 if smooth else 0),
+        programs=programs,
         simplex_iterations=iterations,
         solver="HiGHS " + status,
         model="linear",

@@ -138,12 +138,11 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
             stopped = True
             break
         upper *= 4.0
-        durations = np.linspace(floor, upper, grid)
-        velocity = scaled_velocity_samples(velocity_pp, durations, dt, steps_for(upper, dt))
-        feasible = _screen(velocity, durations, problem, dt)
-        if feasible.any():
+        scan = _Scan(velocity_pp, np.linspace(floor, upper, grid), problem)
+        first = scan.first_feasible(0)
+        if first is not None:
             break
-    if stopped or not feasible.any():
+    if stopped or first is None:
         return Candidate(
             law,
             PlanStatus.INFEASIBLE,
@@ -153,7 +152,7 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
             f"no duration up to {upper:.3g} s meets the slosh limits"
             + (" (longer scans exceed the planner work limit)" if stopped else ""),
         )
-    first = int(np.argmax(feasible))
+    durations = scan.durations
     if first == 0:
         best = float(durations[0])
     else:
@@ -168,16 +167,48 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
             else:
                 low = middle
         best = high
-    for attempt in range(first, durations.size):
+    attempt: int | None = first
+    while attempt is not None:
         duration = best if attempt == first else float(durations[attempt])
-        if attempt > first and not feasible[attempt]:
-            continue
         candidate = _candidate(
             law, make_law(law, problem.distance_m, duration_s=duration), problem, started
         )
         if candidate.feasible or not _only_slosh_violations(candidate):
             return candidate
+        attempt = scan.first_feasible(attempt + 1)
     return candidate
+
+
+class _Scan:
+    """The slosh screen of a time-scaled law over a grid of increasing durations, evaluated a
+    block of durations at a time and only as far as asked: the search needs the first feasible
+    duration (and, rarely, the next ones), and each block is simulated only as long as its own
+    longest move (the same numbers as screening the whole grid at once)."""
+
+    BLOCK = 50
+
+    def __init__(self, velocity_pp: object, durations: FloatArray, problem: PlanProblem):
+        self.velocity_pp, self.durations, self.problem = velocity_pp, durations, problem
+        self.feasible = np.zeros(durations.size, dtype=bool)
+        self.screened = 0  # durations[:screened] are screened
+
+    def first_feasible(self, start: int) -> int | None:
+        """The first feasible index from ``start`` on (None: none on the grid)."""
+        dt = self.problem.sample_period_s
+        while True:
+            found = np.flatnonzero(self.feasible[start : self.screened])
+            if found.size:
+                return start + int(found[0])
+            if self.screened >= self.durations.size:
+                return None
+            block = self.durations[self.screened : self.screened + self.BLOCK]
+            velocity = scaled_velocity_samples(
+                self.velocity_pp, block, dt, steps_for(float(block[-1]), dt)
+            )
+            self.feasible[self.screened : self.screened + block.size] = _screen(
+                velocity, block, self.problem, dt
+            )
+            self.screened += block.size
 
 
 def shaper_for(name: str, model: SloshModel) -> Shaper:
