@@ -64,7 +64,12 @@ class PiecewisePolynomial:
         """p(t), with the shape of ``t``."""
         points = np.asarray(t, dtype=float)
         flat = points.reshape(-1)
-        piece = np.clip(np.searchsorted(self.x, flat, side="right") - 1, 0, self.c.shape[1] - 1)
+        pieces = self.c.shape[1]
+        if pieces == 1:
+            piece = np.zeros(flat.size, dtype=np.intp)
+        else:
+            piece = np.searchsorted(self.x, flat, side="right") - 1
+            np.minimum(np.maximum(piece, 0, out=piece), pieces - 1, out=piece)
         local = flat - self.x[piece]
         value = np.zeros_like(flat)
         power = np.ones_like(flat)

@@ -415,10 +415,15 @@ def shape_motion(motion: Motion, shaper: Shaper) -> Motion:
             piece = int(
                 np.clip(np.searchsorted(pp.x, local, side="right") - 1, 0, pp.c.shape[1] - 1)
             )
-            polynomial = np.poly1d(pp.c[:, piece])
-            shift = breaks[j] - delay - pp.x[piece]
+            shift = float(breaks[j] - delay - pp.x[piece])
+            # Taylor coefficients p^(k)(shift) / k! of the piece: its derivatives term by
+            # term, each evaluated by Horner's rule (plain floats: a few terms per piece).
+            derivative = [float(c) for c in pp.c[:, piece]]
             for k in range(order + 1):
-                coefficients[order - k, j] += (
-                    amplitude * polynomial.deriv(k)(shift) / math.factorial(k)
-                )
+                value = 0.0
+                for c in derivative:
+                    value = value * shift + c
+                coefficients[order - k, j] += amplitude * value / math.factorial(k)
+                top = len(derivative) - 1
+                derivative = [c * (top - i) for i, c in enumerate(derivative[:-1])]
     return Motion(f"{motion.name}+{shaper.name}", PiecewisePolynomial(coefficients, breaks))

@@ -27,7 +27,8 @@ the longest move scaled by D / D*.
 The smooth variant at a fixed, slightly longer duration minimises the total variation of the
 jerk (the L1 norm of its rate, sum |u_k - u_{k-1}|) over the same constraints with the
 distance fixed: another linear program (HiGHS's quadratic solver took seconds on the squared
-rate).
+rate), started from the optimal basis of the longest move at that duration (dual feasible for
+it: its costs are on the jerk jumps only).
 """
 
 from __future__ import annotations
@@ -71,7 +72,10 @@ class Triplets(NamedTuple):
 
     @classmethod
     def summed(
-        cls, rows: NDArray[np.int64], columns: NDArray[np.int64], values: FloatArray,
+        cls,
+        rows: NDArray[np.int64],
+        columns: NDArray[np.int64],
+        values: FloatArray,
         shape: tuple[int, int],
     ) -> Triplets:
         """The entries sorted by column, then row, with duplicate positions summed."""
@@ -98,8 +102,11 @@ class ExportGrid:
     nothing else) and only the last step's few coefficients depend on tau. Each solve changes
     those bounds and coefficients and restarts the simplex from the previous basis.
 
-    The pendulum states (theta, theta' + v / L) at the samples are variables, so the angle
-    limits are bounds, not rows. A solution is never trusted as it stands: its end state is
+    The pendulum states (theta, theta' + v / L) at the controller's nodes are variables (their
+    angle limits are bounds); the slosh check grid's sub-samples inside a step are rows over the
+    step's first node state, v, a and jerk (a state and an equality per sub-sample would make
+    the programs a third larger and, measured, slower), except in the last step, whose
+    sub-samples are variables because their coefficients change with tau. A solution is never trusted as it stands: its end state is
     projected onto rest (the solver meets equalities to 1e-7 only), and the move is simulated
     again with the verification's discretisation; its reach is the distance divided by the
     largest ratio of any quantity to its limit (every constraint is homogeneous).
@@ -139,7 +146,8 @@ class ExportGrid:
         )
 
     # Layout: u (jerk / jmax) 0..N-1, a (/ amax) and v (/ vmax) at nodes 1..N, then per
-    # pendulum its states (theta / theta_max, y / (vmax / L)) at samples 1..N.
+    # pendulum its states (theta / theta_max, y / (vmax / L)) at nodes 1..N (`_state_base`),
+    # then per pendulum its states at the last step's sub-samples 1..m-1 (`_end_base`).
     def _columns(self) -> tuple[Any, Any, Any]:
         n = self.steps
         steps = np.arange(n)
@@ -203,8 +211,11 @@ class ExportGrid:
                     put([row], [self._end_base(index) + 2 * (sub - 1) + c], 1.0)
                     if n > 1:
                         for d in range(2):
-                            put([row], [self._state_base(index) + 2 * (n - 2) + d],
-                                -full[index][0][sub, c, d])
+                            put(
+                                [row],
+                                [self._state_base(index) + 2 * (n - 2) + d],
+                                -full[index][0][sub, c, d],
+                            )
                     row += 1
         for r, column, value in self._last_step_entries(tau, end):
             put([r], [column], value)
@@ -309,9 +320,7 @@ class ExportGrid:
         step, ``tau`` long, at rest from its end on; None: a full step."""
         lim, m = self.limits, self.limits.substeps
         state = np.array([lim.max_angle_rad, lim.max_velocity_m_s / pend.length_m])
-        inputs = np.array(
-            [lim.max_velocity_m_s, lim.max_acceleration_m_s2, lim.max_jerk_m_s3]
-        )
+        inputs = np.array([lim.max_velocity_m_s, lim.max_acceleration_m_s2, lim.max_jerk_m_s3])
         before = pend.gamma - pend.phi @ pend.g1
 
         def velocity(sub: int) -> FloatArray:  # v at sub-sample ``sub`` per (v_k, a_k, j_k)
@@ -414,9 +423,7 @@ class ExportGrid:
         lp.col_lower_, lp.col_upper_ = col_lower, col_upper
         lp.row_lower_, lp.row_upper_ = row_lower, row_upper
         lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-        lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = (
-            matrix.compressed_columns()
-        )
+        lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = matrix.compressed_columns()
         lp.sense_ = highspy.ObjSense.kMinimize if smooth else highspy.ObjSense.kMaximize
         solver = new_highs(threads=1)
         solver.setOptionValue("solver", "simplex")
@@ -483,7 +490,9 @@ class ExportGrid:
         drop their velocity terms): (row, column, value), zeros included."""
         n, m = self.steps, self.limits.substeps
         iu, ia, iv = self._columns()
-        columns = [(int(iu[n - 1]), 2)] + ([(int(iv[n - 2]), 0), (int(ia[n - 2]), 1)] if n > 1 else [])
+        columns = [(int(iu[n - 1]), 2)] + (
+            [(int(iv[n - 2]), 0), (int(ia[n - 2]), 1)] if n > 1 else []
+        )
         if maps is None:
             maps = [self._substep_maps(pend, tau) for pend in self.pendulums]
         entries = []

@@ -46,16 +46,14 @@ def _screen(
     """
     keep = np.ones(durations.size, dtype=bool)
     slosh = problem.slosh
-    walls = slosh.max_wall_elevation_m is not None
+    wall = slosh.max_wall_elevation_m
     for model in problem.models():
-        screened = model if walls else replace(model, modes=model.modes[:1])
+        screened = model if wall is not None else replace(model, modes=model.modes[:1])
         metrics = batch_metrics(screened, velocities, durations, dt, use_numba=False)
         keep &= metrics.peak_angle_rad <= slosh.max_angle_rad * (1 - SEARCH_MARGIN)
         keep &= metrics.residual_angle_rad <= slosh.max_residual_rad * (1 - SEARCH_MARGIN)
-        if walls:
-            keep &= metrics.peak_wall_elevation_m <= slosh.max_wall_elevation_m * (
-                1 - SEARCH_MARGIN
-            )
+        if wall is not None:
+            keep &= metrics.peak_wall_elevation_m <= wall * (1 - SEARCH_MARGIN)
     return keep
 
 
@@ -77,6 +75,27 @@ def _velocity_matrix(
         values[inside] = motion.derivative_pp(1)(local[inside])
         matrix[:, column] = values @ amplitudes
     return matrix, durations
+
+
+def _screen_motions(
+    motions: Sequence[Motion], problem: PlanProblem, shaper: Shaper
+) -> tuple[NDArray[np.bool_], FloatArray]:
+    """`_screen` of shaped motions and their durations, in blocks of similar duration (each
+    block simulated only as long as its longest move: the same numbers as one block)."""
+    dt = problem.sample_period_s
+    own = np.array([motion.duration_s for motion in motions])
+    order = np.argsort(own, kind="stable")
+    feasible = np.zeros(own.size, dtype=bool)
+    durations = np.zeros(own.size)
+    for start in range(0, own.size, _SCREEN_BLOCK):
+        block = order[start : start + _SCREEN_BLOCK]
+        velocity, durations[block] = _velocity_matrix([motions[i] for i in block], dt, shaper)
+        feasible[block] = _screen(velocity, durations[block], problem, dt)
+    return feasible, durations
+
+
+#: Cases screened together (a block is simulated as long as its longest move).
+_SCREEN_BLOCK = 50
 
 
 def _machine_floor(shape: Motion, limits: MachineLimits) -> float:
@@ -185,8 +204,6 @@ class _Scan:
     duration (and, rarely, the next ones), and each block is simulated only as long as its own
     longest move (the same numbers as screening the whole grid at once)."""
 
-    BLOCK = 50
-
     def __init__(self, velocity_pp: object, durations: FloatArray, problem: PlanProblem):
         self.velocity_pp, self.durations, self.problem = velocity_pp, durations, problem
         self.feasible = np.zeros(durations.size, dtype=bool)
@@ -201,7 +218,7 @@ class _Scan:
                 return start + int(found[0])
             if self.screened >= self.durations.size:
                 return None
-            block = self.durations[self.screened : self.screened + self.BLOCK]
+            block = self.durations[self.screened : self.screened + _SCREEN_BLOCK]
             velocity = scaled_velocity_samples(
                 self.velocity_pp, block, dt, steps_for(float(block[-1]), dt)
             )
@@ -297,8 +314,7 @@ def plan_shaped(problem: PlanProblem, shapers: Sequence[str] = SHAPERS) -> Candi
                     s_curve(problem.distance_m, machine.max_velocity_m_s, acceleration, jerk)
                 )
                 settings.append((acceleration, jerk))
-        velocity, durations = _velocity_matrix(bases, dt, shaper)
-        feasible = _screen(velocity, durations, problem, dt)
+        feasible, durations = _screen_motions(bases, problem, shaper)
         if not feasible.any():
             tried.append(f"{name}: nothing feasible")
             continue

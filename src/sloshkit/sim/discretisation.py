@@ -158,7 +158,9 @@ def run_recursion(
     ([0.0, 1.0, 1.5], [0.0, 1.0, 1.25])
     """
     u = np.asarray(inputs, dtype=float)
-    basis = _eigenbasis(np.asarray(phi, dtype=float).tobytes(), np.asarray(gamma, dtype=float).tobytes())
+    basis = _eigenbasis(
+        np.asarray(phi, dtype=float).tobytes(), np.asarray(gamma, dtype=float).tobytes()
+    )
     if basis is None:
         return _filtered(phi, gamma, g1, u)
     eigenvalues, vectors, coefficients = basis
