@@ -14,7 +14,7 @@ from rich.text import Text
 
 from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
+from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, SamplePeriod, Vmax
 from sloshkit.cli.options import (
     ContainerName,
     DampingLawOpt,
@@ -29,13 +29,12 @@ from sloshkit.cli.options import (
     SurfaceTension,
     Viscosity,
     WallHeight,
-    build_liquid,
-    build_vessel,
-    check_damping_law,
     print_json,
 )
 from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.io.command_requests import MoveRequest
 from sloshkit.io.outputs import check_folder, staged_folder
+from sloshkit.io.requests import damping_law_request, liquid_request, vessel_request
 from sloshkit.io.units import parse_quantity, parse_range
 from sloshkit.model.modal import model_family
 from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
@@ -114,7 +113,7 @@ def sweep_command(
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
     check_folder(out, "out", overwrite)
-    container = build_vessel(radius, wall_height, container_name, profile)
+    container = vessel_request(radius, wall_height, container_name, profile)
     real = container_name is not None or profile is not None
     if real and fill_height is None and fill_volume is None:
         raise InputError("fill_volume", None, "give a --fill-volume or --fill-height range")
@@ -157,9 +156,11 @@ def sweep_command(
             result = run_sweep(
                 model_family(
                     container,
-                    build_liquid(liquid, density, viscosity, sigma),
+                    liquid_request(
+                        liquid, density, viscosity, sigma, surface_tension_parameter="sigma"
+                    ),
                     n_modes=modes,
-                    damping_law=check_damping_law(damping_law),
+                    damping_law=damping_law_request(damping_law),
                     damping_ratio=damping_ratio,
                     surface_tension=surface_tension_correction,
                 ),
