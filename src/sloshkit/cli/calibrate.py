@@ -23,7 +23,7 @@ from sloshkit.calibration.model_in_loop import identify_line, identify_spatial
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
-from sloshkit.io.command_requests import applied_motion_request, record_request
+from sloshkit.io.calibration_requests import applied_motion_request, record_request
 from sloshkit.io.models import write_model_file
 from sloshkit.io.outputs import check_file
 from sloshkit.io.units import parse_quantity
