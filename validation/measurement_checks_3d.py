@@ -131,6 +131,76 @@ def quasi_static_humps(item: dict[str, Any], response: SpatialResponse) -> list[
     return humps
 
 
+def model_humps(item: dict[str, Any], response: SpatialResponse) -> list[dict[str, Any]]:
+    """The humps of the predicted slosh height during the motion (at least `HUMP_MIN_M`), with
+    their overshoot over the model's own static value and the measured maximum near them."""
+    t, model_h = response.time_s, response.slosh_height_m
+    static = static_wall_height_m(response)
+    vector = response.elevation_vector_m
+    direction = np.arctan2(vector[:, 1], vector[:, 0]) - response.drive.spin_angle_rad
+    modal_static = sum(m.wall_elevation_factor_m for m in response.model.modes) / (
+        response.model.radius_m
+    )
+    step = float(t[1] - t[0])
+    t_meas, h_meas = item["measured_t_s"], item["measured_m"]
+    tau = clock_offset_s(t_meas, h_meas, t, model_h)
+    tops, _ = find_peaks(model_h, height=HUMP_MIN_M, prominence=0.004, distance=int(0.15 / step))
+    humps = []
+    for i in tops:
+        near = np.abs(t_meas - tau - t[i]) <= HUMP_WINDOW_S
+        if t[i] > item["end_s"] + 0.3 or not near.any():
+            continue
+        humps.append(
+            {
+                "class": item["class"],
+                "model_m": float(model_h[i]),
+                "overshoot": float(model_h[i] / (modal_static * static[i]) - 1.0),
+                "measured_max_m": float(h_meas[near].max()),
+                "direction_deg": math.degrees(math.remainder(float(direction[i]), 2 * math.pi)),
+            }
+        )
+    return humps
+
+
+def overshoot_table(humps: list[dict[str, Any]]) -> str:
+    """Measured - predicted at the model's humps [mm], quasi-static (overshoot within
+    `QUASI_STATIC_TOLERANCE`) against humps with a predicted overshoot above 15 %, per set of
+    camera poses and direction of the high point (bins with at least 3 humps)."""
+    lines = [
+        "| cameras | high point at [deg] | humps: quasi-static, overshoot > 15 % "
+        "| measured - predicted [mm], quasi-static | overshoot > 15 % "
+        "| overshoot > 15 %: measured - static of the model [mm] |",
+        "|---|---|---:|---:|---:|---:|",
+    ]
+    for label, family in (("LE, TRD", ("LE", "TRD")), ("RD", ("RD",))):
+        rows = [r for r in humps if r["class"].removeprefix("Tilt_") in family]
+        for lo in range(-180, 180, 90):
+            in_bin = [r for r in rows if lo <= r["direction_deg"] < lo + 90]
+            calm = [r for r in in_bin if abs(r["overshoot"]) <= QUASI_STATIC_TOLERANCE]
+            wave = [r for r in in_bin if r["overshoot"] > 0.15]
+
+            def cell(sel: list[dict[str, Any]]) -> str:
+                if len(sel) < 3:
+                    return "-"
+                d = 1e3 * np.array([r["measured_max_m"] - r["model_m"] for r in sel])
+                low, high = np.percentile(d, 10), np.percentile(d, 90)
+                return f"{np.median(d):+.1f} ({low:+.1f} to {high:+.1f})"
+
+            if len(calm) < 3 and len(wave) < 3:
+                continue
+            over = "-"
+            if len(wave) >= 3:
+                above = 1e3 * np.array(
+                    [r["measured_max_m"] - r["model_m"] / (1.0 + r["overshoot"]) for r in wave]
+                )
+                over = f"{np.median(above):+.1f}"
+            lines.append(
+                f"| {label} | {lo} to {lo + 90} | {len(calm)}, {len(wave)} | {cell(calm)} "
+                f"| {cell(wave)} | {over} |"
+            )
+    return "\n".join(lines)
+
+
 def omega_band_ratio(
     time_s: FloatArray, height_m: FloatArray, start_s: float, stop_s: float
 ) -> float:
@@ -380,11 +450,13 @@ def main() -> None:
         if not series:
             parser.error(f"--campaign: no measured series under {args.campaign}")
     humps: list[dict[str, Any]] = []
+    predicted_humps: list[dict[str, Any]] = []
     peaks: list[tuple[str, str, float, float, float]] = []
     lines = ["| series | omega_1 / 2 omega_1 band power, measured | model |", "|---|---:|---:|"]
     for item in series:
         response = simulate(model, item)
         humps += quasi_static_humps(item, response)
+        predicted_humps += model_humps(item, response)
         peaks.append(
             (
                 item["name"],
@@ -402,6 +474,8 @@ def main() -> None:
     print(direction_table(humps))
     print()
     print(peak_difference_table(peaks))
+    print()
+    print(overshoot_table(predicted_humps))
     print()
     print("\n".join(lines))
     if args.campaign is not None:

@@ -126,3 +126,25 @@ def test_close_cameras_above_the_surface_read_low(checks: ModuleType) -> None:
         for a in range(0, 360, 30)
     ]
     assert max(factors) < 0.9
+
+
+def test_model_humps_of_a_slow_tilt_are_quasi_static_and_read_back(checks: ModuleType) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        response = simulate_spatial(_model(), _slow_tilt(25.0), settle_time_s=2.0)
+    offset_s = 2.0
+    t_camera = np.arange(0.0, response.time_s[-1], 1.0 / 60.0) + offset_s
+    item = {
+        "class": "Tilt_RD",
+        "measured_t_s": t_camera,
+        "measured_m": np.interp(t_camera - offset_s, response.time_s, response.slosh_height_m),
+        "end_s": 6.0,
+    }
+    humps = checks.model_humps(item, response)
+    assert len(humps) == 1
+    # slow against the first mode: the model stands at its own static value (three modes:
+    # 0.94 of the plane), and a camera that reads the model reads it back at the hump's top
+    assert abs(humps[0]["overshoot"]) < 0.02
+    assert humps[0]["measured_max_m"] == pytest.approx(humps[0]["model_m"], rel=2e-3)
+    table = checks.overshoot_table(humps * 3)
+    assert "+0.0 (+0.0 to +0.0)" in table
