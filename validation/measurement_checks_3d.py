@@ -162,6 +162,23 @@ def model_humps(item: dict[str, Any], response: SpatialResponse) -> list[dict[st
     return humps
 
 
+#: the camera calibration of each family of moves (data repository's Aruco/README.md)
+CAMERA_SETS = (("LE, TRD", ("LE", "TRD")), ("RD", ("RD",)))
+
+
+def direction_bins(
+    humps: list[dict[str, Any]],
+) -> list[tuple[str, int, list[dict[str, Any]]]]:
+    """(camera set, lower edge [deg], humps) per camera set and 90-degree bin of the
+    direction of the high point in the container frame."""
+    out = []
+    for label, family in CAMERA_SETS:
+        rows = [r for r in humps if r["class"].removeprefix("Tilt_") in family]
+        for lo in range(-180, 180, 90):
+            out.append((label, lo, [r for r in rows if lo <= r["direction_deg"] < lo + 90]))
+    return out
+
+
 def overshoot_table(humps: list[dict[str, Any]]) -> str:
     """Measured - predicted at the model's humps [mm], quasi-static (overshoot within
     `QUASI_STATIC_TOLERANCE`) against humps with a predicted overshoot above 15 %, per set of
@@ -172,32 +189,29 @@ def overshoot_table(humps: list[dict[str, Any]]) -> str:
         "| overshoot > 15 %: measured - static of the model [mm] |",
         "|---|---|---:|---:|---:|---:|",
     ]
-    for label, family in (("LE, TRD", ("LE", "TRD")), ("RD", ("RD",))):
-        rows = [r for r in humps if r["class"].removeprefix("Tilt_") in family]
-        for lo in range(-180, 180, 90):
-            in_bin = [r for r in rows if lo <= r["direction_deg"] < lo + 90]
-            calm = [r for r in in_bin if abs(r["overshoot"]) <= QUASI_STATIC_TOLERANCE]
-            wave = [r for r in in_bin if r["overshoot"] > 0.15]
+    for label, lo, in_bin in direction_bins(humps):
+        calm = [r for r in in_bin if abs(r["overshoot"]) <= QUASI_STATIC_TOLERANCE]
+        wave = [r for r in in_bin if r["overshoot"] > 0.15]
 
-            def cell(sel: list[dict[str, Any]]) -> str:
-                if len(sel) < 3:
-                    return "-"
-                d = 1e3 * np.array([r["measured_max_m"] - r["model_m"] for r in sel])
-                low, high = np.percentile(d, 10), np.percentile(d, 90)
-                return f"{np.median(d):+.1f} ({low:+.1f} to {high:+.1f})"
+        def cell(sel: list[dict[str, Any]]) -> str:
+            if len(sel) < 3:
+                return "-"
+            d = 1e3 * np.array([r["measured_max_m"] - r["model_m"] for r in sel])
+            low, high = np.percentile(d, 10), np.percentile(d, 90)
+            return f"{np.median(d):+.1f} ({low:+.1f} to {high:+.1f})"
 
-            if len(calm) < 3 and len(wave) < 3:
-                continue
-            over = "-"
-            if len(wave) >= 3:
-                above = 1e3 * np.array(
-                    [r["measured_max_m"] - r["model_m"] / (1.0 + r["overshoot"]) for r in wave]
-                )
-                over = f"{np.median(above):+.1f}"
-            lines.append(
-                f"| {label} | {lo} to {lo + 90} | {len(calm)}, {len(wave)} | {cell(calm)} "
-                f"| {cell(wave)} | {over} |"
+        if len(calm) < 3 and len(wave) < 3:
+            continue
+        over = "-"
+        if len(wave) >= 3:
+            above = 1e3 * np.array(
+                [r["measured_max_m"] - r["model_m"] / (1.0 + r["overshoot"]) for r in wave]
             )
+            over = f"{np.median(above):+.1f}"
+        lines.append(
+            f"| {label} | {lo} to {lo + 90} | {len(calm)}, {len(wave)} | {cell(calm)} "
+            f"| {cell(wave)} | {over} |"
+        )
     return "\n".join(lines)
 
 
@@ -298,17 +312,14 @@ def direction_table(humps: list[dict[str, Any]]) -> str:
         "| cameras | high point at [deg] | humps | measured max - static [mm], median (10-90 %) |",
         "|---|---|---:|---:|",
     ]
-    for label, family in (("LE, TRD", ("LE", "TRD")), ("RD", ("RD",))):
-        rows = [r for r in humps if r["class"].removeprefix("Tilt_") in family]
-        for lo in range(-180, 180, 90):
-            sel = [r for r in rows if lo <= r["direction_deg"] < lo + 90]
-            if not sel:
-                continue
-            diff = 1e3 * np.array([r["measured_max_m"] - r["static_m"] for r in sel])
-            lines.append(
-                f"| {label} | {lo} to {lo + 90} | {len(sel)} | {np.median(diff):+.1f} "
-                f"({np.percentile(diff, 10):+.1f} to {np.percentile(diff, 90):+.1f}) |"
-            )
+    for label, lo, sel in direction_bins(humps):
+        if not sel:
+            continue
+        diff = 1e3 * np.array([r["measured_max_m"] - r["static_m"] for r in sel])
+        lines.append(
+            f"| {label} | {lo} to {lo + 90} | {len(sel)} | {np.median(diff):+.1f} "
+            f"({np.percentile(diff, 10):+.1f} to {np.percentile(diff, 90):+.1f}) |"
+        )
     return "\n".join(lines)
 
 
