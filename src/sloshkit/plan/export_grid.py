@@ -106,10 +106,11 @@ class ExportGrid:
     angle limits are bounds); the slosh check grid's sub-samples inside a step are rows over the
     step's first node state, v, a and jerk (a state and an equality per sub-sample would make
     the programs a third larger and, measured, slower), except in the last step, whose
-    sub-samples are variables because their coefficients change with tau. A solution is never trusted as it stands: its end state is
-    projected onto rest (the solver meets equalities to 1e-7 only), and the move is simulated
-    again with the verification's discretisation; its reach is the distance divided by the
-    largest ratio of any quantity to its limit (every constraint is homogeneous).
+    sub-samples are variables because their coefficients change with tau. A solution is never
+    trusted as it stands: its end state is projected onto rest (the solver meets equalities to
+    1e-7 only), and the move is simulated again with the verification's discretisation; its
+    reach is the distance divided by the largest ratio of any quantity to its limit (every
+    constraint is homogeneous).
 
     Parameters
     ----------

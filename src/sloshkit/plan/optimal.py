@@ -40,8 +40,8 @@ from sloshkit.plan.verification import _candidate
 #: the slosh checked on the controller grid alone: the time-optimal move's sum of jerk jumps is
 #: 275,000 m/s^3 (360 reversals of the acceleration; 13,900 with the 2 ms check grid); at
 #: +0.25 % the smooth move's is 4,100 (14), at +0.5 % 3,100 (12; 3,100 with the check grid), at
-#: +1 % 2,000 (10), at +2 % 900 (8). Every price from 0.25 % on removes the chattering; 0.5 % is half the 1 % the
-#: default move may cost and still leaves jerk at most 0.9 jmax there.
+#: +1 % 2,000 (10), at +2 % 900 (8). Every price from 0.25 % on removes the chattering; 0.5 %
+#: is half the 1 % the default move may cost and still leaves jerk at most 0.9 jmax there.
 SMOOTH_PRICE = 0.005
 
 #: Longest move the search may try (export samples). Requests whose shortest possible move is
