@@ -358,11 +358,13 @@ def test_retime_is_never_slower_than_uniform_scaling_of_the_reference(
 
 
 def test_warp_search_keeps_the_screen_and_shortens_a_slow_seed(robot_vial: SloshModel) -> None:
+    """A slow S-curve (0.25 m/s, 0.8 m/s^2: the screen passes with room to spare) is shortened
+    by more than 5 % and still passes."""
     path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
     problem = PathProblem(
         path, CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002), robot_vial
     )
-    law = s_curve(0.3, 0.3, 1.0, 10.0)
+    law = s_curve(0.3, 0.25, 0.8, 8.0)
     t = np.linspace(0.0, law.duration_s, 201)
     seed = Timing.from_samples("slow", t, law.position(t))
     models = problem.models()

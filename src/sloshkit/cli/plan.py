@@ -53,7 +53,8 @@ def plan_command(
         str,
         typer.Option(
             "--method",
-            help="auto, paper, trapezoidal, cubic, quintic, septic, fast, shaped, optimal.",
+            help="auto, paper, trapezoidal, cubic, quintic, septic, fast, shaped, optimal; "
+            "with a path: auto, retime, shaped, tilt, optimal.",
         ),
     ] = "auto",
     robust: Annotated[

@@ -36,7 +36,7 @@ from sloshkit.io.units import parse_bounded, parse_quantity
 from sloshkit.io.waypoints import read_waypoints, require_path_work
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
-from sloshkit.plan.path_planner import plan_path
+from sloshkit.plan.path_planner import PATH_METHODS, plan_path
 from sloshkit.plan.path_result import verify
 from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.timing import Timing
@@ -129,7 +129,7 @@ def run_path_plan(
     max_tilt, tilt_centre : str
         ``--max-tilt``, ``--tilt-centre``.
     method : str
-        ``--method``: auto, retime, shaped or tilt.
+        ``--method``: auto, retime, shaped, tilt or optimal.
     band : float
         ``--robust`` as a fraction.
     sample_period : str
@@ -176,8 +176,8 @@ def run_path_plan(
     ]
     if missing:
         raise InputError("plan", "incomplete", "needs " + ", ".join(missing))
-    if method not in ("auto", "retime", "shaped", "tilt"):
-        raise InputError("method", method, "with a path: auto, retime, shaped or tilt")
+    if method not in PATH_METHODS:
+        raise InputError("method", method, "with a path: " + ", ".join(PATH_METHODS))
     reference: Timing | None = None
     if poses_file is not None:
         trajectory = read_pose_file(poses_file, parameter="path_from_poses")

@@ -14,7 +14,11 @@ speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the tim
   tilted export passes the screen and the tilt and angular limits, then improved by the same
   local searches on the tilted export, seeded also from ``retime``'s timing in ``auto``
   (`sloshkit.plan.path_tilt`);
-- ``auto``: all three, the fastest verified.
+- ``auto``: all three, the fastest verified;
+- ``optimal``: the minimum-time timing of the untilted path by sequential second-order-cone
+  programs on the export grid with the nonlinear model as a defect correction
+  (`sloshkit.plan.path_optimal`): the fastest verified moves, at minutes of compute on long
+  paths, so not part of ``auto`` yet.
 
 Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path_result.verify`); when
 the verified export still exceeds a limit that a slower copy meets (slosh, Cartesian, angular,
@@ -58,7 +62,7 @@ from sloshkit.plan.timing import Timing
 from sloshkit.plan.transcription import transcribed_timing
 
 FloatArray = NDArray[np.float64]
-PATH_METHODS: tuple[str, ...] = ("auto", "retime", "shaped", "tilt")
+PATH_METHODS: tuple[str, ...] = ("auto", "retime", "shaped", "tilt", "optimal")
 
 
 def _failed(method: str, started: float, message: str) -> PathCandidate:
@@ -251,7 +255,8 @@ def plan_path(
     problem : PathProblem
         Path, Cartesian/angular limits, slosh limits, model, sample period.
     method : str
-        ``auto`` (all, the fastest verified), ``retime``, ``shaped`` or ``tilt``.
+        ``auto`` (all, the fastest verified), ``retime``, ``shaped``, ``tilt`` or
+        ``optimal`` (`sloshkit.plan.path_optimal`).
     reference : Timing, optional
         The path's existing timing (e.g. of the pose file it came from): slowed uniformly and
         reported as the ``uniform`` candidate, never chosen.
@@ -304,6 +309,11 @@ def plan_path(
         ]
     )
     seeds = [] if uniform is None or not uniform.feasible else [(uniform, warm_starts[0])]
+    if method == "optimal":
+        from sloshkit.plan.path_optimal import plan_optimal
+
+        say("optimal: the minimum-time timing by sequential cone programs")
+        candidates.append(plan_optimal(problem, verifier, say))
     if method in ("auto", "shaped"):
         say("shaped: per-axis input shaping")
         candidates.append(plan_shaped(problem, verifier))

@@ -1,0 +1,1016 @@
+"""The minimum-time timing of a 3-D path on the export grid, by sequential second-order-cone
+programming.
+
+The decision variables are the path parameter s_k at every sample t_k = k Ts of the export grid
+(k = 0..N, s_0 = 0, s_N = S: the whole path; the samples are the export, `poses_of`). Every
+quantity the verification checks is a function of these samples:
+
+- the Cartesian velocity, acceleration and jerk of the reference point and the container's
+  angular velocity and acceleration, by finite differences of the samples with the ends held at
+  rest (as `sloshkit.plan.path_limits.kinematics` measures them);
+- the slosh of every mode n of every model of the robustness band: the linear spherical
+  pendulum of `sloshkit.sim.spatial` (Abramson, NASA SP-106 (1966) ch. 6; Dodge, SwRI (2000)
+  ch. 3) driven by the specific force at its bob point in the container's non-spinning frame,
+  from rest in the first pose, discretised exactly (`sloshkit.sim.discretisation`, first-order
+  hold of the equivalent velocity); the wall height |sum_n e_n phi_n| at every sample and the
+  residual bound sum_n e_n |(A_n, B_n)| of the free oscillation `HOLD` samples after the move,
+  scaled back to its end (as `sloshkit.sim.spatial_response.SpatialResponse` measures it).
+  On the export this equals `simulate_spatial(..., nonlinear=False, cutoff_hz=None)` to the
+  accuracy of the spline differentiation (0.03 mm on the benchmark's moves).
+
+For a fixed N each program linearises these functions around the current samples (the force
+derivatives banded, by colouring) and keeps every norm exact as a second-order cone: the
+largest common margin sigma of all limits (value <= limit (1 - margin + sigma)) over the
+samples within a trust region on their speed change (sequential convex programming: Mao,
+Szmuk & Acikmese, IEEE CDC (2016), doi:10.1109/CDC.2016.7798816; Nocedal & Wright, *Numerical
+Optimization*, 2nd ed. (2006) §18), with the pendulum states as variables of banded dynamics
+rows; solved by Clarabel (Goulart & Chen, arXiv:2405.12762 (2024)). Polyhedral (LP) facets of
+the 3-D norms were tried first and let the iterates break the jerk limit in directions no facet
+covered. The minimum time is the fewest samples whose best margin meets every limit: a bracketed
+secant search on the largest ratio r(N) (r = 1 at the minimum), each r(N) warm-started from the
+nearest solved N rescaled in time (`minimum_time`).
+
+The verification's model is the nonlinear spherical pendulum. The linear optimum rides the
+height limit for the whole move, and there the nonlinear model exceeds it (28 mm against 15 mm
+on TRD_2D); it agrees at lower amplitudes (8.25 mm against 7.95 mm). So `plan_optimal` searches
+again with the program's slosh limits moved by regula falsi until the verified peak or residual
+lies within `LIMIT_TOLERANCE` of its limit (`_next_limit`), each search warm-started from the
+last. Putting the nonlinear pendulum itself into the programs (linearised along the current
+samples) is the next step.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import sparse
+from scipy.spatial.transform import Rotation
+
+from sloshkit.model.theory import GRAVITY_M_S2
+
+FloatArray = NDArray[np.float64]
+GRAVITY_VECTOR = np.array([0.0, 0.0, -GRAVITY_M_S2])
+#: Relative margin the programs keep from every limit (the export is then verified exactly).
+PROGRAM_MARGIN = 2e-3
+#: Samples of rest after the move before its free oscillation is measured (the 3-D
+#: simulation's `sloshkit.sim.spatial_response.SpatialResponse.free_amplitudes_rad` waits
+#: max(window / 2, 4) + 1 samples for an unsmoothed drive).
+HOLD = 5
+
+
+@dataclass(frozen=True)
+class ProgramLimits:
+    """The limits the program imposes (SI), the slosh ones already tightened as asked.
+
+    Parameters
+    ----------
+    max_velocity_m_s, max_acceleration_m_s2, max_jerk_m_s3 : float
+        Cartesian limits of the reference point.
+    max_angular_velocity_rad_s, max_angular_acceleration_rad_s2 : float or None
+        Angular limits of the container (None: none).
+    max_height_m, max_residual_height_m : float
+        Linear wall height during the move and residual bound after it [m].
+    max_tilt_rad, max_tilt_rate_rad_s, max_tilt_acceleration_rad_s2 : float
+        Tilt limits (used only when the program tilts).
+    """
+
+    max_velocity_m_s: float
+    max_acceleration_m_s2: float
+    max_jerk_m_s3: float
+    max_angular_velocity_rad_s: float | None
+    max_angular_acceleration_rad_s2: float | None
+    max_height_m: float
+    max_residual_height_m: float
+    max_tilt_rad: float = 0.0
+    max_tilt_rate_rad_s: float = math.pi
+    max_tilt_acceleration_rad_s2: float = math.radians(1000.0)
+
+
+@dataclass(frozen=True, eq=False)
+class Samples:
+    """Path parameter [m] and tilt rotation vector [rad] at the export samples."""
+
+    s_m: FloatArray
+    tilt_rad: FloatArray
+
+    @property
+    def steps(self) -> int:
+        """N, the number of sample periods."""
+        return int(self.s_m.size - 1)
+
+
+def poses_of(path: Any, samples: Samples, centre_height_m: float) -> tuple[FloatArray, Rotation]:
+    """Reference-point positions and container orientations of the samples.
+
+    The tilt rotation R_t = exp([r_x, r_y, 0]) acts on the path's orientation R_p(s) about the
+    tilt centre c = (0, 0, h_c) of the container frame: q = R_t R_p, P = p(s) + R_p c - q c
+    (the centre stays on the path; `sloshkit.plan.tilt` uses the same convention).
+    """
+    base = path.orientation(samples.s_m)
+    position = path.position(samples.s_m)
+    if not np.any(samples.tilt_rad):
+        return position, base
+    rotvec = np.column_stack((samples.tilt_rad, np.zeros(samples.s_m.size)))
+    rotation = Rotation.from_rotvec(rotvec) * base
+    if centre_height_m:
+        centre = np.array([0.0, 0.0, centre_height_m])
+        position = position + base.apply(centre) - rotation.apply(centre)
+    return position, rotation
+
+
+def held(samples: Samples) -> Samples:
+    """The samples followed by `HOLD` samples of rest at the last pose."""
+    s = np.concatenate((samples.s_m, np.repeat(samples.s_m[-1:], HOLD)))
+    tilt = np.concatenate((samples.tilt_rad, np.repeat(samples.tilt_rad[-1:], HOLD, axis=0)))
+    return Samples(s, tilt)
+
+
+def _held(values: FloatArray, pad: int) -> FloatArray:
+    """``values`` with ``pad`` copies of the first and last rows (at rest before and after)."""
+    return np.concatenate((values[:1],) * pad + (values,) + (values[-1:],) * pad)
+
+
+@dataclass(frozen=True, eq=False)
+class Evaluation:
+    """Everything the limits see, for one set of samples.
+
+    ``velocity`` ... ``jerk``: finite differences of the positions (rows for the padded
+    grid), ``omega``/``alpha``: angular velocity and acceleration, ``force``: lateral specific
+    force per mode (modes, N + 1, 2), ``wall``: wall height vectors per band model
+    (models, N + 1, 2), ``amplitude``: free-oscillation vectors (models, modes, 4) scaled by
+    e_n.
+    """
+
+    velocity: FloatArray
+    acceleration: FloatArray
+    jerk: FloatArray
+    omega: FloatArray
+    alpha: FloatArray
+    force: FloatArray
+    wall: FloatArray = field(default_factory=lambda: np.empty(0))
+    amplitude: FloatArray = field(default_factory=lambda: np.empty(0))
+
+
+class PathProgram:
+    """The sequential linear program of one path problem (module docstring).
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    models : list of SloshModel
+        The band's models (all share the bob heights; only the frequencies differ).
+    limits : ProgramLimits
+        Limits, slosh ones as the program should impose them.
+    sample_period_s : float
+        Export sample period Ts [s].
+    tilt : bool
+        Whether the tilt angles are variables.
+    centre_height_m : float
+        Tilt centre above the container bottom [m].
+    """
+
+    def __init__(
+        self,
+        path: Any,
+        models: list[Any],
+        limits: ProgramLimits,
+        sample_period_s: float,
+        tilt: bool = False,
+        centre_height_m: float = 0.0,
+    ) -> None:
+        self.path, self.models, self.limits = path, models, limits
+        self.ts, self.tilt, self.centre = sample_period_s, tilt, centre_height_m
+        self.modes = models[0].modes
+        self.programs = 0
+        self._kernels: dict[int, list[list[tuple[FloatArray, FloatArray]]]] = {}
+
+    # ----------------------------------------------------------------- evaluation
+    def forces(
+        self, samples: Samples, spin: FloatArray | None = None
+    ) -> tuple[FloatArray, dict[str, FloatArray]]:
+        """Lateral specific force of each mode (modes, N + 1, 2) and the kinematics.
+
+        ``spin`` (the container's accumulated rotation about its own axis [rad]) is taken as
+        given when passed (the derivatives hold it fixed: it depends on every earlier sample).
+        """
+        ts = self.ts
+        position, rotation = poses_of(self.path, samples, self.centre)
+        quaternion = rotation.as_quat()
+        padded = _held(position, 2)
+        velocity = np.diff(padded, axis=0) / ts
+        acceleration = np.diff(velocity, axis=0) / ts
+        jerk = np.diff(acceleration, axis=0) / ts
+        increments = Rotation.from_quat(quaternion[1:]) * Rotation.from_quat(quaternion[:-1]).inv()
+        omega = np.concatenate((np.zeros((1, 3)), increments.as_rotvec() / ts, np.zeros((1, 3))))
+        alpha = np.diff(omega, axis=0) / ts
+        if spin is None:
+            body = Rotation.from_quat(quaternion[:-1]).inv() * Rotation.from_quat(quaternion[1:])
+            spin = np.concatenate(([0.0], np.cumsum(body.as_rotvec()[:, 2])))
+        frame = rotation * Rotation.from_rotvec(np.column_stack((0 * spin, 0 * spin, -spin)))
+        axis = rotation.apply([0.0, 0.0, 1.0])
+        force = np.empty((len(self.modes), samples.s_m.size, 2))
+        for index, mode in enumerate(self.modes):
+            point = _held(position + mode.bob_height_m * axis, 1)
+            bob = (point[2:] - 2.0 * point[1:-1] + point[:-2]) / ts**2
+            force[index] = frame.inv().apply(GRAVITY_VECTOR - bob)[:, :2]
+        rest = frame[0].inv().apply(GRAVITY_VECTOR)[:2]
+        kinematic = {
+            "rest": np.tile(rest, (len(self.modes), 1)),
+            "velocity": velocity,
+            "acceleration": acceleration,
+            "jerk": jerk,
+            "omega": omega,
+            "alpha": alpha,
+            "position": position,
+            "spin": spin,
+        }
+        return force, kinematic
+
+    def evaluate(self, samples: Samples) -> Evaluation:
+        """Kinematics, forces, wall heights and residual amplitudes of the samples."""
+        from sloshkit.sim.discretisation import linear_mode_response
+
+        samples = held(samples)
+        force, kinematic = self.forces(samples)
+        steps = samples.steps
+        rest = kinematic["rest"]  # (modes, 2): the container at rest in its first pose
+        # ... and in its last: the free oscillation is measured HOLD samples after the move
+        # (as the 3-D simulation measures its residual), scaled back to the move's end
+        final = force[:, -1]
+        walls = np.zeros((len(self.models), steps + 1, 2))
+        amplitudes = np.zeros((len(self.models), len(self.modes), 4))
+        for n in range(len(self.modes)):
+            excess = force[n] - rest[n]  # may jump at t = 0: the container rested before
+            # equivalent velocity w' = -(f - f_rest), trapezoidal (first-order hold of w)
+            velocity = -np.concatenate(
+                (np.zeros((1, 2)), np.cumsum(0.5 * (excess[1:] + excess[:-1]) * self.ts, axis=0))
+            )
+            for m, model in enumerate(self.models):
+                mode = model.modes[n]
+                theta, rate = linear_mode_response(
+                    velocity.T, self.ts, mode.omega_rad_s, mode.damping_ratio, mode.length_m
+                )
+                stiffness = mode.length_m * mode.omega_rad_s**2
+                phi = theta.T + rest[n] / stiffness
+                walls[m] += mode.wall_elevation_factor_m * phi
+                cosine = phi[-1] - final[n] / stiffness
+                damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
+                sine = (rate.T[-1] + mode.damping_ratio * mode.omega_rad_s * cosine) / damped
+                back = math.exp(mode.damping_ratio * mode.omega_rad_s * HOLD * self.ts)
+                amplitudes[m, n] = (
+                    back * mode.wall_elevation_factor_m * np.concatenate((cosine, sine))
+                )
+        return Evaluation(
+            kinematic["velocity"],
+            kinematic["acceleration"],
+            kinematic["jerk"],
+            kinematic["omega"],
+            kinematic["alpha"],
+            force,
+            walls,
+            amplitudes,
+        )
+
+    def worst(self, evaluation: Evaluation, samples: Samples) -> dict[str, float]:
+        """Each limited quantity's peak divided by its limit."""
+        lim = self.limits
+        ratios = {
+            "velocity": _peak(evaluation.velocity) / lim.max_velocity_m_s,
+            "acceleration": _peak(evaluation.acceleration) / lim.max_acceleration_m_s2,
+            "jerk": _peak(evaluation.jerk) / lim.max_jerk_m_s3,
+            "peak slosh": _peak(evaluation.wall) / lim.max_height_m,
+            "residual slosh": float(
+                np.max(np.sum(np.linalg.norm(evaluation.amplitude, axis=2), axis=1))
+            )
+            / lim.max_residual_height_m,
+        }
+        if lim.max_angular_velocity_rad_s is not None:
+            ratios["angular velocity"] = _peak(evaluation.omega) / lim.max_angular_velocity_rad_s
+        if lim.max_angular_acceleration_rad_s2 is not None:
+            ratios["angular acceleration"] = (
+                _peak(evaluation.alpha) / lim.max_angular_acceleration_rad_s2
+            )
+        if self.tilt:
+            tilt = _held(samples.tilt_rad, 2)
+            rate = np.diff(tilt, axis=0) / self.ts
+            ratios["tilt"] = _peak(samples.tilt_rad) / lim.max_tilt_rad
+            ratios["tilt rate"] = _peak(rate) / lim.max_tilt_rate_rad_s
+            ratios["tilt acceleration"] = (
+                _peak(np.diff(rate, axis=0) / self.ts) / lim.max_tilt_acceleration_rad_s2
+            )
+        return ratios
+
+    # ----------------------------------------------------------------- linearisation
+    def jacobians(self, samples: Samples) -> list[Bands]:
+        """Banded derivatives of the samples' positions, angular velocities and forces with
+        respect to each variable block (s, then r_x, r_y with tilt).
+
+        Every quantity at sample k depends on the samples k-1..k+1 only (positions on k, the
+        angular velocity on k-1 and k, the forces on k-1..k+1 through the second difference),
+        so perturbing every third sample at once separates the bands (Curtis, Powell & Reid,
+        IMA J. Appl. Math. 13 (1974) 117-119); central differences, the spin held fixed.
+        """
+        samples = held(samples)
+        n = samples.s_m.size
+        _, base = self.forces(samples)
+        spin = base["spin"]
+        columns: list[int | None] = [None] + ([0, 1] if self.tilt else [])
+        bands = []
+        for column in columns:
+            step = 1e-7 * max(self.path.length_m, 1.0) if column is None else 1e-7
+            force = np.zeros((3, len(self.modes), n, 2))
+            position = np.zeros((n, 3))
+            omega = np.zeros((2, n + 1, 3))
+            for colour in range(3):
+                chosen = np.arange(colour, n, 3)
+                plus, minus, width = _perturbed(samples, chosen, column, step, self.path.length_m)
+                (fp, kp), (fm, km) = self.forces(plus, spin), self.forces(minus, spin)
+                dforce = fp - fm
+                position[chosen] = (kp["position"] - km["position"])[chosen] / width[chosen, None]
+                domega = kp["omega"] - km["omega"]
+                for offset in (-1, 0, 1):
+                    k = chosen - offset  # the force at k sees the perturbed sample k + offset
+                    k = k[(k >= 0) & (k < n)]
+                    force[offset + 1][:, k] = dforce[:, k] / width[k + offset][None, :, None]
+                # omega row i (1..n-1) uses samples i-1 and i
+                own = chosen[(chosen >= 1) & (chosen <= n - 1)]
+                omega[1][own] = domega[own] / width[own, None]
+                prev = chosen[chosen + 1 <= n - 1] + 1
+                omega[0][prev] = domega[prev] / width[prev - 1, None]
+            bands.append(Bands(position, omega, force))
+        return bands
+
+    def iterate(self, samples: Samples) -> Iterate:
+        """The samples with their exact evaluation and ratios to the limits."""
+        evaluation = self.evaluate(samples)
+        return Iterate(samples, evaluation, self.worst(evaluation, samples))
+
+
+@dataclass(frozen=True, eq=False)
+class Iterate:
+    """Samples, their evaluation and each limited quantity's peak over its limit."""
+
+    samples: Samples
+    evaluation: Evaluation
+    ratios: dict[str, float]
+
+    @property
+    def excess(self) -> float:
+        """The largest ratio of a quantity to its limit (<= 1: every limit met)."""
+        return max(self.ratios.values())
+
+    @property
+    def feasible(self) -> bool:
+        """Every limit met (to 1e-9)."""
+        return self.excess <= 1.0 + 1e-9
+
+    @property
+    def reach(self) -> float:
+        """s_N [m]."""
+        return float(self.samples.s_m[-1])
+
+
+@dataclass(frozen=True, eq=False)
+class Bands:
+    """Derivatives of one variable block: ``position`` (n, 3) d P_k / d x_k, ``omega``
+    (2, n + 1, 3) d w_i / d x_{i-1} and d w_i / d x_i, ``force`` (3, modes, n, 2)
+    d f_k / d x_{k+o} for o = -1, 0, 1."""
+
+    position: FloatArray
+    omega: FloatArray
+    force: FloatArray
+
+
+def _perturbed(
+    samples: Samples, chosen: Any, column: int | None, step: float, length_m: float
+) -> tuple[Samples, Samples, FloatArray]:
+    """The samples with the ``chosen`` ones moved by +- ``step`` in s (kept on [0, S]: one-sided
+    at the ends, where the path is clipped) or in a tilt angle, and each sample's width of the
+    difference (plus - minus; 1 where not perturbed)."""
+    s_plus, s_minus = samples.s_m.copy(), samples.s_m.copy()
+    tilt_plus, tilt_minus = samples.tilt_rad.copy(), samples.tilt_rad.copy()
+    width = np.ones(samples.s_m.size)
+    if column is None:
+        s_plus[chosen] = np.minimum(s_plus[chosen] + step, length_m)
+        s_minus[chosen] = np.maximum(s_minus[chosen] - step, 0.0)
+        width[chosen] = s_plus[chosen] - s_minus[chosen]
+    else:
+        tilt_plus[chosen, column] += step
+        tilt_minus[chosen, column] -= step
+        width[chosen] = 2.0 * step
+    return Samples(s_plus, tilt_plus), Samples(s_minus, tilt_minus), width
+
+
+def _peak(values: FloatArray) -> float:
+    """Largest Euclidean norm along the last axis."""
+    return float(np.max(np.linalg.norm(values, axis=-1))) if values.size else 0.0
+
+
+#: Finite-difference weights of orders 0..3 (the forward differences of the padded samples).
+_WEIGHTS = {0: (1.0,), 1: (-1.0, 1.0), 2: (1.0, -2.0, 1.0), 3: (-1.0, 3.0, -3.0, 1.0)}
+
+
+#: Relative width of the bracket on N at which the search stops (the smallest feasible N is kept).
+SEARCH_TOLERANCE = 2e-3
+#: Durations solved per search, at most.
+MAX_SEARCH = 14
+#: Searches of `plan_optimal`, each with the program's slosh limits moved towards the values
+#: at which the verification meets its limits (`_next_limit`), at most.
+TIGHTENINGS = 5
+#: A verified plan whose peak or residual is within this fraction of its limit ends them.
+LIMIT_TOLERANCE = 0.02
+
+
+class _Conic:
+    """Rows b - A x in a cone, gathered by kind: equalities, inequalities, second-order cones."""
+
+    def __init__(self) -> None:
+        self.parts: dict[str, list[tuple[Any, Any, Any, Any]]] = {
+            "zero": [],
+            "nonneg": [],
+            "soc": [],
+        }
+        self.soc_dims: list[int] = []
+
+    def add(self, kind: str, r: Any, c: Any, v: Any, b: Any, dims: list[int] | None = None) -> None:
+        """Rows with local indices r: b_r - sum A_rc x_c in the cone (``dims``: the sizes of
+        consecutive second-order cones)."""
+        self.parts[kind].append(
+            (
+                np.asarray(r, dtype=int),
+                np.asarray(c, dtype=int),
+                np.asarray(v, dtype=float),
+                np.asarray(b, dtype=float),
+            )
+        )
+        if dims is not None:
+            self.soc_dims += dims
+
+    def assemble(self, columns: int) -> tuple[Any, Any, list[Any]]:
+        import clarabel
+
+        rows, cols, vals, rhs, cones = [], [], [], [], []
+        offset = 0
+        for kind in ("zero", "nonneg", "soc"):
+            count = 0
+            for r, c, v, b in self.parts[kind]:
+                rows.append(r + offset + count)
+                cols.append(c)
+                vals.append(v)
+                rhs.append(b)
+                count += b.size
+            if count:
+                if kind == "zero":
+                    cones.append(clarabel.ZeroConeT(count))
+                elif kind == "nonneg":
+                    cones.append(clarabel.NonnegativeConeT(count))
+            offset += count
+        cones += [clarabel.SecondOrderConeT(d) for d in self.soc_dims]
+        matrix = sparse.coo_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(offset, columns),
+        ).tocsc()
+        return matrix, np.concatenate(rhs), cones
+
+
+def cone_step(
+    program: PathProgram,
+    samples: Samples,
+    evaluation: Any,
+    trust: float,
+) -> tuple[Samples, float] | None:
+    """One cone program around ``samples`` (module docstring): the new samples and their
+    predicted margin sigma, or None when the solver failed. ``trust``: the largest change of
+    a step's speed [m/s] (a sample moves by at most 0.02 s times it)."""
+    import clarabel
+
+    from sloshkit.sim.discretisation import velocity_driven_discretisation
+
+    lim, ts = program.limits, program.ts
+    n = samples.s_m.size
+    steps = n - 1
+    keep = 1.0 - PROGRAM_MARGIN
+    band = program.jacobians(samples)[0]
+    derivative = band.position
+    unit = lim.max_jerk_m_s3 * ts**3
+    sigma = steps
+    models, modes = len(program.models), len(program.modes)
+    state_base = steps + 1
+    last = steps + HOLD  # the pendulums run on through the rest samples after the move
+    total = last + 1
+
+    # states per (model, mode, direction): dz0, dz1, dw at samples 1..last
+    def state(m: int, k: int, c: int, which: int, i: Any) -> Any:
+        return state_base + ((((m * modes + k) * 2 + c) * 3 + which) * last) + (np.asarray(i) - 1)
+
+    t_base = state_base + models * modes * 2 * 3 * last
+    columns = t_base + models * modes
+    conic = _Conic()
+
+    def d(i: Any) -> Any:
+        return np.asarray(i) - 1
+
+    # force rows: df_{k,i}[c] = sum_o F_o[i] d_{i+o}
+    def force_terms(k: int, c: int, i: Any) -> list[tuple[Any, Any, Any]]:
+        """(sample index i, column, coefficient) of d f_i (mode k, direction c) in d."""
+        out = []
+        for o in (-1, 0, 1):
+            j = i + o
+            ok = (j >= 1) & (j <= steps)
+            coefficient = band.force[o + 1][k, np.minimum(i, total - 1), c] * unit
+            out.append((i[ok], d(j[ok]), coefficient[ok]))
+        return out
+
+    # the end sample is fixed: d_N = (S - s_N) / unit -> an equality
+    conic.add("zero", [0], [d(steps)], [1.0], [(program.path.length_m - samples.s_m[-1]) / unit])
+    # ------------------------------------------------ pendulum dynamics
+    for m, model in enumerate(program.models):
+        for k, mode in enumerate(model.modes):
+            phi, gamma, g1 = velocity_driven_discretisation(
+                mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts
+            )
+            for c in range(2):
+                # dw_{i+1} - dw_i + T/2 (df_i + df_{i+1}) = 0 for i = 0..N-1 (the rest force
+                # of the first pose is fixed)
+                i = np.arange(last)
+                r_list = [i, i]
+                c_list = [state(m, k, c, 2, i + 1), state(m, k, c, 2, i)]
+                v_list = [np.ones(last), -np.ones(last)]
+                keepw = i >= 1
+                r_list[1], c_list[1], v_list[1] = i[keepw], c_list[1][keepw], v_list[1][keepw]
+                for shift in (0, 1):
+                    for sample, col, coef in force_terms(k, c, i + shift):
+                        rows = sample - shift
+                        r_list.append(rows)
+                        c_list.append(col)
+                        v_list.append(0.5 * ts * coef)
+                # A x in row: b - A x = 0 -> put the expression as -A
+                conic.add(
+                    "zero",
+                    np.concatenate(r_list),
+                    np.concatenate(c_list),
+                    -np.concatenate(v_list),
+                    np.zeros(last),
+                )
+                # dz_{i+1} = Phi dz_i + Gamma dw_i
+                for row in range(2):
+                    r_list = [i]
+                    c_list = [state(m, k, c, row, i + 1)]
+                    v_list = [np.ones(last)]
+                    for comp in range(2):
+                        ok = i >= 1
+                        r_list.append(i[ok])
+                        c_list.append(state(m, k, c, comp, i[ok]))
+                        v_list.append(np.full(ok.sum(), -phi[row, comp]))
+                    ok = i >= 1
+                    r_list.append(i[ok])
+                    c_list.append(state(m, k, c, 2, i[ok]))
+                    v_list.append(np.full(ok.sum(), -gamma[row]))
+                    conic.add(
+                        "zero",
+                        np.concatenate(r_list),
+                        np.concatenate(c_list),
+                        -np.concatenate(v_list),
+                        np.zeros(last),
+                    )
+    # ------------------------------------------------ wall cones at every sample 1..last
+    for m, model in enumerate(program.models):
+        i = np.arange(1, total)
+        count = i.size
+        r_list = [np.arange(count) * 3]
+        c_list = [np.full(count, sigma)]
+        v_list = [-np.ones(count)]
+        b = np.zeros((count, 3))
+        b[:, 0] = keep
+        b[:, 1:] = evaluation.wall[m, 1:] / lim.max_height_m
+        for k, mode in enumerate(model.modes):
+            _, _, g1 = velocity_driven_discretisation(
+                mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts
+            )
+            e = mode.wall_elevation_factor_m / lim.max_height_m
+            for c in range(2):
+                rows = np.arange(count) * 3 + 1 + c
+                r_list += [rows, rows]
+                c_list += [state(m, k, c, 0, i), state(m, k, c, 2, i)]
+                v_list += [np.full(count, -e), np.full(count, -e * g1[0])]
+        conic.add(
+            "soc",
+            np.concatenate(r_list),
+            np.concatenate(c_list),
+            np.concatenate(v_list),
+            b.ravel(),
+            [3] * count,
+        )
+    # ------------------------------------------------ residual cones and their sum
+    for m, model in enumerate(program.models):
+        for k, mode in enumerate(model.modes):
+            _, _, g1 = velocity_driven_discretisation(
+                mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts
+            )
+            damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
+            sig = mode.damping_ratio * mode.omega_rad_s
+            back = math.exp(mode.damping_ratio * mode.omega_rad_s * HOLD * ts)
+            e = back * mode.wall_elevation_factor_m / lim.max_residual_height_m
+            r_list = [np.array([0])]
+            c_list = [np.array([t_base + m * modes + k])]
+            v_list = [np.array([-1.0])]
+            for c in range(2):
+                # cos = dz0 + g1_0 dw + df_0/s - df_N/s ; rate = dz1 + g1_1 dw - dw / L
+                # sine = (rate + sig cos) / damped
+                cos_terms = [(state(m, k, c, 0, last), 1.0), (state(m, k, c, 2, last), g1[0])]
+                rate_terms = [
+                    (state(m, k, c, 1, last), 1.0),
+                    (state(m, k, c, 2, last), g1[1] - 1.0 / mode.length_m),
+                ]
+                for row, terms in ((1 + c, cos_terms), (3 + c, None)):
+                    if terms is None:
+                        terms = [(cc, cf * sig / damped) for cc, cf in cos_terms] + [
+                            (cc, cf / damped) for cc, cf in rate_terms
+                        ]
+                    r_list.append(np.full(len(terms), row))
+                    c_list.append(np.array([t[0] for t in terms]))
+                    v_list.append(-e * np.array([t[1] for t in terms]))
+            b = np.concatenate(([0.0], evaluation.amplitude[m, k] / lim.max_residual_height_m))
+            conic.add(
+                "soc",
+                np.concatenate(r_list),
+                np.concatenate(c_list),
+                np.concatenate(v_list),
+                b,
+                [5],
+            )
+        # sum t <= keep + sigma
+        conic.add(
+            "nonneg",
+            np.zeros(modes + 1, dtype=int),
+            np.concatenate((t_base + m * modes + np.arange(modes), [sigma])),
+            np.concatenate((np.ones(modes), [-1.0])),
+            [keep],
+        )
+    # ------------------------------------------------ kinematic cones
+    for order, values, limit in (
+        (1, evaluation.velocity, lim.max_velocity_m_s),
+        (2, evaluation.acceleration, lim.max_acceleration_m_s2),
+        (3, evaluation.jerk, lim.max_jerk_m_s3),
+    ):
+        rows = values.shape[0]
+        r_idx, c_idx, v_idx = [np.arange(rows) * 4], [np.full(rows, sigma)], [np.full(rows, -1.0)]
+        for j, weight in enumerate(_WEIGHTS[order]):
+            k = np.clip(np.arange(rows) + j - 2, 0, total - 1)
+            moving = (k >= 1) & (k <= steps)
+            for c in range(3):
+                coefficient = weight / ts**order * derivative[k, c] * unit / limit
+                use = moving & (coefficient != 0.0)
+                r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
+                c_idx.append(d(k[use]))
+                v_idx.append(-coefficient[use])
+        b = np.zeros((rows, 4))
+        b[:, 0] = keep
+        b[:, 1:] = values / limit
+        conic.add(
+            "soc",
+            np.concatenate(r_idx),
+            np.concatenate(c_idx),
+            np.concatenate(v_idx),
+            b.ravel(),
+            [4] * rows,
+        )
+    # ------------------------------------------------ angular velocity and acceleration cones
+    angular: tuple[tuple[int, FloatArray, float | None], ...] = (
+        (1, evaluation.omega, lim.max_angular_velocity_rad_s),
+        (2, evaluation.alpha, lim.max_angular_acceleration_rad_s2),
+    )
+    for order, values, angular_limit in angular:
+        if angular_limit is None:
+            continue
+        rows = values.shape[0]
+        r_idx, c_idx, v_idx = [np.arange(rows) * 4], [np.full(rows, sigma)], [np.full(rows, -1.0)]
+        # omega row i = samples i-1 (band slot 0) and i (slot 1); alpha row i = (w_{i+1} - w_i) / T
+        terms = [(0, 1.0)] if order == 1 else [(1, 1.0 / ts), (0, -1.0 / ts)]
+        for shift, weight in terms:
+            w_row = np.arange(rows) + shift
+            for slot, sample_shift in ((0, -1), (1, 0)):
+                k = w_row + sample_shift
+                ok = (w_row >= 1) & (w_row <= total - 1) & (k >= 1) & (k <= steps)
+                for c in range(3):
+                    coefficient = np.zeros(rows)
+                    coefficient[ok] = weight * band.omega[slot][w_row[ok], c] * unit / angular_limit
+                    use = ok & (coefficient != 0.0)
+                    r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
+                    c_idx.append(d(k[use]))
+                    v_idx.append(-coefficient[use])
+        b = np.zeros((rows, 4))
+        b[:, 0] = keep
+        b[:, 1:] = values / angular_limit
+        conic.add(
+            "soc",
+            np.concatenate(r_idx),
+            np.concatenate(c_idx),
+            np.concatenate(v_idx),
+            b.ravel(),
+            [4] * rows,
+        )
+    # ------------------------------------------------ monotone progress and trust region
+    s = samples.s_m
+    inner = np.arange(1, n - 1)
+    pairs = np.column_stack((d(inner + 1), d(inner))).ravel()
+    local = np.repeat(np.arange(inner.size), 2)
+    ones = np.tile([-1.0, 1.0], inner.size)
+    conic.add("nonneg", local, pairs, ones, (s[inner + 1] - s[inner]) / unit)
+    step_change = np.full(inner.size, trust * ts / unit)
+    conic.add("nonneg", local, pairs, -ones, step_change)
+    conic.add("nonneg", local, pairs, ones, step_change)
+    shift = min(0.02 * trust, 0.2 * program.path.length_m) / unit
+    idx = np.arange(steps)
+    conic.add(
+        "nonneg",
+        idx,
+        idx,
+        np.ones(steps),
+        np.minimum(shift, (program.path.length_m - s[1:]) / unit),
+    )
+    conic.add("nonneg", idx, idx, -np.ones(steps), np.minimum(shift, s[1:] / unit))
+    matrix, rhs, cones = conic.assemble(columns)
+    q = np.zeros(columns)
+    q[sigma] = 1.0
+    settings = clarabel.DefaultSettings()
+    settings.verbose = False
+    # The linearisation is re-evaluated exactly after each solve: 1e-6 is ample.
+    settings.tol_gap_abs = settings.tol_gap_rel = 1e-6
+    settings.tol_feas = 1e-7
+    solver = clarabel.DefaultSolver(
+        sparse.csc_matrix((columns, columns)), q, matrix, rhs, cones, settings
+    )
+    result = solver.solve()
+    program.programs += 1
+    if str(result.status) not in ("Solved", "AlmostSolved"):
+        return None
+    x = np.asarray(result.x)
+    new_s = np.concatenate(([0.0], s[1:] + x[:steps] * unit))
+    new_s = np.clip(np.maximum.accumulate(new_s), 0.0, program.path.length_m)
+    return Samples(new_s, samples.tilt_rad.copy()), float(x[sigma])
+
+
+def margin_at(
+    program: PathProgram,
+    start: Samples,
+    trust: float = 0.1,
+    iterations: int = 8,
+    tolerance: float = 2e-3,
+) -> tuple[Iterate, float]:
+    """The samples of N steps (N from ``start``) whose largest ratio to a limit is least:
+    cone programs (`cone_step`) from ``start``, a step kept when its exact evaluation is
+    better (the trust region then grows by half, else it halves); stops when a step gains
+    less than a quarter of ``tolerance`` and its prediction was right to ``tolerance``.
+    Returns the best iterate and its largest ratio."""
+    current = program.iterate(start)
+    for _ in range(iterations):
+        out = cone_step(program, current.samples, current.evaluation, trust)
+        if out is None:
+            trust *= 0.5
+            continue
+        samples, predicted = out
+        trial = program.iterate(samples)
+        if trial.excess < current.excess:
+            gain = current.excess - trial.excess
+            current = trial
+            trust = min(trust * 1.5, 1.0)
+            if (
+                gain < 0.25 * tolerance
+                and abs(trial.excess - (1.0 - PROGRAM_MARGIN + predicted)) < tolerance
+            ):
+                break
+        else:
+            trust *= 0.5
+            if trust < 1e-3:
+                break
+    return current, current.excess
+
+
+def rescaled(samples: Samples, steps: int) -> Samples:
+    """The same timing shape stretched to ``steps`` sample periods (linear interpolation of
+    s over normalised time; the ends stay at rest)."""
+    old = samples.s_m.size - 1
+    u_new = np.arange(steps + 1) / steps
+    s = np.interp(u_new, np.arange(old + 1) / old, samples.s_m)
+    tilt = np.column_stack(
+        [np.interp(u_new, np.arange(old + 1) / old, samples.tilt_rad[:, c]) for c in range(2)]
+    )
+    return Samples(s, tilt)
+
+
+def minimum_time(
+    program: PathProgram, start: Samples, log: Any = None
+) -> tuple[Iterate, list[tuple[int, float]]]:
+    """The fewest steps N whose best samples (`margin_at`) meet every limit.
+
+    r(N), the largest ratio to a limit, falls about as (N0 / N)^2 when the slosh or the
+    acceleration binds: the next N solves r = 1 on the secant of log r against log N through the
+    last two, kept inside the bracket of solved N (the largest infeasible, the smallest
+    feasible) and within 20 % of the last; the search stops when the bracket is
+    `SEARCH_TOLERANCE` wide. Each r(N) starts from the nearest solved samples rescaled.
+
+    Returns the best feasible iterate and the (N, r) pairs tried; raises `RuntimeError` when
+    no N up to four times the start's meets the limits."""
+    history: list[tuple[int, float, Iterate]] = []
+    steps = start.steps
+    guess = start
+    for _ in range(MAX_SEARCH):
+        iterate, ratio = margin_at(program, rescaled(guess, steps))
+        history.append((steps, ratio, iterate))
+        if log:
+            log(f"N = {steps}: largest ratio to a limit {ratio:.4f}")
+        feasible = [h for h in history if h[1] <= 1.0]
+        infeasible = [h for h in history if h[1] > 1.0]
+        low = max((h[0] for h in infeasible), default=0)
+        high = min((h[0] for h in feasible), default=None)
+        if high is not None and high - low <= max(1, int(SEARCH_TOLERANCE * high)):
+            break
+        if len(history) == 1 or abs(math.log(history[-1][1] / history[-2][1])) < 1e-9:
+            target = steps * math.sqrt(ratio)
+        else:
+            (n1, r1, _), (n2, r2, _) = history[-2], history[-1]
+            slope = math.log(r2 / r1) / math.log(n2 / n1)
+            target = n2 * (r2 ** (-1.0 / slope) if slope < -0.1 else math.sqrt(r2))
+        target = min(max(target, 0.8 * steps), 1.25 * steps)
+        new = math.ceil(target)
+        upper = high - 1 if high is not None else 4 * start.steps
+        new = min(max(new, low + 1), upper)
+        if any(h[0] == new for h in history):
+            new = (low + upper + 1) // 2
+        if any(h[0] == new for h in history) or new > 4 * start.steps:
+            break
+        guess = min(history, key=lambda h: abs(h[0] - new))[2].samples
+        steps = new
+    feasible = [h for h in history if h[1] <= 1.0]
+    if not feasible:
+        worst = min(history, key=lambda h: h[1])
+        binding = max(worst[2].ratios, key=lambda key: worst[2].ratios[key])
+        raise RuntimeError(
+            f"no timing up to {max(h[0] for h in history) * program.ts:.3g} s meets the limits "
+            f"(binding: {binding})"
+        )
+    best = min(feasible, key=lambda h: h[0])
+    return best[2], [(h[0], h[1]) for h in history]
+
+
+def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
+    """The minimum-time timing of the (untilted) path, verified.
+
+    Searches (`minimum_time`) of the linear program, the first from the time-optimal speed
+    profile under the quasi-static acceleration that tilts a level surface to the height limit
+    (h = R a / g; `sloshkit.plan.retime.capped_timing`), the next ones with the program's
+    slosh limits moved until ``verifier`` (the nonlinear 3-D model by default) meets the
+    problem's limits closely (module docstring); the shortest verified timing is kept. A limit
+    outside the program (a robot's joint speeds) is met by a uniform stretch
+    (`sloshkit.plan.path_result.verified_candidate`).
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model, sample period.
+    verifier : callable
+        (problem, poses, tilted) -> Verification.
+    log : callable, optional
+        Receives one line per solved duration.
+
+    Returns
+    -------
+    PathCandidate
+        Method ``optimal``; ``detail`` has the steps, the programs solved and the search.
+    """
+    import time
+    from dataclasses import replace
+
+    from sloshkit.plan.path_result import PathCandidate, verified_candidate
+    from sloshkit.plan.retime import capped_timing
+    from sloshkit.plan.spatial import sample_path
+    from sloshkit.plan.timing import Timing
+
+    started = time.perf_counter()
+    machine, slosh = problem.machine, problem.slosh
+    limits = ProgramLimits(
+        machine.max_velocity_m_s,
+        machine.max_acceleration_m_s2,
+        machine.max_jerk_m_s3,
+        machine.max_angular_velocity_rad_s,
+        machine.max_angular_acceleration_rad_s2,
+        slosh.max_height_m,
+        slosh.max_residual_height_m,
+    )
+    ts = problem.sample_period_s
+    radius = float(problem.model.radius_m)
+    cap = min(machine.max_acceleration_m_s2, GRAVITY_M_S2 * slosh.max_height_m / radius)
+    first = capped_timing(problem, cap)
+    grid = sample_path(problem.path, first, ts)
+    s = np.clip(
+        first.position(np.minimum(grid.time_s, first.duration_s)), 0.0, problem.path.length_m
+    )
+    s[-1] = problem.path.length_m
+    start = Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
+    rounds: list[dict[str, float]] = []
+    verified: list[tuple[int, Iterate]] = []
+    searches: list[tuple[int, float]] = []
+    programs = 0
+    warm = start
+    for _ in range(TIGHTENINGS):
+        program = PathProgram(problem.path, problem.models(), limits, ts)
+        try:
+            best, search = minimum_time(program, warm, log)
+        except RuntimeError as error:
+            if verified:
+                break
+            return PathCandidate("optimal", None, None, time.perf_counter() - started, str(error))
+        warm = best.samples
+        searches += search
+        programs += program.programs
+        check = verifier(problem, export_poses(problem, best.samples), False)
+        rounds.append(
+            {
+                "duration_s": best.samples.steps * ts,
+                "height_limit_m": limits.max_height_m,
+                "residual_limit_m": limits.max_residual_height_m,
+                "verified_peak_m": check.peak_height_m,
+                "verified_residual_m": check.residual_height_m,
+            }
+        )
+        if log:
+            log(
+                f"verified: peak {check.peak_height_m * 1e3:.3g} mm, residual "
+                f"{check.residual_height_m * 1e3:.3g} mm"
+            )
+        feasible = (
+            check.peak_height_m <= slosh.max_height_m
+            and check.residual_height_m <= slosh.max_residual_height_m
+        )
+        if feasible:
+            verified.append((best.samples.steps, best))
+        close = [
+            rounds[-1]["verified_peak_m"] >= (1.0 - LIMIT_TOLERANCE) * slosh.max_height_m,
+            rounds[-1]["verified_residual_m"]
+            >= (1.0 - LIMIT_TOLERANCE) * slosh.max_residual_height_m,
+        ]
+        if feasible and any(close):
+            break
+        limits = replace(
+            limits,
+            max_height_m=_next_limit(
+                rounds, "height_limit_m", "verified_peak_m", slosh.max_height_m
+            ),
+            max_residual_height_m=_next_limit(
+                rounds, "residual_limit_m", "verified_residual_m", slosh.max_residual_height_m
+            ),
+        )
+    if not verified:
+        message = "the verification's slosh exceeds the limits after every tightening"
+        return PathCandidate("optimal", None, None, time.perf_counter() - started, message)
+    corrected = min(verified, key=lambda pair: pair[0])[1]
+    samples = corrected.samples
+    timing = Timing.from_samples("optimal", np.arange(samples.s_m.size) * ts, samples.s_m)
+
+    def poses_for(factor: float) -> Any:
+        if factor == 1.0:
+            return export_poses(problem, samples)
+        return sample_path(problem.path, timing.stretched(factor), ts)
+
+    detail = {
+        "linear_optimum_s": rounds[0]["duration_s"],
+        "programs": programs,
+        "rounds": rounds,
+        "search": searches,
+    }
+    return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, False, detail)
+
+
+def export_poses(problem: Any, samples: Samples) -> Any:
+    """The samples as the export (`sloshkit.plan.spatial.PoseSamples`, quaternions
+    sign-continuous)."""
+    from sloshkit.motion.quaternions import sign_continuous
+    from sloshkit.plan.spatial import PoseSamples
+
+    position, rotation = poses_of(problem.path, samples, problem.tilt_centre_height_m)
+    time_s = np.arange(samples.s_m.size) * problem.sample_period_s
+    return PoseSamples(time_s, position, sign_continuous(rotation.as_quat()))
+
+
+def _next_limit(
+    rounds: list[dict[str, float]], program_key: str, verified_key: str, limit: float
+) -> float:
+    """The program's next limit: the verification's value is an increasing function v(p) of
+    the program's limit p (v = p for a linear verification); regula falsi for v(p) = limit
+    (slightly below) on the rounds that bracket it, else p limit / v (at most the limit)."""
+    aim = (1.0 - 0.5 * LIMIT_TOLERANCE) * limit
+    points = sorted((r[program_key], r[verified_key]) for r in rounds)
+    below = [p for p in points if p[1] <= aim]
+    above = [p for p in points if p[1] > aim]
+    if below and above:
+        (p1, v1), (p2, v2) = below[-1], above[0]
+        if v2 > v1:
+            return p1 + (aim - v1) * (p2 - p1) / (v2 - v1)
+    p, v = rounds[-1][program_key], rounds[-1][verified_key]
+    return min(limit, p * aim / max(v, 1e-12))

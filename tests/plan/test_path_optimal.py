@@ -1,0 +1,127 @@
+"""The minimum-time path program (`sloshkit.plan.path_optimal`): its linear model against the
+3-D simulation, its derivatives against its exact evaluation, the straight path against the
+1-D planner, and the verified method."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from sloshkit.model.modal import SloshModel
+from sloshkit.motion.laws import s_curve
+from sloshkit.plan.path import path_from_waypoints
+from sloshkit.plan.path_optimal import (
+    PathProgram,
+    ProgramLimits,
+    Samples,
+    cone_step,
+    export_poses,
+    minimum_time,
+)
+from sloshkit.plan.path_planner import plan_path
+from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
+from sloshkit.sim.spatial import simulate_spatial
+
+LIMITS = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)
+
+
+def _corner_problem(model: SloshModel) -> PathProblem:
+    """A 0.3 m line, a 90 deg clothoid corner and a 0.2 m line, turning 90 deg about z."""
+    path = path_from_waypoints(
+        [[0, 0, 0], [0.3, 0, 0], [0.3, 0.2, 0]], yaw_rad=[0.0, 0.0, math.pi / 2]
+    )
+    return PathProblem(
+        path, CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.008, 0.001), model
+    )
+
+
+def _samples(problem: PathProblem, speed_m_s: float, acceleration_m_s2: float = 4.0) -> Samples:
+    """An S-curve timing of the path (jerk 10 times the acceleration) on the export grid."""
+    law = s_curve(problem.path.length_m, speed_m_s, acceleration_m_s2, 10.0 * acceleration_m_s2)
+    poses = sample_path(problem.path, law, problem.sample_period_s)
+    s = np.clip(law.position(np.minimum(poses.time_s, law.duration_s)), 0, problem.path.length_m)
+    s[-1] = problem.path.length_m
+    return Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
+
+
+def test_program_model_is_the_linear_3d_simulation_of_the_export(robot_vial: SloshModel) -> None:
+    """Peak wall height equal to the linear `simulate_spatial` of the same export (spline
+    kinematics) to 1 %; the residual bound at least its residual (the bound adds the free
+    oscillations' amplitudes, the simulation takes each one's semi-major axis)."""
+    problem = _corner_problem(robot_vial)
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    samples = _samples(problem, 0.3, 1.0)  # gentle: the linear regime (about 5 deg)
+    evaluation = program.evaluate(samples)
+    response = simulate_spatial(
+        robot_vial,
+        export_poses(problem, samples).to_pose_trajectory(),
+        nonlinear=False,
+        cutoff_hz=None,
+    )
+    peak = float(np.max(np.linalg.norm(evaluation.wall, axis=-1)))
+    assert peak == pytest.approx(response.peak_slosh_height_m, rel=0.01)
+    bound = float(np.sum(np.linalg.norm(evaluation.amplitude[0], axis=1)))
+    assert bound >= 0.99 * response.residual_slosh_height_m
+
+
+def test_cone_step_predicts_the_exact_margin_of_its_samples(robot_vial: SloshModel) -> None:
+    """The program's predicted margin (linearised) and the exact evaluation of the samples it
+    returns agree to 2 % of the limits for a small trust region (the derivatives are right)."""
+    problem = _corner_problem(robot_vial)
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    iterate = program.iterate(_samples(problem, 0.8))
+    out = cone_step(program, iterate.samples, iterate.evaluation, 0.05)
+    assert out is not None
+    samples, sigma = out
+    trial = program.iterate(samples)
+    assert trial.excess == pytest.approx(1.0 - 2e-3 + sigma, abs=0.02)
+    assert trial.excess < iterate.excess
+
+
+def test_straight_path_minimum_equals_the_one_dimensional_optimum(robot_vial: SloshModel) -> None:
+    """On a straight path the program's linear minimum time is the 1-D planner's time-optimal
+    move of the same limits rounded up to the export grid (the 3-D export ends on a sample;
+    the 1-D move's last step is shorter)."""
+    from sloshkit.plan.planner import plan
+    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+
+    height, residual = 0.008, 0.001
+    factor = robot_vial.modes[0].wall_elevation_factor_m
+    one_d = plan(
+        PlanProblem(
+            0.3,
+            MachineLimits(2.0, 10.0, 100.0),
+            SloshLimits(1.0, residual / factor, height),
+            robot_vial,
+        ),
+        "optimal",
+        smooth=False,
+    )
+    assert one_d.chosen is not None
+    problem = PathProblem(
+        path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+        CartesianLimits(2.0, 10.0, 100.0),
+        SpatialSloshLimits(height, residual),
+        robot_vial,
+    )
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    best, _ = minimum_time(program, _samples(problem, 0.55))
+    ts = problem.sample_period_s
+    grid = math.ceil(one_d.chosen.duration_s / ts - 1e-9) * ts
+    assert best.feasible
+    assert best.samples.steps * ts == pytest.approx(grid, abs=ts + 1e-12)
+
+
+def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshModel) -> None:
+    """``optimal`` on the corner path: verified with the nonlinear 3-D model, no slower than
+    ``retime`` and no faster than the linear program's optimum."""
+    problem = _corner_problem(robot_vial)
+    optimal = plan_path(problem, "optimal")
+    retime = plan_path(problem, "retime")
+    assert optimal.chosen is not None and retime.chosen is not None
+    assert optimal.chosen.method == "optimal" and optimal.feasible
+    assert optimal.chosen.verification is not None and not optimal.chosen.verification.violations
+    assert optimal.chosen.duration_s <= retime.chosen.duration_s
+    assert optimal.chosen.duration_s >= optimal.chosen.detail["linear_optimum_s"] - 1e-9
