@@ -35,9 +35,10 @@ is Rot(r) D(s) Rz(-chi), chi' = (R e_z) . omega_tilt (the tilt's own spin about 
 |r| <= max tilt, |r'| <= the angular velocity limit (else pi rad/s), |r''| <= the angular
 acceleration limit (else 1000 deg/s^2), r = r' = r'' = 0 at both ends.
 
-Initial guess: a septic (C3) rest-to-rest timing of the path, slowed by 8 % steps from a
-kinematic estimate until the simulated pendulums and kinematics meet every limit (a feasible
-start for IPOPT); the tilted problem starts from the untilted optimum (upright).
+Initial guess: a phase-plane speed profile of the path, averaged over the first slosh period,
+slowed until the simulated pendulums and kinematics meet every limit (`initial_guess`, a
+feasible start for IPOPT); solved first on a coarse grid, then on the fine one; the tilted
+problem starts from the untilted optimum (upright).
 """
 
 from __future__ import annotations
@@ -67,6 +68,10 @@ GEOMETRY_SPACING_M = 1e-3
 #: Upper bound on the path parameter's rate [m/s]: never binding when the Cartesian speed
 #: limits it; it only keeps IPOPT bounded on stretches where the container only spins.
 MAX_PARAMETER_RATE_M_S = 50.0
+#: The first solve's interval, relative to ``interval_s``, on the slowed guess's duration.
+COARSE_FACTOR = 2.5
+#: Most intervals of the first solve.
+MAX_COARSE = 500
 
 
 @dataclass(frozen=True)
@@ -140,17 +145,52 @@ def geometry_interpolant(path: Path, spacing_m: float = GEOMETRY_SPACING_M) -> A
     return ca.interpolant("path_geometry", "bspline", [s], values.ravel(), {"degree": [5]})
 
 
-def _rotvec_matrix(r: Any) -> Any:
-    """Rotation matrix of the rotation vector (rx, ry, 0) by Rodrigues' formula, the
-    coefficients sin(a)/a and (1 - cos a)/a^2 as Taylor series in a^2 (exact to 1e-10 up to
-    80 deg; smooth at 0)."""
+def _series(x: Any, first: int, terms: int) -> Any:
+    """sum_k (-x)^k / (2k + first)! by Horner's rule: first 1 gives sin(a)/a, 2 gives
+    (1 - cos a)/a^2, 3 gives (a - sin a)/a^3 for x = a^2 (smooth at 0, unlike the closed
+    forms)."""
+    total = ca.SX(0)
+    for k in range(terms - 1, -1, -1):
+        total = 1.0 / math.factorial(2 * k + first) - x * total
+    return total
+
+
+def _series_terms(max_angle_rad: float) -> int:
+    """Terms of `_series` that leave an error below 1e-13 up to ``max_angle_rad``."""
+    x = max(max_angle_rad, 0.1) ** 2
+    terms = 1
+    while x**terms / math.factorial(2 * terms + 1) > 1e-13:
+        terms += 1
+    return terms
+
+
+def _tilt_functions(r: Any, max_angle_rad: float) -> tuple[Any, Any, Any]:
+    """For the rotation vector r = (rx, ry, 0) (Rodrigues: R v = v + a r x v + b r x (r x v),
+    a = sin|r| / |r|, b = (1 - cos|r|) / |r|^2; its world angular velocity J r' with
+    J = I + b [r]x + c [r]x^2, c = (|r| - sin|r|) / |r|^3: Murray, Li & Sastry, *A Mathematical
+    Introduction to Robotic Manipulation*, CRC (1994) §2.2): the functions R v, R^T v and
+    J r'."""
     x = r[0] ** 2 + r[1] ** 2
-    sine = sum((-x) ** k / math.factorial(2 * k + 1) for k in range(9))
-    versine = sum((-x) ** k / math.factorial(2 * k + 2) for k in range(9))
-    skew = ca.vertcat(
-        ca.horzcat(0, 0, r[1]), ca.horzcat(0, 0, -r[0]), ca.horzcat(-r[1], r[0], 0)
-    )
-    return ca.SX.eye(3) + sine * skew + versine * (skew @ skew)
+    terms = _series_terms(max_angle_rad)
+    a, b, c = (_series(x, first, terms) for first in (1, 2, 3))
+    vector = ca.vertcat(r[0], r[1], 0)
+
+    def rotate(v: Any) -> Any:
+        return v + a * ca.cross(vector, v) + b * ca.cross(vector, ca.cross(vector, v))
+
+    def rotate_back(v: Any) -> Any:
+        return v - a * ca.cross(vector, v) + b * ca.cross(vector, ca.cross(vector, v))
+
+    def angular_velocity(rate: Any) -> Any:
+        rate = ca.vertcat(rate[0], rate[1], 0)
+        return rate + b * ca.cross(vector, rate) + c * ca.cross(vector, ca.cross(vector, rate))
+
+    return rotate, rotate_back, angular_velocity
+
+
+def _rotvec_matrix(rotate: Any) -> Any:
+    """The matrix of the rotation ``rotate`` (its images of the unit vectors)."""
+    return ca.horzcat(*(rotate(ca.DM(column)) for column in np.eye(3)))
 
 
 def _vee(rate: Any, rotation: Any) -> Any:
@@ -198,10 +238,13 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
     y = geometry(q[0])
     p, despun, psi = y[0:3], ca.reshape(y[3:12], 3, 3).T, y[12]
     path_axis = despun[:, 2]
-    rot = _rotvec_matrix(q[1:3]) if tilt else ca.SX.eye(3)
-    axis = rot @ path_axis
+    if tilt:
+        rotate, rotate_back, tilt_velocity = _tilt_functions(q[1:3], problem.max_tilt_rad)
+    else:
+        rotate = rotate_back = lambda v: v  # upright: the identity
+    axis = rotate(path_axis)
     centre = problem.tilt_centre_height_m
-    bottom = p + centre * (path_axis - axis) if tilt else p
+    bottom = p + centre * (path_axis - axis) if tilt and centre != 0.0 else p
     chain, chain_rate = ca.vertcat(q, qd, qdd), ca.vertcat(qd, qdd, qddd)
 
     def rate(expression: Any) -> Any:
@@ -209,8 +252,12 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
         return ca.jtimes(expression, chain, chain_rate)
 
     gravity = ca.DM([0.0, 0.0, -GRAVITY_M_S2])
+
     # The de-spun frame is Rot D Rz(-chi); its transpose takes world vectors into it.
-    to_frame = _rz(chi) @ despun.T @ rot.T
+    def to_frame(v: Any) -> Any:
+        return _rz(chi) @ (despun.T @ rotate_back(v))
+
+    bottom_acceleration, axis_acceleration = rate(rate(bottom)), rate(rate(axis))
     models = problem.models()
     states: list[Any] = []
     derivatives: list[Any] = []
@@ -228,8 +275,8 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
         for index, mode in enumerate(model.modes):
             w, zeta, length = mode.omega_rad_s, mode.damping_ratio, mode.length_m
             phi, phid = ca.SX.sym("phi", 2), ca.SX.sym("phid", 2)
-            bob = bottom + mode.bob_height_m * axis
-            force = to_frame @ (gravity - rate(rate(bob)))
+            bob_acceleration = bottom_acceleration + mode.bob_height_m * axis_acceleration
+            force = to_frame(gravity - bob_acceleration)
             lateral = force[0:2]
             rest = lateral / (length * w**2)
             states += [phi, phid]
@@ -258,7 +305,7 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
     omega_limit = machine.max_angular_velocity_rad_s
     alpha_limit = machine.max_angular_acceleration_rad_s2
     if omega_limit is not None or alpha_limit is not None:
-        full = rot @ despun @ _rz(psi)
+        full = _rotvec_matrix(rotate) @ despun @ _rz(psi)
         omega = _vee(rate(full), full)
         if omega_limit is not None:
             limits.append(ca.sumsqr(omega) / omega_limit**2)
@@ -275,7 +322,7 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
         tilt_acceleration = (
             alpha_limit if alpha_limit is not None else DEFAULT_TILT_ACCELERATION_RAD_S2
         )
-        spin_rate = ca.dot(axis, _vee(ca.jtimes(rot, q[1:3], qd[1:3]), rot))
+        spin_rate = ca.dot(axis, tilt_velocity(qd[1:3]))
         kinematic = [q[1:3], qd[1:3], qdd[1:3], chi, *kinematic]
         kinematic_rate = [qd[1:3], qdd[1:3], qddd[1:3], spin_rate, *kinematic_rate]
         limits += [
@@ -335,38 +382,79 @@ def _rk4_step(model: _Model) -> Any:
     return ca.Function("step", [x, u, h], [x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)])
 
 
-def _septic_controls(length_m: float, duration_s: float, count: int) -> FloatArray:
-    """Piecewise-constant jerk of s(t) = L (35 t^4 - 84 t^5 + 70 t^6 - 20 t^7), t = time / T,
-    at the middle of each interval, scaled so that the integrated move ends at s = L."""
-    tau = (np.arange(count) + 0.5) / count
-    third = 840 * tau - 5040 * tau**2 + 8400 * tau**3 - 4200 * tau**4
-    jerk = length_m * third / duration_s**3
-    h = duration_s / count
+def speed_profile_controls(
+    problem: PathProblem, level: float, interval_s: float
+) -> tuple[float, FloatArray]:
+    """A rest-to-rest timing of the path at the acceleration ``level`` [m/s^2]: its jerks on
+    equal intervals of about ``interval_s``, and its duration [s].
+
+    The phase-plane profile (Bobrow, Dubowsky & Gibson, Int. J. Robot. Res. 4 (1985) 3-17,
+    doi:10.1177/027836498500400301) of s' under the speed limit
+    min(vmax / |dB/ds|, sqrt(level / |d2B/ds2|), (jerk level / |d3B/ds3|)^(1/3)) over the
+    reference point and the highest bob's rest point B, reached from rest and braked to rest
+    at ``level``; then its speed averaged over the first mode's longest period, a moving
+    average whose spectrum has a zero at that frequency (the residual of a move filtered so is
+    small: Singer & Seering (1990), doi:10.1115/1.2894142), and its jerks taken from the
+    sampled acceleration.
+    """
+    path, machine = problem.path, problem.machine
+    length = path.length_m
+    s = np.linspace(0.0, length, max(math.ceil(length / GEOMETRY_SPACING_M), 64) + 1)
+    spacing = s[1] - s[0]
+    axis = path.orientation(s).apply([0.0, 0.0, 1.0])
+    highest = max(m.bob_height_m for model in problem.models() for m in model.modes)
+    limit = np.full(s.size, MAX_PARAMETER_RATE_M_S)
+    jerk_level = machine.max_jerk_m_s3 * level / machine.max_acceleration_m_s2
+    for point in (path.position(s), path.position(s) + highest * axis):
+        first = np.gradient(point, spacing, axis=0)
+        second = np.gradient(first, spacing, axis=0)
+        third = np.gradient(second, spacing, axis=0)
+        norms = [np.linalg.norm(d, axis=1) + 1e-12 for d in (first, second, third)]
+        limit = np.minimum(limit, machine.max_velocity_m_s / norms[0])
+        limit = np.minimum(limit, np.sqrt(level / norms[1]))
+        limit = np.minimum(limit, np.cbrt(jerk_level / norms[2]))
+    speed = limit.copy()
+    speed[0] = speed[-1] = 0.0
+    for i in range(1, s.size):
+        speed[i] = min(speed[i], math.sqrt(speed[i - 1] ** 2 + 2 * level * spacing))
+    for i in range(s.size - 2, -1, -1):
+        speed[i] = min(speed[i], math.sqrt(speed[i + 1] ** 2 + 2 * level * spacing))
+    times = np.concatenate(([0.0], np.cumsum(2 * spacing / (speed[1:] + speed[:-1]))))
+    period = max(2 * math.pi / model.modes[0].omega_rad_s for model in problem.models())
+    width = max(round(period / interval_s), 1)
+    count = math.ceil(times[-1] / interval_s) + width
+    h = (times[-1] + width * interval_s) / count
+    grid = np.arange(count + 1) * h
+    rate = np.gradient(np.interp(grid, times, s), h)
+    rate[0] = rate[-1] = 0.0
+    # The moving average delays the move by width / 2 samples and spreads it by width.
+    padded = np.concatenate((np.zeros(width), rate))
+    averaged = np.convolve(padded, np.ones(width) / width)[width : width + count + 1]
+    acceleration = np.gradient(averaged, h)
+    acceleration[0] = acceleration[-1] = 0.0
+    jerk = np.diff(acceleration) / h
     # s(T) of a piecewise-constant jerk from rest: sum u_k h^3 ((N - k)^3 - (N - k - 1)^3) / 6
     remaining = count - np.arange(count)
     reach = float(np.sum(jerk * h**3 * (remaining**3 - (remaining - 1) ** 3) / 6.0))
-    return np.asarray(jerk * length_m / reach)
+    return float(count * h), np.asarray(jerk * length / reach)
 
 
 def _simulate(model: _Model, step: Any, controls: FloatArray, duration_s: float) -> FloatArray:
     count = controls.shape[1]
     trajectory = step.mapaccum("simulate", count)
     states = trajectory(model.x0, controls, duration_s / count)
-    return np.c_[model.x0, np.asarray(states)]
+    return np.asarray(np.c_[model.x0, np.asarray(states)], dtype=float)
 
 
 def _feasible(
     model: _Model, problem: PathProblem, states: FloatArray, controls: FloatArray
 ) -> bool:
-    limits = np.asarray(
-        model.path_limits.map(controls.shape[1])(states[:, :-1], controls)
-    )
+    limits = np.asarray(model.path_limits.map(controls.shape[1])(states[:, :-1], controls))
     later = np.asarray(model.path_limits.map(controls.shape[1])(states[:, 1:], controls))
     amplitude = np.sqrt(np.asarray(model.residual(states[:, -1])).ravel())
     residual = _band_residual(model, problem, amplitude)
     return bool(
-        max(limits.max(), later.max()) <= 1.0
-        and residual <= problem.slosh.max_residual_height_m
+        max(limits.max(), later.max()) <= 1.0 and residual <= problem.slosh.max_residual_height_m
     )
 
 
@@ -378,26 +466,27 @@ def _band_residual(model: _Model, problem: PathProblem, amplitude: FloatArray) -
 
 
 def initial_guess(
-    model: _Model, problem: PathProblem, step: Any, interval_s: float, max_tries: int = 60
+    model: _Model, problem: PathProblem, step: Any, interval_s: float, max_tries: int = 40
 ) -> tuple[float, FloatArray, FloatArray]:
-    """The septic timing slowed by 8 % steps until it meets every limit (module docstring).
+    """`speed_profile_controls` at an acceleration level lowered by 15 % steps (from the
+    smaller of amax and the quasi-static level g h_max / e_1 of the first mode) until the
+    simulated move meets every limit.
 
     Returns the duration [s], the states (nx, N + 1) and the controls (nu, N)."""
-    machine, length = problem.machine, problem.path.length_m
-    duration = max(
-        2.1875 * length / machine.max_velocity_m_s,
-        math.sqrt(7.51 * length / machine.max_acceleration_m_s2),
-        (52.5 * length / machine.max_jerk_m_s3) ** (1.0 / 3.0),
+    first = problem.models()[0].modes[0]
+    level = min(
+        problem.machine.max_acceleration_m_s2,
+        GRAVITY_M_S2 * problem.slosh.max_height_m / first.wall_elevation_factor_m,
     )
     for _ in range(max_tries):
-        count = max(math.ceil(duration / interval_s), 20)
-        controls = np.zeros((model.nu, count))
-        controls[0] = _septic_controls(length, duration, count)
+        duration, jerk = speed_profile_controls(problem, level, interval_s)
+        controls = np.zeros((model.nu, jerk.size))
+        controls[0] = jerk
         states = _simulate(model, step, controls, duration)
         if _feasible(model, problem, states, controls):
             return duration, states, controls
-        duration *= 1.08
-    raise RuntimeError(f"no feasible septic timing up to {duration:.3g} s")
+        level *= 0.85
+    raise RuntimeError(f"no feasible initial timing down to {level:.3g} m/s^2")
 
 
 def _solve(
@@ -426,7 +515,9 @@ def _solve(
     before, after = limits(big_x[:, :-1], big_u), limits(big_x[:, 1:], big_u)
     final = big_x[:, -1]
     amplitude = model.residual(final)
-    residual_rows = amplitude - bounds**2  # |(A_n, B_n)|^2 <= b_n^2, b_n >= 0
+    # |(A_n, B_n)|^2 <= b_n^2, b_n >= 0, in units of (max residual / e_n)^2
+    unit = ca.DM((problem.slosh.max_residual_height_m / model.walls) ** 2)
+    residual_rows = (amplitude - bounds**2) / unit
     per_model = len(problem.models()[0].modes)
     weighted = ca.reshape(ca.DM(model.walls) * bounds, per_model, -1)
     band = ca.sum1(weighted).T / problem.slosh.max_residual_height_m
@@ -437,9 +528,7 @@ def _solve(
         (final[kinematic - 3] - problem.path.length_m) / problem.path.length_m,
         final[rest_index] / ca.DM(model.scale_x[rest_index]),
     )
-    g = ca.vertcat(
-        ca.vec(defects), ca.vec(before), ca.vec(after), residual_rows, band, end_rows
-    )
+    g = ca.vertcat(ca.vec(defects), ca.vec(before), ca.vec(after), residual_rows, band, end_rows)
     n_defects, n_limits = nx * count, 2 * before.numel()
     lbg = np.r_[np.zeros(n_defects), np.full(n_limits, -np.inf), np.full(n_modes, -np.inf)]
     lbg = np.r_[lbg, np.full(band.numel(), -np.inf), np.zeros(end_rows.numel())]
@@ -453,7 +542,9 @@ def _solve(
     lbx_x[s_row + 1], ubx_x[s_row + 1] = 0.0, MAX_PARAMETER_RATE_M_S / model.scale_x[s_row + 1]
     lbx_x[:, 0] = ubx_x[:, 0] = model.x0 / model.scale_x
     lbx = np.r_[lbx_x.ravel(order="F"), np.full(nu * count, -np.inf), 1e-3, np.zeros(n_modes)]
-    ubx = np.r_[ubx_x.ravel(order="F"), np.full(nu * count, np.inf), np.inf, np.full(n_modes, np.inf)]
+    ubx = np.r_[
+        ubx_x.ravel(order="F"), np.full(nu * count, np.inf), np.inf, np.full(n_modes, np.inf)
+    ]
     amplitude0 = np.sqrt(np.asarray(model.residual(states[:, -1])).ravel())
     guess = np.r_[
         (states / sx).ravel(order="F"),
@@ -461,15 +552,17 @@ def _solve(
         duration,
         amplitude0 * 1.01 + 1e-6,
     ]
-    options = {
+    options: dict[str, Any] = {
         "ipopt.print_level": print_level,
         "print_time": False,
         "ipopt.max_iter": max_iterations,
         "ipopt.tol": 1e-8,
         "ipopt.acceptable_tol": 1e-6,
+        "ipopt.constr_viol_tol": 1e-9,
         "ipopt.mu_strategy": "adaptive",
     }
-    solver = ca.nlpsol("reference", "ipopt", {"x": variables, "f": t, "g": g}, options)
+    program: dict[str, Any] = {"x": variables, "f": t, "g": g}
+    solver = ca.nlpsol("reference", "ipopt", program, options)
     solution = solver(x0=guess, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
     stats = solver.stats()
     values = np.asarray(solution["x"]).ravel()
@@ -483,6 +576,17 @@ def _solve(
         str(stats["return_status"]),
         bool(stats["success"]),
     )
+
+
+def _regrid(states: FloatArray, controls: FloatArray, count: int) -> tuple[FloatArray, FloatArray]:
+    """States (linear interpolation) and piecewise-constant controls on ``count`` equal
+    intervals of the same normalised time."""
+    old = controls.shape[1]
+    nodes_old, nodes_new = np.linspace(0.0, 1.0, old + 1), np.linspace(0.0, 1.0, count + 1)
+    moved = np.array([np.interp(nodes_new, nodes_old, row) for row in states])
+    middles = (np.arange(count) + 0.5) / count
+    held = controls[:, np.minimum((middles * old).astype(int), old - 1)]
+    return moved, held
 
 
 def reference_optimum(
@@ -515,28 +619,37 @@ def reference_optimum(
     upright = _model(problem, False)
     upright_step = _rk4_step(upright)
     initial, states, controls = initial_guess(upright, problem, upright_step, interval_s)
-    duration, states, controls, status, success = _solve(
-        upright, problem, upright_step, initial, states, controls, max_iterations, print_level
+
+    def solve(model: _Model, step: Any, duration: float, states: Any, controls: Any) -> Any:
+        return _solve(model, problem, step, duration, states, controls, max_iterations, print_level)
+
+    # A coarse grid first: the slowed guess can be several times the optimum, and its grid
+    # would then be several times finer than ``interval_s`` at the optimum.
+    coarse = min(max(math.ceil(initial / (COARSE_FACTOR * interval_s)), 40), MAX_COARSE)
+    duration, states, controls, status, success = solve(
+        upright, upright_step, initial, *_regrid(states, controls, coarse)
+    )
+    count = math.ceil(duration / interval_s)
+    duration, states, controls, status, success = solve(
+        upright, upright_step, duration, *_regrid(states, controls, count)
     )
     model = upright
     if tilt:
         model = _model(problem, True)
         step = _rk4_step(model)
-        count = controls.shape[1]
         tilted_states = np.zeros((model.nx, count + 1))
         tilted_states[7:10] = states[0:3]
         tilted_states[10:] = states[3:]
         tilted_controls = np.zeros((model.nu, count))
         tilted_controls[0] = controls[0]
-        duration, states, controls, status, success = _solve(
-            model,
-            problem,
-            step,
-            duration,
-            tilted_states,
-            tilted_controls,
-            max_iterations,
-            print_level,
+        # Coarse first again: the tilt shortens the move by a quarter or more.
+        coarse = max(math.ceil(duration / (COARSE_FACTOR * interval_s)), 40)
+        duration, states, controls, status, success = solve(
+            model, step, duration, *_regrid(tilted_states, tilted_controls, coarse)
+        )
+        count = math.ceil(duration / interval_s)
+        duration, states, controls, status, success = solve(
+            model, step, duration, *_regrid(states, controls, count)
         )
     walls = np.asarray(model.wall.map(states.shape[1])(states))
     amplitude = np.sqrt(np.maximum(np.asarray(model.residual(states[:, -1])).ravel(), 0.0))
