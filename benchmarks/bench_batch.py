@@ -152,7 +152,9 @@ def main() -> None:
     parser.add_argument("--baseline-cases", type=int, default=12)
     parser.add_argument("--fill-heights", type=int, default=50)
     parser.add_argument("--repeat", type=int, default=3)
-    parser.add_argument("--markdown", action="store_true", help="print the README table")
+    parser.add_argument(
+        "--markdown", action="store_true", help="print the docs/performance.md table"
+    )
     args = parser.parse_args()
 
     container, water = UprightCylinder(0.0205), get_liquid("water-25C")

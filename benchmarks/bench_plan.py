@@ -387,7 +387,9 @@ def optimality_table(markdown: bool, quick: bool) -> bool:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--markdown", action="store_true", help="print README tables")
+    parser.add_argument(
+        "--markdown", action="store_true", help="print the docs/performance.md tables"
+    )
     parser.add_argument("--quick", action="store_true", help="three problems only")
     args = parser.parse_args()
     warnings.simplefilter("ignore", ValidityWarning)

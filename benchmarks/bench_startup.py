@@ -109,7 +109,9 @@ def run(arguments: list[str]) -> tuple[float, float]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
-    parser.add_argument("--markdown", action="store_true", help="print the README table")
+    parser.add_argument(
+        "--markdown", action="store_true", help="print the docs/performance.md table"
+    )
     parser.add_argument("--breakdown", action="store_true", help="the sweep's phases too")
     args = parser.parse_args()
     out = tempfile.mkdtemp(prefix="sloshkit-bench-")

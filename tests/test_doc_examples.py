@@ -1,4 +1,4 @@
-"""The shell examples of README.md and docs/how-do-i.md run as written.
+"""The shell examples of README.md, docs/commands.md and docs/how-do-i.md run as written.
 
 Each document's ``sh`` blocks run in order, in one fresh working folder that holds only a copy
 of ``examples/`` (the files the examples name), with the installed ``sloshkit`` entry point:
@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-DOCUMENTS = ["README.md", "docs/how-do-i.md"]
+DOCUMENTS = ["README.md", "docs/commands.md", "docs/how-do-i.md"]
 NOT_RUN = ("make ", "python3 -m venv", "source ", "apt-get ", "sloshkit cfd ")
 
 

@@ -104,21 +104,6 @@ def test_only_model_theory_writes_the_gravity_constant():
     assert literals == [], f"import sloshkit.model.theory.GRAVITY_M_S2 instead: {literals}"
 
 
-#: Private names still imported from another module, and why: each goes when its owner makes it
-#: public or keeps it inside. No entry may be added.
-PRIVATE_IMPORTS_PENDING = {
-    # report/ (helper defaults24): the section builders of report/build.py
-    ("report/build.py", "sloshkit.report.model_sections", "_calibrate"),
-    ("report/build.py", "sloshkit.report.model_sections", "_calibration_section"),
-    ("report/build.py", "sloshkit.report.model_sections", "_model_section"),
-    ("report/build.py", "sloshkit.report.motion_sections", "_compare_section"),
-    ("report/build.py", "sloshkit.report.motion_sections", "_plan_section"),
-    ("report/build.py", "sloshkit.report.motion_sections", "_sweep_section"),
-    # sim/spatial* (helper fidelity): the module of numba kernels behind its typed entry points
-    ("sim/spatial_kernels.py", "sloshkit.sim", "_spatial_numba"),
-}
-
-
 def private_imports(tree: ast.Module) -> list[tuple[str, str]]:
     """(module, name) of every ``from sloshkit... import _name`` (dunder names excepted)."""
     return [
@@ -137,4 +122,4 @@ def test_no_module_imports_a_private_name_of_another():
         if not name.startswith("plan/")  # the 3-D planner's rewrite (see PLAN_PENDING)
         for module, private in private_imports(tree)
     }
-    assert sorted(found - PRIVATE_IMPORTS_PENDING) == [], "make the name public or keep it inside"
+    assert sorted(found) == [], "make the name public or keep it inside"

@@ -206,7 +206,9 @@ def test_cli_defaults_on_a_force_record(tmp_path):
 def test_readme_example_runs_as_written(tmp_path, monkeypatch):
     """The calibrate block of README.md, run verbatim on a clean examples/decay.csv."""
     readme = (Path(__file__).parents[2] / "README.md").read_text(encoding="utf-8")
-    section = readme[readme.index("### `sloshkit calibrate`") :]
+    heading = re.search(r"^### .*`sloshkit calibrate`$", readme, re.MULTILINE)
+    assert heading is not None, "README.md lost its calibrate section"
+    section = readme[heading.start() :]
     block = re.search(r"```sh\n(.*?)```", section, re.S)
     assert block is not None
     commands = block.group(1).replace("\\\n", " ").strip().splitlines()

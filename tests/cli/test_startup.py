@@ -56,32 +56,6 @@ def test_model_command_imports_neither_scipy_nor_the_other_commands():
     assert "omega" in result.stdout
 
 
-@pytest.mark.parametrize(
-    "args",
-    [
-        ["model", "--json"],
-        ["model", "--modes", "4", "--fill-height", "30mm", "--damping-ratio", "0.02", "--json"],
-        ["model", "--modes", "three"],
-        ["model", "--model-file", "/nonexistent/model.toml"],
-        ["model", "--model-file", "."],
-    ],
-)
-def test_plain_values_pass_as_typer_would_validate_them(args):
-    """The pass-through of `sloshkit.cli.pass_plain_values` changes nothing a user sees: same
-    output, same errors, same exit code as typer's own (pydantic) validation."""
-    fast = "from sloshkit.cli import main; main()"
-    slow = "import sloshkit.cli as cli; cli.pass_plain_values = lambda: False; cli.main()"
-    runs = [
-        subprocess.run(
-            [sys.executable, "-c", code, *args], capture_output=True, text=True, timeout=120
-        )
-        for code in (fast, slow)
-    ]
-    assert runs[0].returncode == runs[1].returncode
-    assert runs[0].stdout == runs[1].stdout
-    assert runs[0].stderr == runs[1].stderr
-
-
 def test_plot_registry_names_every_figure_and_a_sweep_imports_only_its_own():
     import importlib
 

@@ -75,12 +75,12 @@ def test_run_cli_bad_file_exits_2(tmp_path):
 
 
 def test_failed_report_leaves_nothing_half_written(tmp_path, monkeypatch):
-    import sloshkit.report.build as report
+    import sloshkit.report.motion_sections as sections
 
     def explode(*args, **kwargs):
         raise RuntimeError("simulated failure in the middle of the report")
 
-    monkeypatch.setattr(report, "_plan_section", explode)
+    monkeypatch.setattr(sections, "_plan_section", explode)  # the last section
     scenario = parse_scenario(PAPER_SCENARIO)
     with pytest.raises(RuntimeError):
         build_report(scenario, tmp_path / "out")

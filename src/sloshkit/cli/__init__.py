@@ -8,8 +8,9 @@ Start-up stays short because nothing heavy is imported before it is needed: `mai
 the module of the command being run, and ``sloshkit --help`` is drawn from `COMMANDS` (the
 short help of every command, checked against the commands themselves by the tests) without
 importing any command module. ``from sloshkit.cli import app`` gives the full application (every
-command module imported), as the tests use it. `main` also lets option values that already have
-their option's plain type through without typer's pydantic validation (`pass_plain_values`).
+command module imported), as the tests use it. typer is pinned below 0.29 (pyproject.toml): from
+0.29 on typer validates every option value with a pydantic adapter, which costs a third of
+``sloshkit model`` (docs/performance.md).
 """
 
 from __future__ import annotations
@@ -125,93 +126,6 @@ def _help_app() -> Any:
     return stand_in
 
 
-def _plain_type(annotation: Any) -> type | None:
-    """``str``, ``int``, ``float`` or ``Path`` for an annotation that is one of them (or it |
-    None)."""
-    import types
-    import typing
-    from pathlib import Path
-
-    if typing.get_origin(annotation) in (typing.Union, types.UnionType):
-        rest = [arg for arg in typing.get_args(annotation) if arg is not type(None)]
-        annotation = rest[0] if len(rest) == 1 else None
-    return annotation if annotation in (str, int, float, Path) else None
-
-
-def _validated_plainly(parameter: Any, ctx: Any, value: Any) -> tuple[bool, Any]:
-    """(True, what typer's validation returns) without pydantic, for an optional,
-    single-valued option without parser, bounds or choices whose value is None or already of
-    the option's plain type (a default, or the text given to a string option), or a text given
-    to a path option (converted as pydantic does, ``Path(text)``, then typer's own path checks);
-    (False, None) for anything else."""
-    descriptor: Any = getattr(parameter, "type_descriptor", None)
-    info = getattr(descriptor, "parameter_info", None)
-    if info is None or parameter.required or parameter.nargs != 1 or parameter.multiple:
-        return False, None
-    if getattr(info, "parser", None) is not None or getattr(info, "click_type", None) is not None:
-        return False, None
-    if getattr(info, "min", None) is not None or getattr(info, "max", None) is not None:
-        return False, None
-    plain = _plain_type(descriptor.annotation)
-    if value is None or (plain is not None and type(value) is plain):
-        return True, value
-    if plain is not None and plain.__name__ == "Path" and type(value) is str:
-        if getattr(info, "path_type", None) is not None:
-            return False, None
-        try:
-            from typer._param_types import coerce_cli_path
-        except ImportError:  # pragma: no cover - another typer
-            return False, None
-        return True, coerce_cli_path(plain(value), info, path_type=plain, param=parameter, ctx=ctx)
-    return False, None
-
-
-def pass_plain_values() -> bool:
-    """Let option values that need no validation through typer without pydantic.
-
-    typer validates every option value with a pydantic ``TypeAdapter`` built on first use;
-    importing pydantic and building the adapters is about a third of ``sloshkit model``. A
-    value that is None or already has its option's plain type (``str``, ``int``, ``float``),
-    such as a default or the text given to one of sloshkit's unit-bearing string options,
-    comes out of that validation unchanged, so it is passed through; a path given as text is
-    converted as pydantic converts it (``Path(text)``) and checked by typer's own path checks.
-    Every other value (a number typed on the command line, a choice) takes typer's own path,
-    with its own error messages.
-
-    Returns
-    -------
-    bool
-        Whether the pass-through is installed (False when this typer has no such validation).
-
-    Examples
-    --------
-    >>> pass_plain_values()
-    True
-    """
-    try:
-        from typer.core import _TyperParameter
-    except ImportError:  # pragma: no cover - typer without pydantic validation
-        return False
-    validate = _TyperParameter.__dict__.get("process_value")
-    if validate is None or not hasattr(_TyperParameter, "get_runtime_param"):
-        return False  # pragma: no cover - another typer: leave it alone
-    if getattr(validate, "passes_plain_values", False):
-        return True
-
-    def process_value(self: Any, ctx: Any, value: Any) -> Any:
-        plain, checked = _validated_plainly(self, ctx, value)
-        if not plain:
-            return validate(self, ctx, value)
-        value = checked
-        if self.callback is not None:
-            value = self.callback(ctx, self, value)
-        return value
-
-    process_value.passes_plain_values = True  # type: ignore[attr-defined]
-    setattr(_TyperParameter, "process_value", process_value)  # noqa: B010 - typed as a method
-    return True
-
-
 def main() -> None:
     """Entry point: import the command being run (or none, for the root help) and run it.
 
@@ -241,7 +155,6 @@ def main() -> None:
     from sloshkit.cli import streams
 
     streams.protect_stdout()
-    pass_plain_values()
     words = [word for word in sys.argv[1:] if not word.startswith("-")]
     if words and words[0] in COMMANDS:
         importlib.import_module(COMMANDS[words[0]][0])
@@ -253,4 +166,4 @@ def main() -> None:
         _app_module().main()
 
 
-__all__ = ["COMMANDS", "app", "load_commands", "main", "pass_plain_values"]
+__all__ = ["COMMANDS", "app", "load_commands", "main"]

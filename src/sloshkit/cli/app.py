@@ -162,7 +162,8 @@ def run(
     try:
         with signals.installed(restore=not exiting):
             try:
-                from sloshkit.io.outputs import command_line, require_encodable_arguments
+                from sloshkit.io.outputs import command_line
+                from sloshkit.io.utf8_names import require_encodable_arguments
 
                 words = list(argv) if argv is not None else sys.argv[1:]
                 # a name that is not UTF-8 would fail when written into an output, after the work

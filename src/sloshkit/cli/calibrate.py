@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import contextlib
 import math
 import typing
 import warnings
-from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
 
@@ -18,61 +16,18 @@ from rich.text import Text
 from sloshkit.calibration import (
     METHODS,
     SIGNAL_KINDS,
-    AppliedMotion,
-    applied_from_poses,
     calibrate,
     identify_forced,
 )
-from sloshkit.calibration.applied import POSE_COLUMNS
 from sloshkit.calibration.model_in_loop import identify_line, identify_spatial
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.errors import InputError, ValidityWarning
-from sloshkit.io.checks import naming, require_finite_rows
+from sloshkit.io.calibration_requests import applied_motion_request, record_request
 from sloshkit.io.models import write_model_file
-from sloshkit.io.motions import check_plausible_record, read_motion_file
 from sloshkit.io.outputs import check_file
-from sloshkit.io.poses import read_pose_file
-from sloshkit.io.tables import (
-    TIME_NAMES,
-    column_name,
-    column_si,
-    find_column,
-    read_table,
-    select_column,
-    unit_from_name,
-)
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.poses import PoseTrajectory
-
-
-def _read_applied_motion(
-    path: Path, axis: str | None, offset_s: float
-) -> tuple[AppliedMotion, PoseTrajectory | None]:
-    """A pose file (t,x,y,z,qx,qy,qz,qw) or a motion file, shifted by the clock offset; the
-    poses too when the file has them."""
-    with naming("motion_file", path):
-        header, data = read_table(path)
-    index = [find_column(header, (name,)) for name in POSE_COLUMNS]
-    if all(i is not None for i in index):
-        # the pose-file reader checks rows, units, time and quaternions, naming --motion-file
-        poses = read_pose_file(path, name=str(path), parameter="motion_file")
-        time, position = poses.time_s, poses.position_m
-        with naming("motion_file", path, keep=("motion_axis",)):
-            applied = applied_from_poses(
-                time, position, poses.quaternion_xyzw, axis, name=str(path)
-            )
-        return replace(applied, start_s=applied.start_s + offset_s), poses
-    if axis is not None:
-        raise InputError("motion_axis", axis, "applies to pose files (t,x,y,z,qx,qy,qz,qw) only")
-    with naming("motion_file", path):
-        time_index = find_column(header, TIME_NAMES)
-        time_column = 0 if time_index is None else time_index
-        require_finite_rows(data, {header[time_column]: time_column}, "motion_file", path)
-        start = float(column_si(header, data, time_column, "time")[0])
-        motion = read_motion_file(path)
-    return AppliedMotion(motion, start + offset_s, (f"motion file {path}",)), None
 
 
 @app.command("calibrate")
@@ -186,25 +141,13 @@ def calibrate_command(
         raise InputError("detrend", detrend, "must be mean, linear or none")
     if signal_kind not in SIGNAL_KINDS:
         raise InputError("signal_kind", signal_kind, "must be one of " + ", ".join(SIGNAL_KINDS))
-    header, table = read_table(data)
-    select_column(header, table, time_column, "time_column")  # a missing column first
-    if time_unit is None:
-        time_unit = unit_from_name(column_name(header, time_column)) or "s"
-    time_scale = parse_quantity(f"1 {time_unit}", "time", "time_unit")
-    time = select_column(header, table, time_column, "time_column") * time_scale
-    check_plausible_record(time, str(data))
-    values = select_column(header, table, signal_column, "signal_column")
-    signal_unit = unit_from_name(column_name(header, signal_column))
-    signal_quantity = {"height": "length", "angle": "angle"}.get(signal_kind)
-    if signal_unit is not None and signal_quantity is not None:  # e.g. 'eta [mm]' -> metres
-        with contextlib.suppress(InputError):  # another dimension: the estimators are scale-free
-            values = values * parse_quantity(f"1 {signal_unit}", signal_quantity, "signal_column")
+    time, values = record_request(data, time_column, signal_column, time_unit, signal_kind)
     lowpass_hz = None if lowpass is None else parse_quantity(lowpass, "frequency", "lowpass")
     offset = parse_quantity(clock_offset, "time", "clock_offset")
     applied, poses = (
         (None, None)
         if motion_file is None
-        else _read_applied_motion(motion_file, motion_axis, offset)
+        else applied_motion_request(motion_file, motion_axis, offset)
     )
     if (
         applied is not None

@@ -11,9 +11,10 @@ import typer
 
 from sloshkit.cfd.pipeline import RECOMMENDED, case_spec, excitation_from_options
 from sloshkit.cfd.spec import CaseSpec
-from sloshkit.cli.moves import Distance, Duration, MoveRequest
+from sloshkit.cli.moves import Distance, Duration
 from sloshkit.errors import InputError
 from sloshkit.io.checks import naming
+from sloshkit.io.command_requests import MoveRequest
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_bounded, parse_quantity
 from sloshkit.model.modal import SloshModel

@@ -26,6 +26,7 @@ from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
 from sloshkit.io.checks import naming
+from sloshkit.io.command_requests import slosh_limits_request
 from sloshkit.io.outputs import all_or_nothing, check_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
@@ -301,36 +302,6 @@ def check_output_period(plan: Any, period_s: float, text: str) -> None:
     require_samples("sample_period", text, duration / period_s, 64, "exported samples")
 
 
-def slosh_limits(max_angle: str | None, max_residual: str | None) -> Any:
-    """`SloshLimits` from the two options, None when neither is given.
-
-    Parameters
-    ----------
-    max_angle, max_residual : str or None
-        ``--max-angle`` and ``--max-residual`` (angles with units).
-
-    Returns
-    -------
-    SloshLimits or None
-
-    Examples
-    --------
-    >>> limits = slosh_limits("5deg", "0.5deg")
-    >>> round(limits.max_angle_rad, 6), slosh_limits(None, None)
-    (0.087266, None)
-    """
-    from sloshkit.plan.problem import SloshLimits
-
-    if max_angle is None and max_residual is None:
-        return None
-    if max_angle is None or max_residual is None:
-        raise InputError("max_angle", max_angle, "give both --max-angle and --max-residual")
-    return SloshLimits(
-        parse_quantity(max_angle, "angle", "max_angle"),
-        parse_quantity(max_residual, "angle", "max_residual"),
-    )
-
-
 @app.command("export")
 @with_model_options
 @with_export_options
@@ -376,7 +347,7 @@ def export_command(
     from sloshkit.export.headers import read_plan_header
     from sloshkit.export.plans import read_plan
 
-    command_limits = slosh_limits(max_angle, max_residual)
+    command_limits = slosh_limits_request(max_angle, max_residual)
     with naming("plan_file", plan_file):
         plan = read_plan(plan_file)
     period = None

@@ -15,30 +15,14 @@ from typing import Annotated, Any
 
 import typer
 
-from sloshkit.cli.notes import check_bare_length
-from sloshkit.errors import InputError
 from sloshkit.files import json_safe
-from sloshkit.io.models import read_model_file
-from sloshkit.io.requests import (
-    container_request,
-    damping_law_request,
-    fill_height_request,
-    liquid_request,
-    model_request,
-    profile_request,
-)
+from sloshkit.io.command_requests import cylinder_model_or_file_request, model_or_file_request
+from sloshkit.io.requests import DEFAULT_RADIUS
 from sloshkit.model.catalogue import catalogue_names
-from sloshkit.model.geometry import UprightCylinder
-from sloshkit.model.liquids import LIQUIDS, Liquid
+from sloshkit.model.liquids import LIQUIDS
 from sloshkit.model.modal import SloshModel
-from sloshkit.model.profile import Container, ProfileContainer
-from sloshkit.model.theory import DampingLaw
 
 Radius = Annotated[str, typer.Option("--radius", help="Inner radius, e.g. 20.5mm.")]
-
-
-#: The default of ``--radius`` (the seed paper's vial).
-DEFAULT_RADIUS = "20.5mm"
 
 
 ContainerName = Annotated[
@@ -136,186 +120,6 @@ ModelFile = Annotated[
 Json = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI units).")]
 
 
-def build_container(radius: str, wall_height: str | None) -> UprightCylinder:
-    """The container from the model options.
-
-    Parameters
-    ----------
-    radius : str
-        ``--radius`` (a length with its unit).
-    wall_height : str or None
-        ``--wall-height``.
-
-    Returns
-    -------
-    UprightCylinder
-
-    Examples
-    --------
-    >>> build_container("20.5mm", "60mm")
-    UprightCylinder(radius_m=0.0205, wall_height_m=0.06)
-    """
-    container = container_request(radius, wall_height)
-    check_bare_length(radius, container.radius_m, "radius")
-    if wall_height is not None and container.wall_height_m is not None:
-        check_bare_length(wall_height, container.wall_height_m, "wall_height")
-    return container
-
-
-def build_vessel(
-    radius: str, wall_height: str | None, container: str | None, profile: Path | None
-) -> Container:
-    """The container of the model options: a catalogue name (``--container``), a profile file
-    (``--profile``) or the upright cylinder of ``--radius`` and ``--wall-height``.
-
-    Parameters
-    ----------
-    radius : str
-        ``--radius`` (only its default with a container or profile).
-    wall_height : str or None
-        ``--wall-height`` (not with a container or profile).
-    container : str or None
-        ``--container``.
-    profile : Path or None
-        ``--profile``.
-
-    Returns
-    -------
-    UprightCylinder or ProfileContainer
-
-    Examples
-    --------
-    >>> build_vessel(DEFAULT_RADIUS, None, "iso8362-6R", None).name
-    'iso8362-6R'
-    >>> build_vessel("8mm", None, None, None).radius_m
-    0.008
-    """
-    real = profile_request(container, profile)
-    if real is None:
-        return build_container(radius, wall_height)
-    if radius != DEFAULT_RADIUS or wall_height is not None:
-        given = "--container" if container is not None else "--profile"
-        raise InputError(
-            "radius" if radius != DEFAULT_RADIUS else "wall_height",
-            radius if radius != DEFAULT_RADIUS else wall_height,
-            f"is given by {given}; drop it or {given}",
-        )
-    return real
-
-
-def build_liquid(
-    liquid: str, density: str | None, viscosity: str | None, sigma: str | None
-) -> Liquid:
-    """A preset liquid, with any of its properties overridden.
-
-    Parameters
-    ----------
-    liquid : str
-        The preset's name.
-    density, viscosity, sigma : str or None
-        Overrides with units.
-
-    Returns
-    -------
-    Liquid
-
-    Examples
-    --------
-    >>> liquid = build_liquid("water-25C", "1000kg/m^3", None, None)
-    >>> liquid.name, liquid.density_kg_m3
-    ('water-25C*', 1000.0)
-    """
-    return liquid_request(liquid, density, viscosity, sigma, surface_tension_parameter="sigma")
-
-
-def check_damping_law(damping_law: str) -> DampingLaw:
-    """The damping-law name, or `InputError`.
-
-    Parameters
-    ----------
-    damping_law : str
-        ``--damping-law``.
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> check_damping_law("sp106")
-    'sp106'
-    """
-    return damping_law_request(damping_law)
-
-
-def build_model(
-    radius: str,
-    fill_height: str | None,
-    fill_volume: str | None,
-    wall_height: str | None,
-    liquid: str,
-    density: str | None,
-    viscosity: str | None,
-    sigma: str | None,
-    modes: int,
-    damping_law: str,
-    damping_ratio: float | None,
-    surface_tension_correction: bool | None,
-    container: str | None = None,
-    profile: Path | None = None,
-) -> SloshModel:
-    """Turn the model options (text with units) into a `SloshModel`.
-
-    Parameters
-    ----------
-    radius, fill_height, fill_volume, wall_height : str or None
-        Lengths and volume with units (``fill_height`` or ``fill_volume``).
-    liquid : str
-        The preset's name.
-    density, viscosity, sigma : str or None
-        Overrides of the preset's properties.
-    modes : int
-        Number of modes.
-    damping_law : str
-        The damping correlation.
-    damping_ratio : float or None
-        A damping ratio that replaces the correlation.
-    surface_tension_correction : bool or None
-        Apply the capillary frequency correction (None: where it matters).
-    container : str or None
-        ``--container``: a catalogue name replacing the radius and wall height.
-    profile : Path or None
-        ``--profile``: a profile file replacing the radius and wall height.
-
-    Returns
-    -------
-    SloshModel
-
-    Examples
-    --------
-    >>> model = build_model("20.5mm", None, "51.5ml", None, "water-25C", None, None, None,
-    ...                     3, "seed", None, False)
-    >>> round(model.fill_height_m * 1e3, 1), round(model.modes[0].frequency_hz, 2)
-    (39.0, 4.72)
-    """
-    vessel = build_vessel(radius, wall_height, container, profile)
-    if isinstance(vessel, ProfileContainer) and fill_height is None and fill_volume is None:
-        given = "--container" if container is not None else "--profile"
-        raise InputError("fill_volume", None, f"give --fill-volume or --fill-height with {given}")
-    height = fill_height_request(vessel, fill_height, fill_volume)
-    if fill_volume is None:
-        check_bare_length(fill_height, height, "fill_height")
-    return model_request(
-        vessel,
-        build_liquid(liquid, density, viscosity, sigma),
-        height,
-        modes=modes,
-        damping_law=damping_law,
-        damping_ratio=damping_ratio,
-        surface_tension_correction=surface_tension_correction,
-    )
-
-
 def print_json(payload: object) -> None:
     """Print ``payload`` as one strict JSON object on stdout (non-finite numbers as null),
     with the command's ``warnings`` list.
@@ -357,6 +161,9 @@ MODEL_OPTIONS: dict[str, tuple[Any, Any]] = {
     "container": (ContainerName, None),
     "profile": (ProfileFile, None),
 }
+
+#: Model option -> its default (an option that differs was given).
+MODEL_DEFAULTS: dict[str, Any] = {name: default for name, (_, default) in MODEL_OPTIONS.items()}
 
 
 def with_options(
@@ -426,24 +233,6 @@ def with_options(
     return decorate
 
 
-def _model_from_options(values: dict[str, Any]) -> SloshModel:
-    model_file = values.pop("model_file")
-    if model_file is not None:
-        given = [
-            "--" + name.replace("_", "-")
-            for name, value in values.items()
-            if value != MODEL_OPTIONS[name][1]
-        ]
-        if given:
-            raise InputError(
-                "model_file",
-                str(model_file),
-                "replaces the model options; drop " + ", ".join(given) + " or the model file",
-            )
-        return typing.cast(SloshModel, read_model_file(model_file))
-    return build_model(**values)
-
-
 def with_model_options(command: Callable[..., None]) -> Callable[..., None]:
     """Give a command the shared model options; it receives the built ``slosh_model``.
 
@@ -469,16 +258,8 @@ def with_model_options(command: Callable[..., None]) -> Callable[..., None]:
     return with_options(MODEL_OPTIONS, "slosh_model", _model_from_options)(command)
 
 
-def _cylinder_model_from_options(values: dict[str, Any]) -> SloshModel:
-    for name in ("container", "profile"):
-        if values[name] is not None:
-            raise InputError(
-                name,
-                str(values[name]),
-                "CFD meshes upright cylinders only (give --radius and --wall-height); a "
-                "container given by its profile is modelled by finite elements, not by CFD",
-            )
-    return _model_from_options(values)
+def _model_from_options(values: dict[str, Any]) -> SloshModel:
+    return model_or_file_request(values, MODEL_DEFAULTS)
 
 
 def with_cylinder_model_options(command: Callable[..., None]) -> Callable[..., None]:
@@ -507,6 +288,10 @@ def with_cylinder_model_options(command: Callable[..., None]) -> Callable[..., N
     sloshkit.errors.InputError: container = 'iso8362-2R' is invalid: CFD meshes upright ...
     """
     return with_options(MODEL_OPTIONS, "slosh_model", _cylinder_model_from_options)(command)
+
+
+def _cylinder_model_from_options(values: dict[str, Any]) -> SloshModel:
+    return cylinder_model_or_file_request(values, MODEL_DEFAULTS)
 
 
 def json_number(value: float) -> float | None:

@@ -26,12 +26,11 @@ from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.io.command_requests import line_plan_request
 from sloshkit.io.outputs import all_or_nothing, check_file
 from sloshkit.io.requests import fraction_request
-from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 
 
 @app.command("plan")
@@ -203,40 +202,18 @@ def plan_command(
         )
         return
 
-    missing = [
-        name
-        for name, value in (
-            ("--vmax", vmax),
-            ("--amax", amax),
-            ("--jmax", jmax),
-            ("--max-angle", max_angle),
-            ("--max-residual", max_residual),
-        )
-        if value is None
-    ]
-    if missing:
-        raise InputError("plan", "incomplete", "needs " + ", ".join(missing))
-    band = fraction_request(robust, "robust")
-    problem = PlanProblem(
-        distance_m=parse_quantity(distance, "length", "distance"),
-        machine=MachineLimits(
-            parse_quantity(typing.cast(str, vmax), "velocity", "vmax"),
-            parse_quantity(typing.cast(str, amax), "acceleration", "amax"),
-            parse_quantity(typing.cast(str, jmax), "jerk", "jmax"),
-        ),
-        slosh=SloshLimits(
-            parse_quantity(typing.cast(str, max_angle), "angle", "max_angle"),
-            parse_quantity(typing.cast(str, max_residual), "angle", "max_residual"),
-            None
-            if max_wall_elevation is None
-            else parse_quantity(max_wall_elevation, "length", "max_wall_elevation"),
-            band,
-        ),
-        model=slosh_model,
-        sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
-        max_duration_s=None
-        if max_duration is None
-        else parse_quantity(max_duration, "time", "max_duration"),
+    problem = line_plan_request(
+        slosh_model,
+        distance,
+        vmax,
+        amax,
+        jmax,
+        max_angle,
+        max_residual,
+        max_wall_elevation,
+        robust,
+        sample_period,
+        max_duration,
     )
 
     def progress(text: str) -> None:

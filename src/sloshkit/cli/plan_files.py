@@ -13,8 +13,9 @@ import math
 from pathlib import Path
 from typing import Any
 
-from sloshkit.cli.options import MODEL_OPTIONS, build_model
+from sloshkit.cli.options import MODEL_OPTIONS
 from sloshkit.errors import InputError, warn_validity
+from sloshkit.io.requests import options_model_request
 from sloshkit.model.modal import SloshModel
 
 #: The slosh-limit options of ``export`` (overriding the plan file's limits).
@@ -201,7 +202,7 @@ def export_model(
         values = {name: params[name] for name in MODEL_OPTIONS if name != "model_file"}
         values.update({name: typed[name] for name in values if name in typed})
         values.update({name: params[name] for name in given})
-        model = build_model(**values)
+        model = options_model_request(**values)
     flags = ", ".join("--" + name.replace("_", "-") for name in given)
     differences = model_differences(planned, model)
     if differences:

@@ -13,9 +13,7 @@ from sloshkit.cli import display
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.moves import (
     SIMULATION_OPTIONS,
-    MoveRequest,
     metrics_json,
-    simulate_with_options,
     with_move_options,
     with_simulation_options,
 )
@@ -29,6 +27,7 @@ from sloshkit.cli.spatial import (
 )
 from sloshkit.errors import InputError
 from sloshkit.files import write_json, write_rows_csv
+from sloshkit.io.command_requests import MoveRequest, simulate_with_options
 from sloshkit.io.outputs import all_or_nothing, check_file, check_folder, staged_folder
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import LAW_NAMES

@@ -7,14 +7,13 @@ import warnings
 from pathlib import Path
 from typing import Annotated
 
-import numpy as np
 import typer
 from rich.table import Table
 from rich.text import Text
 
 from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, MoveRequest, SamplePeriod, Vmax
+from sloshkit.cli.moves import AccelFraction, Amax, Distance, Jmax, SamplePeriod, Vmax
 from sloshkit.cli.options import (
     ContainerName,
     DampingLawOpt,
@@ -29,16 +28,15 @@ from sloshkit.cli.options import (
     SurfaceTension,
     Viscosity,
     WallHeight,
-    build_liquid,
-    build_vessel,
-    check_damping_law,
     print_json,
 )
-from sloshkit.errors import InputError, ValidityWarning
+from sloshkit.errors import ValidityWarning
+from sloshkit.io.command_requests import MoveRequest, sweep_grid_request
 from sloshkit.io.outputs import check_folder, staged_folder
-from sloshkit.io.units import parse_quantity, parse_range
+from sloshkit.io.requests import damping_law_request, liquid_request, vessel_request
+from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import model_family
-from sloshkit.sweep import describe_rate, linspace_inclusive, run_sweep
+from sloshkit.sweep import describe_rate, run_sweep
 
 MaxAngle = Annotated[
     str | None, typer.Option("--max-angle", help="Limit on the peak slosh angle, e.g. 5deg.")
@@ -114,26 +112,16 @@ def sweep_command(
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
     check_folder(out, "out", overwrite)
-    container = build_vessel(radius, wall_height, container_name, profile)
-    real = container_name is not None or profile is not None
-    if real and fill_height is None and fill_volume is None:
-        raise InputError("fill_volume", None, "give a --fill-volume or --fill-height range")
-    if fill_height is not None and fill_volume is not None:
-        raise InputError("fill_volume", fill_volume, "give either --fill-height or --fill-volume")
-    if fill_volume is not None:
-        volumes = linspace_inclusive(*parse_range(fill_volume, "volume", "fill_volume"))
-        heights = np.array([container.fill_height_for_volume(v) for v in volumes])
-    else:
-        heights = linspace_inclusive(*parse_range(fill_height or "39mm", "length", "fill_height"))
-    if duration is not None and peak_acceleration is not None:
-        raise InputError("peak_acceleration", peak_acceleration, "give either --duration or it")
-    durations = accelerations = None
-    if peak_acceleration is not None:
-        accelerations = linspace_inclusive(
-            *parse_range(peak_acceleration, "acceleration", "peak_acceleration")
-        )
-    else:
-        durations = linspace_inclusive(*parse_range(duration or "0.5s:3s:200", "time", "duration"))
+    container = vessel_request(radius, wall_height, container_name, profile)
+    grid = sweep_grid_request(
+        container,
+        fill_height,
+        fill_volume,
+        duration,
+        peak_acceleration,
+        real=container_name is not None or profile is not None,
+    )
+    heights, durations, accelerations = grid
     request = MoveRequest.parse(distance, None, None, vmax, amax, jmax, accel_fraction)
     limits = None
     if request.vmax is not None and request.amax is not None and request.jmax is not None:
@@ -157,9 +145,11 @@ def sweep_command(
             result = run_sweep(
                 model_family(
                     container,
-                    build_liquid(liquid, density, viscosity, sigma),
+                    liquid_request(
+                        liquid, density, viscosity, sigma, surface_tension_parameter="sigma"
+                    ),
                     n_modes=modes,
-                    damping_law=check_damping_law(damping_law),
+                    damping_law=damping_law_request(damping_law),
                     damping_ratio=damping_ratio,
                     surface_tension=surface_tension_correction,
                 ),

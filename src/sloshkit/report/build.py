@@ -19,13 +19,8 @@ from typing import Any
 import markupsafe
 
 from sloshkit.io.scenario import Scenario
-from sloshkit.report.model_sections import _calibrate, _calibration_section, _model_section
-from sloshkit.report.motion_sections import (
-    _compare_section,
-    _plan_section,
-    _sweep_section,
-    law_label,
-)
+from sloshkit.report.model_sections import write_model_sections
+from sloshkit.report.motion_sections import law_label, write_motion_sections
 from sloshkit.report.writer import ReportWriter, render, versions
 
 Progress = Callable[[str], None]
@@ -119,28 +114,10 @@ def build_report(
     staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.staging-", dir=target.parent))
     try:
         writer = ReportWriter(staging)
-        model = scenario.model
-        calibration = None
-        if "calibrate" in scenario.analyses or "cfd" in scenario.analyses:
-            say("calibration")
-            calibration = _calibrate(scenario, cfd_calibration)
-            # One model for the whole report: a calibration's damping and omega_1 reach the
-            # model table and the summary as well as the laws, maps and plan.
-            model = calibration.model
-        if "model" in scenario.analyses:
-            say("equivalent model")
-            _model_section(writer, scenario, model)
-        if calibration is not None:
-            _calibration_section(writer, scenario, calibration)
-        if "compare" in scenario.analyses:
-            say("motion laws")
-            _compare_section(writer, scenario, model)
-        if "sweep" in scenario.analyses:
-            say("slosh maps")
-            _sweep_section(writer, scenario, model)
-        if "plan" in scenario.analyses:
-            say("planning the fastest safe move")
-            _plan_section(writer, scenario, model)
+        # One model for the whole report: a calibration's damping and omega_1 reach the model
+        # table and the summary as well as the laws, maps and plan.
+        model = write_model_sections(writer, scenario, cfd_calibration, say)
+        write_motion_sections(writer, scenario, model, say)
         meta = {
             "date_utc": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
             "command": command or " ".join(sys.argv),

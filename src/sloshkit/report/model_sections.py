@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import typing
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -379,3 +380,56 @@ def _free_response_figure(result: Any, model: SloshModel) -> Any:
         design @ coefficients,
         f"pendulum: f = {mode.frequency_hz:.3f} Hz (theory), ζ = {zeta:.4f}",
     )
+
+
+def write_model_sections(
+    writer: ReportWriter,
+    scenario: Scenario,
+    cfd_calibration: Any | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> SloshModel:
+    """Write the scenario's model and calibration sections; return the model every later
+    section uses (a CFD or data calibration replaces omega_1 and the damping for the whole
+    report, its model table and summary included).
+
+    Parameters
+    ----------
+    writer : ReportWriter
+        The report being written.
+    scenario : Scenario
+        The scenario (its ``analyses`` choose the sections).
+    cfd_calibration : object, optional
+        A CFD result that calibrates the model (``reproduce --cfd``).
+    progress : callable, optional
+        Called with the name of each section as it starts.
+
+    Returns
+    -------
+    SloshModel
+        The scenario's model, or the calibrated one.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit.io.scenario import parse_scenario
+    >>> scenario = parse_scenario({"name": "vial", "analyses": ["model"],
+    ...                            "container": {"radius": "20.5mm"}, "fill": {"height": "39mm"},
+    ...                            "move": {"distance": "0.2m", "duration": "1s"}})
+    >>> writer = ReportWriter(pathlib.Path(tempfile.mkdtemp()))
+    >>> write_model_sections(writer, scenario, progress=print) is scenario.model
+    equivalent model
+    True
+    """
+    say = progress or (lambda _: None)
+    model = scenario.model
+    calibration = None
+    if "calibrate" in scenario.analyses or "cfd" in scenario.analyses:
+        say("calibration")
+        calibration = _calibrate(scenario, cfd_calibration)
+        model = calibration.model
+    if "model" in scenario.analyses:
+        say("equivalent model")
+        _model_section(writer, scenario, model)
+    if calibration is not None:
+        _calibration_section(writer, scenario, calibration)
+    return model

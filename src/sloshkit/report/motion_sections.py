@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import typing
+from collections.abc import Callable
 
 from sloshkit.files import write_columns_csv
 from sloshkit.io.scenario import Scenario
@@ -298,3 +299,51 @@ def _plan_section(writer: ReportWriter, scenario: Scenario, model: SloshModel) -
         figure=figure,
     )
     writer.section("Fastest safe move", body)
+
+
+def write_motion_sections(
+    writer: ReportWriter,
+    scenario: Scenario,
+    model: SloshModel,
+    progress: Callable[[str], None] | None = None,
+) -> None:
+    """Write the scenario's motion sections on ``model``: the laws compared, the slosh maps
+    and the fastest safe move, each where the scenario's ``analyses`` name it.
+
+    Parameters
+    ----------
+    writer : ReportWriter
+        The report being written.
+    scenario : Scenario
+        The scenario.
+    model : SloshModel
+        The model every section uses (`sloshkit.report.model_sections.write_model_sections`).
+    progress : callable, optional
+        Called with the name of each section as it starts.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from sloshkit.io.scenario import parse_scenario
+    >>> scenario = parse_scenario({"name": "vial", "analyses": ["model"],
+    ...                            "container": {"radius": "20.5mm"}, "fill": {"height": "39mm"},
+    ...                            "move": {"distance": "0.2m", "duration": "1s"}})
+    >>> writer = ReportWriter(pathlib.Path(tempfile.mkdtemp()))
+    >>> write_motion_sections(writer, scenario, scenario.model, progress=print)
+    >>> writer.facts
+    {}
+    """
+    say = progress or (lambda _: None)
+    if "compare" in scenario.analyses:
+        say("motion laws")
+        _compare_section(writer, scenario, model)
+    if "sweep" in scenario.analyses:
+        say("slosh maps")
+        _sweep_section(writer, scenario, model)
+    if "plan" in scenario.analyses:
+        say("planning the fastest safe move")
+        _plan_section(writer, scenario, model)

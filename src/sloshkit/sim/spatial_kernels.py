@@ -37,7 +37,7 @@ _KERNELS: dict[str, Any] = {}
 
 
 def _compile() -> dict[str, Any]:
-    from sloshkit.sim import _spatial_numba as spatial_numba
+    from sloshkit.sim import spatial_numba
 
     return {
         "linear": spatial_numba.linear,

@@ -37,12 +37,11 @@ from sloshkit.export.formats.common import header_lines
 from sloshkit.export.formats.controller import (
     Controller,
     degrees_text,
-    program_name,
-    segment_times,
+    program_points,
     times_from_segments,
+    write_program,
 )
 from sloshkit.export.ik import JointPath
-from sloshkit.files import atomic_open
 
 FloatArray = NDArray[np.float64]
 
@@ -150,20 +149,16 @@ def write_abb_rapid(
     >>> [line.strip() for line in out.read_text().splitlines() if "move_q{3}\\\\" in line][0]
     'MoveAbsJ move_q{3}\\\\NoEOffs, v1000\\\\T:=0.04, fine, tool0;'
     """
-    target = Path(path)
-    title = name or program_name(target.stem, NAME_LIMIT)
-    count = joints.time_s.size
-    if joints.position_rad.shape[1] != 6:
-        raise InputError("joints", joints.position_rad.shape[1], "a RAPID jointtarget holds 6")
-    CONTROLLER.check_size(count, joints.sample_period_s)
-    values = np.degrees(joints.position_rad)
-    segments = segment_times(joints.time_s)
+    points = program_points(
+        CONTROLLER, path, joints, name, NAME_LIMIT, "a RAPID jointtarget holds 6"
+    )
+    title, count, segments = points.title, points.count, points.segments_s
     externals = ",".join(["9E9"] * 6)
     rows = [
         "    [["
         + ",".join(degrees_text(value, JOINT_DECIMALS) for value in row)
         + f"],[{externals}]]"
-        for row in values
+        for row in points.degrees
     ]
     lines = [f"MODULE {title}", header_lines(metadata, prefix="  ! ").rstrip("\n")]
     lines += [f"  CONST jointtarget {title}_q{{{count}}} := [", ",\n".join(rows) + "];"]
@@ -179,9 +174,7 @@ def write_abb_rapid(
             f"{zone}, tool0;"
         )
     lines += ["  ENDPROC", "ENDMODULE"]
-    with atomic_open(target) as handle:
-        handle.write("\n".join(line for line in lines if line) + "\n")
-    return target
+    return write_program(points.target, lines)
 
 
 def parse_rapid(text: str, source: str = "module") -> RapidModule:

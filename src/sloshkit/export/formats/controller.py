@@ -19,13 +19,20 @@ written points, joined smoothly at the controller's rate, keep the planned slosh
 from __future__ import annotations
 
 import re
+import typing
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.files import atomic_open
 from sloshkit.motion.sampling import steps_to_reach
+
+if typing.TYPE_CHECKING:
+    from sloshkit.export.ik import JointPath
 
 FloatArray = NDArray[np.float64]
 
@@ -196,6 +203,123 @@ def program_name(stem: str, limit: int, upper: bool = False) -> str:
             f"digits or _, at most {limit} characters",
         )
     return stem.upper() if upper else stem
+
+
+@dataclass(frozen=True)
+class ProgramPoints:
+    """What every robot-program writer starts from (`program_points`).
+
+    Attributes
+    ----------
+    target : pathlib.Path
+        The program file.
+    title : str
+        The program or module name.
+    count : int
+        Number of points (the approach point, then one per timed move).
+    degrees : numpy.ndarray
+        Joint angles (count, 6) in the controller's convention [deg].
+    segments_s : numpy.ndarray
+        Durations of the count - 1 timed moves [s].
+
+    Examples
+    --------
+    >>> ProgramPoints(Path("m.ls"), "M", 1, np.zeros((1, 6)), np.zeros(0)).count
+    1
+    """
+
+    target: Path
+    title: str
+    count: int
+    degrees: FloatArray
+    segments_s: FloatArray
+
+
+def program_points(
+    controller: Controller,
+    path: str | Path,
+    joints: JointPath,
+    name: str | None,
+    name_limit: int,
+    six_joints: str,
+    *,
+    upper: bool = False,
+    to_degrees: Callable[[FloatArray], FloatArray] = np.degrees,
+) -> ProgramPoints:
+    """The skeleton every vendor writer shares: the program name (``name`` or the file's stem),
+    six joints, the controller's size rule (`Controller.check_size`), the angles in degrees
+    and the segment times.
+
+    Parameters
+    ----------
+    controller : Controller
+        The format's rules.
+    path : str or pathlib.Path
+        The program file.
+    joints : JointPath
+        Joint samples at the point period [rad].
+    name : str or None
+        The program name (default: from the file's stem, `program_name`).
+    name_limit : int
+        The language's longest name.
+    six_joints : str
+        What the error says when ``joints`` has not six joints (the language's own words).
+    upper : bool
+        Upper-case the name from the stem.
+    to_degrees : callable
+        Serial joint angles [rad] -> the controller's angles [deg] (FANUC couples J2 and J3).
+
+    Returns
+    -------
+    ProgramPoints
+
+    Examples
+    --------
+    >>> from sloshkit.export.ik import JointPath
+    >>> rules = Controller("demo", "Demo", 0.004, 0.004, 100, ())
+    >>> t = np.arange(3) * 0.004
+    >>> zeros = np.zeros((3, 6))
+    >>> samples = JointPath(t, zeros, zeros, zeros, tuple("abcdef"))
+    >>> points = program_points(rules, "move.mod", samples, None, 20, "needs 6")
+    >>> points.title, points.count, points.segments_s.round(6).tolist()
+    ('move', 3, [0.004, 0.004])
+    """
+    target = Path(path)
+    title = name or program_name(target.stem, name_limit, upper=upper)
+    count = joints.time_s.size
+    if joints.position_rad.shape[1] != 6:
+        raise InputError("joints", joints.position_rad.shape[1], six_joints)
+    controller.check_size(count, joints.sample_period_s)
+    return ProgramPoints(
+        target, title, count, to_degrees(joints.position_rad), segment_times(joints.time_s)
+    )
+
+
+def write_program(target: str | Path, lines: Iterable[str]) -> Path:
+    r"""Write a program's lines (empty ones left out), all or nothing (`atomic_open`).
+
+    Parameters
+    ----------
+    target : str or pathlib.Path
+        The file.
+    lines : iterable of str
+        Its lines, without newlines.
+
+    Returns
+    -------
+    pathlib.Path
+        ``target``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> out = write_program(Path(tempfile.mkdtemp()) / "m.mod", ["MODULE m", "", "ENDMODULE"])
+    >>> out.read_text()
+    'MODULE m\nENDMODULE\n'
+    """
+    with atomic_open(target) as handle:
+        handle.write("\n".join(line for line in lines if line) + "\n")
+    return Path(target)
 
 
 def segment_times(time_s: FloatArray) -> FloatArray:

@@ -43,12 +43,11 @@ from sloshkit.export.formats.controller import (
     Controller,
     comment_chunks,
     degrees_text,
-    program_name,
-    segment_times,
+    program_points,
     times_from_segments,
+    write_program,
 )
 from sloshkit.export.ik import JointPath
-from sloshkit.files import atomic_open
 
 FloatArray = NDArray[np.float64]
 
@@ -220,14 +219,18 @@ def write_fanuc_ls(
     >>> [line for line in out.read_text().splitlines() if "P[3]" in line][0]
     '   3:J P[3] 40msec FINE    ;'
     """
-    target = Path(path)
-    title = name or program_name(target.stem, NAME_LIMIT, upper=True)
-    count = joints.time_s.size
-    if joints.position_rad.shape[1] != 6:
-        raise InputError("joints", joints.position_rad.shape[1], "a FANUC TP program needs 6")
-    CONTROLLER.check_size(count, joints.sample_period_s)
-    values = to_controller_deg(joints.position_rad)
-    milliseconds = np.rint(1e3 * segment_times(joints.time_s)).astype(int)
+    points = program_points(
+        CONTROLLER,
+        path,
+        joints,
+        name,
+        NAME_LIMIT,
+        "a FANUC TP program needs 6",
+        upper=True,
+        to_degrees=to_controller_deg,
+    )
+    title, count = points.title, points.count
+    milliseconds = np.rint(1e3 * points.segments_s).astype(int)
     # A remark ends at ";" and holds no quotes on older controllers: ";" -> ",", '"' -> "'".
     pieces = comment_chunks(dict(metadata), REMARK_WIDTH)
     remarks = [piece.replace(";", ",").replace('"', "'") for piece in pieces]
@@ -265,7 +268,7 @@ def write_fanuc_ls(
         *main,
         "/POS",
     ]
-    for index, row in enumerate(values, start=1):
+    for index, row in enumerate(points.degrees, start=1):
         cells = [
             f"J{axis}={degrees_text(value, JOINT_DECIMALS):>{JOINT_WIDTH}} deg"
             for axis, value in enumerate(row, start=1)
@@ -279,9 +282,7 @@ def write_fanuc_ls(
             "};",
         ]
     lines.append("/END")
-    with atomic_open(target) as handle:
-        handle.write("\n".join(lines) + "\n")
-    return target
+    return write_program(points.target, lines)
 
 
 def parse_tp(text: str, source: str = "program") -> TpProgram:

@@ -37,12 +37,11 @@ from sloshkit.export.formats.common import header_lines
 from sloshkit.export.formats.controller import (
     Controller,
     degrees_text,
-    program_name,
-    segment_times,
+    program_points,
     times_from_segments,
+    write_program,
 )
 from sloshkit.export.ik import JointPath
-from sloshkit.files import atomic_open
 
 FloatArray = NDArray[np.float64]
 
@@ -146,17 +145,14 @@ def write_kuka_krl(
     target = Path(path)
     if target.suffix.lower() != ".src":
         raise InputError("out", str(target), "a KRL program is a .src file (its .dat beside it)")
-    title = name or program_name(target.stem, NAME_LIMIT)
-    count = joints.time_s.size
-    if joints.position_rad.shape[1] != 6:
-        raise InputError("joints", joints.position_rad.shape[1], "a KRL E6AXIS holds 6 axes")
-    CONTROLLER.check_size(count, joints.sample_period_s)
-    values = np.degrees(joints.position_rad)
-    segments = segment_times(joints.time_s)
+    points = program_points(
+        CONTROLLER, target, joints, name, NAME_LIMIT, "a KRL E6AXIS holds 6 axes"
+    )
+    title, count, segments = points.title, points.count, points.segments_s
     total = float(np.sum(segments))
     externals = ",".join(f"E{axis} 0.0" for axis in range(1, 7))
     data = ["&ACCESS RVP", "&REL 1", f"DEFDAT {title}"]
-    for index, row in enumerate(values, start=1):
+    for index, row in enumerate(points.degrees, start=1):
         cells = ",".join(
             f"{axis} {degrees_text(value, JOINT_DECIMALS)}"
             for axis, value in zip(AXES, row, strict=True)
@@ -182,11 +178,8 @@ def write_kuka_krl(
             f"  TIME_BLOCK PART = {100.0 * segments[index - 1] / total:.9g}",
         ]
     program += [f"  TIME_BLOCK END = {total:.9g}", "ENDSPLINE", "END"]
-    with atomic_open(dat_path(target)) as handle:
-        handle.write("\n".join(data) + "\n")
-    with atomic_open(target) as handle:
-        handle.write("\n".join(line for line in program if line) + "\n")
-    return target
+    write_program(dat_path(target), data)
+    return write_program(target, program)
 
 
 def parse_krl(src_text: str, dat_text: str, source: str = "program") -> KrlProgram:
