@@ -56,6 +56,27 @@ def test_model_command_imports_neither_scipy_nor_the_other_commands():
     assert "omega" in result.stdout
 
 
+def test_the_readme_1d_plan_imports_neither_scipy_nor_numba():
+    """The paper's 1-D plan (the startup benchmark's row, issue 24: under 1 s wall) runs on
+    numpy and HiGHS alone: motions, screens, the EI shaper and the programs need no scipy, and
+    the screens no compiled kernel."""
+    code = (
+        "import sys; sys.argv = ['sloshkit', 'plan', '--distance', '0.5m', '--max-angle',"
+        " '5deg', '--max-residual', '0.25deg', '--vmax', '1.5m/s', '--amax', '20m/s^2',"
+        " '--jmax', '500m/s^3', '--json']\n"
+        "from sloshkit.cli import main\n"
+        "try:\n    main()\nexcept SystemExit:\n    pass\n"
+        "heavy = [m for m in ('scipy', 'numba', 'casadi', 'matplotlib', 'pandas')"
+        " if m in sys.modules]\n"
+        "print('HEAVY', heavy)\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=300
+    )
+    assert "HEAVY []" in result.stdout, result.stdout[-500:]
+    assert '"method": "optimal-smooth"' in result.stdout
+
+
 def test_plot_registry_names_every_figure_and_a_sweep_imports_only_its_own():
     import importlib
 

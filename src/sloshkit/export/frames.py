@@ -14,7 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.spatial.transform import Rotation
 
 from sloshkit.motion.quaternions import sign_continuous
 
@@ -89,6 +88,8 @@ def transform(xyz: Sequence[float], rpy: Sequence[float]) -> FloatArray:
     >>> transform((0.0, 0.0, 0.1), (np.pi, 0.0, 0.0)).round(6)[:3, 2]
     array([ 0., -0., -1.])
     """
+    from scipy.spatial.transform import Rotation  # here: a plan that exports nothing needs none
+
     matrix = np.eye(4)
     matrix[:3, :3] = Rotation.from_euler("xyz", np.asarray(rpy, dtype=float)).as_matrix()
     matrix[:3, 3] = np.asarray(xyz, dtype=float)
@@ -122,6 +123,8 @@ def poses_to_matrices(position_m: FloatArray, quaternion_xyzw: FloatArray) -> Fl
     >>> bool(np.allclose(matrices_to_poses(matrix)[1], q))
     True
     """
+    from scipy.spatial.transform import Rotation
+
     count = position_m.shape[0]
     matrices = np.zeros((count, 4, 4))
     matrices[:, :3, :3] = Rotation.from_quat(quaternion_xyzw).as_matrix()
@@ -151,6 +154,8 @@ def matrices_to_poses(matrices: FloatArray) -> tuple[FloatArray, FloatArray]:
     >>> position.tolist(), quaternion.tolist()
     ([[0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
     """
+    from scipy.spatial.transform import Rotation
+
     quaternion = Rotation.from_matrix(matrices[:, :3, :3]).as_quat()
     return np.array(matrices[:, :3, 3]), sign_continuous(quaternion)
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -19,7 +19,9 @@ from numpy.typing import NDArray
 from sloshkit.errors import InputError
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.problem import SloshLimits
-from sloshkit.plan.spatial import SpatialSloshLimits
+
+if TYPE_CHECKING:  # the 3-D limits' module imports the path library: only where 3-D is used
+    from sloshkit.plan.spatial import SpatialSloshLimits
 
 FloatArray = NDArray[np.float64]
 
@@ -74,7 +76,7 @@ def plan_header(
 
     document: dict[str, object] = {
         "version": PLAN_HEADER_VERSION,
-        "kind": "poses" if isinstance(limits, SpatialSloshLimits) else "line",
+        "kind": "line" if limits is None or isinstance(limits, SloshLimits) else "poses",
         "sample_period_s": sample_period_s,
         "slosh_check_period_s": sample_period_s / slosh_substeps(sample_period_s),
         "model": model_to_document(model),
@@ -98,10 +100,11 @@ def limits_document(limits: SloshLimits | SpatialSloshLimits) -> dict[str, float
 
     Examples
     --------
+    >>> from sloshkit.plan.spatial import SpatialSloshLimits
     >>> limits_document(SpatialSloshLimits(0.015, 0.002))["max_slosh_height_m"]
     0.015
     """
-    if isinstance(limits, SpatialSloshLimits):
+    if not isinstance(limits, SloshLimits):
         return {
             "max_slosh_height_m": limits.max_height_m,
             "max_residual_height_m": limits.max_residual_height_m,
@@ -134,6 +137,8 @@ def limits_from_document(document: dict[str, Any]) -> SloshLimits | SpatialSlosh
     0.01
     """
     if "max_slosh_height_m" in document:
+        from sloshkit.plan.spatial import SpatialSloshLimits
+
         return SpatialSloshLimits(
             float(document["max_slosh_height_m"]),
             float(document["max_residual_height_m"]),

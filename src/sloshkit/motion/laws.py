@@ -1,6 +1,6 @@
 """Rest-to-rest 1-D motion laws as exact piecewise polynomials.
 
-Every law is a `Motion`: position s(t) on [0, T] held as a `scipy.interpolate.PPoly`, so
+Every law is a `Motion`: position s(t) on [0, T] held as a `PiecewisePolynomial`, so
 position, velocity, acceleration and jerk are exact derivatives of one object, vectorised over
 time, and peak values are found from the polynomial pieces (not from samples). Outside [0, T]
 the container rests at its start or end.
@@ -30,11 +30,10 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from scipy.interpolate import PPoly
 
 from sloshkit.errors import InputError, require_in_range, require_positive
 from sloshkit.motion.profile import Motion as Motion  # re-exported (v1 path)
-from sloshkit.motion.profile import piecewise_constant_jerk
+from sloshkit.motion.profile import PiecewisePolynomial, piecewise_constant_jerk
 from sloshkit.motion.recorded import from_samples as from_samples  # re-exported (v1 path)
 
 #: Move durations the laws accept [s]: 1 us to about 30 years (a polynomial law divides the
@@ -54,12 +53,14 @@ LAW_NAMES: tuple[str, ...] = (
 def _normalised_polynomial(
     name: str, distance_m: float, duration_s: float, coefficients: list[float]
 ) -> Motion:
-    """s(t) = D * sum_k c_k (t/T)^k as a one-piece `PPoly` (c_k in ascending powers)."""
+    """s(t) = D * sum_k c_k (t/T)^k as a one-piece polynomial (c_k in ascending powers)."""
     distance = require_positive("distance", distance_m, "m")
     duration = require_in_range("duration", duration_s, *DURATION_RANGE_S, "s")
-    # PPoly wants descending powers of (t - 0): c_k D / T^k.
+    # The pieces hold descending powers of (t - 0): c_k D / T^k.
     scaled = [distance * c / duration**k for k, c in enumerate(coefficients)]
-    return Motion(name, PPoly(np.asarray(scaled[::-1], dtype=float)[:, None], [0.0, duration]))
+    return Motion(
+        name, PiecewisePolynomial(np.asarray(scaled[::-1], dtype=float)[:, None], [0.0, duration])
+    )
 
 
 def cubic(distance_m: float, duration_s: float) -> Motion:
@@ -210,7 +211,7 @@ def trapezoidal(
     Returns
     -------
     Motion
-        The law (a cubic `PPoly` with acceleration jumps).
+        The law (a cubic piecewise polynomial with acceleration jumps).
 
     References
     ----------
@@ -275,7 +276,7 @@ def s_curve(
     """Time-optimal jerk-limited rest-to-rest profile (up to 7 constant-jerk segments), by ruckig.
 
     The segment durations and jerks ruckig returns are integrated exactly, so the law is a cubic
-    `PPoly` that matches ruckig's trajectory to rounding.
+    piecewise polynomial that matches ruckig's trajectory to rounding.
 
     Parameters
     ----------

@@ -1,5 +1,10 @@
 """The motion object: a rest-to-rest position profile as an exact piecewise polynomial, with its
-derivatives and exact peaks; and the integration of constant-jerk segments into one."""
+derivatives and exact peaks; and the integration of constant-jerk segments into one.
+
+The piecewise polynomial (`PiecewisePolynomial`) is plain numpy with the layout and the
+evaluation of `scipy.interpolate.PPoly` (a motion is built and sampled on every plan; importing
+scipy.interpolate alone costs more than a whole 1-D plan).
+"""
 
 from __future__ import annotations
 
@@ -8,11 +13,85 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import PPoly
 
 from sloshkit.motion.sampling import sample_motion
 
 FloatArray = NDArray[np.float64]
+
+
+class PiecewisePolynomial:
+    """A piecewise polynomial in the layout of `scipy.interpolate.PPoly`: on piece i,
+    p(t) = sum_m c[m, i] (t - x[i])^(k - m), k = c.shape[0] - 1, for x[i] <= t < x[i + 1].
+
+    Evaluated as ``PPoly`` evaluates (the piece found as x[i] <= t < x[i + 1], the last piece
+    closed on the right, the end pieces extended outside [x[0], x[-1]]; the powers summed from
+    the lowest up), so it gives the values of the equivalent ``PPoly`` (Stoer & Bulirsch,
+    *Introduction to Numerical Analysis*, 3rd ed., Springer (2002) §2.4: the local power form
+    of a piecewise polynomial). Accepts a ``PPoly`` as well (`of`).
+
+    Parameters
+    ----------
+    c : array_like
+        Coefficients, shape (k + 1, pieces), highest power first.
+    x : array_like
+        Breakpoints, shape (pieces + 1,), non-decreasing.
+
+    Examples
+    --------
+    >>> p = PiecewisePolynomial([[1.0, -1.0], [0.0, 1.0]], [0.0, 1.0, 2.0])  # t, then 1 - (t-1)
+    >>> p(np.array([0.5, 1.5, 2.0])).tolist(), p.derivative()(1.5).item()
+    ([0.5, 0.5, 0.0], -1.0)
+    """
+
+    __slots__ = ("c", "x")
+
+    def __init__(self, c: ArrayLike, x: ArrayLike) -> None:
+        self.c = np.asarray(c, dtype=float)
+        self.x = np.asarray(x, dtype=float)
+        if self.c.ndim != 2 or self.x.shape != (self.c.shape[1] + 1,):
+            raise ValueError("c must be (order + 1, pieces) and x (pieces + 1,)")
+        if np.any(np.diff(self.x) < 0.0):
+            raise ValueError("x must be non-decreasing")
+
+    @classmethod
+    def of(cls, polynomial: PiecewisePolynomial | object) -> PiecewisePolynomial:
+        """The polynomial itself, or a copy of any object with ``c`` and ``x`` (a ``PPoly``)."""
+        if isinstance(polynomial, cls):
+            return polynomial
+        return cls(polynomial.c, polynomial.x)  # type: ignore[attr-defined]
+
+    def __call__(self, t: ArrayLike) -> FloatArray:
+        """p(t), with the shape of ``t``."""
+        points = np.asarray(t, dtype=float)
+        flat = points.reshape(-1)
+        pieces = self.c.shape[1]
+        if pieces == 1:
+            piece = np.zeros(flat.size, dtype=np.intp)
+        else:
+            piece = np.searchsorted(self.x, flat, side="right") - 1
+            np.minimum(np.maximum(piece, 0, out=piece), pieces - 1, out=piece)
+        local = flat - self.x[piece]
+        value = np.zeros_like(flat)
+        power = np.ones_like(flat)
+        order = self.c.shape[0] - 1
+        for m in range(order, -1, -1):
+            value = value + self.c[m, piece] * power
+            if m > 0:
+                power = power * local
+        return value.reshape(points.shape)
+
+    def derivative(self, nu: int = 1) -> PiecewisePolynomial:
+        """The ``nu``-th derivative (the zero polynomial past the order)."""
+        if nu == 0:
+            return PiecewisePolynomial(self.c.copy(), self.x)
+        kept = self.c[:-nu].copy()
+        if kept.shape[0] == 0:
+            return PiecewisePolynomial(np.zeros((1, self.c.shape[1])), self.x)
+        powers = np.arange(kept.shape[0] + nu - 1, nu - 1, -1)  # power of each row before
+        kept *= np.array([math.prod(range(p - nu + 1, p + 1)) for p in powers], dtype=float)[
+            :, None
+        ]
+        return PiecewisePolynomial(kept, self.x)
 
 
 @dataclass(frozen=True, eq=False)
@@ -25,8 +104,9 @@ class Motion:
     ----------
     name : str
         The law's name.
-    position_pp : scipy.interpolate.PPoly
-        Position s(t) [m], t from 0 to T [s].
+    position_pp : PiecewisePolynomial
+        Position s(t) [m], t from 0 to T [s] (a `scipy.interpolate.PPoly` is accepted and
+        converted).
 
     Examples
     --------
@@ -37,7 +117,10 @@ class Motion:
     """
 
     name: str
-    position_pp: PPoly
+    position_pp: PiecewisePolynomial
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "position_pp", PiecewisePolynomial.of(self.position_pp))
 
     @property
     def duration_s(self) -> float:
@@ -54,8 +137,8 @@ class Motion:
         """Times where the polynomial pieces join [s]."""
         return np.asarray(self.position_pp.x, dtype=float)
 
-    def derivative_pp(self, order: int) -> PPoly:
-        """The ``order``-th time derivative as a `PPoly` (0: position ... 3: jerk)."""
+    def derivative_pp(self, order: int) -> PiecewisePolynomial:
+        """The ``order``-th time derivative (0: position ... 3: jerk)."""
         return self.position_pp if order == 0 else self.position_pp.derivative(order)
 
     def evaluate(self, time_s: ArrayLike, order: int = 0) -> FloatArray:
@@ -144,7 +227,7 @@ def _horner(coefficients: FloatArray, t: FloatArray) -> FloatArray:
     return value
 
 
-def _peak_abs(pp: PPoly) -> float:
+def _peak_abs(pp: PiecewisePolynomial) -> float:
     """max |p(t)| over the breakpoints' span, from each piece's ends and interior extrema.
 
     Pieces up to cubic (every motion built from jerk segments) are done for all pieces at once:
@@ -203,7 +286,7 @@ def piecewise_constant_jerk(
 
     Position, velocity and acceleration are continuous from segment to segment (the
     acceleration may jump at a segment's start when ``start_accelerations`` is given); the
-    result is an exact cubic `scipy.interpolate.PPoly`. Segments of zero or negative length
+    result is an exact cubic `PiecewisePolynomial`. Segments of zero or negative length
     are skipped.
 
     Parameters
@@ -245,7 +328,7 @@ def piecewise_constant_jerk(
         velocity += acceleration * width + jerk * width**2 / 2.0
         acceleration += jerk * width
         breaks.append(breaks[-1] + width)
-    return Motion(name, PPoly(np.asarray(columns, dtype=float).T, np.asarray(breaks)))
+    return Motion(name, PiecewisePolynomial(np.asarray(columns, dtype=float).T, breaks))
 
 
 #: The former private name, kept only for the modules of plan/ that still import it (the 3-D

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.interpolate import CubicSpline, PPoly, make_interp_spline
 
 from sloshkit.errors import InputError, require_increasing
-from sloshkit.motion.profile import Motion
+from sloshkit.motion.profile import Motion, PiecewisePolynomial
 
 
 def from_samples(
@@ -51,6 +50,8 @@ def from_samples(
     >>> round(law.distance_m, 9)
     0.1
     """
+    from scipy.interpolate import CubicSpline, PPoly, make_interp_spline  # slow: only here
+
     t = np.asarray(time_s, dtype=float)
     if (position_m is None) == (acceleration_m_s2 is None):
         raise InputError("motion samples", "both/none", "give either position or acceleration")
@@ -74,4 +75,4 @@ def from_samples(
     else:
         pp = CubicSpline(t, values).antiderivative(2)
     # Trim the spline's padding pieces to [0, T].
-    return Motion(name, PPoly(pp.c, pp.x, extrapolate=True))
+    return Motion(name, PiecewisePolynomial(pp.c, pp.x))

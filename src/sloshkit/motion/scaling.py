@@ -6,47 +6,10 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import PPoly
 
-from sloshkit.motion.profile import Motion
+from sloshkit.motion.profile import Motion, PiecewisePolynomial
 
 FloatArray = NDArray[np.float64]
-
-
-def _compile_sampler() -> Any:
-    try:
-        from numba import njit
-    except ImportError:  # pragma: no cover
-        return None
-
-    @njit(cache=True, fastmath=True)  # type: ignore[untyped-decorator]
-    def sampler(breaks, coefficients, durations, sample_period, steps):  # type: ignore[no-untyped-def]
-        cases = durations.size
-        pieces = breaks.size - 1
-        order = coefficients.shape[0]
-        out = np.zeros((steps, cases))
-        piece = np.zeros(cases, dtype=np.int64)
-        inverse = 1.0 / durations
-        for k in range(steps):
-            for c in range(cases):
-                tau = k * sample_period * inverse[c]
-                if tau > breaks[pieces]:
-                    continue
-                p = piece[c]
-                while p < pieces - 1 and tau >= breaks[p + 1]:
-                    p += 1
-                piece[c] = p
-                x = tau - breaks[p]
-                value = 0.0
-                for j in range(order):
-                    value = value * x + coefficients[j, p]
-                out[k, c] = value * inverse[c]
-        return out
-
-    return sampler
-
-
-_SAMPLER: Any = None
 
 
 def scaled_velocity_samples(
@@ -54,12 +17,14 @@ def scaled_velocity_samples(
 ) -> FloatArray:
     """Velocity samples (steps, cases) of a law time-scaled to each duration.
 
-    A rest-to-rest law of shape s_1(tau) on [0, 1] moved in time T has v_T(t) = v_1(t/T) / T.
-    Compiled with numba when available (same values as evaluating the `PPoly`).
+    A rest-to-rest law of shape s_1(tau) on [0, 1] moved in time T has v_T(t) = v_1(t/T) / T,
+    zero for tau = t/T beyond the last breakpoint. Each piece is evaluated in Horner form at
+    every sample of every case at once (plain numpy: compiling a loop would cost more time to
+    load than it saves here).
 
     Parameters
     ----------
-    unit_law_velocity : scipy.interpolate.PPoly
+    unit_law_velocity : PiecewisePolynomial or scipy.interpolate.PPoly
         v_1 on [0, 1], zero outside it.
     durations_s : numpy.ndarray
         Durations T, one per case [s].
@@ -82,27 +47,23 @@ def scaled_velocity_samples(
     >>> [round(float(x), 6) for x in v[1]]
     [0.1875, 0.052734]
     """
-    global _SAMPLER
-    durations = np.asarray(durations_s, dtype=float)
-    if _SAMPLER is None:
-        _SAMPLER = _compile_sampler() or False
-    if _SAMPLER:
-        return np.asarray(
-            _SAMPLER(
-                np.asarray(unit_law_velocity.x, dtype=float),
-                np.ascontiguousarray(unit_law_velocity.c, dtype=float),
-                durations,
-                float(sample_period_s),
-                int(steps),
-            ),
-            dtype=float,
-        )
-    time = np.arange(steps, dtype=float)[:, None] * sample_period_s
-    tau = time / durations[None, :]
-    inside = tau <= 1.0
-    values = np.zeros((steps, durations.size))
-    values[inside] = unit_law_velocity(tau[inside])
-    return np.asarray(values / durations[None, :], dtype=float)
+    breaks = np.asarray(unit_law_velocity.x, dtype=float)
+    coefficients = np.asarray(unit_law_velocity.c, dtype=float)
+    inverse = 1.0 / np.asarray(durations_s, dtype=float)
+    tau = (np.arange(steps, dtype=float) * float(sample_period_s))[:, None] * inverse[None, :]
+    pieces = breaks.size - 1
+    if pieces == 1:
+        local = tau - breaks[0]
+        value = np.full_like(tau, coefficients[0, 0])
+        for row in coefficients[1:, 0]:
+            value = value * local + row
+    else:
+        piece = np.clip(np.searchsorted(breaks, tau, side="right") - 1, 0, pieces - 1)
+        local = tau - breaks[piece]
+        value = coefficients[0, piece]
+        for row in coefficients[1:]:
+            value = value * local + row[piece]
+    return np.where(tau <= breaks[-1], value * inverse[None, :], 0.0)
 
 
 def unit_duration_shape(motion: Motion) -> Motion:
@@ -128,4 +89,4 @@ def unit_duration_shape(motion: Motion) -> Motion:
     scale = motion.duration_s
     order = pp.c.shape[0] - 1
     powers = scale ** np.arange(order, -1, -1, dtype=float)  # c_i multiplies (t - x)^(order-i)
-    return Motion(motion.name, PPoly(pp.c * powers[:, None], pp.x / scale))
+    return Motion(motion.name, PiecewisePolynomial(pp.c * powers[:, None], pp.x / scale))

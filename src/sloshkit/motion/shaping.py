@@ -18,15 +18,14 @@ References
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import PPoly
-from scipy.optimize import least_squares
 
 from sloshkit.errors import InputError, require_in_range, require_positive
-from sloshkit.motion.profile import Motion
+from sloshkit.motion.profile import Motion, PiecewisePolynomial
 
 FloatArray = NDArray[np.float64]
 SHAPER_NAMES: tuple[str, ...] = ("zv", "zvd", "ei")
@@ -81,6 +80,46 @@ class Shaper:
                 merged_t.append(float(t))
                 merged_a.append(float(a))
         return Shaper(f"{self.name}*{other.name}", np.array(merged_a), np.array(merged_t))
+
+
+#: Largest residual of the extra-insensitive shaper's equations accepted from `_newton`.
+NEWTON_TOLERANCE = 1e-10
+
+
+def _newton(
+    equations: Callable[[FloatArray], FloatArray], start: FloatArray, iterations: int = 30
+) -> tuple[FloatArray, bool]:
+    """A root of a square system by full Newton steps with a central-difference Jacobian
+    (Dennis & Schnabel, *Numerical Methods for Unconstrained Optimization and Nonlinear
+    Equations*, SIAM (1996) §5.1); (root, converged).
+
+    Newton steps are taken while they reduce the largest residual; the best point is the root
+    when that residual is below `NEWTON_TOLERANCE` (the equations' own rounding floor is about
+    1e-12). A step that does not reduce a larger residual means the start is too far from the
+    root for plain Newton: not converged (the caller falls back to a trust-region solver).
+    """
+    x = np.asarray(start, dtype=float).copy()
+    f = equations(x)
+    norm = float(np.max(np.abs(f)))
+    for _ in range(iterations):
+        jacobian = np.empty((f.size, x.size))
+        for column in range(x.size):
+            step = 1e-6 * max(abs(x[column]), 1e-3)
+            shifted = x.copy()
+            shifted[column] += step
+            above = equations(shifted)
+            shifted[column] -= 2.0 * step
+            jacobian[:, column] = (above - equations(shifted)) / (2.0 * step)
+        try:
+            trial = x + np.linalg.solve(jacobian, -f)
+        except np.linalg.LinAlgError:
+            break
+        trial_f = equations(trial)
+        trial_norm = float(np.max(np.abs(trial_f)))
+        if not trial_norm < norm:  # also NaN: x is as good as Newton gets
+            break
+        x, f, norm = trial, trial_f, trial_norm
+    return x, norm < NEWTON_TOLERANCE
 
 
 def _damped_half_period(omega_rad_s: float, damping_ratio: float) -> tuple[float, float]:
@@ -229,9 +268,15 @@ def ei(omega_rad_s: float, damping_ratio: float, tolerance: float = 0.05) -> Sha
         )
 
     start = np.array([*amplitudes0, period / 2, period, zero_ratio, 2.0 - zero_ratio])
-    solution = least_squares(equations, start, xtol=1e-15, ftol=1e-15, gtol=1e-15)
-    a1, a2, a3, t2, t3, _, _ = solution.x
-    if not solution.success or np.max(np.abs(solution.fun)) > 1e-8 or min(a1, a2, a3) <= 0:
+    unknowns, converged = _newton(equations, start)
+    if not converged or min(unknowns[:3]) <= 0:
+        # The trust region of scipy.optimize (slow to import) where plain Newton fails.
+        from scipy.optimize import least_squares
+
+        solution = least_squares(equations, start, xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        unknowns, converged = solution.x, bool(solution.success)
+    a1, a2, a3, t2, t3, _, _ = unknowns
+    if not converged or np.max(np.abs(equations(unknowns))) > 1e-8 or min(a1, a2, a3) <= 0:
         raise InputError(
             "damping_ratio", damping_ratio, "no extra-insensitive shaper found; use zv or zvd"
         )
@@ -370,10 +415,15 @@ def shape_motion(motion: Motion, shaper: Shaper) -> Motion:
             piece = int(
                 np.clip(np.searchsorted(pp.x, local, side="right") - 1, 0, pp.c.shape[1] - 1)
             )
-            polynomial = np.poly1d(pp.c[:, piece])
-            shift = breaks[j] - delay - pp.x[piece]
+            shift = float(breaks[j] - delay - pp.x[piece])
+            # Taylor coefficients p^(k)(shift) / k! of the piece: its derivatives term by
+            # term, each evaluated by Horner's rule (plain floats: a few terms per piece).
+            derivative = [float(c) for c in pp.c[:, piece]]
             for k in range(order + 1):
-                coefficients[order - k, j] += (
-                    amplitude * polynomial.deriv(k)(shift) / math.factorial(k)
-                )
-    return Motion(f"{motion.name}+{shaper.name}", PPoly(coefficients, breaks))
+                value = 0.0
+                for c in derivative:
+                    value = value * shift + c
+                coefficients[order - k, j] += amplitude * value / math.factorial(k)
+                top = len(derivative) - 1
+                derivative = [c * (top - i) for i, c in enumerate(derivative[:-1])]
+    return Motion(f"{motion.name}+{shaper.name}", PiecewisePolynomial(coefficients, breaks))

@@ -27,17 +27,17 @@ the longest move scaled by D / D*.
 The smooth variant at a fixed, slightly longer duration minimises the total variation of the
 jerk (the L1 norm of its rate, sum |u_k - u_{k-1}|) over the same constraints with the
 distance fixed: another linear program (HiGHS's quadratic solver took seconds on the squared
-rate).
+rate), started from the optimal basis of the longest move at that duration (dual feasible for
+it: its costs are on the jerk jumps only).
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import sparse
 
 from sloshkit.highs import new_highs
 from sloshkit.plan.grid_moves import Limits, Move, Pendulum, measure, steps_for_duration
@@ -62,6 +62,38 @@ FACETS = 256
 IPM_SIZE = 1000
 
 
+class Triplets(NamedTuple):
+    """A sparse matrix as (row, column, value) entries, duplicates summed."""
+
+    rows: NDArray[np.int64]
+    columns: NDArray[np.int64]
+    values: FloatArray
+    shape: tuple[int, int]
+
+    @classmethod
+    def summed(
+        cls,
+        rows: NDArray[np.int64],
+        columns: NDArray[np.int64],
+        values: FloatArray,
+        shape: tuple[int, int],
+    ) -> Triplets:
+        """The entries sorted by column, then row, with duplicate positions summed."""
+        order = np.lexsort((rows, columns))
+        rows, columns, values = rows[order], columns[order], values[order]
+        first = np.ones(rows.size, dtype=bool)
+        first[1:] = (rows[1:] != rows[:-1]) | (columns[1:] != columns[:-1])
+        starts = np.flatnonzero(first)
+        return cls(rows[starts], columns[starts], np.add.reduceat(values, starts), shape)
+
+    def compressed_columns(self) -> tuple[NDArray[np.int32], NDArray[np.int32], FloatArray]:
+        """(start, index, value): the column-wise layout HiGHS takes (the entries are sorted
+        by column)."""
+        counts = np.bincount(self.columns, minlength=self.shape[1])
+        start = np.concatenate(([0], np.cumsum(counts))).astype(np.int32)
+        return start, self.rows.astype(np.int32), np.asarray(self.values, dtype=float)
+
+
 class ExportGrid:
     """The linear program of one problem on its export grid, built once and re-solved.
 
@@ -70,11 +102,15 @@ class ExportGrid:
     nothing else) and only the last step's few coefficients depend on tau. Each solve changes
     those bounds and coefficients and restarts the simplex from the previous basis.
 
-    The pendulum states (theta, theta' + v / L) at the samples are variables, so the angle
-    limits are bounds, not rows. A solution is never trusted as it stands: its end state is
-    projected onto rest (the solver meets equalities to 1e-7 only), and the move is simulated
-    again with the verification's discretisation; its reach is the distance divided by the
-    largest ratio of any quantity to its limit (every constraint is homogeneous).
+    The pendulum states (theta, theta' + v / L) at the controller's nodes are variables (their
+    angle limits are bounds); the slosh check grid's sub-samples inside a step are rows over the
+    step's first node state, v, a and jerk (a state and an equality per sub-sample would make
+    the programs a third larger and, measured, slower), except in the last step, whose
+    sub-samples are variables because their coefficients change with tau. A solution is never
+    trusted as it stands: its end state is projected onto rest (the solver meets equalities to
+    1e-7 only), and the move is simulated again with the verification's discretisation; its
+    reach is the distance divided by the largest ratio of any quantity to its limit (every
+    constraint is homogeneous).
 
     Parameters
     ----------
@@ -102,7 +138,6 @@ class ExportGrid:
 
     def __init__(self, limits: Limits, pendulums: list[Pendulum], steps: int) -> None:
         self.limits, self.pendulums, self.steps = limits, pendulums, steps
-        self._fine = steps * limits.substeps  # slosh check sub-samples 1..M
         self.programs = 0
         self.iterations = 0
         self._highs: Any = None
@@ -112,19 +147,20 @@ class ExportGrid:
         )
 
     # Layout: u (jerk / jmax) 0..N-1, a (/ amax) and v (/ vmax) at nodes 1..N, then per
-    # pendulum its states (theta / theta_max, y / (vmax / L)) at samples 1..N.
+    # pendulum its states (theta / theta_max, y / (vmax / L)) at nodes 1..N (`_state_base`),
+    # then per pendulum its states at the last step's sub-samples 1..m-1 (`_end_base`).
     def _columns(self) -> tuple[Any, Any, Any]:
         n = self.steps
         steps = np.arange(n)
         return steps, n + steps, 2 * n + steps
 
-    def _assemble(self, tau: float) -> tuple[Any, FloatArray, FloatArray, FloatArray]:
-        """Constraint matrix (CSC), row bounds and the distance / D per variable."""
+    def _assemble(self, tau: float) -> tuple[Triplets, FloatArray, FloatArray, FloatArray]:
+        """Constraint matrix, row bounds and the distance / D per variable."""
         lim, ts, n = self.limits, self.limits.sample_period_s, self.steps
         h = np.full(n, ts)
         h[-1] = tau
         jmax, amax, vmax = lim.max_jerk_m_s3, lim.max_acceleration_m_s2, lim.max_velocity_m_s
-        width = 3 * n + 2 * len(self.pendulums) * self._fine
+        width = self._end_base(len(self.pendulums))
         steps = np.arange(n)
         inner = steps[1:]
         iu, ia, iv = self._columns()
@@ -147,50 +183,72 @@ class ExportGrid:
         put(n + inner, ia[:-1], -amax * h[1:] / vmax)
         put(n + steps, iu, -jmax * h**2 / (2 * vmax))
         row = 2 * n
-        # Pendulums on the slosh check grid (m sub-samples per step, m = limits.substeps), in
-        # s = z + g1 v: s_{j+1} = Phi s_j + g1 v_{j+1} + (Gamma - Phi g1) v_j, v_j the velocity
-        # at sub-sample j (a combination of its step's node v, a and jerk; 0 from T on).
-        fine = self._fine
-        listed = self._velocity_terms(tau)
-        terms = (
-            np.array([t[0] for t in listed], dtype=np.int64),
-            np.array([t[1] for t in listed], dtype=np.int64),
-            np.array([t[2] for t in listed], dtype=float),
-        )
-        for index, pend in enumerate(self.pendulums):
-            scale = np.array([lim.max_angle_rad, vmax / pend.length_m])
-            phi = pend.phi * scale[None, :] / scale[:, None]
-            now = pend.g1 * vmax / scale
-            before = (pend.gamma - pend.phi @ pend.g1) * vmax / scale
-            base = 3 * n + 2 * fine * index
-            samples = np.arange(fine)  # sub-samples 1..M at positions 0..M-1
+        # Pendulums: the state s = (theta, y) at the nodes 1..N are variables, each node the
+        # previous one propagated over the step's m sub-steps of the slosh check grid
+        # (m = limits.substeps; `_substep_maps`). The sub-samples inside a step are
+        # combinations of the step's first node state and its v, a and jerk, so their angle
+        # limits are rows, not variables and equalities; only the last step's sub-samples
+        # (their coefficients change with tau) are variables (`_end_base`), for the residual.
+        full = [self._substep_maps(pend, None) for pend in self.pendulums]
+        end = [self._substep_maps(pend, tau) for pend in self.pendulums]
+        m = lim.substeps
+        self._node_rows, self._end_rows = [], []
+        for index in range(len(self.pendulums)):
+            base = self._state_base(index)
+            self._node_rows.append(row)
             for c in range(2):
-                here = row + 2 * samples + c
-                put(here, base + 2 * samples + c, 1.0)
+                node = row + 2 * steps + c  # node k + 1, reached by step k
+                put(node, base + 2 * steps + c, 1.0)
                 for d in range(2):
-                    put(here[1:], base + 2 * samples[:-1] + d, -phi[c, d])
-            sample, column, weight = terms
-            later = sample < fine
-            for c in range(2):
-                put(row + 2 * (sample - 1) + c, column, -now[c] * weight)
-                put(row + 2 * sample[later] + c, column[later], -before[c] * weight[later])
-            row += 2 * fine
+                    put(node[1:], base + 2 * (inner - 1) + d, -full[index][0][m, c, d])
+                put(node[:-1], iu[:-1], -full[index][1][m, c, 2])
+                put(node[1:-1], iv[: n - 2], -full[index][1][m, c, 0])
+                put(node[1:-1], ia[: n - 2], -full[index][1][m, c, 1])
+            row += 2 * n
+        for index in range(len(self.pendulums)):
+            self._end_rows.append(row)
+            for sub in range(1, m):
+                for c in range(2):
+                    put([row], [self._end_base(index) + 2 * (sub - 1) + c], 1.0)
+                    if n > 1:
+                        for d in range(2):
+                            put(
+                                [row],
+                                [self._state_base(index) + 2 * (n - 2) + d],
+                                -full[index][0][sub, c, d],
+                            )
+                    row += 1
+        for r, column, value in self._last_step_entries(tau, end):
+            put([r], [column], value)
         equalities = row
         # Two-sided rows |row| <= 1: the velocity within each step (its Bernstein midpoint
-        # v_k + a_k h_k / 2 bounds the quadratic with v_k and v_{k+1}), the wall elevation.
+        # v_k + a_k h_k / 2 bounds the quadratic with v_k and v_{k+1}), the angle at the
+        # sub-samples inside the steps but the last, the wall elevation.
+        self._bernstein = row
         mid = np.arange(n - 1)
         put(row + mid, iv[mid], 1.0)
         put(row + mid, ia[mid], amax * h[1:] / (2 * vmax))
         row += n - 1
+        for index, pend in enumerate(self.pendulums):
+            if pend.limited:
+                for sub in range(1, m):
+                    row = self._put_inside(put, row, [(index, 1.0)], full, sub)
         if lim.max_wall_elevation_m is not None:
-            samples = np.arange(fine)
             for model in sorted({p.model for p in self.pendulums}):
-                for index, pend in enumerate(self.pendulums):
-                    if pend.model == model:
-                        base = 3 * n + 2 * fine * index
-                        factor = pend.wall_factor_m * lim.max_angle_rad / lim.max_wall_elevation_m
-                        put(row + samples, base + 2 * samples, factor)
-                row += fine
+                members = [
+                    (index, pend.wall_factor_m * lim.max_angle_rad / lim.max_wall_elevation_m)
+                    for index, pend in enumerate(self.pendulums)
+                    if pend.model == model
+                ]
+                for index, factor in members:  # at the nodes 1..N
+                    put(row + steps, self._state_base(index) + 2 * steps, factor)
+                row += n
+                for sub in range(1, m):  # inside the steps but the last
+                    row = self._put_inside(put, row, members, full, sub)
+                for sub in range(1, m):  # inside the last step
+                    for index, factor in members:
+                        put([row], [self._end_base(index) + 2 * (sub - 1)], factor)
+                    row += 1
         two_sided = row
         # Residual polygon: cos(p) theta_j + sin(p) B_j <= r, B = (theta' + zeta w theta) / w_d
         # (theta' = y where v = 0), at each sub-sample of the last step; those before T are
@@ -203,8 +261,12 @@ class ExportGrid:
                 zeta_w = pend.damping_ratio * pend.omega_rad_s / damped
                 theta = lim.max_angle_rad / lim.max_residual_rad
                 rate = vmax / pend.length_m / lim.max_residual_rad / damped
-                for sub in range(1, lim.substeps + 1):
-                    last = 3 * n + 2 * fine * index + 2 * (fine - lim.substeps + sub - 1)
+                for sub in range(1, m + 1):
+                    last = (
+                        self._state_base(index) + 2 * (n - 1)
+                        if sub == m
+                        else self._end_base(index) + 2 * (sub - 1)
+                    )
                     facet = row + np.arange(FACETS)
                     put(
                         facet,
@@ -222,11 +284,9 @@ class ExportGrid:
         cost /= lim.distance_m
         put(np.full(width, row), np.arange(width), cost)
         row += 1
-        matrix = sparse.csc_matrix(
-            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-            shape=(row, width),
+        matrix = Triplets.summed(
+            np.concatenate(rows), np.concatenate(cols), np.concatenate(vals), (row, width)
         )
-        matrix.sum_duplicates()
         bound = 1.0 - SAFETY_MARGIN
         lower = np.zeros(row)
         upper = np.zeros(row)
@@ -242,27 +302,70 @@ class ExportGrid:
         """Whether sub-sample ``sub`` (1..m) of the last step is at or after the end T."""
         return sub * self.limits.slosh_period_s >= tau - 1e-12
 
-    def _velocity_terms(self, tau: float) -> list[tuple[int, int, float]]:
-        """(sub-sample j in 1..M, column, weight): the velocity at j / vmax as a combination
-        of the node velocity, node acceleration and step jerk (scaled variables); the
-        sub-samples of the last step at or after T (offset >= tau) have none (at rest)."""
-        lim, n, m = self.limits, self.steps, self.limits.substeps
-        iu, ia, iv = self._columns()
-        vmax = lim.max_velocity_m_s
-        terms: list[tuple[int, int, float]] = []
-        for j in range(1, self._fine + 1):
-            step, sub = divmod(j, m)
-            if sub == 0:  # a node (node n is fixed at rest)
-                terms.append((j, int(iv[step - 1]), 1.0))
-                continue
+    def _state_base(self, index: int) -> int:
+        """First column of pendulum ``index``'s node states (theta, y at nodes 1..N)."""
+        return 3 * self.steps + 2 * self.steps * index
+
+    def _end_base(self, index: int) -> int:
+        """First column of pendulum ``index``'s states at the last step's inner sub-samples
+        (theta, y at sub-samples 1..m-1); ``index`` = the number of pendulums: the width."""
+        m = self.limits.substeps
+        return 3 * self.steps + 2 * self.steps * len(self.pendulums) + 2 * (m - 1) * index
+
+    def _substep_maps(self, pend: Pendulum, tau: float | None) -> tuple[FloatArray, FloatArray]:
+        """(P, q), shapes (m + 1, 2, 2) and (m + 1, 2, 3): the pendulum's scaled state at
+        sub-sample i of a step is P[i] s_k + q[i] (v_k, a_k, jerk_k) (scaled variables, s_k
+        the state at the step's first node), by the check grid's recursion in s = z + g1 v:
+        s_{i+1} = Phi s_i + g1 v_{i+1} + (Gamma - Phi g1) v_i, v_i = v_k + a_k o + j o^2 / 2 at
+        the offset o = i Ts / m (Franklin, Powell & Workman (1998) §6.3.2). ``tau``: the last
+        step, ``tau`` long, at rest from its end on; None: a full step."""
+        lim, m = self.limits, self.limits.substeps
+        state = np.array([lim.max_angle_rad, lim.max_velocity_m_s / pend.length_m])
+        inputs = np.array([lim.max_velocity_m_s, lim.max_acceleration_m_s2, lim.max_jerk_m_s3])
+        before = pend.gamma - pend.phi @ pend.g1
+
+        def velocity(sub: int) -> FloatArray:  # v at sub-sample ``sub`` per (v_k, a_k, j_k)
             offset = sub * lim.slosh_period_s
-            if step == n - 1 and offset >= tau - 1e-12:
-                continue
-            if step >= 1:
-                terms.append((j, int(iv[step - 1]), 1.0))
-                terms.append((j, int(ia[step - 1]), lim.max_acceleration_m_s2 * offset / vmax))
-            terms.append((j, int(iu[step]), lim.max_jerk_m_s3 * offset**2 / (2 * vmax)))
-        return terms
+            if tau is not None and offset >= tau - 1e-12:
+                return np.zeros(3)
+            return np.array([1.0, offset, offset**2 / 2])
+
+        propagate = np.zeros((m + 1, 2, 2))
+        inject = np.zeros((m + 1, 2, 3))
+        propagate[0] = np.eye(2)
+        for sub in range(m):
+            propagate[sub + 1] = pend.phi @ propagate[sub]
+            inject[sub + 1] = (
+                pend.phi @ inject[sub]
+                + np.outer(pend.g1, velocity(sub + 1))
+                + np.outer(before, velocity(sub))
+            )
+        scaled_propagate = propagate * state[None, None, :] / state[None, :, None]
+        scaled_inject = inject * inputs[None, None, :] / state[None, :, None]
+        return scaled_propagate, scaled_inject
+
+    def _put_inside(
+        self,
+        put: Any,
+        row: int,
+        members: list[tuple[int, float]],
+        maps: list[tuple[FloatArray, FloatArray]],
+        sub: int,
+    ) -> int:
+        """Rows sum_p weight_p theta_p at sub-sample ``sub`` of every step but the last (one
+        row per step, from ``row``); returns the next free row."""
+        n = self.steps
+        iu, ia, iv = self._columns()
+        here = row + np.arange(n - 1)
+        for index, weight in members:
+            propagate, inject = maps[index]
+            base = self._state_base(index)
+            for d in range(2):
+                put(here[1:], base + 2 * np.arange(n - 2) + d, weight * propagate[sub, 0, d])
+            put(here, iu[: n - 1], weight * inject[sub, 0, 2])
+            put(here[1:], iv[: n - 2], weight * inject[sub, 0, 0])
+            put(here[1:], ia[: n - 2], weight * inject[sub, 0, 1])
+        return row + n - 1
 
     def _solver(self, smooth: bool) -> Any:
         """A HiGHS instance holding the program: the longest move, or (``smooth``) the move
@@ -281,9 +384,10 @@ class ExportGrid:
         col_lower = np.full(width, -np.inf)
         col_lower[: 3 * n] = -bound
         for index, pend in enumerate(self.pendulums):
-            if pend.limited:  # |theta| <= theta_max at samples 1..N
-                fine = self._fine
-                col_lower[3 * n + 2 * fine * index : 3 * n + 2 * fine * (index + 1) : 2] = -bound
+            if pend.limited:  # |theta| <= theta_max at the nodes and the last step's samples
+                base, inner = self._state_base(index), self._end_base(index)
+                col_lower[base : base + 2 * n : 2] = -bound
+                col_lower[inner : inner + 2 * (self.limits.substeps - 1) : 2] = -bound
         col_upper = -col_lower
         _, ia, iv = self._columns()
         col_lower[[ia[-1], iv[-1]]] = col_upper[[ia[-1], iv[-1]]] = 0.0  # at rest at node N
@@ -293,15 +397,21 @@ class ExportGrid:
             # The polygon inscribed in the residual circle (nothing is scaled afterwards).
             row_upper[np.isneginf(row_lower)] *= math.cos(math.pi / FACETS)
             jumps = n + 1
-            difference = sparse.diags([1.0, -1.0], [0, -1], shape=(jumps, n))  # u_k - u_{k-1}
-            pad = sparse.csc_matrix((jumps, width - n))
-            eye = sparse.identity(jumps)
-            extra = sparse.vstack(
-                (sparse.hstack((-difference, pad, eye)), sparse.hstack((difference, pad, eye)))
+            # Rows d_k - (u_k - u_{k-1}) >= 0 and d_k + (u_k - u_{k-1}) >= 0 (u_n = u_{-1} = 0).
+            k = np.arange(jumps)
+            rows_d, cols_d, vals_d = [matrix.rows], [matrix.columns], [matrix.values]
+            for block, sign in ((0, -1.0), (1, 1.0)):
+                first = matrix.shape[0] + block * jumps
+                now, before = k[k < n], k[k >= 1]
+                rows_d += [first + now, first + before, first + k]
+                cols_d += [now, before - 1, width + k]
+                vals_d += [np.full(now.size, sign), np.full(before.size, -sign), np.ones(jumps)]
+            matrix = Triplets.summed(
+                np.concatenate(rows_d),
+                np.concatenate(cols_d),
+                np.concatenate(vals_d),
+                (matrix.shape[0] + 2 * jumps, width + jumps),
             )
-            matrix = sparse.vstack(
-                (sparse.hstack((matrix, sparse.csc_matrix((matrix.shape[0], jumps)))), extra)
-            ).tocsc()
             row_lower = np.concatenate((row_lower, np.zeros(2 * jumps)))
             row_upper = np.concatenate((row_upper, np.full(2 * jumps, np.inf)))
             col_lower = np.concatenate((col_lower, np.zeros(jumps)))
@@ -314,9 +424,7 @@ class ExportGrid:
         lp.col_lower_, lp.col_upper_ = col_lower, col_upper
         lp.row_lower_, lp.row_upper_ = row_lower, row_upper
         lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-        lp.a_matrix_.start_ = matrix.indptr.astype(np.int32)
-        lp.a_matrix_.index_ = matrix.indices.astype(np.int32)
-        lp.a_matrix_.value_ = matrix.data
+        lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = matrix.compressed_columns()
         lp.sense_ = highspy.ObjSense.kMinimize if smooth else highspy.ObjSense.kMaximize
         solver = new_highs(threads=1)
         solver.setOptionValue("solver", "simplex")
@@ -346,7 +454,7 @@ class ExportGrid:
             lim = self.limits
             jmax, amax, vmax = lim.max_jerk_m_s3, lim.max_acceleration_m_s2, lim.max_velocity_m_s
             last, before, distance_row = n - 1, n - 2, self._matrix.shape[0] - 1
-            bernstein = 2 * n + 2 * len(self.pendulums) * self._fine + before
+            bernstein = self._bernstein + before
             entries = [
                 (last, iu[last], -jmax * tau / amax),
                 (n + last, iu[last], -jmax * tau**2 / (2 * vmax)),
@@ -375,30 +483,28 @@ class ExportGrid:
             for r, column, value in entries:
                 solver.changeCoeff(int(r), int(column), value)
 
-    def _last_step_entries(self, tau: float) -> list[tuple[int, int, float]]:
-        """The recursion coefficients of the last step's sub-samples for a last step ``tau``
-        (those at or after T drop their velocity terms): (row, column, value), every entry of
-        those rows on the last step's columns, zeros included."""
-        lim, n, m, fine = self.limits, self.steps, self.limits.substeps, self._fine
+    def _last_step_entries(
+        self, tau: float, maps: list[tuple[FloatArray, FloatArray]] | None = None
+    ) -> list[tuple[int, int, float]]:
+        """The coefficients of the last step's v, a and jerk in the rows of node N and of the
+        last step's inner sub-samples, for a last step ``tau`` (the sub-samples at or after T
+        drop their velocity terms): (row, column, value), zeros included."""
+        n, m = self.steps, self.limits.substeps
         iu, ia, iv = self._columns()
-        columns = [int(iu[n - 1])] + ([int(iv[n - 2]), int(ia[n - 2])] if n > 1 else [])
-        first = (n - 1) * m + 1
-        weights: dict[int, dict[int, float]] = {}
-        for j, column, weight in self._velocity_terms(tau):
-            if j >= first - 1 and column in columns:
-                weights.setdefault(j, {})[column] = weight
+        columns = [(int(iu[n - 1]), 2)] + (
+            [(int(iv[n - 2]), 0), (int(ia[n - 2]), 1)] if n > 1 else []
+        )
+        if maps is None:
+            maps = [self._substep_maps(pend, tau) for pend in self.pendulums]
         entries = []
-        for index, pend in enumerate(self.pendulums):
-            scale = np.array([lim.max_angle_rad, lim.max_velocity_m_s / pend.length_m])
-            now = pend.g1 * lim.max_velocity_m_s / scale
-            before = (pend.gamma - pend.phi @ pend.g1) * lim.max_velocity_m_s / scale
-            row = 2 * n + 2 * fine * index
-            for j in range(first, fine + 1):
-                for c in range(2):
-                    for column in columns:
-                        value = -now[c] * weights.get(j, {}).get(column, 0.0)
-                        value -= before[c] * weights.get(j - 1, {}).get(column, 0.0)
-                        entries.append((row + 2 * (j - 1) + c, column, float(value)))
+        for index, (_, inject) in enumerate(maps):
+            for c in range(2):
+                for column, which in columns:
+                    node = self._node_rows[index] + 2 * (n - 1) + c
+                    entries.append((node, column, -float(inject[m, c, which])))
+                    for sub in range(1, m):
+                        inner = self._end_rows[index] + 2 * (sub - 1) + c
+                        entries.append((inner, column, -float(inject[sub, c, which])))
         return entries
 
     def longest(self, duration_s: float) -> Move:
@@ -441,6 +547,27 @@ class ExportGrid:
         factor = (1.0 - SAFETY_MARGIN) / ratio
         return Move(jerks * factor, duration_s, tau, distance * factor, status)
 
+    def _smooth_start(self, duration_s: float) -> Any:
+        """A starting basis for the smooth program at ``duration_s``: the longest move's
+        optimal basis at that duration (one more, warm, program), the jerk-jump variables at
+        zero and their rows basic. Dual feasible for the smooth program (its costs are on the
+        jerk jumps only), it halves the dual simplex's work there against a start from
+        scratch (measured on the benchmark's problems: 0.13 against 0.29 s on the paper's).
+        None when that program does not solve."""
+        import highspy
+
+        if self.longest(duration_s).status != "Optimal":
+            return None
+        basis = self._highs.getBasis()
+        if not basis.valid:
+            return None
+        jumps = self.steps + 1
+        start = highspy.HighsBasis()
+        start.col_status = [*basis.col_status, *[highspy.HighsBasisStatus.kLower] * jumps]
+        start.row_status = [*basis.row_status, *[highspy.HighsBasisStatus.kBasic] * (2 * jumps)]
+        start.valid = True
+        return start
+
     def smoothest(self, duration_s: float) -> Move | None:
         """The move of ``duration_s`` over the distance with the least total variation of the
         jerk that meets every limit (None when the solver or the check fails).
@@ -456,7 +583,12 @@ class ExportGrid:
             Its jerks (ending exactly at rest on the target).
         """
         solver = self._solver(smooth=True)
-        if self.steps * len(self.pendulums) > IPM_SIZE:
+        basis = self._smooth_start(duration_s)
+        if basis is not None:
+            solver.setBasis(basis)
+            solver.setOptionValue("presolve", "off")
+            solver.setOptionValue("simplex_strategy", 1)  # the dual simplex
+        elif self.steps * len(self.pendulums) > IPM_SIZE:
             solver.setOptionValue("solver", "ipm")
         effective, tau = steps_for_duration(duration_s, self.limits.sample_period_s)
         self._set(solver, effective, tau, (-1, -1.0), self._bound(True))

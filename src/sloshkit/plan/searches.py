@@ -37,17 +37,23 @@ FloatArray = NDArray[np.float64]
 def _screen(
     velocities: FloatArray, durations: FloatArray, problem: PlanProblem, dt: float
 ) -> NDArray[np.bool_]:
-    """Slosh feasibility of many (samples x cases) velocity histories, with the search margin."""
+    """Slosh feasibility of many (samples x cases) velocity histories, with the search margin.
+
+    The angle and residual limits concern the first mode only: without a wall-elevation limit
+    the other modes are not simulated. The recursion runs in numpy (`batch_metrics` with
+    ``use_numba=False``): for the few hundred cases of a search, loading the compiled kernel
+    costs more than it saves.
+    """
     keep = np.ones(durations.size, dtype=bool)
     slosh = problem.slosh
+    wall = slosh.max_wall_elevation_m
     for model in problem.models():
-        metrics = batch_metrics(model, velocities, durations, dt)
+        screened = model if wall is not None else replace(model, modes=model.modes[:1])
+        metrics = batch_metrics(screened, velocities, durations, dt, use_numba=False)
         keep &= metrics.peak_angle_rad <= slosh.max_angle_rad * (1 - SEARCH_MARGIN)
         keep &= metrics.residual_angle_rad <= slosh.max_residual_rad * (1 - SEARCH_MARGIN)
-        if slosh.max_wall_elevation_m is not None:
-            keep &= metrics.peak_wall_elevation_m <= slosh.max_wall_elevation_m * (
-                1 - SEARCH_MARGIN
-            )
+        if wall is not None:
+            keep &= metrics.peak_wall_elevation_m <= wall * (1 - SEARCH_MARGIN)
     return keep
 
 
@@ -69,6 +75,27 @@ def _velocity_matrix(
         values[inside] = motion.derivative_pp(1)(local[inside])
         matrix[:, column] = values @ amplitudes
     return matrix, durations
+
+
+def _screen_motions(
+    motions: Sequence[Motion], problem: PlanProblem, shaper: Shaper
+) -> tuple[NDArray[np.bool_], FloatArray]:
+    """`_screen` of shaped motions and their durations, in blocks of similar duration (each
+    block simulated only as long as its longest move: the same numbers as one block)."""
+    dt = problem.sample_period_s
+    own = np.array([motion.duration_s for motion in motions])
+    order = np.argsort(own, kind="stable")
+    feasible = np.zeros(own.size, dtype=bool)
+    durations = np.zeros(own.size)
+    for start in range(0, own.size, _SCREEN_BLOCK):
+        block = order[start : start + _SCREEN_BLOCK]
+        velocity, durations[block] = _velocity_matrix([motions[i] for i in block], dt, shaper)
+        feasible[block] = _screen(velocity, durations[block], problem, dt)
+    return feasible, durations
+
+
+#: Cases screened together (a block is simulated as long as its longest move).
+_SCREEN_BLOCK = 50
 
 
 def _machine_floor(shape: Motion, limits: MachineLimits) -> float:
@@ -130,12 +157,11 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
             stopped = True
             break
         upper *= 4.0
-        durations = np.linspace(floor, upper, grid)
-        velocity = scaled_velocity_samples(velocity_pp, durations, dt, steps_for(upper, dt))
-        feasible = _screen(velocity, durations, problem, dt)
-        if feasible.any():
+        scan = _Scan(velocity_pp, np.linspace(floor, upper, grid), problem)
+        first = scan.first_feasible(0)
+        if first is not None:
             break
-    if stopped or not feasible.any():
+    if stopped or first is None:
         return Candidate(
             law,
             PlanStatus.INFEASIBLE,
@@ -145,7 +171,7 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
             f"no duration up to {upper:.3g} s meets the slosh limits"
             + (" (longer scans exceed the planner work limit)" if stopped else ""),
         )
-    first = int(np.argmax(feasible))
+    durations = scan.durations
     if first == 0:
         best = float(durations[0])
     else:
@@ -160,16 +186,46 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
             else:
                 low = middle
         best = high
-    for attempt in range(first, durations.size):
+    attempt: int | None = first
+    while attempt is not None:
         duration = best if attempt == first else float(durations[attempt])
-        if attempt > first and not feasible[attempt]:
-            continue
         candidate = _candidate(
             law, make_law(law, problem.distance_m, duration_s=duration), problem, started
         )
         if candidate.feasible or not _only_slosh_violations(candidate):
             return candidate
+        attempt = scan.first_feasible(attempt + 1)
     return candidate
+
+
+class _Scan:
+    """The slosh screen of a time-scaled law over a grid of increasing durations, evaluated a
+    block of durations at a time and only as far as asked: the search needs the first feasible
+    duration (and, rarely, the next ones), and each block is simulated only as long as its own
+    longest move (the same numbers as screening the whole grid at once)."""
+
+    def __init__(self, velocity_pp: object, durations: FloatArray, problem: PlanProblem):
+        self.velocity_pp, self.durations, self.problem = velocity_pp, durations, problem
+        self.feasible = np.zeros(durations.size, dtype=bool)
+        self.screened = 0  # durations[:screened] are screened
+
+    def first_feasible(self, start: int) -> int | None:
+        """The first feasible index from ``start`` on (None: none on the grid)."""
+        dt = self.problem.sample_period_s
+        while True:
+            found = np.flatnonzero(self.feasible[start : self.screened])
+            if found.size:
+                return start + int(found[0])
+            if self.screened >= self.durations.size:
+                return None
+            block = self.durations[self.screened : self.screened + _SCREEN_BLOCK]
+            velocity = scaled_velocity_samples(
+                self.velocity_pp, block, dt, steps_for(float(block[-1]), dt)
+            )
+            self.feasible[self.screened : self.screened + block.size] = _screen(
+                velocity, block, self.problem, dt
+            )
+            self.screened += block.size
 
 
 def shaper_for(name: str, model: SloshModel) -> Shaper:
@@ -258,8 +314,7 @@ def plan_shaped(problem: PlanProblem, shapers: Sequence[str] = SHAPERS) -> Candi
                     s_curve(problem.distance_m, machine.max_velocity_m_s, acceleration, jerk)
                 )
                 settings.append((acceleration, jerk))
-        velocity, durations = _velocity_matrix(bases, dt, shaper)
-        feasible = _screen(velocity, durations, problem, dt)
+        feasible, durations = _screen_motions(bases, problem, shaper)
         if not feasible.any():
             tried.append(f"{name}: nothing feasible")
             continue

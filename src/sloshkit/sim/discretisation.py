@@ -158,10 +158,12 @@ def run_recursion(
     ([0.0, 1.0, 1.5], [0.0, 1.0, 1.25])
     """
     u = np.asarray(inputs, dtype=float)
-    eigenvalues, vectors = np.linalg.eig(phi)
-    if np.linalg.cond(vectors) > _WORST_EIGENBASIS:
+    basis = _eigenbasis(
+        np.asarray(phi, dtype=float).tobytes(), np.asarray(gamma, dtype=float).tobytes()
+    )
+    if basis is None:
         return _filtered(phi, gamma, g1, u)
-    coefficients = np.linalg.solve(vectors, gamma.astype(complex))
+    eigenvalues, vectors, coefficients = basis
     count = u.shape[-1]
     smallest = float(np.min(np.abs(eigenvalues)))
     decay = -math.log(max(smallest, 1e-300))
@@ -188,6 +190,21 @@ def run_recursion(
         first = (vectors[0, 0] * modal[0] + vectors[0, 1] * modal[1]).real
         second = (vectors[1, 0] * modal[0] + vectors[1, 1] * modal[1]).real
     return first + g1[0] * u, second + g1[1] * u
+
+
+@lru_cache(maxsize=256)
+def _eigenbasis(
+    phi_bytes: bytes, gamma_bytes: bytes
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128]] | None:
+    """(eigenvalues, eigenvectors V, V^-1 gamma) of a 2x2 transition matrix and its input
+    (given as bytes, so that the planner's many recursions of one mode share them), or None
+    when V is ill-conditioned (`_WORST_EIGENBASIS`)."""
+    phi = np.frombuffer(phi_bytes, dtype=float).reshape(2, 2)
+    gamma = np.frombuffer(gamma_bytes, dtype=float)
+    eigenvalues, vectors = np.linalg.eig(phi)
+    if np.linalg.cond(vectors) > _WORST_EIGENBASIS:
+        return None
+    return eigenvalues, vectors, np.linalg.solve(vectors, gamma.astype(complex))
 
 
 def _filtered(
