@@ -16,8 +16,21 @@ timing (the naive fix), and compute times, in two tables:
 Then a 20-waypoint path for the compute-time target. Every duration is of a plan verified with
 the nonlinear 3-D model.
 
+Last (``reference``), the issue #25 cases (the measured TRD_2D, LE_3D and RD_2D paths, the
+20-waypoint path and a pick-and-place: two waypoints 0.3 m apart with a 0.1 m lift and a 90 deg
+turn about the vertical) with the issue's settings (R 49 mm, h 80 mm, water-20C, zeta 0.0066;
+15 mm peak, 2 mm residual; 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms; no angular limits; tilt up to
+30 deg): each method of ``sloshkit.plan_path`` against the independent minimum time of the
+same problem (`ocp_reference`, casadi multiple shooting of the linear slosh model, upright for
+``retime`` and ``shaped``, with free tilt for ``tilt``), without and with a robot's joint check
+(``--robot``, default ur5e at the base pose of docs/planning-3d.md). The reference optima are
+cached in ``ocp_reference_cache.json`` (keyed by a hash of the problem and of
+``ocp_reference.py``; each takes minutes on the shared machine).
+
 Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--transcription] [--out table.md]
-[--docs docs/planning-3d.md]`` (minutes on a shared 2-core machine; not a timed test). With
+[--docs docs/planning-3d.md] [--tables primary,strict,waypoints,reference] [--robot ur5e|none]
+[--quick]`` (minutes on a shared 2-core machine; not a timed test; ``--quick``: the reference
+table's first case only, without the robot). With
 ``--docs`` the tables replace the text between the ``<!-- bench_plan3d:start -->`` and
 ``<!-- bench_plan3d:end -->`` markers of that file, so the docs carry no hand-typed figures.
 """
@@ -26,12 +39,17 @@ from __future__ import annotations
 
 import argparse
 import csv
+import hashlib
+import json
+import math
 import os
 import time
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+from ocp_reference import ReferenceOptimum, reference_optimum
 
 from sloshkit.errors import ValidityWarning
 from sloshkit.io.poses import read_pose_file
@@ -47,6 +65,17 @@ DATA = Path(__file__).resolve().parents[1] / "tests" / "data" / "measured-3d"
 SERIES = ("LE_3D_0m_5.3s_900deg", "RD_2D_0.3m_6.5s_720deg", "TRD_2D_0.3m_2.4s_270deg")
 LIMITS = CartesianLimits(2.0, 10.0, 100.0)
 RESIDUAL_M = 0.002
+#: The reference table's cases: measured series, then the built paths.
+REFERENCE_SERIES = ("TRD_2D_0.3m_2.4s_270deg", "LE_3D_0m_5.3s_900deg", "RD_2D_0.3m_6.5s_720deg")
+REFERENCE_METHODS = ("retime", "shaped", "tilt")
+CACHE = Path(__file__).resolve().parent / "ocp_reference_cache.json"
+#: Where the arm sits for the robot rows (docs/planning-3d.md: the UR5e reaches the TRD path).
+ROBOT_BASE_XYZ_M = (-0.35, -0.6, 0.2)
+#: Shooting intervals of the reference [s]: 4 ms upright (halving it moved the TRD optimum by
+#: 3e-5 relative), 8 ms tilted (its program is five times costlier per interval; halving it
+#: shortened the tilted TRD optimum by 0.2 % and the pick-and-place's by 0.3 %, so the tilted
+#: optima are that much long and the `tilt` ratios that much low).
+UPRIGHT_INTERVAL_S, TILTED_INTERVAL_S = 4e-3, 8e-3
 
 
 def reference_timing(
@@ -169,13 +198,145 @@ def series_table(
     return rows
 
 
+def reference_cases(model: object) -> list[tuple[str, PathProblem]]:
+    """The issue #25 benchmark problems (module docstring), named."""
+    slosh = SpatialSloshLimits(0.015, RESIDUAL_M)
+    limits = CartesianLimits(2.0, 10.0, 100.0, None, None)
+    paths = []
+    for name in REFERENCE_SERIES:
+        trajectory = read_pose_file(DATA / "poses" / f"{name}.csv")
+        paths.append(
+            (
+                name.split("_0")[0],
+                path_from_poses(trajectory.position_m, trajectory.quaternion_xyzw, name=name),
+            )
+        )
+    zigzag = np.array([[0.12 * i, 0.1 * (i % 2), 0.01 * i] for i in range(20)])
+    paths.append(("20 waypoints", path_from_waypoints(zigzag, 0.03)))
+    paths.append(
+        (
+            "pick-and-place",
+            path_from_waypoints(
+                [[0.0, 0.0, 0.0], [0.3, 0.0, 0.1]], yaw_rad=[0.0, math.pi / 2], name="pick"
+            ),
+        )
+    )
+    return [
+        (name, PathProblem(path, limits, slosh, model, 4e-3, max_tilt_rad=math.radians(30.0)))
+        for name, path in paths
+    ]
+
+
+def problem_key(problem: PathProblem, tilt: bool, interval_s: float) -> str:
+    """SHA-256 of everything the reference depends on: the path's knots and poses, the limits,
+    the model band, the tilt settings, the interval, and the source of ``ocp_reference.py``."""
+    digest = hashlib.sha256()
+    path = problem.path
+    for array in (path.knots_m, path.positions_m, path.rotations.as_quat()):
+        digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
+    described = [problem.machine, problem.slosh, problem.max_tilt_rad]
+    described += [problem.tilt_centre_height_m, tilt, interval_s]
+    described += [model.modes for model in problem.models()]
+    digest.update(repr(described).encode())
+    digest.update((Path(__file__).resolve().parent / "ocp_reference.py").read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def cached_reference(problem: PathProblem, tilt: bool) -> tuple[ReferenceOptimum, bool]:
+    """The reference optimum from `CACHE` when its key is there, else computed and stored;
+    and whether it came from the cache."""
+    cache = json.loads(CACHE.read_text()) if CACHE.exists() else {}
+    interval = TILTED_INTERVAL_S if tilt else UPRIGHT_INTERVAL_S
+    key = problem_key(problem, tilt, interval)
+    if key in cache:
+        return ReferenceOptimum(**cache[key]), True
+    optimum = reference_optimum(problem, tilt=tilt, interval_s=interval)
+    cache = json.loads(CACHE.read_text()) if CACHE.exists() else {}  # another run may add
+    cache[key] = optimum.to_dict()
+    CACHE.write_text(json.dumps(cache, indent=1, sort_keys=True) + "\n")
+    return optimum, False
+
+
+def _robot(name: str | None) -> Any:
+    """``robot_verifier`` of a built-in arm at `ROBOT_BASE_XYZ_M`, or None."""
+    if name is None:
+        return None
+    from sloshkit.export.frames import Mounting
+    from sloshkit.export.kinematics import load_arm
+    from sloshkit.export.path_robot import robot_verifier
+
+    return robot_verifier(load_arm(name), Mounting(base_xyz_m=ROBOT_BASE_XYZ_M))
+
+
+def _run_method(problem: PathProblem, method: str, verifier: Any) -> tuple[str, float, float]:
+    """(shown duration or failure, verified duration [s] (nan unless feasible), wall [s])."""
+    started = time.perf_counter()
+    try:
+        arguments = {} if verifier is None else {"verifier": verifier}
+        result = plan_path(problem, method, **arguments)
+    except Exception as error:  # a method being rewritten may fail: the table shows it
+        return f"error ({type(error).__name__})", math.nan, time.perf_counter() - started
+    wall = time.perf_counter() - started
+    found = [c for c in result.candidates if c.method == method]
+    if not found:
+        return "missing", math.nan, wall
+    if not found[0].feasible:
+        return "infeasible", math.nan, wall
+    return f"{found[0].duration_s:.3f} s", found[0].duration_s, wall
+
+
+def reference_table(model: object, robot: str | None, quick: bool) -> list[str]:
+    """Rows of the reference table (module docstring)."""
+    cases = reference_cases(model)[:1] if quick else reference_cases(model)
+    robots = [None] if quick or robot is None else [None, robot]
+    rows = [
+        "Against the independent optimum (`benchmarks/ocp_reference.py`) of the same problem "
+        "(15 mm / 2 mm, 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms, no angular limits, tilt up to "
+        "30 deg); `retime` and `shaped` divided by the upright optimum, `tilt` by the tilted "
+        "one; compute: wall time on the shared machine:",
+        "",
+        "| case | robot | optimum upright | optimum tilted | optimum compute | "
+        + " | ".join(f"{m} | {m} / optimum | {m} compute" for m in REFERENCE_METHODS)
+        + " |",
+        "|---|---|---|---|---|" + "---|---|---|" * len(REFERENCE_METHODS),
+    ]
+    for name, problem in cases:
+        upright, upright_cached = cached_reference(problem, False)
+        tilted, tilted_cached = cached_reference(problem, True)
+
+        def optimum(found: ReferenceOptimum) -> str:
+            flag = "" if found.converged else f" ({found.status})"
+            return f"{found.duration_s:.3f} s{flag}"
+
+        compute = f"{upright.compute_time_s:.0f} / {tilted.compute_time_s:.0f} s" + (
+            " (cached)" if upright_cached and tilted_cached else ""
+        )
+        for arm in robots:
+            verifier = _robot(arm)
+            cells = []
+            for method in REFERENCE_METHODS:
+                shown, duration, wall = _run_method(problem, method, verifier)
+                base = tilted if method == "tilt" else upright
+                ratio = "-" if math.isnan(duration) else f"{duration / base.duration_s:.3f}"
+                cells.append(f"{shown} | {ratio} | {wall:.1f} s")
+            rows.append(
+                f"| {name} | {arm or '-'} | {optimum(upright)} | {optimum(tilted)} | {compute} | "
+                + " | ".join(cells)
+                + " |"
+            )
+            print(rows[-1], flush=True)
+    return rows
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--transcription", action="store_true")
     parser.add_argument("--out", type=Path, default=None)
     parser.add_argument("--docs", type=Path, default=None)
     parser.add_argument("--series", nargs="*", default=None, help="path classes (LE, RD, TRD)")
-    parser.add_argument("--tables", default="primary,strict,waypoints")
+    parser.add_argument("--tables", default="primary,strict,waypoints,reference")
+    parser.add_argument("--robot", default="ur5e", help="arm of the reference table, or none")
+    parser.add_argument("--quick", action="store_true", help="one case of the reference table")
     arguments = parser.parse_args()
     warnings.simplefilter("ignore", ValidityWarning)
     model = equivalent_model(
@@ -186,7 +347,7 @@ def main() -> None:
     series = tuple(
         name for name in SERIES if not arguments.series or name.split("_")[0] in arguments.series
     )
-    tables = arguments.tables.split(",")
+    tables = ["reference"] if arguments.quick else arguments.tables.split(",")
     rows: list[str] = []
     if "primary" in tables:
         rows += [
@@ -205,6 +366,9 @@ def main() -> None:
         ]
     if "waypoints" in tables:
         rows += waypoint_table(model, arguments.transcription)
+    if "reference" in tables:
+        robot = None if arguments.robot.lower() == "none" else arguments.robot
+        rows += ["", *reference_table(model, robot, arguments.quick)]
     load = os.getloadavg()[0]
     rows.append("")
     rows.append(f"(load average {load:.1f} on {os.cpu_count()} cores when the run ended)")

@@ -1,0 +1,64 @@
+"""The benchmark's independent reference (benchmarks/ocp_reference.py) against exact answers."""
+
+from __future__ import annotations
+
+import dataclasses
+import sys
+import warnings
+from pathlib import Path
+
+import pytest
+
+from sloshkit.errors import ValidityWarning
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import SloshModel, equivalent_model
+from sloshkit.plan.path import path_from_waypoints
+from sloshkit.plan.planner import plan
+from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+from ocp_reference import reference_optimum
+
+VMAX, AMAX, JMAX = 2.0, 10.0, 100.0
+HEIGHT_M, RESIDUAL_M = 0.015, 0.002
+
+
+def _first_mode_model() -> SloshModel:
+    """The benchmark's cylinder (R 49 mm, h 80 mm, water) with its first mode only: the 1-D
+    planner's residual limit concerns the first mode only, the 3-D problem's every mode."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        model = equivalent_model(
+            UprightCylinder(0.049), get_liquid("water-20C"), 0.08, damping_ratio=0.0066
+        )
+    return dataclasses.replace(model, modes=model.modes[:1])
+
+
+@pytest.mark.parametrize("distance_m", [0.3])
+def test_a_straight_path_takes_the_one_dimensional_optimum(distance_m: float) -> None:
+    """Along a straight line the 3-D problem is the 1-D one: wall height e_1 |phi| <= h is the
+    angle limit h / e_1, the residual e_1 sqrt(A^2 + B^2) <= r the residual angle r / e_1. The
+    1-D planner transcribes it on its 4 ms export grid, the reference in continuous time."""
+    model = _first_mode_model()
+    wall = model.modes[0].wall_elevation_factor_m
+    straight = PathProblem(
+        path_from_waypoints([[0.0, 0.0, 0.0], [distance_m, 0.0, 0.0]]),
+        CartesianLimits(VMAX, AMAX, JMAX),
+        SpatialSloshLimits(HEIGHT_M, RESIDUAL_M),
+        model,
+    )
+    reference = reference_optimum(straight)
+    line = PlanProblem(
+        distance_m,
+        MachineLimits(VMAX, AMAX, JMAX),
+        SloshLimits(HEIGHT_M / wall, RESIDUAL_M / wall),
+        model,
+        4e-3,
+    )
+    optimum = plan(line, "optimal", smooth=False).chosen
+    assert reference.converged, reference.status
+    assert optimum is not None and optimum.feasible
+    assert reference.duration_s == pytest.approx(optimum.duration_s, rel=5e-3)
+    assert reference.peak_height_m == pytest.approx(HEIGHT_M, rel=1e-3)  # the slosh binds
