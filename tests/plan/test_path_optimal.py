@@ -13,18 +13,18 @@ from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import s_curve
 from sloshkit.plan.path import path_from_waypoints
 from sloshkit.plan.path_optimal import (
-    PathProgram,
-    ProgramLimits,
-    Samples,
-    cone_step,
-    export_poses,
-    minimum_time,
+    _cone_step,
+    _export_poses,
+    _minimum_time,
+    _PathProgram,
+    _ProgramLimits,
+    _Samples,
 )
 from sloshkit.plan.path_planner import plan_path
 from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.sim.spatial import simulate_spatial
 
-LIMITS = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)
+LIMITS = _ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)
 
 
 def _corner_problem(model: SloshModel) -> PathProblem:
@@ -37,13 +37,13 @@ def _corner_problem(model: SloshModel) -> PathProblem:
     )
 
 
-def _samples(problem: PathProblem, speed_m_s: float, acceleration_m_s2: float = 4.0) -> Samples:
+def _samples(problem: PathProblem, speed_m_s: float, acceleration_m_s2: float = 4.0) -> _Samples:
     """An S-curve timing of the path (jerk 10 times the acceleration) on the export grid."""
     law = s_curve(problem.path.length_m, speed_m_s, acceleration_m_s2, 10.0 * acceleration_m_s2)
     poses = sample_path(problem.path, law, problem.sample_period_s)
     s = np.clip(law.position(np.minimum(poses.time_s, law.duration_s)), 0, problem.path.length_m)
     s[-1] = problem.path.length_m
-    return Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
+    return _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
 
 
 def test_program_model_is_the_linear_3d_simulation_of_the_export(robot_vial: SloshModel) -> None:
@@ -51,12 +51,12 @@ def test_program_model_is_the_linear_3d_simulation_of_the_export(robot_vial: Slo
     kinematics) to 1 %; the residual bound at least its residual (the bound adds the free
     oscillations' amplitudes, the simulation takes each one's semi-major axis)."""
     problem = _corner_problem(robot_vial)
-    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
     samples = _samples(problem, 0.3, 1.0)  # gentle: the linear regime (about 5 deg)
     evaluation = program.evaluate(samples)
     response = simulate_spatial(
         robot_vial,
-        export_poses(problem, samples).to_pose_trajectory(),
+        _export_poses(problem, samples).to_pose_trajectory(),
         nonlinear=False,
         cutoff_hz=None,
     )
@@ -70,9 +70,9 @@ def test_cone_step_predicts_the_exact_margin_of_its_samples(robot_vial: SloshMod
     """The program's predicted margin (linearised) and the exact evaluation of the samples it
     returns agree to 2 % of the limits for a small trust region (the derivatives are right)."""
     problem = _corner_problem(robot_vial)
-    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
     iterate = program.iterate(_samples(problem, 0.8))
-    out = cone_step(program, iterate.samples, iterate.evaluation, 0.05)
+    out = _cone_step(program, iterate.samples, iterate.evaluation, 0.05)
     assert out is not None
     samples, sigma = out
     trial = program.iterate(samples)
@@ -106,8 +106,8 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(robot_vial: Sl
         SpatialSloshLimits(height, residual),
         robot_vial,
     )
-    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
-    best, _ = minimum_time(program, _samples(problem, 0.55))
+    program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    best, _ = _minimum_time(program, _samples(problem, 0.55))
     ts = problem.sample_period_s
     grid = math.ceil(one_d.chosen.duration_s / ts - 1e-9) * ts
     assert best.feasible

@@ -63,7 +63,24 @@ IPM_SIZE = 1000
 
 
 class Triplets(NamedTuple):
-    """A sparse matrix as (row, column, value) entries, duplicates summed."""
+    """A sparse matrix as (row, column, value) entries, duplicates summed.
+
+    Parameters
+    ----------
+    rows, columns : ndarray of int
+        Entry positions.
+    values : ndarray
+        Entry values.
+    shape : tuple of int
+        (rows, columns) of the matrix.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> m = Triplets.summed(np.array([0, 0]), np.array([1, 1]), np.array([2.0, 3.0]), (1, 2))
+    >>> m.values.tolist(), m.shape
+    ([5.0], (1, 2))
+    """
 
     rows: NDArray[np.int64]
     columns: NDArray[np.int64]

@@ -2,11 +2,11 @@
 programming.
 
 The decision variables are the path parameter s_k at every sample t_k = k Ts of the export grid
-(k = 0..N, s_0 = 0, s_N = S: the whole path; the samples are the export, `poses_of`). Every
+(k = 0..N, s_0 = 0, s_N = S: the whole path; the samples are the export, `_poses_of`). Every
 quantity the verification checks is a function of these samples:
 
 - the Cartesian velocity, acceleration and jerk of the reference point and the container's
-  angular velocity and acceleration, by finite differences of the samples with the ends held at
+  angular velocity and acceleration, by finite differences of the samples with the ends _held at
   rest (as `sloshkit.plan.path_limits.kinematics` measures them);
 - the slosh of every mode n of every model of the robustness band: the linear spherical
   pendulum of `sloshkit.sim.spatial` (Abramson, NASA SP-106 (1966) ch. 6; Dodge, SwRI (2000)
@@ -28,7 +28,7 @@ rows; solved by Clarabel (Goulart & Chen, arXiv:2405.12762 (2024)). Polyhedral (
 the 3-D norms were tried first and let the iterates break the jerk limit in directions no facet
 covered. The minimum time is the fewest samples whose best margin meets every limit: a bracketed
 secant search on the largest ratio r(N) (r = 1 at the minimum), each r(N) warm-started from the
-nearest solved N rescaled in time (`minimum_time`).
+nearest solved N _rescaled in time (`_minimum_time`).
 
 The verification's model is the nonlinear spherical pendulum. The linear optimum rides the
 height limit for the whole move, and there the nonlinear model exceeds it (28 mm against 15 mm
@@ -56,14 +56,14 @@ FloatArray = NDArray[np.float64]
 GRAVITY_VECTOR = np.array([0.0, 0.0, -GRAVITY_M_S2])
 #: Relative margin the programs keep from every limit (the export is then verified exactly).
 PROGRAM_MARGIN = 2e-3
-#: Samples of rest after the move before its free oscillation is measured (the 3-D
+#: _Samples of rest after the move before its free oscillation is measured (the 3-D
 #: simulation's `sloshkit.sim.spatial_response.SpatialResponse.free_amplitudes_rad` waits
 #: max(window / 2, 4) + 1 samples for an unsmoothed drive).
 HOLD = 5
 
 
 @dataclass(frozen=True)
-class ProgramLimits:
+class _ProgramLimits:
     """The limits the program imposes (SI), the slosh ones already tightened as asked.
 
     Parameters
@@ -91,7 +91,7 @@ class ProgramLimits:
 
 
 @dataclass(frozen=True, eq=False)
-class Samples:
+class _Samples:
     """Path parameter [m] and tilt rotation vector [rad] at the export samples."""
 
     s_m: FloatArray
@@ -103,7 +103,7 @@ class Samples:
         return int(self.s_m.size - 1)
 
 
-def poses_of(path: Any, samples: Samples, centre_height_m: float) -> tuple[FloatArray, Rotation]:
+def _poses_of(path: Any, samples: _Samples, centre_height_m: float) -> tuple[FloatArray, Rotation]:
     """Reference-point positions and container orientations of the samples.
 
     The tilt rotation R_t = exp([r_x, r_y, 0]) acts on the path's orientation R_p(s) about the
@@ -122,11 +122,11 @@ def poses_of(path: Any, samples: Samples, centre_height_m: float) -> tuple[Float
     return position, rotation
 
 
-def held(samples: Samples) -> Samples:
+def _with_rest(samples: _Samples) -> _Samples:
     """The samples followed by `HOLD` samples of rest at the last pose."""
     s = np.concatenate((samples.s_m, np.repeat(samples.s_m[-1:], HOLD)))
     tilt = np.concatenate((samples.tilt_rad, np.repeat(samples.tilt_rad[-1:], HOLD, axis=0)))
-    return Samples(s, tilt)
+    return _Samples(s, tilt)
 
 
 def _held(values: FloatArray, pad: int) -> FloatArray:
@@ -135,7 +135,7 @@ def _held(values: FloatArray, pad: int) -> FloatArray:
 
 
 @dataclass(frozen=True, eq=False)
-class Evaluation:
+class _Evaluation:
     """Everything the limits see, for one set of samples.
 
     ``velocity`` ... ``jerk``: finite differences of the positions (rows for the padded
@@ -155,7 +155,7 @@ class Evaluation:
     amplitude: FloatArray = field(default_factory=lambda: np.empty(0))
 
 
-class PathProgram:
+class _PathProgram:
     """The sequential linear program of one path problem (module docstring).
 
     Parameters
@@ -164,7 +164,7 @@ class PathProgram:
         The geometry.
     models : list of SloshModel
         The band's models (all share the bob heights; only the frequencies differ).
-    limits : ProgramLimits
+    limits : _ProgramLimits
         Limits, slosh ones as the program should impose them.
     sample_period_s : float
         Export sample period Ts [s].
@@ -178,7 +178,7 @@ class PathProgram:
         self,
         path: Any,
         models: list[Any],
-        limits: ProgramLimits,
+        limits: _ProgramLimits,
         sample_period_s: float,
         tilt: bool = False,
         centre_height_m: float = 0.0,
@@ -191,7 +191,7 @@ class PathProgram:
 
     # ----------------------------------------------------------------- evaluation
     def forces(
-        self, samples: Samples, spin: FloatArray | None = None
+        self, samples: _Samples, spin: FloatArray | None = None
     ) -> tuple[FloatArray, dict[str, FloatArray]]:
         """Lateral specific force of each mode (modes, N + 1, 2) and the kinematics.
 
@@ -199,7 +199,7 @@ class PathProgram:
         given when passed (the derivatives hold it fixed: it depends on every earlier sample).
         """
         ts = self.ts
-        position, rotation = poses_of(self.path, samples, self.centre)
+        position, rotation = _poses_of(self.path, samples, self.centre)
         quaternion = rotation.as_quat()
         padded = _held(position, 2)
         velocity = np.diff(padded, axis=0) / ts
@@ -231,11 +231,11 @@ class PathProgram:
         }
         return force, kinematic
 
-    def evaluate(self, samples: Samples) -> Evaluation:
+    def evaluate(self, samples: _Samples) -> _Evaluation:
         """Kinematics, forces, wall heights and residual amplitudes of the samples."""
         from sloshkit.sim.discretisation import linear_mode_response
 
-        samples = held(samples)
+        samples = _with_rest(samples)
         force, kinematic = self.forces(samples)
         steps = samples.steps
         rest = kinematic["rest"]  # (modes, 2): the container at rest in its first pose
@@ -265,7 +265,7 @@ class PathProgram:
                 amplitudes[m, n] = (
                     back * mode.wall_elevation_factor_m * np.concatenate((cosine, sine))
                 )
-        return Evaluation(
+        return _Evaluation(
             kinematic["velocity"],
             kinematic["acceleration"],
             kinematic["jerk"],
@@ -276,7 +276,7 @@ class PathProgram:
             amplitudes,
         )
 
-    def worst(self, evaluation: Evaluation, samples: Samples) -> dict[str, float]:
+    def worst(self, evaluation: _Evaluation, samples: _Samples) -> dict[str, float]:
         """Each limited quantity's peak divided by its limit."""
         lim = self.limits
         ratios = {
@@ -306,16 +306,16 @@ class PathProgram:
         return ratios
 
     # ----------------------------------------------------------------- linearisation
-    def jacobians(self, samples: Samples) -> list[Bands]:
+    def jacobians(self, samples: _Samples) -> list[_Bands]:
         """Banded derivatives of the samples' positions, angular velocities and forces with
         respect to each variable block (s, then r_x, r_y with tilt).
 
         Every quantity at sample k depends on the samples k-1..k+1 only (positions on k, the
         angular velocity on k-1 and k, the forces on k-1..k+1 through the second difference),
         so perturbing every third sample at once separates the bands (Curtis, Powell & Reid,
-        IMA J. Appl. Math. 13 (1974) 117-119); central differences, the spin held fixed.
+        IMA J. Appl. Math. 13 (1974) 117-119); central differences, the spin _held fixed.
         """
-        samples = held(samples)
+        samples = _with_rest(samples)
         n = samples.s_m.size
         _, base = self.forces(samples)
         spin = base["spin"]
@@ -342,21 +342,21 @@ class PathProgram:
                 omega[1][own] = domega[own] / width[own, None]
                 prev = chosen[chosen + 1 <= n - 1] + 1
                 omega[0][prev] = domega[prev] / width[prev - 1, None]
-            bands.append(Bands(position, omega, force))
+            bands.append(_Bands(position, omega, force))
         return bands
 
-    def iterate(self, samples: Samples) -> Iterate:
+    def iterate(self, samples: _Samples) -> _Iterate:
         """The samples with their exact evaluation and ratios to the limits."""
         evaluation = self.evaluate(samples)
-        return Iterate(samples, evaluation, self.worst(evaluation, samples))
+        return _Iterate(samples, evaluation, self.worst(evaluation, samples))
 
 
 @dataclass(frozen=True, eq=False)
-class Iterate:
-    """Samples, their evaluation and each limited quantity's peak over its limit."""
+class _Iterate:
+    """_Samples, their evaluation and each limited quantity's peak over its limit."""
 
-    samples: Samples
-    evaluation: Evaluation
+    samples: _Samples
+    evaluation: _Evaluation
     ratios: dict[str, float]
 
     @property
@@ -376,7 +376,7 @@ class Iterate:
 
 
 @dataclass(frozen=True, eq=False)
-class Bands:
+class _Bands:
     """Derivatives of one variable block: ``position`` (n, 3) d P_k / d x_k, ``omega``
     (2, n + 1, 3) d w_i / d x_{i-1} and d w_i / d x_i, ``force`` (3, modes, n, 2)
     d f_k / d x_{k+o} for o = -1, 0, 1."""
@@ -387,8 +387,8 @@ class Bands:
 
 
 def _perturbed(
-    samples: Samples, chosen: Any, column: int | None, step: float, length_m: float
-) -> tuple[Samples, Samples, FloatArray]:
+    samples: _Samples, chosen: Any, column: int | None, step: float, length_m: float
+) -> tuple[_Samples, _Samples, FloatArray]:
     """The samples with the ``chosen`` ones moved by +- ``step`` in s (kept on [0, S]: one-sided
     at the ends, where the path is clipped) or in a tilt angle, and each sample's width of the
     difference (plus - minus; 1 where not perturbed)."""
@@ -403,7 +403,7 @@ def _perturbed(
         tilt_plus[chosen, column] += step
         tilt_minus[chosen, column] -= step
         width[chosen] = 2.0 * step
-    return Samples(s_plus, tilt_plus), Samples(s_minus, tilt_minus), width
+    return _Samples(s_plus, tilt_plus), _Samples(s_minus, tilt_minus), width
 
 
 def _peak(values: FloatArray) -> float:
@@ -478,12 +478,12 @@ class _Conic:
         return matrix, np.concatenate(rhs), cones
 
 
-def cone_step(
-    program: PathProgram,
-    samples: Samples,
+def _cone_step(
+    program: _PathProgram,
+    samples: _Samples,
     evaluation: Any,
     trust: float,
-) -> tuple[Samples, float] | None:
+) -> tuple[_Samples, float] | None:
     """One cone program around ``samples`` (module docstring): the new samples and their
     predicted margin sigma, or None when the solver failed. ``trust``: the largest change of
     a step's speed [m/s] (a sample moves by at most 0.02 s times it)."""
@@ -753,24 +753,24 @@ def cone_step(
     x = np.asarray(result.x)
     new_s = np.concatenate(([0.0], s[1:] + x[:steps] * unit))
     new_s = np.clip(np.maximum.accumulate(new_s), 0.0, program.path.length_m)
-    return Samples(new_s, samples.tilt_rad.copy()), float(x[sigma])
+    return _Samples(new_s, samples.tilt_rad.copy()), float(x[sigma])
 
 
-def margin_at(
-    program: PathProgram,
-    start: Samples,
+def _margin_at(
+    program: _PathProgram,
+    start: _Samples,
     trust: float = 0.1,
     iterations: int = 8,
     tolerance: float = 2e-3,
-) -> tuple[Iterate, float]:
+) -> tuple[_Iterate, float]:
     """The samples of N steps (N from ``start``) whose largest ratio to a limit is least:
-    cone programs (`cone_step`) from ``start``, a step kept when its exact evaluation is
+    cone programs (`_cone_step`) from ``start``, a step kept when its exact evaluation is
     better (the trust region then grows by half, else it halves); stops when a step gains
     less than a quarter of ``tolerance`` and its prediction was right to ``tolerance``.
     Returns the best iterate and its largest ratio."""
     current = program.iterate(start)
     for _ in range(iterations):
-        out = cone_step(program, current.samples, current.evaluation, trust)
+        out = _cone_step(program, current.samples, current.evaluation, trust)
         if out is None:
             trust *= 0.5
             continue
@@ -792,7 +792,7 @@ def margin_at(
     return current, current.excess
 
 
-def rescaled(samples: Samples, steps: int) -> Samples:
+def _rescaled(samples: _Samples, steps: int) -> _Samples:
     """The same timing shape stretched to ``steps`` sample periods (linear interpolation of
     s over normalised time; the ends stay at rest)."""
     old = samples.s_m.size - 1
@@ -801,27 +801,27 @@ def rescaled(samples: Samples, steps: int) -> Samples:
     tilt = np.column_stack(
         [np.interp(u_new, np.arange(old + 1) / old, samples.tilt_rad[:, c]) for c in range(2)]
     )
-    return Samples(s, tilt)
+    return _Samples(s, tilt)
 
 
-def minimum_time(
-    program: PathProgram, start: Samples, log: Any = None
-) -> tuple[Iterate, list[tuple[int, float]]]:
-    """The fewest steps N whose best samples (`margin_at`) meet every limit.
+def _minimum_time(
+    program: _PathProgram, start: _Samples, log: Any = None
+) -> tuple[_Iterate, list[tuple[int, float]]]:
+    """The fewest steps N whose best samples (`_margin_at`) meet every limit.
 
     r(N), the largest ratio to a limit, falls about as (N0 / N)^2 when the slosh or the
     acceleration binds: the next N solves r = 1 on the secant of log r against log N through the
     last two, kept inside the bracket of solved N (the largest infeasible, the smallest
     feasible) and within 20 % of the last; the search stops when the bracket is
-    `SEARCH_TOLERANCE` wide. Each r(N) starts from the nearest solved samples rescaled.
+    `SEARCH_TOLERANCE` wide. Each r(N) starts from the nearest solved samples _rescaled.
 
     Returns the best feasible iterate and the (N, r) pairs tried; raises `RuntimeError` when
     no N up to four times the start's meets the limits."""
-    history: list[tuple[int, float, Iterate]] = []
+    history: list[tuple[int, float, _Iterate]] = []
     steps = start.steps
     guess = start
     for _ in range(MAX_SEARCH):
-        iterate, ratio = margin_at(program, rescaled(guess, steps))
+        iterate, ratio = _margin_at(program, _rescaled(guess, steps))
         history.append((steps, ratio, iterate))
         if log:
             log(f"N = {steps}: largest ratio to a limit {ratio:.4f}")
@@ -862,7 +862,7 @@ def minimum_time(
 def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     """The minimum-time timing of the (untilted) path, verified.
 
-    Searches (`minimum_time`) of the linear program, the first from the time-optimal speed
+    Searches (`_minimum_time`) of the linear program, the first from the time-optimal speed
     profile under the quasi-static acceleration that tilts a level surface to the height limit
     (h = R a / g; `sloshkit.plan.retime.capped_timing`), the next ones with the program's
     slosh limits moved until ``verifier`` (the nonlinear 3-D model by default) meets the
@@ -882,7 +882,20 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     Returns
     -------
     PathCandidate
-        Method ``optimal``; ``detail`` has the steps, the programs solved and the search.
+        Method ``optimal``; ``detail`` has the linear optimum, the programs solved, each
+        round's limits and verified slosh, and the search.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> from sloshkit.plan.path_result import verify
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
+    >>> problem = sk.PathProblem(sk.path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
+    ...     sk.CartesianLimits(2.0, 10.0, 100.0), sk.SpatialSloshLimits(0.008, 0.001), model,
+    ...     sample_period_s=0.01)
+    >>> found = plan_optimal(problem, verify)
+    >>> found.feasible, found.duration_s >= found.detail["linear_optimum_s"]
+    (True, True)
     """
     import time
     from dataclasses import replace
@@ -894,7 +907,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
 
     started = time.perf_counter()
     machine, slosh = problem.machine, problem.slosh
-    limits = ProgramLimits(
+    limits = _ProgramLimits(
         machine.max_velocity_m_s,
         machine.max_acceleration_m_s2,
         machine.max_jerk_m_s3,
@@ -912,16 +925,16 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         first.position(np.minimum(grid.time_s, first.duration_s)), 0.0, problem.path.length_m
     )
     s[-1] = problem.path.length_m
-    start = Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
+    start = _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
     rounds: list[dict[str, float]] = []
-    verified: list[tuple[int, Iterate]] = []
+    verified: list[tuple[int, _Iterate]] = []
     searches: list[tuple[int, float]] = []
     programs = 0
     warm = start
     for _ in range(TIGHTENINGS):
-        program = PathProgram(problem.path, problem.models(), limits, ts)
+        program = _PathProgram(problem.path, problem.models(), limits, ts)
         try:
-            best, search = minimum_time(program, warm, log)
+            best, search = _minimum_time(program, warm, log)
         except RuntimeError as error:
             if verified:
                 break
@@ -929,7 +942,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         warm = best.samples
         searches += search
         programs += program.programs
-        check = verifier(problem, export_poses(problem, best.samples), False)
+        check = verifier(problem, _export_poses(problem, best.samples), False)
         rounds.append(
             {
                 "duration_s": best.samples.steps * ts,
@@ -975,7 +988,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
 
     def poses_for(factor: float) -> Any:
         if factor == 1.0:
-            return export_poses(problem, samples)
+            return _export_poses(problem, samples)
         return sample_path(problem.path, timing.stretched(factor), ts)
 
     detail = {
@@ -987,13 +1000,13 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, False, detail)
 
 
-def export_poses(problem: Any, samples: Samples) -> Any:
+def _export_poses(problem: Any, samples: _Samples) -> Any:
     """The samples as the export (`sloshkit.plan.spatial.PoseSamples`, quaternions
     sign-continuous)."""
     from sloshkit.motion.quaternions import sign_continuous
     from sloshkit.plan.spatial import PoseSamples
 
-    position, rotation = poses_of(problem.path, samples, problem.tilt_centre_height_m)
+    position, rotation = _poses_of(problem.path, samples, problem.tilt_centre_height_m)
     time_s = np.arange(samples.s_m.size) * problem.sample_period_s
     return PoseSamples(time_s, position, sign_continuous(rotation.as_quat()))
 
