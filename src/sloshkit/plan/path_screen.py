@@ -204,14 +204,9 @@ def screen_outputs(
             point = poses.position_m + mode.bob_height_m * axis
             force = _qapply_inverse(frame, GRAVITY - _second_difference(point, ts))[:, :2]
             rest = force / (mode.length_m * mode.omega_rad_s**2)
-            # The container rests before the first pose: the liquid starts in equilibrium with
-            # gravity alone (not with the first sample's acceleration, which would start it
-            # tilted), as `sloshkit.sim.spatial` starts it.
-            resting = _qapply_inverse(frame[:1], GRAVITY[None, :])[0, :2]
-            rest[0] = resting / (mode.length_m * mode.omega_rad_s**2)
-            # Equivalent velocity w with w' = -(f - f_rest): linear_mode_response solves
+            # Equivalent velocity w with w' = -(f - f_0): linear_mode_response solves
             # theta'' + 2 zeta w theta' + w^2 theta = -w'/L.
-            excess = force - resting
+            excess = force - force[0]
             equivalent = -np.concatenate(
                 (np.zeros((1, 2)), np.cumsum(0.5 * (excess[1:] + excess[:-1]) * ts, axis=0))
             )
