@@ -386,6 +386,25 @@ class _Bands:
     force: FloatArray
 
 
+def _vector_cones(
+    conic: _Conic, r_idx: list[Any], c_idx: list[Any], v_idx: list[Any], scaled: Any, keep: float
+) -> None:
+    """One 4-D cone per row of ``scaled`` (values over their limit, (rows, 3)): the linearised
+    vector within keep + sigma, its entries gathered in the index lists."""
+    rows = scaled.shape[0]
+    b = np.zeros((rows, 4))
+    b[:, 0] = keep
+    b[:, 1:] = scaled
+    conic.add(
+        "soc",
+        np.concatenate(r_idx),
+        np.concatenate(c_idx),
+        np.concatenate(v_idx),
+        b.ravel(),
+        [4] * rows,
+    )
+
+
 def _perturbed(
     samples: _Samples, chosen: Any, column: int | None, step: float, length_m: float
 ) -> tuple[_Samples, _Samples, FloatArray]:
@@ -669,17 +688,7 @@ def _cone_step(
                 r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
                 c_idx.append(d(k[use]))
                 v_idx.append(-coefficient[use])
-        b = np.zeros((rows, 4))
-        b[:, 0] = keep
-        b[:, 1:] = values / limit
-        conic.add(
-            "soc",
-            np.concatenate(r_idx),
-            np.concatenate(c_idx),
-            np.concatenate(v_idx),
-            b.ravel(),
-            [4] * rows,
-        )
+        _vector_cones(conic, r_idx, c_idx, v_idx, values / limit, keep)
     # ------------------------------------------------ angular velocity and acceleration cones
     angular: tuple[tuple[int, FloatArray, float | None], ...] = (
         (1, evaluation.omega, lim.max_angular_velocity_rad_s),
@@ -704,17 +713,7 @@ def _cone_step(
                     r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
                     c_idx.append(d(k[use]))
                     v_idx.append(-coefficient[use])
-        b = np.zeros((rows, 4))
-        b[:, 0] = keep
-        b[:, 1:] = values / angular_limit
-        conic.add(
-            "soc",
-            np.concatenate(r_idx),
-            np.concatenate(c_idx),
-            np.concatenate(v_idx),
-            b.ravel(),
-            [4] * rows,
-        )
+        _vector_cones(conic, r_idx, c_idx, v_idx, values / angular_limit, keep)
     # ------------------------------------------------ monotone progress and trust region
     s = samples.s_m
     inner = np.arange(1, n - 1)
