@@ -46,9 +46,9 @@ def _samples(problem: PathProblem, speed_m_s: float, acceleration_m_s2: float = 
     return _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
 
 
-def test_program_model_is_the_linear_3d_simulation_of_the_export(robot_vial: SloshModel) -> None:
-    """Peak wall height equal to the linear `simulate_spatial` of the same export (spline
-    kinematics) to 1 %; the residual bound at least its residual (the bound adds the free
+def test_program_model_is_the_3d_simulation_of_the_export(robot_vial: SloshModel) -> None:
+    """Peak wall height equal to the nonlinear `simulate_spatial` of the same export (spline
+    kinematics) to 0.5 %; the residual bound at least its residual (the bound adds the free
     oscillations' amplitudes, the simulation takes each one's semi-major axis)."""
     problem = _corner_problem(robot_vial)
     program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
@@ -57,26 +57,26 @@ def test_program_model_is_the_linear_3d_simulation_of_the_export(robot_vial: Slo
     response = simulate_spatial(
         robot_vial,
         _export_poses(problem, samples).to_pose_trajectory(),
-        nonlinear=False,
+        nonlinear=True,
         cutoff_hz=None,
     )
     peak = float(np.max(np.linalg.norm(evaluation.wall, axis=-1)))
-    assert peak == pytest.approx(response.peak_slosh_height_m, rel=0.01)
+    assert peak == pytest.approx(response.peak_slosh_height_m, rel=0.005)
     bound = float(np.sum(np.linalg.norm(evaluation.amplitude[0], axis=1)))
     assert bound >= 0.99 * response.residual_slosh_height_m
 
 
 def test_cone_step_predicts_the_exact_margin_of_its_samples(robot_vial: SloshModel) -> None:
     """The program's predicted margin (linearised) and the exact evaluation of the samples it
-    returns agree to 2 % of the limits for a small trust region (the derivatives are right)."""
+    returns agree to 1 % of the limits for a small trust region (the derivatives are right)."""
     problem = _corner_problem(robot_vial)
     program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
-    iterate = program.iterate(_samples(problem, 0.8))
-    out = _cone_step(program, iterate.samples, iterate.evaluation, 0.05)
+    iterate = program.iterate(_samples(problem, 0.3, 1.0))
+    out = _cone_step(program, iterate.samples, iterate.evaluation, 0.01)
     assert out is not None
     samples, sigma = out
     trial = program.iterate(samples)
-    assert trial.excess == pytest.approx(1.0 - 2e-3 + sigma, abs=0.02)
+    assert trial.excess == pytest.approx(1.0 - 2e-3 + sigma, abs=0.01)
     assert trial.excess < iterate.excess
 
 

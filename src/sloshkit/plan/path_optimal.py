@@ -51,9 +51,10 @@ from scipy import sparse
 from scipy.spatial.transform import Rotation
 
 from sloshkit.model.theory import GRAVITY_M_S2
+from sloshkit.plan.path_pendulums import mode_slope, pendulum_track, slope_jacobian, step_jacobians
+from sloshkit.sim.metrics import free_oscillation_components
 
 FloatArray = NDArray[np.float64]
-GRAVITY_VECTOR = np.array([0.0, 0.0, -GRAVITY_M_S2])
 #: Relative margin the programs keep from every limit (the export is then verified exactly).
 PROGRAM_MARGIN = 2e-3
 #: _Samples of rest after the move before its free oscillation is measured (the 3-D
@@ -129,6 +130,24 @@ def _with_rest(samples: _Samples) -> _Samples:
     return _Samples(s, tilt)
 
 
+def _model_drive(model: Any, force: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """One band model's drive (modes, K, 3) and rest force (modes, 3) from `_PathProgram.forces`:
+    kappa_n g - a_hinge with kappa_n = omega_n^2 L_n / g (`sloshkit.sim.spatial_drive`)."""
+    kappa = np.array([m.omega_rad_s**2 * m.length_m / model.gravity_m_s2 for m in model.modes])
+    drive = force[:-1] + (kappa - 1.0)[:, None, None] * force[-1][None]
+    return drive, kappa[:, None] * force[-1, 0][None]
+
+
+def _mode_arrays(model: Any) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """L_n [m], omega_n [rad/s] and zeta_n of a model's modes."""
+    modes = model.modes
+    return (
+        np.array([m.length_m for m in modes]),
+        np.array([m.omega_rad_s for m in modes]),
+        np.array([m.damping_ratio for m in modes]),
+    )
+
+
 def _held(values: FloatArray, pad: int) -> FloatArray:
     """``values`` with ``pad`` copies of the first and last rows (at rest before and after)."""
     return np.concatenate((values[:1],) * pad + (values,) + (values[-1:],) * pad)
@@ -139,10 +158,11 @@ class _Evaluation:
     """Everything the limits see, for one set of samples.
 
     ``velocity`` ... ``jerk``: finite differences of the positions (rows for the padded
-    grid), ``omega``/``alpha``: angular velocity and acceleration, ``force``: lateral specific
-    force per mode (modes, N + 1, 2), ``wall``: wall height vectors per band model
-    (models, N + 1, 2), ``amplitude``: free-oscillation vectors (models, modes, 4) scaled by
-    e_n.
+    grid), ``omega``/``alpha``: angular velocity and acceleration, ``force``: specific force
+    per mode and gravity in N (`_PathProgram.forces`), ``wall``: wall height vectors per band
+    model (models, N + 1, 2), ``amplitude``: free-oscillation vectors (models, modes, 4) scaled
+    by e_n; ``unit``, ``rate``, ``drive``: each model's pendulum tracks and their drive
+    (models, modes, N + 1, 3; `sloshkit.plan.path_pendulums`). N counts the rest samples.
     """
 
     velocity: FloatArray
@@ -153,6 +173,9 @@ class _Evaluation:
     force: FloatArray
     wall: FloatArray = field(default_factory=lambda: np.empty(0))
     amplitude: FloatArray = field(default_factory=lambda: np.empty(0))
+    unit: FloatArray = field(default_factory=lambda: np.empty(0))
+    rate: FloatArray = field(default_factory=lambda: np.empty(0))
+    drive: FloatArray = field(default_factory=lambda: np.empty(0))
 
 
 class _PathProgram:
@@ -186,6 +209,7 @@ class _PathProgram:
         self.path, self.models, self.limits = path, models, limits
         self.ts, self.tilt, self.centre = sample_period_s, tilt, centre_height_m
         self.modes = models[0].modes
+        self.gravity = np.array([0.0, 0.0, -models[0].gravity_m_s2])
         self.programs = 0
         self._kernels: dict[int, list[list[tuple[FloatArray, FloatArray]]]] = {}
 
@@ -193,7 +217,9 @@ class _PathProgram:
     def forces(
         self, samples: _Samples, spin: FloatArray | None = None
     ) -> tuple[FloatArray, dict[str, FloatArray]]:
-        """Lateral specific force of each mode (modes, N + 1, 2) and the kinematics.
+        """Specific force g - a_hinge at each mode's hinge in N, and g itself in N, (modes + 1,
+        N + 1, 3) [m/s^2], with the kinematics (`sloshkit.sim.spatial_drive`: a mode whose
+        omega_n^2 L_n differs from g adds (kappa_n - 1) times the last row).
 
         ``spin`` (the container's accumulated rotation about its own axis [rad]) is taken as
         given when passed (the derivatives hold it fixed: it depends on every earlier sample).
@@ -213,14 +239,13 @@ class _PathProgram:
             spin = np.concatenate(([0.0], np.cumsum(body.as_rotvec()[:, 2])))
         frame = rotation * Rotation.from_rotvec(np.column_stack((0 * spin, 0 * spin, -spin)))
         axis = rotation.apply([0.0, 0.0, 1.0])
-        force = np.empty((len(self.modes), samples.s_m.size, 2))
+        force = np.empty((len(self.modes) + 1, samples.s_m.size, 3))
         for index, mode in enumerate(self.modes):
-            point = _held(position + mode.bob_height_m * axis, 1)
-            bob = (point[2:] - 2.0 * point[1:-1] + point[:-2]) / ts**2
-            force[index] = frame.inv().apply(GRAVITY_VECTOR - bob)[:, :2]
-        rest = frame[0].inv().apply(GRAVITY_VECTOR)[:2]
+            point = _held(position + mode.pivot_height_m * axis, 1)
+            hinge = (point[2:] - 2.0 * point[1:-1] + point[:-2]) / ts**2
+            force[index] = frame.inv().apply(self.gravity - hinge)
+        force[-1] = frame.inv().apply(self.gravity)
         kinematic = {
-            "rest": np.tile(rest, (len(self.modes), 1)),
             "velocity": velocity,
             "acceleration": acceleration,
             "jerk": jerk,
@@ -232,35 +257,29 @@ class _PathProgram:
         return force, kinematic
 
     def evaluate(self, samples: _Samples) -> _Evaluation:
-        """Kinematics, forces, wall heights and residual amplitudes of the samples."""
-        from sloshkit.sim.discretisation import linear_mode_response
-
+        """Kinematics, forces, pendulum tracks, wall heights and residual amplitudes."""
         samples = _with_rest(samples)
         force, kinematic = self.forces(samples)
         steps = samples.steps
-        rest = kinematic["rest"]  # (modes, 2): the container at rest in its first pose
-        # ... and in its last: the free oscillation is measured HOLD samples after the move
-        # (as the 3-D simulation measures its residual), scaled back to the move's end
-        final = force[:, -1]
+        count = len(self.modes)
         walls = np.zeros((len(self.models), steps + 1, 2))
-        amplitudes = np.zeros((len(self.models), len(self.modes), 4))
-        for n in range(len(self.modes)):
-            excess = force[n] - rest[n]  # may jump at t = 0: the container rested before
-            # equivalent velocity w' = -(f - f_rest), trapezoidal (first-order hold of w)
-            velocity = -np.concatenate(
-                (np.zeros((1, 2)), np.cumsum(0.5 * (excess[1:] + excess[:-1]) * self.ts, axis=0))
-            )
-            for m, model in enumerate(self.models):
-                mode = model.modes[n]
-                theta, rate = linear_mode_response(
-                    velocity.T, self.ts, mode.omega_rad_s, mode.damping_ratio, mode.length_m
+        amplitudes = np.zeros((len(self.models), count, 4))
+        units = np.zeros((len(self.models), count, steps + 1, 3))
+        rates = np.zeros_like(units)
+        drives = np.zeros_like(units)
+        for m, model in enumerate(self.models):
+            drive, rest = _model_drive(model, force)
+            unit, rate = pendulum_track(drive, rest, *_mode_arrays(model), self.ts)
+            units[m], rates[m], drives[m] = unit, rate, drive
+            for n, mode in enumerate(model.modes):
+                walls[m] += mode.wall_elevation_factor_m * mode_slope(unit[n])
+                # the free oscillation HOLD samples after the move (as the 3-D simulation
+                # measures its residual), about the rest direction, scaled back to the end
+                final = drive[n, -1]
+                offset = unit[n, -1, :2] - final[:2] / np.linalg.norm(final)
+                cosine, sine = free_oscillation_components(
+                    offset, rate[n, -1, :2], mode.omega_rad_s, mode.damping_ratio
                 )
-                stiffness = mode.length_m * mode.omega_rad_s**2
-                phi = theta.T + rest[n] / stiffness
-                walls[m] += mode.wall_elevation_factor_m * phi
-                cosine = phi[-1] - final[n] / stiffness
-                damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
-                sine = (rate.T[-1] + mode.damping_ratio * mode.omega_rad_s * cosine) / damped
                 back = math.exp(mode.damping_ratio * mode.omega_rad_s * HOLD * self.ts)
                 amplitudes[m, n] = (
                     back * mode.wall_elevation_factor_m * np.concatenate((cosine, sine))
@@ -274,6 +293,9 @@ class _PathProgram:
             force,
             walls,
             amplitudes,
+            units,
+            rates,
+            drives,
         )
 
     def worst(self, evaluation: _Evaluation, samples: _Samples) -> dict[str, float]:
@@ -323,7 +345,7 @@ class _PathProgram:
         bands = []
         for column in columns:
             step = 1e-7 * max(self.path.length_m, 1.0) if column is None else 1e-7
-            force = np.zeros((3, len(self.modes), n, 2))
+            force = np.zeros((3, len(self.modes) + 1, n, 3))
             position = np.zeros((n, 3))
             omega = np.zeros((2, n + 1, 3))
             for colour in range(3):
@@ -508,8 +530,6 @@ def _cone_step(
     a step's speed [m/s] (a sample moves by at most 0.02 s times it)."""
     import clarabel
 
-    from sloshkit.sim.discretisation import velocity_driven_discretisation
-
     lim, ts = program.limits, program.ts
     n = samples.s_m.size
     steps = n - 1
@@ -523,84 +543,61 @@ def _cone_step(
     last = steps + HOLD  # the pendulums run on through the rest samples after the move
     total = last + 1
 
-    # states per (model, mode, direction): dz0, dz1, dw at samples 1..last
-    def state(m: int, k: int, c: int, which: int, i: Any) -> Any:
-        return state_base + ((((m * modes + k) * 2 + c) * 3 + which) * last) + (np.asarray(i) - 1)
+    # deviations of the pendulum states x = (u, u') per (model, mode) at samples 1..last
+    def state(m: int, k: int, comp: Any, i: Any) -> Any:
+        return state_base + ((m * modes + k) * 6 + np.asarray(comp)) * last + (np.asarray(i) - 1)
 
-    t_base = state_base + models * modes * 2 * 3 * last
+    t_base = state_base + models * modes * 6 * last
     columns = t_base + models * modes
     conic = _Conic()
 
     def d(i: Any) -> Any:
         return np.asarray(i) - 1
 
-    # force rows: df_{k,i}[c] = sum_o F_o[i] d_{i+o}
-    def force_terms(k: int, c: int, i: Any) -> list[tuple[Any, Any, Any]]:
-        """(sample index i, column, coefficient) of d f_i (mode k, direction c) in d."""
-        out = []
-        for o in (-1, 0, 1):
-            j = i + o
-            ok = (j >= 1) & (j <= steps)
-            coefficient = band.force[o + 1][k, np.minimum(i, total - 1), c] * unit
-            out.append((i[ok], d(j[ok]), coefficient[ok]))
-        return out
-
     # the end sample is fixed: d_N = (S - s_N) / unit -> an equality
     conic.add("zero", [0], [d(steps)], [1.0], [(program.path.length_m - samples.s_m[-1]) / unit])
-    # ------------------------------------------------ pendulum dynamics
+    # ------------------------------------------------ pendulum dynamics, linearised
+    # dx_{k+1} = A_k dx_k + B_k df_k + E_k df_{k+1} (`path_pendulums.step_jacobians`), the
+    # force deviations df_j = sum_o G_o[j] d_{j+o} banded (`_PathProgram.jacobians`), x_0 fixed
+    period = np.arange(last)
     for m, model in enumerate(program.models):
-        for k, mode in enumerate(model.modes):
-            phi, gamma, g1 = velocity_driven_discretisation(
-                mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts
+        lengths, omegas, zetas = _mode_arrays(model)
+        a_k, b_k, e_k = step_jacobians(
+            evaluation.unit[m], evaluation.rate[m], evaluation.drive[m], lengths, omegas, zetas, ts
+        )
+        kappa = omegas**2 * lengths / model.gravity_m_s2
+        for k in range(modes):
+            r_list = [period * 6 + a for a in range(6)]
+            c_list = [state(m, k, a, period + 1) for a in range(6)]
+            v_list = [np.ones(last) for _ in range(6)]
+            moving = period >= 1
+            for a in range(6):
+                for b in range(6):
+                    r_list.append(period[moving] * 6 + a)
+                    c_list.append(state(m, k, b, period[moving]))
+                    v_list.append(-a_k[k, moving, a, b])
+            for shift, matrix in ((0, b_k[k]), (1, e_k[k])):
+                j = period + shift
+                for o in (-1, 0, 1):
+                    gain = band.force[o + 1][k, j] + (kappa[k] - 1.0) * band.force[o + 1][-1, j]
+                    coefficient = np.einsum("kac,kc->ka", matrix, gain) * unit
+                    sample = j + o
+                    ok = (sample >= 1) & (sample <= steps)
+                    for a in range(6):
+                        r_list.append(period[ok] * 6 + a)
+                        c_list.append(d(sample[ok]))
+                        v_list.append(-coefficient[ok, a])
+            conic.add(
+                "zero",
+                np.concatenate(r_list),
+                np.concatenate(c_list),
+                np.concatenate(v_list),
+                np.zeros(6 * last),
             )
-            for c in range(2):
-                # dw_{i+1} - dw_i + T/2 (df_i + df_{i+1}) = 0 for i = 0..N-1 (the rest force
-                # of the first pose is fixed)
-                i = np.arange(last)
-                r_list = [i, i]
-                c_list = [state(m, k, c, 2, i + 1), state(m, k, c, 2, i)]
-                v_list = [np.ones(last), -np.ones(last)]
-                keepw = i >= 1
-                r_list[1], c_list[1], v_list[1] = i[keepw], c_list[1][keepw], v_list[1][keepw]
-                for shift in (0, 1):
-                    for sample, col, coef in force_terms(k, c, i + shift):
-                        rows = sample - shift
-                        r_list.append(rows)
-                        c_list.append(col)
-                        v_list.append(0.5 * ts * coef)
-                # A x in row: b - A x = 0 -> put the expression as -A
-                conic.add(
-                    "zero",
-                    np.concatenate(r_list),
-                    np.concatenate(c_list),
-                    -np.concatenate(v_list),
-                    np.zeros(last),
-                )
-                # dz_{i+1} = Phi dz_i + Gamma dw_i
-                for row in range(2):
-                    r_list = [i]
-                    c_list = [state(m, k, c, row, i + 1)]
-                    v_list = [np.ones(last)]
-                    for comp in range(2):
-                        ok = i >= 1
-                        r_list.append(i[ok])
-                        c_list.append(state(m, k, c, comp, i[ok]))
-                        v_list.append(np.full(ok.sum(), -phi[row, comp]))
-                    ok = i >= 1
-                    r_list.append(i[ok])
-                    c_list.append(state(m, k, c, 2, i[ok]))
-                    v_list.append(np.full(ok.sum(), -gamma[row]))
-                    conic.add(
-                        "zero",
-                        np.concatenate(r_list),
-                        np.concatenate(c_list),
-                        -np.concatenate(v_list),
-                        np.zeros(last),
-                    )
     # ------------------------------------------------ wall cones at every sample 1..last
+    i = np.arange(1, total)
+    count = i.size
     for m, model in enumerate(program.models):
-        i = np.arange(1, total)
-        count = i.size
         r_list = [np.arange(count) * 3]
         c_list = [np.full(count, sigma)]
         v_list = [-np.ones(count)]
@@ -608,15 +605,13 @@ def _cone_step(
         b[:, 0] = keep
         b[:, 1:] = evaluation.wall[m, 1:] / lim.max_height_m
         for k, mode in enumerate(model.modes):
-            _, _, g1 = velocity_driven_discretisation(
-                mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts
-            )
+            slope = slope_jacobian(evaluation.unit[m, k, 1:])  # (count, 2, 3)
             e = mode.wall_elevation_factor_m / lim.max_height_m
-            for c in range(2):
-                rows = np.arange(count) * 3 + 1 + c
-                r_list += [rows, rows]
-                c_list += [state(m, k, c, 0, i), state(m, k, c, 2, i)]
-                v_list += [np.full(count, -e), np.full(count, -e * g1[0])]
+            for row in range(2):
+                for comp in range(3):
+                    r_list.append(np.arange(count) * 3 + 1 + row)
+                    c_list.append(state(m, k, comp, i))
+                    v_list.append(-e * slope[:, row, comp])
         conic.add(
             "soc",
             np.concatenate(r_list),
@@ -628,41 +623,17 @@ def _cone_step(
     # ------------------------------------------------ residual cones and their sum
     for m, model in enumerate(program.models):
         for k, mode in enumerate(model.modes):
-            _, _, g1 = velocity_driven_discretisation(
-                mode.omega_rad_s, mode.damping_ratio, mode.length_m, ts
-            )
             damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
             sig = mode.damping_ratio * mode.omega_rad_s
             back = math.exp(mode.damping_ratio * mode.omega_rad_s * HOLD * ts)
             e = back * mode.wall_elevation_factor_m / lim.max_residual_height_m
-            r_list = [np.array([0])]
-            c_list = [np.array([t_base + m * modes + k])]
-            v_list = [np.array([-1.0])]
-            for c in range(2):
-                # cos = dz0 + g1_0 dw + df_0/s - df_N/s ; rate = dz1 + g1_1 dw - dw / L
-                # sine = (rate + sig cos) / damped
-                cos_terms = [(state(m, k, c, 0, last), 1.0), (state(m, k, c, 2, last), g1[0])]
-                rate_terms = [
-                    (state(m, k, c, 1, last), 1.0),
-                    (state(m, k, c, 2, last), g1[1] - 1.0 / mode.length_m),
-                ]
-                for row, terms in ((1 + c, cos_terms), (3 + c, None)):
-                    if terms is None:
-                        terms = [(cc, cf * sig / damped) for cc, cf in cos_terms] + [
-                            (cc, cf / damped) for cc, cf in rate_terms
-                        ]
-                    r_list.append(np.full(len(terms), row))
-                    c_list.append(np.array([t[0] for t in terms]))
-                    v_list.append(-e * np.array([t[1] for t in terms]))
+            # (cosine, sine) = (du, (du' + sig du) / damped) of the lateral components at `last`
+            rows = [0, 1, 2, 3, 3, 4, 4]
+            comps = [None, 0, 1, 0, 3, 1, 4]
+            values = [-1.0, -e, -e, -e * sig / damped, -e / damped, -e * sig / damped, -e / damped]
+            cols = [t_base + m * modes + k] + [int(state(m, k, c, last)) for c in comps[1:]]
             b = np.concatenate(([0.0], evaluation.amplitude[m, k] / lim.max_residual_height_m))
-            conic.add(
-                "soc",
-                np.concatenate(r_list),
-                np.concatenate(c_list),
-                np.concatenate(v_list),
-                b,
-                [5],
-            )
+            conic.add("soc", rows, cols, values, b, [5])
         # sum t <= keep + sigma
         conic.add(
             "nonneg",

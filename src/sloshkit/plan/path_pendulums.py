@@ -1,0 +1,234 @@
+"""The nonlinear slosh pendulums along a sampled path, and their linearisation along it.
+
+The path program (`sloshkit.plan.path_optimal`) imposes its slosh limits on the model the
+verification simulates: every lateral mode a damped spherical pendulum of length L_n, driven by
+the specific force f at its hinge in the container's non-spinning frame N, integrated by the
+classical Runge-Kutta method on the drive's half-step grid (`sloshkit.sim.spatial`, the
+equations and their sources; `sloshkit.sim.spatial_kernels.nonlinear_pendulums`, the
+integrator). Here the drive is the sampled one: f at the export samples, linear between them
+(a first-order hold, as the program's finite-difference kinematics give it).
+
+`pendulum_track` integrates the pendulums along the samples with that kernel. `step_jacobians`
+differentiates one sample period of the same integrator, x_{k+1} = Phi(x_k, f_k, f_{k+1}) with
+x = (u, u') (unit vector along the rod and its rate), by central differences vectorised over
+all samples at once, so that along a track the deviations obey the time-varying linear system
+
+    dx_{k+1} = A_k dx_k + B_k df_k + E_k df_{k+1}
+
+(the linearisation of a discretised trajectory, as in sequential convex programming: Mao, Szmuk
+& Acikmese, IEEE CDC (2016), doi:10.1109/CDC.2016.7798816). `slope_jacobian` is the derivative
+of the surface slope tan(deflection) = u_lat / (-u_z) that the wall height reads
+(`sloshkit.sim.spatial_response.SpatialResponse.mode_slope`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+
+#: Largest omega_n h of one Runge-Kutta step (the rule of `sloshkit.sim.spatial.simulate_spatial`).
+MAX_OMEGA_STEP = 0.5
+#: Central-difference steps of the state (u, u') and of the force [m/s^2].
+_STATE_STEP, _FORCE_STEP = 1e-6, 1e-5
+
+
+def rk4_substeps(omegas_rad_s: Sequence[float], sample_period_s: float) -> int:
+    """Runge-Kutta steps per sample period: omega_max h <= `MAX_OMEGA_STEP` (accurate, far
+    inside the classical method's stability limit 2.8; Hairer, Norsett & Wanner, *Solving
+    Ordinary Differential Equations I*, 2nd ed. (1993) §II.1).
+
+    >>> rk4_substeps([19.2, 41.3], 0.004), rk4_substeps([19.2, 41.3], 0.02)
+    (1, 2)
+    """
+    return max(1, math.ceil(max(omegas_rad_s) * sample_period_s / MAX_OMEGA_STEP))
+
+
+def pendulum_track(
+    force_m_s2: FloatArray,
+    rest_force_m_s2: FloatArray,
+    length_m: FloatArray,
+    omega_rad_s: FloatArray,
+    damping_ratio: FloatArray,
+    sample_period_s: float,
+) -> tuple[FloatArray, FloatArray]:
+    """The pendulums' unit vectors u and rates u' at the samples, (modes, K, 3) each.
+
+    Parameters
+    ----------
+    force_m_s2 : numpy.ndarray
+        Specific force at each mode's hinge in N at the samples, (modes, K, 3) [m/s^2], linear
+        between them; the pendulums start at rest along ``rest_force_m_s2`` (modes, 3).
+    length_m, omega_rad_s, damping_ratio : numpy.ndarray
+        The modes' L_n, omega_n and zeta_n.
+    sample_period_s : float
+        Sample period [s].
+
+    Examples
+    --------
+    A constant lateral force 0.1 g from the first sample: the damped pendulum settles along
+    the apparent gravity, atan(0.1) from the axis.
+
+    >>> import numpy as np
+    >>> g = 9.81
+    >>> force = np.tile([-0.1 * g, 0.0, -g], (1, 3000, 1))
+    >>> unit, rate = pendulum_track(force, np.array([[0.0, 0.0, -g]]), np.array([0.01]),
+    ...                             np.array([np.sqrt(g / 0.01)]), np.array([0.3]), 1e-3)
+    >>> swing = float(np.arctan2(-unit[0, -1, 0], -unit[0, -1, 2]))
+    >>> round(swing, 4), round(float(np.arctan(0.1)), 4)
+    (0.0997, 0.0997)
+    """
+    from sloshkit.sim.spatial_kernels import nonlinear_pendulums
+
+    modes, samples, _ = force_m_s2.shape
+    substeps = rk4_substeps(list(omega_rad_s), sample_period_s)
+    fractions = np.arange(2 * substeps) / (2 * substeps)
+    start, end = force_m_s2[:, :-1], force_m_s2[:, 1:]
+    half = start[:, :, None] + fractions[None, None, :, None] * (end - start)[:, :, None]
+    half = np.concatenate((half.reshape(modes, -1, 3), force_m_s2[:, -1:]), axis=1)
+    still = np.zeros((half.shape[1], 2))
+    unit, rate = nonlinear_pendulums(
+        half,
+        rest_force_m_s2,
+        still,
+        still,
+        np.asarray(length_m, dtype=float),
+        np.asarray(omega_rad_s, dtype=float),
+        np.asarray(damping_ratio, dtype=float),
+        sample_period_s / substeps,
+    )
+    return unit[:, ::substeps][:, :samples], rate[:, ::substeps][:, :samples]
+
+
+def _rhs(
+    u: FloatArray, v: FloatArray, f: FloatArray, length: FloatArray, c: FloatArray
+) -> FloatArray:
+    """u'' of the damped spherical pendulum in N without tilt rates (`sloshkit.sim.spatial`):
+    the force and damping across the rod over L, minus the centripetal |u'|^2 u."""
+    force = f - (c * length)[..., None] * v
+    radial = np.sum(u * force, axis=-1, keepdims=True)
+    speed2 = np.sum(v * v, axis=-1, keepdims=True)
+    return np.asarray((force - radial * u) / length[..., None] - speed2 * u)
+
+
+def _period(
+    u: FloatArray,
+    v: FloatArray,
+    f0: FloatArray,
+    f1: FloatArray,
+    length: FloatArray,
+    c: FloatArray,
+    h: float,
+    substeps: int,
+) -> tuple[FloatArray, FloatArray]:
+    """One sample period of the kernel's integrator: ``substeps`` classical Runge-Kutta steps
+    of h with the force linear from f0 to f1, each followed by the kernel's projection back
+    onto the sphere (|u| = 1, u' normal to u). Vectorised over leading axes."""
+    for sub in range(substeps):
+        fa = f0 + (sub / substeps) * (f1 - f0)
+        fb = f0 + ((sub + 0.5) / substeps) * (f1 - f0)
+        fe = f0 + ((sub + 1.0) / substeps) * (f1 - f0)
+        k1v = _rhs(u, v, fa, length, c)
+        u2, v2 = u + 0.5 * h * v, v + 0.5 * h * k1v
+        k2v = _rhs(u2, v2, fb, length, c)
+        u3, v3 = u + 0.5 * h * v2, v + 0.5 * h * k2v
+        k3v = _rhs(u3, v3, fb, length, c)
+        u4, v4 = u + h * v3, v + h * k3v
+        k4v = _rhs(u4, v4, fe, length, c)
+        u = u + h / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4)
+        v = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v)
+        u = u / np.linalg.norm(u, axis=-1, keepdims=True)
+        v = v - np.sum(u * v, axis=-1, keepdims=True) * u
+    return u, v
+
+
+def step_jacobians(
+    unit: FloatArray,
+    rate: FloatArray,
+    force_m_s2: FloatArray,
+    length_m: FloatArray,
+    omega_rad_s: FloatArray,
+    damping_ratio: FloatArray,
+    sample_period_s: float,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """A_k, B_k, E_k of every sample period along a track (module docstring).
+
+    Parameters
+    ----------
+    unit, rate, force_m_s2 : numpy.ndarray
+        The track (`pendulum_track`) and its drive, (modes, K, 3) each.
+    length_m, omega_rad_s, damping_ratio : numpy.ndarray
+        The modes' L_n, omega_n, zeta_n.
+    sample_period_s : float
+        Sample period [s].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        A (modes, K - 1, 6, 6): d x_{k+1} / d x_k; B and E (modes, K - 1, 6, 3): d x_{k+1} /
+        d f_k and / d f_{k+1}; x = (u, u').
+
+    Examples
+    --------
+    Against a finite difference of two tracks: a small force change at one sample moves the
+    states as the linear system predicts.
+
+    >>> import numpy as np
+    >>> g, ts = 9.81, 0.004
+    >>> t = np.arange(200) * ts
+    >>> force = np.zeros((1, 200, 3)); force[0, :, 2] = -g; force[0, :, 0] = -3 * np.sin(6 * t)
+    >>> args = (np.array([0.02]), np.array([np.sqrt(g / 0.02)]), np.array([0.01]), ts)
+    >>> unit, rate = pendulum_track(force, np.array([[0.0, 0.0, -g]]), *args)
+    >>> a, b, e = step_jacobians(unit, rate, force, *args)
+    >>> df = np.array([1e-3, 0.0, 0.0])
+    >>> moved = force.copy(); moved[0, 100] += df
+    >>> unit2, rate2 = pendulum_track(moved, np.array([[0.0, 0.0, -g]]), *args)
+    >>> dx = a[0, 100] @ (e[0, 99] @ df) + b[0, 100] @ df
+    >>> for k in range(101, 150):
+    ...     dx = a[0, k] @ dx
+    >>> exact = np.concatenate((unit2[0, 150] - unit[0, 150], rate2[0, 150] - rate[0, 150]))
+    >>> bool(np.allclose(dx, exact, rtol=0, atol=1e-3 * np.abs(exact).max()))
+    True
+    """
+    modes, samples, _ = unit.shape
+    substeps = rk4_substeps(list(omega_rad_s), sample_period_s)
+    h = sample_period_s / substeps
+    length = np.broadcast_to(np.asarray(length_m, dtype=float)[:, None], (modes, samples - 1))
+    c = np.broadcast_to(
+        (2.0 * np.asarray(damping_ratio) * np.asarray(omega_rad_s))[:, None],
+        (modes, samples - 1),
+    )
+    base = (unit[:, :-1], rate[:, :-1], force_m_s2[:, :-1], force_m_s2[:, 1:])
+    # 12 input directions (u, u', f_k, f_{k+1}; 3 each), + and - at once: axis 2
+    inputs = [np.repeat(part[:, :, None], 24, axis=2).copy() for part in base]
+    steps = (_STATE_STEP, _STATE_STEP, _FORCE_STEP, _FORCE_STEP)
+    for direction in range(12):
+        block, component = divmod(direction, 3)
+        inputs[block][:, :, 2 * direction, component] += steps[block]
+        inputs[block][:, :, 2 * direction + 1, component] -= steps[block]
+    u, v = _period(*inputs, length[..., None], c[..., None], h, substeps)
+    state = np.concatenate((u, v), axis=-1)  # (modes, K - 1, 24, 6)
+    jac = (state[:, :, 0::2] - state[:, :, 1::2]) / (
+        2.0 * np.repeat(np.asarray(steps), 3)[None, None, :, None]
+    )
+    jac = np.swapaxes(jac, 2, 3)  # (modes, K - 1, 6 outputs, 12 inputs)
+    return jac[..., :6], jac[..., 6:9], jac[..., 9:12]
+
+
+def slope_jacobian(unit: FloatArray) -> FloatArray:
+    """d (u_lat / (-u_z)) / d u, (..., 2, 3): the surface slope tan(deflection) of
+    `sloshkit.sim.spatial_response.SpatialResponse.mode_slope` (its cap at 84 deg ignored)."""
+    axial = -unit[..., 2]
+    out = np.zeros((*unit.shape[:-1], 2, 3))
+    out[..., 0, 0] = out[..., 1, 1] = 1.0 / axial
+    out[..., :, 2] = unit[..., :2] / (axial**2)[..., None]
+    return out
+
+
+def mode_slope(unit: FloatArray) -> FloatArray:
+    """u_lat / (-u_z), capped at 84 deg as `SpatialResponse.mode_slope` caps it, (..., 2)."""
+    return np.asarray(unit[..., :2] / np.maximum(-unit[..., 2], 0.1)[..., None], dtype=float)
