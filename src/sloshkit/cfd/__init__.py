@@ -17,6 +17,6 @@
 - `sloshkit.cfd.analysis`: frequency and damping of a finished case.
 - `sloshkit.cfd.pipeline`: case from a model, run, and `validate` (CFD against the pendulum
   model), used by the CLI and the report; `sloshkit.cfd.validation` holds its result object.
-- `sloshkit.cfd.spatial`: pose-driven cases against the 3-D model.
+- `sloshkit.cfd.pose_validation`: pose-driven cases against the 3-D model.
 - `sloshkit.cfd.campaign`: campaigns of cases on Dask.
 """

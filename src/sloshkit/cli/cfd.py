@@ -359,7 +359,7 @@ def _validate(case: Path, slosh_model: SloshModel) -> CfdValidation:
     if (case / "sloshkit-case.json").is_file():
         summary = read_case_summary(case)
         if summary["excitation"]["type"] == "PoseExcitation":
-            from sloshkit.cfd.spatial import validate_poses
+            from sloshkit.cfd.pose_validation import validate_poses
 
             return validate_poses(slosh_model, case)
     return validate(slosh_model, case)
