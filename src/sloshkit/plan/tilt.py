@@ -110,7 +110,7 @@ def tilt_compensated(
     >>> poses = PoseSamples(t, np.c_[x, 0 * t, 0 * t], np.tile([0, 0, 0, 1.0], (t.size, 1)))
     >>> tilted = tilt_compensated(poses, 0.03, np.radians(30), smoothing_s=0.0)
     >>> axis = tilted.rotation.apply([0, 0, 1])[200]
-    >>> round(float(np.degrees(np.arctan2(axis[0], axis[2]))), 2)  # atan(2 / 9.80665)
+    >>> round(float(np.degrees(np.arctan2(axis[0], axis[2]))), 2)  # atan(2 / g)
     11.53
     """
     ts = float(poses.time_s[1] - poses.time_s[0])
