@@ -2,6 +2,8 @@
 
 - `sloshkit.cfd.foam`: a small, tested writer of OpenFOAM dictionary syntax (pure).
 - `sloshkit.cfd.spec`: what defines a case (`CaseSpec`, SI units).
+- `sloshkit.cfd.requests`: the case options of a command in SI (`CaseRequest`), checked and made
+  a `CaseSpec`.
 - `sloshkit.cfd.excitation`: container motions and the acceleration table (pure).
 - `sloshkit.cfd.mesh`, `sloshkit.cfd.fields`, `sloshkit.cfd.system`, `sloshkit.cfd.case`: the
   O-grid (uniform, or with a graded wall annulus), the initial fill and fluids, the system
