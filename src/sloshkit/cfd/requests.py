@@ -62,6 +62,37 @@ def require_cylinder(slosh_model: SloshModel) -> None:
         )
 
 
+def require_processes(processes: int | None) -> int:
+    """The MPI processes of a case: at least 1 (None: 1, serial).
+
+    Parameters
+    ----------
+    processes : int or None
+        The requested process count (``--np``).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InputError
+        Below 1, naming ``np``.
+
+    Examples
+    --------
+    >>> require_processes(None), require_processes(4)
+    (1, 4)
+    >>> require_processes(0)
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: np = 0 is invalid: must be at least 1 (1 runs serially)
+    """
+    if processes is not None and processes < 1:
+        raise InputError("np", processes, "must be at least 1 (1 runs serially)")
+    return 1 if processes is None else processes
+
+
 @dataclass(frozen=True)
 class CaseRequest:
     """The options of a CFD case in SI, before they are checked and made a `CaseSpec`.
@@ -171,8 +202,7 @@ class CaseRequest:
         sloshkit.errors.InputError: np = 0 is invalid: must be at least 1 (1 runs serially)
         """
         require_cylinder(model)
-        if self.processes is not None and self.processes < 1:
-            raise InputError("np", self.processes, "must be at least 1 (1 runs serially)")
+        processes = require_processes(self.processes)
         excitation = excitation_from_options(
             self.excitation,
             self.tilt_rad,
@@ -192,7 +222,7 @@ class CaseRequest:
             end_time_s=self.end_time_s,
             delta_t_s=self.delta_t_s,
             ddt_scheme=self.ddt_scheme,
-            processes=1 if self.processes is None else self.processes,
+            processes=processes,
             surface_tension=self.surface_tension,
             max_courant=self.max_courant,
             max_alpha_courant=self.max_courant,

@@ -10,7 +10,7 @@ from typing import Annotated, Any
 import typer
 
 from sloshkit.cfd.pipeline import RECOMMENDED
-from sloshkit.cfd.requests import CaseRequest, require_cylinder
+from sloshkit.cfd.requests import CaseRequest, require_cylinder, require_processes
 from sloshkit.cfd.spec import CaseSpec
 from sloshkit.cli.moves import Distance, Duration
 from sloshkit.errors import InputError
@@ -229,6 +229,7 @@ def spec_from_options(slosh_model: SloshModel, options: dict[str, Any]) -> CaseS
             options["distance"], options["duration"], None, None, None, None, None
         )
         motion = request.law(options["law"] or "quintic")
+    require_processes(options["np_"])  # before the units are parsed (the request checks again)
     # ranges that keep a case meaningful: a tilt below 45 deg, an amplitude below 10 m
     case = CaseRequest(
         excitation=options["excitation"],
