@@ -11,9 +11,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "src" / "sloshkit"
 
-#: Modules of plan/ that still write the grid rule, the gravity constant or import private
-#: names: the 3-D planner's rewrite (issue 25, helper planner3d) moves them to the shared
-#: helpers, and then their entries go. No module outside plan/ may be added here.
+#: Modules of plan/ that still write the grid rule or import private names: the 3-D planner's
+#: rewrite (issue 25, helper planner3d) moves them to the shared helpers, and then their
+#: entries go. No module outside plan/ may be added here.
 PLAN_PENDING = {
     "plan/grid_moves.py",
     "plan/path_search.py",
@@ -81,20 +81,17 @@ GRAVITY_VALUES = {9.81, 9.80665, 9.8}
 
 def gravity_literals(tree: ast.Module) -> list[int]:
     """Lines where a number equal to a value of `GRAVITY_VALUES` is written (not in strings)."""
-    return [
+    return sorted(
         node.lineno
         for node in ast.walk(tree)
         if isinstance(node, ast.Constant)
         and isinstance(node.value, float)
         and node.value in GRAVITY_VALUES
-    ]
+    )
 
 
 def test_only_model_theory_writes_the_gravity_constant():
-    allowed = {
-        "model/theory.py",  # GRAVITY_M_S2, the one constant
-        "model/document.py",  # its default for a missing key: helper containers owns model/
-    } | PLAN_PENDING
+    allowed = {"model/theory.py"}  # GRAVITY_M_S2, the one constant
     literals = [
         f"{name}:{line}"
         for name, tree in modules().items()
@@ -102,6 +99,25 @@ def test_only_model_theory_writes_the_gravity_constant():
         for line in gravity_literals(tree)
     ]
     assert literals == [], f"import sloshkit.model.theory.GRAVITY_M_S2 instead: {literals}"
+
+
+def test_no_module_quotes_standard_gravity():
+    # 9.80665 is not the project's g (GRAVITY_M_S2 = 9.81): a docstring, comment or example
+    # that writes it describes a second constant.
+    quoted = [
+        f"{path.relative_to(PACKAGE).as_posix()}:{number}"
+        for path in sorted(PACKAGE.rglob("*.py"))
+        if path.relative_to(PACKAGE).as_posix() != "model/theory.py"
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
+        if "9.80665" in line
+    ]
+    assert quoted == [], f"the project's g is sloshkit.model.theory.GRAVITY_M_S2: {quoted}"
+
+
+def test_the_gravity_finder_finds_a_literal_and_not_a_quote():
+    literal = ast.parse("import numpy as np\nG = np.array([0.0, 0.0, -9.80665])\ng = 9.81\n")
+    quote = ast.parse('"""g = 9.81 m/s^2"""\nx = 9.8101\n')
+    assert gravity_literals(literal) == [2, 3] and gravity_literals(quote) == []
 
 
 def private_imports(tree: ast.Module) -> list[tuple[str, str]]:

@@ -294,7 +294,7 @@ def table(rows: list[dict[str, Any]], markdown: bool = False) -> str:
 
 def figure(rows: list[dict[str, Any]], series: list[dict[str, Any]], path: Path) -> None:
     """Measured against predicted series (linear and nonlinear), one panel per series."""
-    from sloshkit.plotting.spatial import plot_measured_comparison
+    from sloshkit.plotting.response3d import plot_measured_comparison
 
     panels = []
     for item in series:

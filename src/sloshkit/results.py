@@ -42,7 +42,7 @@ PLOTTING_PACKAGE = "sloshkit.plotting"
 PLOTS: dict[str, str] = {
     "sloshkit.sim.response.SloshResponse": "sloshkit.plotting.response:plot_response",
     "sloshkit.sim.spatial_response.SpatialResponse": (
-        "sloshkit.plotting.spatial:plot_spatial_response"
+        "sloshkit.plotting.response3d:plot_spatial_response"
     ),
     "sloshkit.sweep.result.SweepResult": "sloshkit.plotting.sweep:plot_sweep_map",
     "sloshkit.calibration.result.CalibrationResult": (

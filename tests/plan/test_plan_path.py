@@ -15,6 +15,7 @@ from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.waypoints import read_waypoints
 from sloshkit.model.modal import SloshModel
+from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path import path_from_poses, path_from_waypoints
@@ -174,7 +175,7 @@ def test_tilt_compensation_of_constant_horizontal_acceleration(robot_vial: Slosh
     axis = tilted.rotation.apply([0.0, 0.0, 1.0])
     hold = (tilted.time_s > 0.75 + 0.09) & (tilted.time_s < 1.25 + 0.09)  # + padding
     angle = np.degrees(np.arctan2(axis[hold, 0], axis[hold, 2]))
-    assert angle == pytest.approx(math.degrees(math.atan(accel / 9.80665)), abs=0.05)
+    assert angle == pytest.approx(math.degrees(math.atan(accel / GRAVITY_M_S2)), abs=0.05)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
         plain = simulate_spatial(
@@ -186,7 +187,7 @@ def test_tilt_compensation_of_constant_horizontal_acceleration(robot_vial: Slosh
             nonlinear=True,
             cutoff_hz=None,
         )
-    quasi_static = 0.9 * robot_vial.radius_m * accel / 9.80665
+    quasi_static = 0.9 * robot_vial.radius_m * accel / GRAVITY_M_S2
     assert plain.peak_slosh_height_m > quasi_static
     during = (calm.time_s > 0.9) & (calm.time_s < 1.4)  # the hold, after the padding
     assert np.max(calm.slosh_height_m[during]) < 0.02 * quasi_static

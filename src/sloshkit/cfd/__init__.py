@@ -2,6 +2,8 @@
 
 - `sloshkit.cfd.foam`: a small, tested writer of OpenFOAM dictionary syntax (pure).
 - `sloshkit.cfd.spec`: what defines a case (`CaseSpec`, SI units).
+- `sloshkit.cfd.requests`: the case options of a command in SI (`CaseRequest`), checked and made
+  a `CaseSpec`.
 - `sloshkit.cfd.excitation`: container motions and the acceleration table (pure).
 - `sloshkit.cfd.mesh`, `sloshkit.cfd.fields`, `sloshkit.cfd.system`, `sloshkit.cfd.case`: the
   O-grid (uniform, or with a graded wall annulus), the initial fill and fluids, the system
@@ -17,6 +19,6 @@
 - `sloshkit.cfd.analysis`: frequency and damping of a finished case.
 - `sloshkit.cfd.pipeline`: case from a model, run, and `validate` (CFD against the pendulum
   model), used by the CLI and the report; `sloshkit.cfd.validation` holds its result object.
-- `sloshkit.cfd.spatial`: pose-driven cases against the 3-D model.
+- `sloshkit.cfd.pose_validation`: pose-driven cases against the 3-D model.
 - `sloshkit.cfd.campaign`: campaigns of cases on Dask.
 """

@@ -19,12 +19,13 @@ from sloshkit.cfd.pipeline import (
 )
 from sloshkit.cfd.pipeline import run as run_cfd
 from sloshkit.cfd.prepare import check_case_path
+from sloshkit.cfd.requests import require_cylinder
 from sloshkit.cfd.run import CfdError, CfdInterrupted, interruptible
 from sloshkit.cfd.summary import read_case_summary
 from sloshkit.cfd.validation import CfdValidation
 from sloshkit.cli import display, messages, signals
 from sloshkit.cli.app import app, stderr, stdout
-from sloshkit.cli.cfd_options import CaseDir, cfd_options, require_cylinder, spec_from_options
+from sloshkit.cli.cfd_options import CaseDir, cfd_options, spec_from_options
 from sloshkit.cli.options import Json, print_json, with_cylinder_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.files import write_columns_csv
@@ -359,7 +360,7 @@ def _validate(case: Path, slosh_model: SloshModel) -> CfdValidation:
     if (case / "sloshkit-case.json").is_file():
         summary = read_case_summary(case)
         if summary["excitation"]["type"] == "PoseExcitation":
-            from sloshkit.cfd.spatial import validate_poses
+            from sloshkit.cfd.pose_validation import validate_poses
 
             return validate_poses(slosh_model, case)
     return validate(slosh_model, case)

@@ -9,7 +9,8 @@ from typing import Annotated, Any
 
 import typer
 
-from sloshkit.cfd.pipeline import RECOMMENDED, case_spec, excitation_from_options
+from sloshkit.cfd.pipeline import RECOMMENDED
+from sloshkit.cfd.requests import CaseRequest, require_cylinder, require_processes
 from sloshkit.cfd.spec import CaseSpec
 from sloshkit.cli.moves import Distance, Duration
 from sloshkit.errors import InputError
@@ -18,7 +19,6 @@ from sloshkit.io.command_requests import MoveRequest
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_bounded, parse_quantity
 from sloshkit.model.modal import SloshModel
-from sloshkit.model.profile import ProfileContainer
 
 CaseDir = Annotated[Path, typer.Option("--case", help="Case folder.")]
 
@@ -186,49 +186,9 @@ def cfd_options(excitation: str, end_time: str) -> dict[str, tuple[Any, Any]]:
     }
 
 
-def require_cylinder(slosh_model: SloshModel) -> None:
-    """Refuse a model of a container given by its profile: the CFD cases are meshes of upright
-    cylinders only.
-
-    Parameters
-    ----------
-    slosh_model : SloshModel
-        The model the CFD case would be built from or compared with.
-
-    Returns
-    -------
-    None
-        When the model's container is an upright cylinder.
-
-    Raises
-    ------
-    InputError
-        Naming ``--container`` or ``--profile`` (the option that gave the profile).
-
-    Examples
-    --------
-    >>> from sloshkit.model.catalogue import catalogue_container
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> model = equivalent_model(catalogue_container("iso8362-10R"), get_liquid("water-25C"), 0.01)
-    >>> require_cylinder(model)
-    Traceback (most recent call last):
-    ...
-    sloshkit.errors.InputError: container = 'iso8362-10R' is invalid: ...
-    """
-    container = slosh_model.container
-    if isinstance(container, ProfileContainer):
-        from_catalogue = container.name.startswith("iso8362-")
-        raise InputError(
-            "container" if from_catalogue else "profile",
-            container.name,
-            "CFD meshes upright cylinders only (--radius, --wall-height); a container given by "
-            "its profile is modelled by finite elements, not by CFD",
-        )
-
-
 def spec_from_options(slosh_model: SloshModel, options: dict[str, Any]) -> CaseSpec:
-    """The case described by the values of `cfd_options` (units parsed here).
+    """The case described by the values of `cfd_options`: units and files parsed here, the
+    case checked and built by `sloshkit.cfd.requests.CaseRequest`.
 
     Parameters
     ----------
@@ -258,7 +218,7 @@ def spec_from_options(slosh_model: SloshModel, options: dict[str, Any]) -> CaseS
     (2.0, 11, 1.0)
     """
 
-    require_cylinder(slosh_model)
+    require_cylinder(slosh_model)  # before any file is read
     motion = poses = None
     if options["excitation"] == "poses":
         if options["pose_file"] is None:
@@ -269,38 +229,33 @@ def spec_from_options(slosh_model: SloshModel, options: dict[str, Any]) -> CaseS
             options["distance"], options["duration"], None, None, None, None, None
         )
         motion = request.law(options["law"] or "quintic")
-    if options["np_"] is not None and options["np_"] < 1:
-        raise InputError("np", options["np_"], "must be at least 1 (1 runs serially)")
+    require_processes(options["np_"])  # before the units are parsed (the request checks again)
     # ranges that keep a case meaningful: a tilt below 45 deg, an amplitude below 10 m
-    tilt = parse_bounded(options["tilt"], "angle", "tilt", 0.0, math.radians(45.0))
-    amplitude = parse_bounded(options["amplitude"], "length", "amplitude", 0.0, 10.0)
-    frequency = parse_bounded(options["frequency"], "frequency", "frequency", 0.0, 1e3)
-    excite_time = parse_bounded(options["excite_time"], "time", "excite_time", 0.0, 1e5)
-    with naming("pose_file", options["pose_file"]) if poses is not None else nullcontext():
-        chosen = excitation_from_options(
-            options["excitation"], tilt, amplitude, frequency, excite_time, motion, poses
-        )
-    angles = options["probe_angles"]
-    if angles is None:
-        angles = 12 if poses is not None else 0
-    end_time_s = parse_quantity(options["end_time"], "time", "end_time")
-    delta_t_s = parse_quantity(options["delta_t"], "time", "delta_t")
-    # a pose file too short or too long for the case's grid names --pose-file
-    with naming("pose_file", options["pose_file"]) if poses is not None else nullcontext():
-        return case_spec(
-            slosh_model,
-            chosen,
-            cells_per_radius=options["cells_per_radius"],
-            end_time_s=end_time_s,
-            delta_t_s=delta_t_s,
-            ddt_scheme=options["ddt"],
-            processes=1 if options["np_"] is None else options["np_"],
-            surface_tension=options["cfd_surface_tension"],
-            max_courant=options["max_courant"],
-            max_alpha_courant=options["max_courant"],
-            adjust_time_step=not options["fixed_step"],
-            probe_angles=angles,
-            wall_grading=options.get("wall_grading", 1.0),
-            radial_cells=options.get("radial_cells"),
-            surface_refinement=options.get("surface_refinement", 2),
-        )
+    case = CaseRequest(
+        excitation=options["excitation"],
+        tilt_rad=parse_bounded(options["tilt"], "angle", "tilt", 0.0, math.radians(45.0)),
+        amplitude_m=parse_bounded(options["amplitude"], "length", "amplitude", 0.0, 10.0),
+        frequency_hz=parse_bounded(options["frequency"], "frequency", "frequency", 0.0, 1e3),
+        excite_time_s=parse_bounded(options["excite_time"], "time", "excite_time", 0.0, 1e5),
+        motion=motion,
+        poses=poses,
+        end_time_s=parse_quantity(options["end_time"], "time", "end_time"),
+        delta_t_s=parse_quantity(options["delta_t"], "time", "delta_t"),
+        cells_per_radius=options["cells_per_radius"],
+        ddt_scheme=options["ddt"],
+        processes=options["np_"],
+        surface_tension=options["cfd_surface_tension"],
+        max_courant=options["max_courant"],
+        fixed_step=options["fixed_step"],
+        probe_angles=options["probe_angles"],
+        wall_grading=options.get("wall_grading", 1.0),
+        radial_cells=options.get("radial_cells"),
+        surface_refinement=options.get("surface_refinement", 2),
+    )
+    # the excitation and the grid of a pose file (too short, too long) name --pose-file
+    with (
+        naming("pose_file", options["pose_file"], keep=("np",))
+        if poses is not None
+        else nullcontext()
+    ):
+        return case.spec(slosh_model)

@@ -10,9 +10,10 @@ from rich.table import Table
 from rich.text import Text
 
 from sloshkit.cfd.prepare import check_case_path
+from sloshkit.cfd.requests import require_cylinder
 from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.cfd import cfd_app
-from sloshkit.cli.cfd_options import cfd_options, require_cylinder, spec_from_options
+from sloshkit.cli.cfd_options import cfd_options, spec_from_options
 from sloshkit.cli.options import Json, print_json, with_cylinder_model_options, with_options
 from sloshkit.errors import InputError
 from sloshkit.io.outputs import check_folder

@@ -20,11 +20,11 @@ from sloshkit.cli.app import app, stderr, stdout
 
 # The option group (``plan --export`` imports it from here too).
 from sloshkit.cli.export_options import FORMAT_HELP
-from sloshkit.cli.export_options import ExportSettings as ExportSettings
 from sloshkit.cli.export_options import with_export_options as with_export_options
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.export.settings import ExportSettings
 from sloshkit.io.checks import naming
 from sloshkit.io.command_requests import slosh_limits_request
 from sloshkit.io.outputs import all_or_nothing, check_file

@@ -1,17 +1,18 @@
 """The export option group of the command line (arm, mounting, servoj parameters, check),
-parsed to SI once: ``sloshkit export`` and ``sloshkit plan --export`` share it."""
+parsed to SI once: ``sloshkit export`` and ``sloshkit plan --export`` share it. The settings
+they build, and their limits, are `sloshkit.export.settings`'s."""
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 
 from sloshkit.cli.options import with_options
-from sloshkit.errors import InputError, require_in_range
+from sloshkit.errors import InputError
+from sloshkit.export.settings import LOOKAHEAD_TIME_RANGE_S, ExportSettings, export_settings
 from sloshkit.io.units import parse_bounded, parse_number, parse_quantity
 
 FORMAT_HELP = (
@@ -57,73 +58,6 @@ Check = Annotated[
     bool,
     typer.Option("--check/--no-check", help="Parse the file back and re-simulate the slosh."),
 ]
-
-
-@dataclass(frozen=True)
-class ExportSettings:
-    """The export option group, parsed (SI): how to reach the controller.
-
-    Attributes
-    ----------
-    robot : str or None
-        A built-in arm (``--robot``).
-    urdf : pathlib.Path or None
-        A URDF file (``--urdf``).
-    base_link, tip_link : str or None
-        The URDF links the chain runs between.
-    seed_rad : tuple of float or None
-        IK seed of the first sample [rad].
-    mounting : Mounting
-        Where the container sits in the flange and the path in the base.
-    axis : tuple of float
-        Direction of a 1-D move in the path frame.
-    lookahead_time_s, gain : float
-        URScript ``servoj`` parameters [s], [-].
-    check : bool
-        Parse the file back and re-simulate.
-
-    Examples
-    --------
-    >>> from sloshkit.export.frames import Mounting
-    >>> settings = ExportSettings(None, None, None, None, None, Mounting(), (1.0, 0.0, 0.0),
-    ...                           0.1, 300.0, True)
-    >>> settings.arm("pose-csv") is None  # joint formats load the arm (UR5e by default)
-    True
-    """
-
-    robot: str | None
-    urdf: Path | None
-    base_link: str | None
-    tip_link: str | None
-    seed_rad: tuple[float, ...] | None
-    mounting: Any
-    axis: tuple[float, float, float]
-    lookahead_time_s: float
-    gain: float
-    check: bool
-
-    def arm(self, fmt: str) -> Any:
-        """The arm for joint formats (unless ``--urdf`` or ``--robot`` says otherwise: the UR5e,
-        or the vendor's built-in arm for a robot program, e.g. lrmate200id for fanuc-ls)."""
-        from sloshkit.export.kinematics import load_arm
-        from sloshkit.export.readback import JOINT_FORMATS
-
-        if fmt not in JOINT_FORMATS:
-            return None
-        from sloshkit.export.formats.vendors import default_robot
-
-        default = default_robot(fmt) or "ur5e"
-        robot = self.robot if self.robot is not None or self.urdf is not None else default
-        seed = None if self.seed_rad is None else tuple(self.seed_rad)
-        import numpy as np
-
-        return load_arm(
-            robot,
-            self.urdf,
-            self.base_link,
-            self.tip_link,
-            None if seed is None else np.asarray(seed),
-        )
 
 
 def parse_vector(text: str, kinds: tuple[str, ...], parameter: str) -> tuple[float, ...]:
@@ -172,8 +106,6 @@ def _parse_axis(text: str) -> tuple[float, float, float]:
 
 
 def _settings(values: dict[str, Any]) -> ExportSettings:
-    from sloshkit.export.frames import Mounting
-
     base = values["base_pose"].split(",")
     if len(base) not in (3, 6):
         raise InputError("base_pose", values["base_pose"], "needs x,y,z or x,y,z,roll,pitch,yaw")
@@ -183,7 +115,8 @@ def _settings(values: dict[str, Any]) -> ExportSettings:
     offset = parse_vector(values["tool_offset"], ("length",) * 3, "tool_offset")
     rotation = parse_vector(values["tool_rotation"], ("angle",) * 3, "tool_rotation")
     seed = values["seed_joints"]
-    return ExportSettings(
+    low, high = LOOKAHEAD_TIME_RANGE_S
+    return export_settings(
         robot=values["robot"],
         urdf=values["urdf"],
         base_link=values["base_link"],
@@ -191,19 +124,18 @@ def _settings(values: dict[str, Any]) -> ExportSettings:
         seed_rad=None
         if seed is None
         else tuple(parse_quantity(cell, "angle", "seed_joints") for cell in seed.split(",")),
-        mounting=Mounting(
-            tool_offset_m=(offset[0], offset[1], offset[2]),
-            tool_rpy_rad=(rotation[0], rotation[1], rotation[2]),
-            base_xyz_m=(base_values[0], base_values[1], base_values[2]),
-            base_rpy_rad=(base_values[3], base_values[4], base_values[5])
-            if len(base_values) == 6
-            else (0.0, 0.0, 0.0),
-        ),
+        tool_offset_m=(offset[0], offset[1], offset[2]),
+        tool_rpy_rad=(rotation[0], rotation[1], rotation[2]),
+        base_xyz_m=(base_values[0], base_values[1], base_values[2]),
+        base_rpy_rad=(base_values[3], base_values[4], base_values[5])
+        if len(base_values) == 6
+        else (0.0, 0.0, 0.0),
         axis=_parse_axis(values["axis"]),
+        # the range again in the typed unit, so that the message quotes what was typed
         lookahead_time_s=parse_bounded(
-            values["lookahead_time"], "time", "lookahead_time", 0.03, 0.2, low_open=False
+            values["lookahead_time"], "time", "lookahead_time", low, high, low_open=False
         ),
-        gain=require_in_range("gain", values["gain"], 100.0, 2000.0),
+        gain=values["gain"],
         check=bool(values["check"]),
     )
 

@@ -14,7 +14,6 @@ from rich.text import Text
 from sloshkit.cli import signals
 from sloshkit.cli.app import app, stderr, stdout
 from sloshkit.cli.export import (
-    ExportSettings,
     RoundTripFailed,
     check_export_request,
     run_export,
@@ -26,6 +25,7 @@ from sloshkit.cli.moves import Amax, Distance, Jmax, Vmax
 from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
+from sloshkit.export.settings import ExportSettings
 from sloshkit.io.command_requests import line_plan_request
 from sloshkit.io.outputs import all_or_nothing, check_file
 from sloshkit.io.requests import fraction_request

@@ -121,7 +121,7 @@ def _cfd_free_decay(slosh_model: SloshModel, case: Path, may_run: bool = True) -
     """Calibration from a free-decay CFD case: reused when it has results, else (``may_run``)
     run with the recommended settings on 2 MPI ranks (about a minute), with a progress bar.
     A case named with --cfd-case is only reused: it must hold a finished sloshkit case."""
-    from sloshkit.cli.cfd_options import require_cylinder
+    from sloshkit.cfd.requests import require_cylinder
 
     require_cylinder(slosh_model)
     if not may_run and not (case / "sloshkit-case.json").is_file():

@@ -18,7 +18,7 @@ from sloshkit.cli.moves import (
     with_simulation_options,
 )
 from sloshkit.cli.options import Json, print_json, with_model_options
-from sloshkit.cli.spatial import (
+from sloshkit.cli.simulate_poses import (
     HeightMappingOpt,
     PoseFile,
     ToolOffset,

@@ -14,6 +14,7 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid
 from sloshkit.model.modal import SloshMode, SloshModel
 from sloshkit.model.profile import Container, ProfileContainer
+from sloshkit.model.theory import GRAVITY_M_S2
 
 #: Version of the model document (``sloshkit_model_version``).
 MODEL_FILE_VERSION = 1
@@ -159,7 +160,7 @@ def model_from_document(document: dict[str, Any], source: str = "document") -> S
             liquid=liquid,
             fill_height_m=container.check_fill_height(float(document["fill"]["fill_height_m"])),
             modes=modes,
-            gravity_m_s2=float(settings.get("gravity_m_s2", 9.81)),
+            gravity_m_s2=float(settings.get("gravity_m_s2", GRAVITY_M_S2)),
             damping_law=str(settings.get("damping_law", "user")),
             surface_tension_correction=bool(settings.get("surface_tension_correction", False)),
             provenance={str(k): str(v) for k, v in document.get("provenance", {}).items()},

@@ -18,10 +18,12 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
 from sloshkit.errors import require_in_range, require_positive
+from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.plan.path import Path
 
 FloatArray = NDArray[np.float64]
-GRAVITY = np.array([0.0, 0.0, -9.80665])
+#: Gravity in the world frame (z up) [m/s^2], from the model's constant.
+GRAVITY = np.array([0.0, 0.0, -GRAVITY_M_S2])
 #: Relative margin the searches keep from each slosh limit (the export is verified exactly).
 SEARCH_MARGIN = 0.03
 

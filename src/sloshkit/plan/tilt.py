@@ -60,7 +60,7 @@ def compensating_axis(acceleration_m_s2: FloatArray, max_tilt_rad: float) -> Flo
     --------
     >>> axis = compensating_axis(np.array([[3.0, 0.0, 0.0]]), np.radians(30))
     >>> round(float(np.degrees(np.arctan2(axis[0, 0], axis[0, 2]))), 3)  # atan(a / g)
-    17.01
+    17.004
     """
     wanted = np.asarray(acceleration_m_s2, dtype=float) - GRAVITY
     horizontal = np.linalg.norm(wanted[:, :2], axis=1)
@@ -110,8 +110,8 @@ def tilt_compensated(
     >>> poses = PoseSamples(t, np.c_[x, 0 * t, 0 * t], np.tile([0, 0, 0, 1.0], (t.size, 1)))
     >>> tilted = tilt_compensated(poses, 0.03, np.radians(30), smoothing_s=0.0)
     >>> axis = tilted.rotation.apply([0, 0, 1])[200]
-    >>> round(float(np.degrees(np.arctan2(axis[0], axis[2]))), 2)  # atan(2 / 9.80665)
-    11.53
+    >>> round(float(np.degrees(np.arctan2(axis[0], axis[2]))), 2)  # atan(2 / g)
+    11.52
     """
     ts = float(poses.time_s[1] - poses.time_s[0])
     pad = math.ceil(3.0 * smoothing_s / ts)

@@ -12,7 +12,7 @@ simulates, plans or selects a pyplot backend.
 - `sloshkit.plotting.calibration`: a `CalibrationResult`.
 - `sloshkit.plotting.plan`: a `PlanResult`.
 - `sloshkit.plotting.cfd`: a CFD validation.
-- `sloshkit.plotting.spatial`: a 3-D `SpatialResponse`; measured against predicted series.
+- `sloshkit.plotting.response3d`: a 3-D `SpatialResponse`; measured against predicted series.
 - `sloshkit.plotting.plan3d`: a 3-D `PathPlanResult`.
 """
 
@@ -36,7 +36,7 @@ if TYPE_CHECKING:  # the real signatures for type checkers; imported lazily at r
         plot_response,
         plot_slosh_comparison,
     )
-    from sloshkit.plotting.spatial import plot_measured_comparison, plot_spatial_response
+    from sloshkit.plotting.response3d import plot_measured_comparison, plot_spatial_response
     from sloshkit.plotting.sweep import plot_sweep_map
 
 #: Public figure function -> the module that defines it.
@@ -47,12 +47,12 @@ FUNCTIONS: dict[str, str] = {
     "plot_forced_identification": "sloshkit.plotting.calibration",
     "plot_free_response": "sloshkit.plotting.calibration",
     "plot_law_comparison": "sloshkit.plotting.response",
-    "plot_measured_comparison": "sloshkit.plotting.spatial",
+    "plot_measured_comparison": "sloshkit.plotting.response3d",
     "plot_path_plan": "sloshkit.plotting.plan3d",
     "plot_plan": "sloshkit.plotting.plan",
     "plot_response": "sloshkit.plotting.response",
     "plot_slosh_comparison": "sloshkit.plotting.response",
-    "plot_spatial_response": "sloshkit.plotting.spatial",
+    "plot_spatial_response": "sloshkit.plotting.response3d",
     "plot_sweep_map": "sloshkit.plotting.sweep",
 }
 

@@ -13,7 +13,8 @@ servo reaches the last target at rest instead of being stopped while its look-ah
 lags. ``a`` and ``v`` are not used by the controller (written as 0). Signature and ranges
 from the URScript manual (Universal Robots, *The URScript Programming Language*,
 e-Series SW 5.x, ``servoj``):
-``lookahead_time`` in [0.03, 0.2] s, ``gain`` in [100, 2000].
+``lookahead_time`` in [0.03, 0.2] s, ``gain`` in [100, 2000]
+(`sloshkit.export.settings.LOOKAHEAD_TIME_RANGE_S`, `sloshkit.export.settings.GAIN_RANGE`).
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from numpy.typing import NDArray
 from sloshkit.errors import InputError, require_in_range
 from sloshkit.export.formats.common import header_lines, number
 from sloshkit.export.ik import JointPath
+from sloshkit.export.settings import GAIN_RANGE, LOOKAHEAD_TIME_RANGE_S
 from sloshkit.files import atomic_open
 
 #: The UR e-Series controller period [s] (500 Hz).
@@ -108,8 +110,8 @@ def write_urscript(
     >>> out.read_text().count("servoj(")  # three samples and the hold
     4
     """
-    lookahead = require_in_range("lookahead_time", lookahead_time_s, 0.03, 0.2, "s")
-    gain = require_in_range("gain", gain, 100.0, 2000.0)
+    lookahead = require_in_range("lookahead_time", lookahead_time_s, *LOOKAHEAD_TIME_RANGE_S, "s")
+    gain = require_in_range("gain", gain, *GAIN_RANGE)
     period = joints.sample_period_s
     if abs(period - UR_SAMPLE_PERIOD_S) > 1e-12 or joints.position_rad.shape[1] != 6:
         raise InputError(
