@@ -14,12 +14,9 @@ from pathlib import Path
 from typing import Any
 
 from sloshkit.errors import require_in_range
+from sloshkit.export.servoj import GAIN_RANGE, LOOKAHEAD_TIME_RANGE_S
 
-#: URScript ``servoj``'s accepted ``lookahead_time`` [s] (Universal Robots, *The URScript
-#: Programming Language*, e-Series 5.x, ``servoj``).
-LOOKAHEAD_TIME_RANGE_S = (0.03, 0.2)
-#: URScript ``servoj``'s accepted proportional ``gain`` [-] (same source).
-GAIN_RANGE = (100.0, 2000.0)
+__all__ = ["GAIN_RANGE", "LOOKAHEAD_TIME_RANGE_S", "ExportSettings", "export_settings"]
 
 
 @dataclass(frozen=True)

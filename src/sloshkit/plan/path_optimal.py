@@ -8,35 +8,37 @@ quantity the verification checks is a function of these samples:
 - the Cartesian velocity, acceleration and jerk of the reference point and the container's
   angular velocity and acceleration, by finite differences of the samples with the ends _held at
   rest (as `sloshkit.plan.path_limits.kinematics` measures them);
-- the slosh of every mode n of every model of the robustness band: the linear spherical
-  pendulum of `sloshkit.sim.spatial` (Abramson, NASA SP-106 (1966) ch. 6; Dodge, SwRI (2000)
-  ch. 3) driven by the specific force at its bob point in the container's non-spinning frame,
-  from rest in the first pose, discretised exactly (`sloshkit.sim.discretisation`, first-order
-  hold of the equivalent velocity); the wall height |sum_n e_n phi_n| at every sample and the
-  residual bound sum_n e_n |(A_n, B_n)| of the free oscillation `HOLD` samples after the move,
-  scaled back to its end (as `sloshkit.sim.spatial_response.SpatialResponse` measures it).
-  On the export this equals `simulate_spatial(..., nonlinear=False, cutoff_hz=None)` to the
-  accuracy of the spline differentiation (0.03 mm on the benchmark's moves).
+- the slosh of every mode n of every model of the robustness band: the damped spherical
+  pendulum the verification simulates (`sloshkit.sim.spatial`; Abramson, NASA SP-106 (1966)
+  ch. 6; Dodge, SwRI (2000) ch. 3), driven by kappa_n g - a_hinge at its hinge in the
+  container's non-spinning frame, from rest in the first pose, integrated by the 3-D
+  simulation's Runge-Kutta kernel along the sampled drive (`sloshkit.plan.path_pendulums`);
+  the wall height |sum_n e_n tan(deflection_n)| at every sample and the residual
+  sum_n e_n |[A_n B_n]|_2 (the semi-major axis of each mode's free oscillation) `HOLD`
+  samples after the move, scaled back to its end (as `sloshkit.sim.spatial_response.
+  SpatialResponse` measures them). On the export this equals `simulate_spatial(...,
+  nonlinear=True, cutoff_hz=None)` to the accuracy of the spline differentiation (0.04 % of
+  the peak on the test's corner path).
 
-For a fixed N each program linearises these functions around the current samples (the force
-derivatives banded, by colouring) and keeps every norm exact as a second-order cone: the
+For a fixed N each program linearises these functions around the current samples: the force
+derivatives banded, by colouring; the pendulums as the time-varying linear system of one
+Runge-Kutta period differentiated along the current track (`path_pendulums.step_jacobians`),
+their states variables of banded dynamics rows. Every norm stays an exact second-order cone
+(the semi-major axis of a 2 x 2 matrix as half the sum of two norms): the program maximises the
 largest common margin sigma of all limits (value <= limit (1 - margin + sigma)) over the
-samples within a trust region on their speed change (sequential convex programming: Mao,
-Szmuk & Acikmese, IEEE CDC (2016), doi:10.1109/CDC.2016.7798816; Nocedal & Wright, *Numerical
-Optimization*, 2nd ed. (2006) §18), with the pendulum states as variables of banded dynamics
-rows; solved by Clarabel (Goulart & Chen, arXiv:2405.12762 (2024)). Polyhedral (LP) facets of
-the 3-D norms were tried first and let the iterates break the jerk limit in directions no facet
-covered. The minimum time is the fewest samples whose best margin meets every limit: a bracketed
-secant search on the largest ratio r(N) (r = 1 at the minimum), each r(N) warm-started from the
-nearest solved N _rescaled in time (`_minimum_time`).
+samples within a trust region on their speed change (sequential convex programming: Mao, Szmuk
+& Acikmese, IEEE CDC (2016), doi:10.1109/CDC.2016.7798816; Nocedal & Wright, *Numerical
+Optimization*, 2nd ed. (2006) §18); solved by Clarabel (Goulart & Chen, arXiv:2405.12762
+(2024)). Polyhedral (LP) facets of the 3-D norms let the iterates break the jerk limit in
+directions no facet covered, so the norms are cones. The minimum time is the fewest samples
+whose best margin meets every limit: a bracketed secant search on the largest ratio r(N)
+(r = 1 at the minimum), each r(N) warm-started from the nearest solved N _rescaled in time
+(`_minimum_time`).
 
-The verification's model is the nonlinear spherical pendulum. The linear optimum rides the
-height limit for the whole move, and there the nonlinear model exceeds it (28 mm against 15 mm
-on TRD_2D); it agrees at lower amplitudes (8.25 mm against 7.95 mm). So `plan_optimal` searches
-again with the program's slosh limits moved by regula falsi until the verified peak or residual
-lies within `LIMIT_TOLERANCE` of its limit (`_next_limit`), each search warm-started from the
-last. Putting the nonlinear pendulum itself into the programs (linearised along the current
-samples) is the next step.
+The programs model what the verification simulates, so a search's best samples verify; a
+search restarted from them goes on where the last one stopped (each duration gets a few
+programs), and `plan_optimal` restarts while that shortens the plan. Should the verification
+still exceed a slosh limit, the program's limit is moved by regula falsi (`_next_limit`).
 """
 
 from __future__ import annotations
@@ -53,6 +55,7 @@ from scipy.spatial.transform import Rotation
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.plan.path_pendulums import mode_slope, pendulum_track, slope_jacobian, step_jacobians
 from sloshkit.sim.metrics import free_oscillation_components
+from sloshkit.sim.spatial_response import ellipse_semi_major
 
 FloatArray = NDArray[np.float64]
 #: Relative margin the programs keep from every limit (the export is then verified exactly).
@@ -179,7 +182,7 @@ class _Evaluation:
 
 
 class _PathProgram:
-    """The sequential linear program of one path problem (module docstring).
+    """The sequential cone programs of one path problem (module docstring).
 
     Parameters
     ----------
@@ -214,15 +217,10 @@ class _PathProgram:
         self._kernels: dict[int, list[list[tuple[FloatArray, FloatArray]]]] = {}
 
     # ----------------------------------------------------------------- evaluation
-    def forces(
-        self, samples: _Samples, spin: FloatArray | None = None
-    ) -> tuple[FloatArray, dict[str, FloatArray]]:
+    def forces(self, samples: _Samples) -> tuple[FloatArray, dict[str, FloatArray]]:
         """Specific force g - a_hinge at each mode's hinge in N, and g itself in N, (modes + 1,
         N + 1, 3) [m/s^2], with the kinematics (`sloshkit.sim.spatial_drive`: a mode whose
         omega_n^2 L_n differs from g adds (kappa_n - 1) times the last row).
-
-        ``spin`` (the container's accumulated rotation about its own axis [rad]) is taken as
-        given when passed (the derivatives hold it fixed: it depends on every earlier sample).
         """
         ts = self.ts
         position, rotation = _poses_of(self.path, samples, self.centre)
@@ -234,9 +232,8 @@ class _PathProgram:
         increments = Rotation.from_quat(quaternion[1:]) * Rotation.from_quat(quaternion[:-1]).inv()
         omega = np.concatenate((np.zeros((1, 3)), increments.as_rotvec() / ts, np.zeros((1, 3))))
         alpha = np.diff(omega, axis=0) / ts
-        if spin is None:
-            body = Rotation.from_quat(quaternion[:-1]).inv() * Rotation.from_quat(quaternion[1:])
-            spin = np.concatenate(([0.0], np.cumsum(body.as_rotvec()[:, 2])))
+        body = Rotation.from_quat(quaternion[:-1]).inv() * Rotation.from_quat(quaternion[1:])
+        spin = np.concatenate(([0.0], np.cumsum(body.as_rotvec()[:, 2])))
         frame = rotation * Rotation.from_rotvec(np.column_stack((0 * spin, 0 * spin, -spin)))
         axis = rotation.apply([0.0, 0.0, 1.0])
         force = np.empty((len(self.modes) + 1, samples.s_m.size, 3))
@@ -306,10 +303,7 @@ class _PathProgram:
             "acceleration": _peak(evaluation.acceleration) / lim.max_acceleration_m_s2,
             "jerk": _peak(evaluation.jerk) / lim.max_jerk_m_s3,
             "peak slosh": _peak(evaluation.wall) / lim.max_height_m,
-            "residual slosh": float(
-                np.max(np.sum(np.linalg.norm(evaluation.amplitude, axis=2), axis=1))
-            )
-            / lim.max_residual_height_m,
+            "residual slosh": _residual_height(evaluation.amplitude) / lim.max_residual_height_m,
         }
         if lim.max_angular_velocity_rad_s is not None:
             ratios["angular velocity"] = _peak(evaluation.omega) / lim.max_angular_velocity_rad_s
@@ -335,12 +329,12 @@ class _PathProgram:
         Every quantity at sample k depends on the samples k-1..k+1 only (positions on k, the
         angular velocity on k-1 and k, the forces on k-1..k+1 through the second difference),
         so perturbing every third sample at once separates the bands (Curtis, Powell & Reid,
-        IMA J. Appl. Math. 13 (1974) 117-119); central differences, the spin _held fixed.
+        IMA J. Appl. Math. 13 (1974) 117-119); central differences. The spin about the axis is
+        recomputed: a sample's change moves only its own spin when the axis keeps its direction
+        (the increments telescope; holding it fixed rotated N by the yaw change instead).
         """
         samples = _with_rest(samples)
         n = samples.s_m.size
-        _, base = self.forces(samples)
-        spin = base["spin"]
         columns: list[int | None] = [None] + ([0, 1] if self.tilt else [])
         bands = []
         for column in columns:
@@ -351,7 +345,7 @@ class _PathProgram:
             for colour in range(3):
                 chosen = np.arange(colour, n, 3)
                 plus, minus, width = _perturbed(samples, chosen, column, step, self.path.length_m)
-                (fp, kp), (fm, km) = self.forces(plus, spin), self.forces(minus, spin)
+                (fp, kp), (fm, km) = self.forces(plus), self.forces(minus)
                 dforce = fp - fm
                 position[chosen] = (kp["position"] - km["position"])[chosen] / width[chosen, None]
                 domega = kp["omega"] - km["omega"]
@@ -447,6 +441,14 @@ def _perturbed(
     return _Samples(s_plus, tilt_plus), _Samples(s_minus, tilt_minus), width
 
 
+def _residual_height(amplitude: FloatArray) -> float:
+    """The residual bound of the worst band model: sum_n e_n |M_n|_2 with M_n = [A_n B_n] the
+    free oscillation's cosine and sine vectors (its semi-major axis,
+    `sloshkit.sim.spatial_response.ellipse_semi_major`), from (models, modes, 4) [m]."""
+    semi = ellipse_semi_major(amplitude[..., :2], amplitude[..., 2:])
+    return float(np.max(np.sum(semi, axis=1)))
+
+
 def _peak(values: FloatArray) -> float:
     """Largest Euclidean norm along the last axis."""
     return float(np.max(np.linalg.norm(values, axis=-1))) if values.size else 0.0
@@ -519,15 +521,27 @@ class _Conic:
         return matrix, np.concatenate(rhs), cones
 
 
+@dataclass(frozen=True, eq=False)
+class _Step:
+    """A cone program's samples, its predicted margin sigma and predicted residual ratio."""
+
+    samples: _Samples
+    sigma: float
+    residual: float
+
+
 def _cone_step(
     program: _PathProgram,
     samples: _Samples,
     evaluation: Any,
     trust: float,
-) -> tuple[_Samples, float] | None:
-    """One cone program around ``samples`` (module docstring): the new samples and their
-    predicted margin sigma, or None when the solver failed. ``trust``: the largest change of
-    a step's speed [m/s] (a sample moves by at most 0.02 s times it)."""
+    residual_trust: float = 1.0,
+) -> _Step | None:
+    """One cone program around ``samples`` (module docstring), or None when the solver failed.
+    ``trust``: the largest change of a step's speed [m/s] (a sample moves by at most 0.02 s
+    times it); ``residual_trust``: the largest change of each free-oscillation entry e_n A, e_n B
+    over the residual limit (the residual is the most sensitive quantity: a millimetre's shift
+    of the samples near the end moves it by millimetres)."""
     import clarabel
 
     lim, ts = program.limits, program.ts
@@ -548,7 +562,7 @@ def _cone_step(
         return state_base + ((m * modes + k) * 6 + np.asarray(comp)) * last + (np.asarray(i) - 1)
 
     t_base = state_base + models * modes * 6 * last
-    columns = t_base + models * modes
+    columns = t_base + 2 * models * modes
     conic = _Conic()
 
     def d(i: Any) -> Any:
@@ -566,27 +580,30 @@ def _cone_step(
             evaluation.unit[m], evaluation.rate[m], evaluation.drive[m], lengths, omegas, zetas, ts
         )
         kappa = omegas**2 * lengths / model.gravity_m_s2
-        for k in range(modes):
-            r_list = [period * 6 + a for a in range(6)]
-            c_list = [state(m, k, a, period + 1) for a in range(6)]
+        for q in range(modes):
+            r_list = [period * 6 + row for row in range(6)]
+            c_list = [state(m, q, row, period + 1) for row in range(6)]
             v_list = [np.ones(last) for _ in range(6)]
-            moving = period >= 1
-            for a in range(6):
-                for b in range(6):
-                    r_list.append(period[moving] * 6 + a)
-                    c_list.append(state(m, k, b, period[moving]))
-                    v_list.append(-a_k[k, moving, a, b])
-            for shift, matrix in ((0, b_k[k]), (1, e_k[k])):
-                j = period + shift
+            later = period >= 1
+            for row in range(6):
+                for col in range(6):
+                    r_list.append(period[later] * 6 + row)
+                    c_list.append(state(m, q, col, period[later]))
+                    v_list.append(-a_k[q, later, row, col])
+            for shift, matrix in ((0, b_k[q]), (1, e_k[q])):
+                force_at = period + shift
                 for o in (-1, 0, 1):
-                    gain = band.force[o + 1][k, j] + (kappa[k] - 1.0) * band.force[o + 1][-1, j]
+                    gain = (
+                        band.force[o + 1][q, force_at]
+                        + (kappa[q] - 1.0) * band.force[o + 1][-1, force_at]
+                    )
                     coefficient = np.einsum("kac,kc->ka", matrix, gain) * unit
-                    sample = j + o
+                    sample = force_at + o
                     ok = (sample >= 1) & (sample <= steps)
-                    for a in range(6):
-                        r_list.append(period[ok] * 6 + a)
+                    for row in range(6):
+                        r_list.append(period[ok] * 6 + row)
                         c_list.append(d(sample[ok]))
-                        v_list.append(-coefficient[ok, a])
+                        v_list.append(-coefficient[ok, row])
             conic.add(
                 "zero",
                 np.concatenate(r_list),
@@ -595,51 +612,72 @@ def _cone_step(
                 np.zeros(6 * last),
             )
     # ------------------------------------------------ wall cones at every sample 1..last
-    i = np.arange(1, total)
-    count = i.size
+    moved = np.arange(1, total)
+    count = moved.size
     for m, model in enumerate(program.models):
         r_list = [np.arange(count) * 3]
         c_list = [np.full(count, sigma)]
         v_list = [-np.ones(count)]
-        b = np.zeros((count, 3))
-        b[:, 0] = keep
-        b[:, 1:] = evaluation.wall[m, 1:] / lim.max_height_m
-        for k, mode in enumerate(model.modes):
-            slope = slope_jacobian(evaluation.unit[m, k, 1:])  # (count, 2, 3)
+        wall_b = np.zeros((count, 3))
+        wall_b[:, 0] = keep
+        wall_b[:, 1:] = evaluation.wall[m, 1:] / lim.max_height_m
+        for q, mode in enumerate(model.modes):
+            slope = slope_jacobian(evaluation.unit[m, q, 1:])  # (count, 2, 3)
             e = mode.wall_elevation_factor_m / lim.max_height_m
             for row in range(2):
                 for comp in range(3):
                     r_list.append(np.arange(count) * 3 + 1 + row)
-                    c_list.append(state(m, k, comp, i))
+                    c_list.append(state(m, q, comp, moved))
                     v_list.append(-e * slope[:, row, comp])
         conic.add(
             "soc",
             np.concatenate(r_list),
             np.concatenate(c_list),
             np.concatenate(v_list),
-            b.ravel(),
+            wall_b.ravel(),
             [3] * count,
         )
     # ------------------------------------------------ residual cones and their sum
     for m, model in enumerate(program.models):
-        for k, mode in enumerate(model.modes):
+        for q, mode in enumerate(model.modes):
             damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
             sig = mode.damping_ratio * mode.omega_rad_s
             back = math.exp(mode.damping_ratio * mode.omega_rad_s * HOLD * ts)
             e = back * mode.wall_elevation_factor_m / lim.max_residual_height_m
-            # (cosine, sine) = (du, (du' + sig du) / damped) of the lateral components at `last`
-            rows = [0, 1, 2, 3, 3, 4, 4]
-            comps = [None, 0, 1, 0, 3, 1, 4]
-            values = [-1.0, -e, -e, -e * sig / damped, -e / damped, -e * sig / damped, -e / damped]
-            cols = [t_base + m * modes + k] + [int(state(m, k, c, last)) for c in comps[1:]]
-            b = np.concatenate(([0.0], evaluation.amplitude[m, k] / lim.max_residual_height_m))
-            conic.add("soc", rows, cols, values, b, [5])
-        # sum t <= keep + sigma
+            # |e_n [A_n B_n]|_2 (the semi-major axis) of M = [[a, b], [c, d]] = [A B] is
+            # (|(a + d, c - b)| + |(a - d, b + c)|) / 2 (a 2 x 2 matrix is a rotation-scaling
+            # plus a reflection-scaling whose scales add: Horn & Johnson, *Matrix Analysis*,
+            # 2nd ed. (2013) §7.3): two cones t1, t2, linear in the lateral deviations at
+            # `last`, A = du, B = (du' + sig du) / damped (`free_oscillation_components`)
+            cols = [int(state(m, q, c, last)) for c in (0, 1, 3, 4)]  # du_x, du_y, du'_x, du'_y
+            # a, b, c, d as coefficients of (du_x, du_y, du'_x, du'_y)
+            a_, c_ = np.array([e, 0.0, 0.0, 0.0]), np.array([0.0, e, 0.0, 0.0])
+            b_ = e * np.array([sig / damped, 0.0, 1.0 / damped, 0.0])
+            d_ = e * np.array([0.0, sig / damped, 0.0, 1.0 / damped])
+            amp = evaluation.amplitude[m, q] / lim.max_residual_height_m  # A_x, A_y, B_x, B_y
+            av, cv, bv, dv = amp
+            for cone, (first, second, first_b, second_b) in enumerate(
+                ((a_ + d_, c_ - b_, av + dv, cv - bv), (a_ - d_, b_ + c_, av - dv, bv + cv))
+            ):
+                cone_rows = [0] + [1] * 4 + [2] * 4
+                cone_columns = [t_base + 2 * (m * modes + q) + cone, *cols, *cols]
+                values = np.concatenate(([-1.0], -first, -second))
+                conic.add("soc", cone_rows, cone_columns, values, [0.0, first_b, second_b], [3])
+            # the residual's own trust region: |change of each entry| <= residual_trust
+            for entry in (a_, b_, c_, d_):
+                conic.add(
+                    "nonneg",
+                    [0] * 4 + [1] * 4,
+                    cols + cols,
+                    np.concatenate((entry, -entry)),
+                    [residual_trust, residual_trust],
+                )
+        # sum (t1 + t2) / 2 <= keep + sigma
         conic.add(
             "nonneg",
-            np.zeros(modes + 1, dtype=int),
-            np.concatenate((t_base + m * modes + np.arange(modes), [sigma])),
-            np.concatenate((np.ones(modes), [-1.0])),
+            np.zeros(2 * modes + 1, dtype=int),
+            np.concatenate((t_base + 2 * m * modes + np.arange(2 * modes), [sigma])),
+            np.concatenate((np.full(2 * modes, 0.5), [-1.0])),
             [keep],
         )
     # ------------------------------------------------ kinematic cones
@@ -706,15 +744,15 @@ def _cone_step(
     )
     conic.add("nonneg", idx, idx, -np.ones(steps), np.minimum(shift, s[1:] / unit))
     matrix, rhs, cones = conic.assemble(columns)
-    q = np.zeros(columns)
-    q[sigma] = 1.0
+    objective = np.zeros(columns)
+    objective[sigma] = 1.0
     settings = clarabel.DefaultSettings()
     settings.verbose = False
     # The linearisation is re-evaluated exactly after each solve: 1e-6 is ample.
     settings.tol_gap_abs = settings.tol_gap_rel = 1e-6
     settings.tol_feas = 1e-7
     solver = clarabel.DefaultSolver(
-        sparse.csc_matrix((columns, columns)), q, matrix, rhs, cones, settings
+        sparse.csc_matrix((columns, columns)), objective, matrix, rhs, cones, settings
     )
     result = solver.solve()
     program.programs += 1
@@ -723,7 +761,11 @@ def _cone_step(
     x = np.asarray(result.x)
     new_s = np.concatenate(([0.0], s[1:] + x[:steps] * unit))
     new_s = np.clip(np.maximum.accumulate(new_s), 0.0, program.path.length_m)
-    return _Samples(new_s, samples.tilt_rad.copy()), float(x[sigma])
+    residual = max(
+        0.5 * float(np.sum(x[t_base + 2 * m * modes : t_base + 2 * (m + 1) * modes]))
+        for m in range(models)
+    )
+    return _Step(_Samples(new_s, samples.tilt_rad.copy()), float(x[sigma]), residual)
 
 
 def _margin_at(
@@ -735,24 +777,31 @@ def _margin_at(
 ) -> tuple[_Iterate, float]:
     """The samples of N steps (N from ``start``) whose largest ratio to a limit is least:
     cone programs (`_cone_step`) from ``start``, a step kept when its exact evaluation is
-    better (the trust region then grows by half, else it halves); stops when a step gains
-    less than a quarter of ``tolerance`` and its prediction was right to ``tolerance``.
+    better (the trust region then grows by half, else it halves). The residual's own trust
+    region halves when its prediction missed the exact residual by more than a quarter of the
+    predicted change (and 0.02), else grows by half. Stops when a step gains less than a
+    quarter of ``tolerance`` and its prediction was right to ``tolerance``.
     Returns the best iterate and its largest ratio."""
     current = program.iterate(start)
+    residual_trust = 1.0
     for _ in range(iterations):
-        out = _cone_step(program, current.samples, current.evaluation, trust)
-        if out is None:
+        step = _cone_step(program, current.samples, current.evaluation, trust, residual_trust)
+        if step is None:
             trust *= 0.5
             continue
-        samples, predicted = out
-        trial = program.iterate(samples)
+        trial = program.iterate(step.samples)
+        before, after = current.ratios["residual slosh"], trial.ratios["residual slosh"]
+        if abs(after - step.residual) > max(0.25 * abs(step.residual - before), 0.02):
+            residual_trust *= 0.5
+        else:
+            residual_trust = min(1.5 * residual_trust, 2.0)
         if trial.excess < current.excess:
             gain = current.excess - trial.excess
             current = trial
             trust = min(trust * 1.5, 1.0)
             if (
                 gain < 0.25 * tolerance
-                and abs(trial.excess - (1.0 - PROGRAM_MARGIN + predicted)) < tolerance
+                and abs(trial.excess - (1.0 - PROGRAM_MARGIN + step.sigma)) < tolerance
             ):
                 break
         else:
@@ -794,7 +843,7 @@ def _minimum_time(
         iterate, ratio = _margin_at(program, _rescaled(guess, steps))
         history.append((steps, ratio, iterate))
         if log:
-            log(f"N = {steps}: largest ratio to a limit {ratio:.4f}")
+            log(f"N = {steps}: largest ratio to a limit {ratio:.4f} ({program.programs} programs)")
         feasible = [h for h in history if h[1] <= 1.0]
         infeasible = [h for h in history if h[1] > 1.0]
         low = max((h[0] for h in infeasible), default=0)
@@ -832,11 +881,12 @@ def _minimum_time(
 def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     """The minimum-time timing of the (untilted) path, verified.
 
-    Searches (`_minimum_time`) of the linear program, the first from the time-optimal speed
-    profile under the quasi-static acceleration that tilts a level surface to the height limit
-    (h = R a / g; `sloshkit.plan.retime.capped_timing`), the next ones with the program's
-    slosh limits moved until ``verifier`` (the nonlinear 3-D model by default) meets the
-    problem's limits closely (module docstring); the shortest verified timing is kept. A limit
+    Searches (`_minimum_time`) of the program, the first from the time-optimal speed profile
+    under the quasi-static acceleration that tilts a level surface to the height limit
+    (h = R a / g; `sloshkit.plan.retime.capped_timing`), each next one from the last one's
+    best samples while that shortens the verified plan (at most `TIGHTENINGS`; a slosh limit
+    the verification exceeds is moved in the program, module docstring); the shortest
+    verified timing is kept. A limit
     outside the program (a robot's joint speeds) is met by a uniform stretch
     (`sloshkit.plan.path_result.verified_candidate`).
 
@@ -852,8 +902,8 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     Returns
     -------
     PathCandidate
-        Method ``optimal``; ``detail`` has the linear optimum, the programs solved, each
-        round's limits and verified slosh, and the search.
+        Method ``optimal``; ``detail`` has the first search's duration, the programs solved,
+        each round's limits and verified slosh, and the search.
 
     Examples
     --------
@@ -864,7 +914,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     ...     sk.CartesianLimits(2.0, 10.0, 100.0), sk.SpatialSloshLimits(0.008, 0.001), model,
     ...     sample_period_s=0.01)
     >>> found = plan_optimal(problem, verify)
-    >>> found.feasible, found.duration_s >= found.detail["linear_optimum_s"]
+    >>> found.feasible, found.duration_s <= found.detail["first_search_s"]
     (True, True)
     """
     import time
@@ -895,12 +945,11 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         first.position(np.minimum(grid.time_s, first.duration_s)), 0.0, problem.path.length_m
     )
     s[-1] = problem.path.length_m
-    start = _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
+    warm = _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
     rounds: list[dict[str, float]] = []
     verified: list[tuple[int, _Iterate]] = []
     searches: list[tuple[int, float]] = []
     programs = 0
-    warm = start
     for _ in range(TIGHTENINGS):
         program = _PathProgram(problem.path, problem.models(), limits, ts)
         try:
@@ -933,13 +982,11 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         )
         if feasible:
             verified.append((best.samples.steps, best))
-        close = [
-            rounds[-1]["verified_peak_m"] >= (1.0 - LIMIT_TOLERANCE) * slosh.max_height_m,
-            rounds[-1]["verified_residual_m"]
-            >= (1.0 - LIMIT_TOLERANCE) * slosh.max_residual_height_m,
-        ]
-        if feasible and any(close):
-            break
+            # a restart from the best samples goes on where the last search stopped (its
+            # durations were solved to a few programs each); stop when it no longer gains
+            if len(verified) >= 2 and verified[-1][0] >= verified[-2][0]:
+                break
+            continue
         limits = replace(
             limits,
             max_height_m=_next_limit(
@@ -962,7 +1009,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         return sample_path(problem.path, timing.stretched(factor), ts)
 
     detail = {
-        "linear_optimum_s": rounds[0]["duration_s"],
+        "first_search_s": rounds[0]["duration_s"],
         "programs": programs,
         "rounds": rounds,
         "search": searches,
@@ -993,7 +1040,7 @@ def _next_limit(
     above = [p for p in points if p[1] > aim]
     if below and above:
         (p1, v1), (p2, v2) = below[-1], above[0]
-        if v2 > v1:
+        if v2 > v1 and p2 > p1:  # rounds at one program limit bracket nothing
             return p1 + (aim - v1) * (p2 - p1) / (v2 - v1)
     p, v = rounds[-1][program_key], rounds[-1][verified_key]
     return min(limit, p * aim / max(v, 1e-12))

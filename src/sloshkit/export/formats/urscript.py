@@ -14,7 +14,7 @@ lags. ``a`` and ``v`` are not used by the controller (written as 0). Signature a
 from the URScript manual (Universal Robots, *The URScript Programming Language*,
 e-Series SW 5.x, ``servoj``):
 ``lookahead_time`` in [0.03, 0.2] s, ``gain`` in [100, 2000]
-(`sloshkit.export.settings.LOOKAHEAD_TIME_RANGE_S`, `sloshkit.export.settings.GAIN_RANGE`).
+(`sloshkit.export.servoj.LOOKAHEAD_TIME_RANGE_S`, `sloshkit.export.servoj.GAIN_RANGE`).
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 from sloshkit.errors import InputError, require_in_range
 from sloshkit.export.formats.common import header_lines, number
 from sloshkit.export.ik import JointPath
-from sloshkit.export.settings import GAIN_RANGE, LOOKAHEAD_TIME_RANGE_S
+from sloshkit.export.servoj import GAIN_RANGE, LOOKAHEAD_TIME_RANGE_S
 from sloshkit.files import atomic_open
 
 #: The UR e-Series controller period [s] (500 Hz).
