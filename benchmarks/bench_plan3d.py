@@ -31,8 +31,9 @@ the shared machine, and one missing from the cache is computed).
 
 Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--transcription] [--out table.md]
 [--docs docs/planning-3d.md] [--tables primary,strict,waypoints,reference] [--robot ur5e|none]
-[--quick]`` (minutes on a shared 2-core machine; not a timed test; ``--quick``: the reference
-table's first case only, without the robot). With
+[--quick] [--cached-only]`` (minutes on a shared 2-core machine; not a timed test; ``--quick``:
+the reference table's first case only, without the robot; ``--cached-only``: an optimum missing
+from the cache is shown as "not cached" instead of computed). With
 ``--docs`` the tables replace the text between the ``<!-- bench_plan3d:start -->`` and
 ``<!-- bench_plan3d:end -->`` markers of that file, so the docs carry no hand-typed figures.
 """
@@ -167,13 +168,13 @@ def series_table(
             cpu = time.process_time() - cpu
             found = {c.method: c for c in result.candidates}
 
-            def show(method: str, found: dict = found) -> str:
+            def show(method: str, found: dict[str, Any] = found) -> str:
                 candidate = found.get(method)
                 if candidate is None or not candidate.feasible:
                     return "infeasible"
                 return f"{candidate.duration_s:.2f} s"
 
-            def ratio(method: str, found: dict = found) -> str:
+            def ratio(method: str, found: dict[str, Any] = found) -> str:
                 base, other = found.get("uniform"), found.get(method)
                 if base is None or other is None or not (base.feasible and other.feasible):
                     return "-"
@@ -250,15 +251,17 @@ def problem_key(
 
 
 def cached_reference(
-    problem: PathProblem, tilt: bool, slosh_model: str = "linear"
-) -> tuple[ReferenceOptimum, bool]:
-    """The reference optimum from `CACHE` when its key is there, else computed and stored;
-    and whether it came from the cache."""
+    problem: PathProblem, tilt: bool, slosh_model: str = "linear", compute: bool = True
+) -> tuple[ReferenceOptimum | None, bool]:
+    """The reference optimum from `CACHE` when its key is there, else computed and stored
+    (None when not ``compute``); and whether it came from the cache."""
     cache = json.loads(CACHE.read_text()) if CACHE.exists() else {}
     interval = TILTED_INTERVAL_S if tilt else UPRIGHT_INTERVAL_S
     key = problem_key(problem, tilt, interval, slosh_model)
     if key in cache:
         return ReferenceOptimum(**cache[key]), True
+    if not compute:
+        return None, False
     optimum = reference_optimum(problem, tilt=tilt, interval_s=interval, slosh_model=slosh_model)
     cache = json.loads(CACHE.read_text()) if CACHE.exists() else {}  # another run may add
     cache[key] = optimum.to_dict()
@@ -294,8 +297,11 @@ def _run_method(problem: PathProblem, method: str, verifier: Any) -> tuple[str, 
     return f"{found[0].duration_s:.3f} s", found[0].duration_s, wall
 
 
-def reference_table(model: object, robot: str | None, quick: bool) -> list[str]:
-    """Rows of the reference table (module docstring)."""
+def reference_table(
+    model: object, robot: str | None, quick: bool, cached_only: bool = False
+) -> list[str]:
+    """Rows of the reference table (module docstring); with ``cached_only`` an optimum not in
+    the cache is shown as such instead of computed."""
     cases = reference_cases(model)[:1] if quick else reference_cases(model)
     robots = [None] if quick or robot is None else [None, robot]
     rows = [
@@ -315,20 +321,28 @@ def reference_table(model: object, robot: str | None, quick: bool) -> list[str]:
         "|---|---|---|---|---|---|---|---|" + "---|---|---|---|" * len(REFERENCE_METHODS),
     ]
     for name, problem in cases:
-        upright, upright_cached = cached_reference(problem, False)
-        tilted, tilted_cached = cached_reference(problem, True)
-        exact, exact_cached = cached_reference(problem, False, "nonlinear")
-        exact_tilted, exact_tilted_cached = cached_reference(problem, True, "nonlinear")
+        compute = not cached_only
+        upright, upright_cached = cached_reference(problem, False, compute=compute)
+        tilted, tilted_cached = cached_reference(problem, True, compute=compute)
+        exact, exact_cached = cached_reference(problem, False, "nonlinear", compute)
+        exact_tilted, exact_tilted_cached = cached_reference(problem, True, "nonlinear", compute)
 
-        def optimum(found: ReferenceOptimum) -> str:
+        def optimum(found: ReferenceOptimum | None) -> str:
+            if found is None:
+                return "not cached"
             flag = "" if found.converged else f" ({found.status})"
             return f"{found.duration_s:.3f} s{flag}"
 
-        def compute_of(first: ReferenceOptimum, second: ReferenceOptimum, cached: bool) -> str:
-            shown = f"{first.compute_time_s:.0f} / {second.compute_time_s:.0f} s"
+        def seconds(found: ReferenceOptimum | None) -> str:
+            return "-" if found is None else f"{found.compute_time_s:.0f}"
+
+        def compute_of(
+            first: ReferenceOptimum | None, second: ReferenceOptimum | None, cached: bool
+        ) -> str:
+            shown = f"{seconds(first)} / {seconds(second)} s"
             return shown + (" (cached)" if cached else "")
 
-        compute = compute_of(upright, tilted, upright_cached and tilted_cached)
+        spent = compute_of(upright, tilted, upright_cached and tilted_cached)
         exact_compute = compute_of(exact, exact_tilted, exact_cached and exact_tilted_cached)
         for arm in robots:
             verifier = _robot(arm)
@@ -337,12 +351,14 @@ def reference_table(model: object, robot: str | None, quick: bool) -> list[str]:
                 shown, duration, wall = _run_method(problem, method, verifier)
                 bases = (tilted, exact_tilted) if method == "tilt" else (upright, exact)
                 ratios = [
-                    "-" if math.isnan(duration) else f"{duration / base.duration_s:.3f}"
+                    "-"
+                    if base is None or math.isnan(duration)
+                    else f"{duration / base.duration_s:.3f}"
                     for base in bases
                 ]
                 cells.append(f"{shown} | {ratios[0]} | {ratios[1]} | {wall:.1f} s")
             rows.append(
-                f"| {name} | {arm or '-'} | {optimum(upright)} | {optimum(tilted)} | {compute} "
+                f"| {name} | {arm or '-'} | {optimum(upright)} | {optimum(tilted)} | {spent} "
                 f"| {optimum(exact)} | {optimum(exact_tilted)} | {exact_compute} | "
                 + " | ".join(cells)
                 + " |"
@@ -360,6 +376,9 @@ def main() -> None:
     parser.add_argument("--tables", default="primary,strict,waypoints,reference")
     parser.add_argument("--robot", default="ur5e", help="arm of the reference table, or none")
     parser.add_argument("--quick", action="store_true", help="one case of the reference table")
+    parser.add_argument(
+        "--cached-only", action="store_true", help="reference optima from the cache only"
+    )
     arguments = parser.parse_args()
     warnings.simplefilter("ignore", ValidityWarning)
     model = equivalent_model(
@@ -391,7 +410,7 @@ def main() -> None:
         rows += waypoint_table(model, arguments.transcription)
     if "reference" in tables:
         robot = None if arguments.robot.lower() == "none" else arguments.robot
-        rows += ["", *reference_table(model, robot, arguments.quick)]
+        rows += ["", *reference_table(model, robot, arguments.quick, arguments.cached_only)]
     load = os.getloadavg()[0]
     rows.append("")
     rows.append(f"(load average {load:.1f} on {os.cpu_count()} cores when the run ended)")

@@ -790,7 +790,8 @@ class ReferenceSolution:
         flips = np.sign(np.sum(quaternions[1:] * quaternions[:-1], axis=1))
         flips[flips == 0] = 1.0
         quaternions *= np.concatenate(([1.0], np.cumprod(flips)))[:, None]
-        return PoseSamples(np.arange(samples + 1) * sample_period_s, position, quaternions)
+        grid = np.arange(samples + 1, dtype=float) * sample_period_s
+        return PoseSamples(grid, np.asarray(position, dtype=float), quaternions)
 
 
 def reference_optimum(
