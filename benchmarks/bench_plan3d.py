@@ -21,16 +21,19 @@ Last (``reference``), the issue #25 cases (the measured TRD_2D, LE_3D and RD_2D 
 turn about the vertical) with the issue's settings (R 49 mm, h 80 mm, water-20C, zeta 0.0066;
 15 mm peak, 2 mm residual; 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms; no angular limits; tilt up to
 30 deg): each method of ``sloshkit.plan_path`` against the independent minimum time of the
-same problem (`ocp_reference`, casadi multiple shooting of the linear slosh model, upright for
-``retime`` and ``shaped``, with free tilt for ``tilt``), without and with a robot's joint check
-(``--robot``, default ur5e at the base pose of docs/planning-3d.md). The reference optima are
-cached in ``ocp_reference_cache.json`` (keyed by a hash of the problem and of
-``ocp_reference.py``; each takes minutes on the shared machine).
+same problem (`ocp_reference`, casadi multiple shooting, upright for ``retime`` and ``shaped``,
+with free tilt for ``tilt``), once with the linear slosh model and once with the nonlinear one
+that verifies every plan (``slosh_model="nonlinear"``: the optimum of the problem a verified
+plan solves), without and with a robot's joint check (``--robot``, default ur5e at the base
+pose of docs/planning-3d.md). The reference optima are cached in ``ocp_reference_cache.json``
+(keyed by a hash of the problem, the slosh model and ``ocp_reference.py``; each takes minutes on
+the shared machine, and one missing from the cache is computed).
 
 Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--transcription] [--out table.md]
 [--docs docs/planning-3d.md] [--tables primary,strict,waypoints,reference] [--robot ur5e|none]
-[--quick]`` (minutes on a shared 2-core machine; not a timed test; ``--quick``: the reference
-table's first case only, without the robot). With
+[--quick] [--cached-only]`` (minutes on a shared 2-core machine; not a timed test; ``--quick``:
+the reference table's first case only, without the robot; ``--cached-only``: an optimum missing
+from the cache is shown as "not cached" instead of computed). With
 ``--docs`` the tables replace the text between the ``<!-- bench_plan3d:start -->`` and
 ``<!-- bench_plan3d:end -->`` markers of that file, so the docs carry no hand-typed figures.
 """
@@ -165,13 +168,13 @@ def series_table(
             cpu = time.process_time() - cpu
             found = {c.method: c for c in result.candidates}
 
-            def show(method: str, found: dict = found) -> str:
+            def show(method: str, found: dict[str, Any] = found) -> str:
                 candidate = found.get(method)
                 if candidate is None or not candidate.feasible:
                     return "infeasible"
                 return f"{candidate.duration_s:.2f} s"
 
-            def ratio(method: str, found: dict = found) -> str:
+            def ratio(method: str, found: dict[str, Any] = found) -> str:
                 base, other = found.get("uniform"), found.get(method)
                 if base is None or other is None or not (base.feasible and other.feasible):
                     return "-"
@@ -227,9 +230,12 @@ def reference_cases(model: object) -> list[tuple[str, PathProblem]]:
     ]
 
 
-def problem_key(problem: PathProblem, tilt: bool, interval_s: float) -> str:
+def problem_key(
+    problem: PathProblem, tilt: bool, interval_s: float, slosh_model: str = "linear"
+) -> str:
     """SHA-256 of everything the reference depends on: the path's knots and poses, the limits,
-    the model band, the tilt settings, the interval, and the source of ``ocp_reference.py``."""
+    the model band, the tilt settings, the interval, the slosh model (named only when not the
+    default, so that the linear keys read as before) and the source of ``ocp_reference.py``."""
     digest = hashlib.sha256()
     path = problem.path
     for array in (path.knots_m, path.positions_m, path.rotations.as_quat()):
@@ -237,20 +243,26 @@ def problem_key(problem: PathProblem, tilt: bool, interval_s: float) -> str:
     described = [problem.machine, problem.slosh, problem.max_tilt_rad]
     described += [problem.tilt_centre_height_m, tilt, interval_s]
     described += [model.modes for model in problem.models()]
+    if slosh_model != "linear":
+        described.append(slosh_model)
     digest.update(repr(described).encode())
     digest.update((Path(__file__).resolve().parent / "ocp_reference.py").read_bytes())
     return digest.hexdigest()[:16]
 
 
-def cached_reference(problem: PathProblem, tilt: bool) -> tuple[ReferenceOptimum, bool]:
-    """The reference optimum from `CACHE` when its key is there, else computed and stored;
-    and whether it came from the cache."""
+def cached_reference(
+    problem: PathProblem, tilt: bool, slosh_model: str = "linear", compute: bool = True
+) -> tuple[ReferenceOptimum | None, bool]:
+    """The reference optimum from `CACHE` when its key is there, else computed and stored
+    (None when not ``compute``); and whether it came from the cache."""
     cache = json.loads(CACHE.read_text()) if CACHE.exists() else {}
     interval = TILTED_INTERVAL_S if tilt else UPRIGHT_INTERVAL_S
-    key = problem_key(problem, tilt, interval)
+    key = problem_key(problem, tilt, interval, slosh_model)
     if key in cache:
         return ReferenceOptimum(**cache[key]), True
-    optimum = reference_optimum(problem, tilt=tilt, interval_s=interval)
+    if not compute:
+        return None, False
+    optimum = reference_optimum(problem, tilt=tilt, interval_s=interval, slosh_model=slosh_model)
     cache = json.loads(CACHE.read_text()) if CACHE.exists() else {}  # another run may add
     cache[key] = optimum.to_dict()
     CACHE.write_text(json.dumps(cache, indent=1, sort_keys=True) + "\n")
@@ -285,42 +297,69 @@ def _run_method(problem: PathProblem, method: str, verifier: Any) -> tuple[str, 
     return f"{found[0].duration_s:.3f} s", found[0].duration_s, wall
 
 
-def reference_table(model: object, robot: str | None, quick: bool) -> list[str]:
-    """Rows of the reference table (module docstring)."""
+def reference_table(
+    model: object, robot: str | None, quick: bool, cached_only: bool = False
+) -> list[str]:
+    """Rows of the reference table (module docstring); with ``cached_only`` an optimum not in
+    the cache is shown as such instead of computed."""
     cases = reference_cases(model)[:1] if quick else reference_cases(model)
     robots = [None] if quick or robot is None else [None, robot]
     rows = [
         "Against the independent optimum (`benchmarks/ocp_reference.py`) of the same problem "
         "(15 mm / 2 mm, 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms, no angular limits, tilt up to "
-        "30 deg); `retime` and `shaped` divided by the upright optimum, `tilt` by the tilted "
-        "one; compute: wall time on the shared machine:",
+        "30 deg), with the linear slosh model (optimum) and with the nonlinear one that "
+        "verifies the plans (nonlinear optimum); `retime` and `shaped` divided by the upright "
+        "optimum, `tilt` by the tilted one; compute: wall time on the shared machine:",
         "",
-        "| case | robot | optimum upright | optimum tilted | optimum compute | "
-        + " | ".join(f"{m} | {m} / optimum | {m} compute" for m in REFERENCE_METHODS)
+        "| case | robot | optimum upright | optimum tilted | optimum compute "
+        "| nonlinear optimum upright | nonlinear optimum tilted | nonlinear optimum compute | "
+        + " | ".join(
+            f"{m} | {m} / optimum | {m} / nonlinear optimum | {m} compute"
+            for m in REFERENCE_METHODS
+        )
         + " |",
-        "|---|---|---|---|---|" + "---|---|---|" * len(REFERENCE_METHODS),
+        "|---|---|---|---|---|---|---|---|" + "---|---|---|---|" * len(REFERENCE_METHODS),
     ]
     for name, problem in cases:
-        upright, upright_cached = cached_reference(problem, False)
-        tilted, tilted_cached = cached_reference(problem, True)
+        compute = not cached_only
+        upright, upright_cached = cached_reference(problem, False, compute=compute)
+        tilted, tilted_cached = cached_reference(problem, True, compute=compute)
+        exact, exact_cached = cached_reference(problem, False, "nonlinear", compute)
+        exact_tilted, exact_tilted_cached = cached_reference(problem, True, "nonlinear", compute)
 
-        def optimum(found: ReferenceOptimum) -> str:
+        def optimum(found: ReferenceOptimum | None) -> str:
+            if found is None:
+                return "not cached"
             flag = "" if found.converged else f" ({found.status})"
             return f"{found.duration_s:.3f} s{flag}"
 
-        compute = f"{upright.compute_time_s:.0f} / {tilted.compute_time_s:.0f} s" + (
-            " (cached)" if upright_cached and tilted_cached else ""
-        )
+        def seconds(found: ReferenceOptimum | None) -> str:
+            return "-" if found is None else f"{found.compute_time_s:.0f}"
+
+        def compute_of(
+            first: ReferenceOptimum | None, second: ReferenceOptimum | None, cached: bool
+        ) -> str:
+            shown = f"{seconds(first)} / {seconds(second)} s"
+            return shown + (" (cached)" if cached else "")
+
+        spent = compute_of(upright, tilted, upright_cached and tilted_cached)
+        exact_compute = compute_of(exact, exact_tilted, exact_cached and exact_tilted_cached)
         for arm in robots:
             verifier = _robot(arm)
             cells = []
             for method in REFERENCE_METHODS:
                 shown, duration, wall = _run_method(problem, method, verifier)
-                base = tilted if method == "tilt" else upright
-                ratio = "-" if math.isnan(duration) else f"{duration / base.duration_s:.3f}"
-                cells.append(f"{shown} | {ratio} | {wall:.1f} s")
+                bases = (tilted, exact_tilted) if method == "tilt" else (upright, exact)
+                ratios = [
+                    "-"
+                    if base is None or math.isnan(duration)
+                    else f"{duration / base.duration_s:.3f}"
+                    for base in bases
+                ]
+                cells.append(f"{shown} | {ratios[0]} | {ratios[1]} | {wall:.1f} s")
             rows.append(
-                f"| {name} | {arm or '-'} | {optimum(upright)} | {optimum(tilted)} | {compute} | "
+                f"| {name} | {arm or '-'} | {optimum(upright)} | {optimum(tilted)} | {spent} "
+                f"| {optimum(exact)} | {optimum(exact_tilted)} | {exact_compute} | "
                 + " | ".join(cells)
                 + " |"
             )
@@ -337,6 +376,9 @@ def main() -> None:
     parser.add_argument("--tables", default="primary,strict,waypoints,reference")
     parser.add_argument("--robot", default="ur5e", help="arm of the reference table, or none")
     parser.add_argument("--quick", action="store_true", help="one case of the reference table")
+    parser.add_argument(
+        "--cached-only", action="store_true", help="reference optima from the cache only"
+    )
     arguments = parser.parse_args()
     warnings.simplefilter("ignore", ValidityWarning)
     model = equivalent_model(
@@ -368,7 +410,7 @@ def main() -> None:
         rows += waypoint_table(model, arguments.transcription)
     if "reference" in tables:
         robot = None if arguments.robot.lower() == "none" else arguments.robot
-        rows += ["", *reference_table(model, robot, arguments.quick)]
+        rows += ["", *reference_table(model, robot, arguments.quick, arguments.cached_only)]
     load = os.getloadavg()[0]
     rows.append("")
     rows.append(f"(load average {load:.1f} on {os.cpu_count()} cores when the run ended)")

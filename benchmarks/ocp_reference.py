@@ -18,15 +18,42 @@ frame D(s) = R_path(s) Rz(-psi(s)) and the spin angle psi(s) are sampled densely
 the velocities, accelerations and jerks. psi is the integral of the container's angular
 velocity about its own axis (body z component), so that D does not spin about the axis.
 
-Slosh (Abramson, NASA SP-106 (1966) ch. 6; Dodge, SwRI (2000) ch. 3; the same definition as
-the planner's linear screen): every mode n of every model of the band is a linear spherical
-pendulum, phi'' + 2 zeta w phi' + w^2 phi = f_lat / L_n, phi a 2-vector, f = g - a_B the
-specific force at the bob's rest point B_n = bottom + bob_height_n * axis, in the container's
-frame with its spin about the axis removed, f_lat its first two components; at rest in
-equilibrium at the start. Limits: |sum_n e_n phi_n| <= max height at the nodes; at T the
-residual sum_n e_n sqrt(|A_n|^2 + |B_n|^2) <= max residual, A_n = phi_n - rest_n,
-B_n = (phi_n' + zeta w A_n) / w_d (the cosine and sine amplitudes of the free oscillation);
-the first mode's angle when ``max_surface_angle_rad`` is set.
+Slosh, ``slosh_model="linear"`` (default; Abramson, NASA SP-106 (1966) ch. 6; Dodge, SwRI
+(2000) ch. 3; the same definition as the planner's linear screen): every mode n of every model
+of the band is a linear spherical pendulum, phi'' + 2 zeta w phi' + w^2 phi = f_lat / L_n, phi
+a 2-vector, f = g - a_B the specific force at the bob's rest point B_n = bottom +
+bob_height_n * axis, in the container's frame with its spin about the axis removed, f_lat its
+first two components; at rest in equilibrium at the start. Limits: |sum_n e_n phi_n| <= max
+height at the nodes; at T the residual sum_n e_n sqrt(|A_n|^2 + |B_n|^2) <= max residual,
+A_n = phi_n - rest_n, B_n = (phi_n' + zeta w A_n) / w_d (the cosine and sine amplitudes of the
+free oscillation); the first mode's angle when ``max_surface_angle_rad`` is set.
+
+Slosh, ``slosh_model="nonlinear"``: the large-angle damped spherical pendulum the planner's
+verification simulates (`sloshkit.sim.spatial`, written here again without its code). Every
+mode is a pendulum of length L_n hinged on the axis at the pivot height H_n = bob height + L_n
+(Abramson ch. 6; Dodge ch. 3), its bob at L_n u from the hinge, u a unit vector in the frame
+N that tilts with the container axis but does not spin about it (the de-spun frame above),
+Omega = (p, q, 0) the angular velocity of N in N and Omega' the derivative of its components.
+With the constraint force eliminated (relative motion in a non-inertial frame: Goldstein,
+*Classical Mechanics*, 3rd ed. (2002) §4.10),
+
+    u'' = (F - (u . F) u) / L_n - |u'|^2 u,
+    F = f - Omega' x rho - Omega x (Omega x rho) - 2 Omega x rho' - 2 zeta w rho',  rho = L_n u,
+
+f = kappa_n g_vec - a_hinge in N (kappa_n = w^2 L_n / g), the Euler, centrifugal and Coriolis
+terms of N's lateral rotation included. The state is the lateral part x = (u_x, u_y) and x',
+u_z = -sqrt(1 - |x|^2) (the bob below the hinge), u_z' = -(x . x') / u_z; the lateral rows of
+the equation give x''. At rest at the start along the apparent gravity, x = f_lat / |f|.
+Wall height (the verification's "modal" mapping): |sum_n e_n x_n / (-u_z,n)| <= max height at
+the nodes (the slope of a mode is the tangent of its deflection). Residual (the verification's
+`free_amplitudes_rad`): with A_n = x_n(T) - f_lat / |f| (f at rest in the final pose) and
+B_n = (x_n'(T) + zeta w A_n) / w_d, the free oscillation A_n cos + B_n sin traces an ellipse
+whose semi-major axis a_n is the square root of the larger eigenvalue of
+M_n = A_n A_n^T + B_n B_n^T; sum_n e_n a_n <= max residual. a_n <= b_n is written exactly and
+smoothly as b_n^2 I - M_n positive semidefinite: b_n^2 >= M_xx, b_n^2 >= M_yy and
+(b_n^2 - M_xx)(b_n^2 - M_yy) >= M_xy^2 (a 2 x 2 matrix is semidefinite iff its diagonal and
+determinant are nonnegative), with sum_n e_n b_n <= max residual. The first mode's surface
+angle atan2(|x|, -u_z) <= a limit is |x| <= sin(limit).
 
 Tilt (optional): rotation vector r = (rx, ry, 0) about world axes applied before the path's
 orientation, R = Rot(r) R_path(s); the reference point is moved so that the tilt centre (height
@@ -55,7 +82,7 @@ from scipy.spatial.transform import Rotation
 
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.plan.path import Path
-from sloshkit.plan.spatial import PathProblem
+from sloshkit.plan.spatial import PathProblem, PoseSamples
 
 FloatArray = NDArray[np.float64]
 
@@ -72,6 +99,8 @@ MAX_PARAMETER_RATE_M_S = 50.0
 COARSE_FACTOR = 2.5
 #: Most intervals of the first solve.
 MAX_COARSE = 500
+#: The slosh models of the reference (module docstring).
+SLOSH_MODELS = ("linear", "nonlinear")
 
 
 @dataclass(frozen=True)
@@ -100,6 +129,8 @@ class ReferenceOptimum:
         Residual bound at T [m].
     peak_tilt_rad : float
         Largest |r| at the nodes [rad].
+    slosh_model : str
+        ``"linear"`` or ``"nonlinear"`` (module docstring).
     """
 
     duration_s: float
@@ -112,6 +143,7 @@ class ReferenceOptimum:
     peak_height_m: float
     residual_height_m: float
     peak_tilt_rad: float
+    slosh_model: str = "linear"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready fields (keys carry their unit)."""
@@ -126,6 +158,7 @@ class ReferenceOptimum:
             "peak_height_m": self.peak_height_m,
             "residual_height_m": self.residual_height_m,
             "peak_tilt_rad": self.peak_tilt_rad,
+            "slosh_model": self.slosh_model,
         }
 
 
@@ -188,6 +221,13 @@ def _tilt_functions(r: Any, max_angle_rad: float) -> tuple[Any, Any, Any]:
     return rotate, rotate_back, angular_velocity
 
 
+def _path_tilts(path: Path, spacing_m: float = GEOMETRY_SPACING_M) -> bool:
+    """Whether the container axis of ``path`` leaves the vertical anywhere (by 1e-9 rad)."""
+    count = max(math.ceil(path.length_m / spacing_m), 64) + 1
+    axis = path.orientation(np.linspace(0.0, path.length_m, count)).apply([0.0, 0.0, 1.0])
+    return bool(np.max(np.hypot(axis[:, 0], axis[:, 1])) > 1e-9)
+
+
 def _rotvec_matrix(rotate: Any) -> Any:
     """The matrix of the rotation ``rotate`` (its images of the unit vectors)."""
     return ca.horzcat(*(rotate(ca.DM(column)) for column in np.eye(3)))
@@ -210,7 +250,8 @@ class _Model:
 
     dynamics: Any  # (x, u) -> x'
     path_limits: Any  # (x, u) -> constraint values, each <= 1
-    residual: Any  # x -> the amplitude |(A_n, B_n)| of every mode of every model
+    residual: Any  # x -> the squared residual amplitude of every mode of every model
+    residual_rows: Any  # (x, b) -> rows <= 0 that say every mode's amplitude <= b_n
     wall: Any  # x -> wall height of every model
     walls: FloatArray  # e_n of every mode of every model (the order of `residual`)
     x0: FloatArray  # state at rest at s = 0
@@ -227,9 +268,68 @@ class _Model:
         return int(self.scale_u.size)
 
 
-def _model(problem: PathProblem, tilt: bool) -> _Model:
-    """The state x = (s, s', s'', [r, r', r'', chi], then (phi, phi') of every mode of every
-    model), the control u = (s''', [r''']), and the limits as functions (module docstring)."""
+def _frame_rates(frame: Any, chi: Any, rate: Any) -> tuple[Any, Any]:
+    """Lateral angular velocity Omega of N = frame Rz(-chi) in N and the derivative of its
+    components: with w_b the body angular velocity of ``frame`` (the axial vector of
+    frame^T frame'), Omega = [Rz(chi) w_b]_xy, chi' = w_b,z (N does not spin about the axis)
+    and Omega' = [Rz(chi) w_b']_xy + chi' (-Omega_y, Omega_x) (Goldstein (2002) §4.9)."""
+    body = frame.T @ _vee(rate(frame), frame)
+    turned = _rz(chi) @ body
+    omega, spin = turned[0:2], turned[2]
+    derivative = (_rz(chi) @ rate(body))[0:2]
+    return omega, derivative + spin * ca.vertcat(-omega[1], omega[0])
+
+
+def _nonlinear_mode(
+    force: Any, rest: Any, omega: Any, omega_rate: Any, mode: Any
+) -> tuple[Any, Any, Any, Any, Any, Any]:
+    """One mode's large-angle pendulum (module docstring): its states (x, x'), their
+    derivatives, the slope x / (-u_z), the start x at rest, and the free-oscillation matrix
+    M = A A^T + B B^T at rest in the pose of the state as (M_xx, M_yy, M_xy)."""
+    w, zeta, length = mode.omega_rad_s, mode.damping_ratio, mode.length_m
+    lateral, lateral_rate = ca.SX.sym("x", 2), ca.SX.sym("xd", 2)
+    axial = -ca.sqrt(1.0 - ca.sumsqr(lateral))
+    axial_rate = -ca.dot(lateral, lateral_rate) / axial
+    unit = ca.vertcat(lateral, axial)
+    unit_rate = ca.vertcat(lateral_rate, axial_rate)
+    rho, rho_rate = length * unit, length * unit_rate
+    spin = ca.vertcat(omega, 0)
+    spin_rate = ca.vertcat(omega_rate, 0)
+    total = (
+        force
+        - ca.cross(spin_rate, rho)
+        - ca.cross(spin, ca.cross(spin, rho))
+        - 2.0 * ca.cross(spin, rho_rate)
+        - 2.0 * zeta * w * rho_rate
+    )
+    radial = ca.dot(unit, total)
+    speed2 = ca.sumsqr(lateral_rate) + axial_rate**2
+    acceleration = (total[0:2] - radial * lateral) / length - speed2 * lateral
+    equilibrium = rest[0:2] / ca.norm_2(rest)
+    cosine = lateral - equilibrium
+    sine = (lateral_rate + zeta * w * cosine) / (w * math.sqrt(1.0 - zeta**2))
+    matrix = ca.vertcat(
+        cosine[0] ** 2 + sine[0] ** 2,
+        cosine[1] ** 2 + sine[1] ** 2,
+        cosine[0] * cosine[1] + sine[0] * sine[1],
+    )
+    return (
+        ca.vertcat(lateral, lateral_rate),
+        ca.vertcat(lateral_rate, acceleration),
+        lateral / (-axial),
+        equilibrium,
+        matrix,
+        ca.sumsqr(lateral),
+    )
+
+
+def _model(problem: PathProblem, tilt: bool, slosh_model: str = "linear") -> _Model:
+    """The state x = (s, s', s'', [r, r', r'', chi], then (phi, phi') or (x, x') of every
+    mode of every model), the control u = (s''', [r''']), and the limits as functions
+    (module docstring)."""
+    if slosh_model not in SLOSH_MODELS:
+        raise ValueError(f"slosh_model must be one of {SLOSH_MODELS}, not {slosh_model!r}")
+    nonlinear = slosh_model == "nonlinear"
     geometry = geometry_interpolant(problem.path)
     machine = problem.machine
     nq = 3 if tilt else 1
@@ -258,6 +358,11 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
         return _rz(chi) @ (despun.T @ rotate_back(v))
 
     bottom_acceleration, axis_acceleration = rate(rate(bottom)), rate(rate(axis))
+    if nonlinear and (tilt or _path_tilts(problem.path)):
+        frame = _rotvec_matrix(rotate) @ despun if tilt else despun
+        frame_rate, frame_acceleration = _frame_rates(frame, chi, rate)
+    else:  # the container axis stays vertical: N does not rotate
+        frame_rate = frame_acceleration = ca.SX.zeros(2)
     models = problem.models()
     states: list[Any] = []
     derivatives: list[Any] = []
@@ -270,10 +375,34 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
     scales: list[float] = []
     first_wall = models[0].modes[0].wall_elevation_factor_m
     angle_scale = problem.slosh.max_height_m / first_wall
+    matrices: list[Any] = []
     for model in models:
         wall = ca.SX.zeros(2)
         for index, mode in enumerate(model.modes):
             w, zeta, length = mode.omega_rad_s, mode.damping_ratio, mode.length_m
+            if nonlinear:
+                kappa = w**2 * length / GRAVITY_M_S2
+                hinge = bottom_acceleration + mode.pivot_height_m * axis_acceleration
+                state, derivative, slope, equilibrium, matrix, angle = _nonlinear_mode(
+                    to_frame(kappa * gravity - hinge),
+                    to_frame(kappa * gravity),
+                    frame_rate,
+                    frame_acceleration,
+                    mode,
+                )
+                states.append(state)
+                derivatives.append(derivative)
+                rests.append(equilibrium)
+                matrices.append(matrix)
+                half = 0.5 * (matrix[0] + matrix[1])
+                spread = ca.sqrt(0.25 * (matrix[0] - matrix[1]) ** 2 + matrix[2] ** 2)
+                amplitudes.append(half + spread)
+                walls.append(mode.wall_elevation_factor_m)
+                wall += mode.wall_elevation_factor_m * slope
+                if index == 0:
+                    angles.append(angle)
+                scales += [angle_scale] * 2 + [angle_scale * w] * 2
+                continue
             phi, phid = ca.SX.sym("phi", 2), ca.SX.sym("phid", 2)
             bob_acceleration = bottom_acceleration + mode.bob_height_m * axis_acceleration
             force = to_frame(gravity - bob_acceleration)
@@ -301,7 +430,10 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
         *(wall / problem.slosh.max_height_m**2 for wall in walls_by_model),
     ]
     if problem.slosh.max_surface_angle_rad is not None:
-        limits += [angle / problem.slosh.max_surface_angle_rad**2 for angle in angles]
+        # nonlinear: atan2(|x|, -u_z) <= limit iff |x| <= sin(limit) (below the hinge)
+        bound = problem.slosh.max_surface_angle_rad
+        bound = math.sin(min(bound, 0.5 * math.pi)) if nonlinear else bound
+        limits += [angle / bound**2 for angle in angles]
     omega_limit = machine.max_angular_velocity_rad_s
     alpha_limit = machine.max_angular_acceleration_rad_s2
     if omega_limit is not None or alpha_limit is not None:
@@ -355,11 +487,28 @@ def _model(problem: PathProblem, tilt: bool) -> _Model:
     dynamics = ca.Function("dynamics", [x, u], [xdot])
     path_limits = ca.Function("path_limits", [x, u], [ca.vertcat(*limits)])
     residual = ca.Function("residual", [x], [ca.vertcat(*amplitudes)])
+    bounds = ca.SX.sym("b", len(walls))
+    # rows <= 0, in units of (max residual / e_n)^2 (squared for the determinant)
+    unit = ca.DM((problem.slosh.max_residual_height_m / np.asarray(walls)) ** 2)
+    if nonlinear:
+        rows = []
+        for index, matrix in enumerate(matrices):
+            square = bounds[index] ** 2
+            rows += [
+                (matrix[0] - square) / unit[index],
+                (matrix[1] - square) / unit[index],
+                (matrix[2] ** 2 - (square - matrix[0]) * (square - matrix[1])) / unit[index] ** 2,
+            ]
+        residual_rows = ca.Function("residual_rows", [x, bounds], [ca.vertcat(*rows)])
+    else:  # |(A_n, B_n)|^2 <= b_n^2
+        amplitude = ca.vertcat(*amplitudes)
+        residual_rows = ca.Function("residual_rows", [x, bounds], [(amplitude - bounds**2) / unit])
     wall_height = ca.Function("wall", [x], [ca.sqrt(ca.vertcat(*walls_by_model))])
     return _Model(
         dynamics,
         path_limits,
         residual,
+        residual_rows,
         wall_height,
         np.asarray(walls),
         np.asarray(x0_kinematic + x0_slosh),
@@ -459,7 +608,8 @@ def _feasible(
 
 
 def _band_residual(model: _Model, problem: PathProblem, amplitude: FloatArray) -> float:
-    """The largest over the band of sum_n e_n |(A_n, B_n)|."""
+    """The largest over the band of sum_n e_n a_n (a_n: ``amplitude``, the residual
+    amplitude of every mode)."""
     per_model = len(problem.models()[0].modes)
     weighted = (model.walls * amplitude).reshape(-1, per_model)
     return float(np.max(np.sum(weighted, axis=1)))
@@ -514,10 +664,8 @@ def _solve(
     limits = model.path_limits.map(count)
     before, after = limits(big_x[:, :-1], big_u), limits(big_x[:, 1:], big_u)
     final = big_x[:, -1]
-    amplitude = model.residual(final)
-    # |(A_n, B_n)|^2 <= b_n^2, b_n >= 0, in units of (max residual / e_n)^2
-    unit = ca.DM((problem.slosh.max_residual_height_m / model.walls) ** 2)
-    residual_rows = (amplitude - bounds**2) / unit
+    # every mode's residual amplitude <= b_n, b_n >= 0 (`_Model.residual_rows`)
+    residual_rows = model.residual_rows(final, bounds)
     per_model = len(problem.models()[0].modes)
     weighted = ca.reshape(ca.DM(model.walls) * bounds, per_model, -1)
     band = ca.sum1(weighted).T / problem.slosh.max_residual_height_m
@@ -530,9 +678,10 @@ def _solve(
     )
     g = ca.vertcat(ca.vec(defects), ca.vec(before), ca.vec(after), residual_rows, band, end_rows)
     n_defects, n_limits = nx * count, 2 * before.numel()
-    lbg = np.r_[np.zeros(n_defects), np.full(n_limits, -np.inf), np.full(n_modes, -np.inf)]
+    n_rows = residual_rows.numel()
+    lbg = np.r_[np.zeros(n_defects), np.full(n_limits, -np.inf), np.full(n_rows, -np.inf)]
     lbg = np.r_[lbg, np.full(band.numel(), -np.inf), np.zeros(end_rows.numel())]
-    ubg = np.r_[np.zeros(n_defects), np.ones(n_limits), np.zeros(n_modes)]
+    ubg = np.r_[np.zeros(n_defects), np.ones(n_limits), np.zeros(n_rows)]
     ubg = np.r_[ubg, np.ones(band.numel()), np.zeros(end_rows.numel())]
     variables = ca.vertcat(ca.vec(xs), ca.vec(us), t, bounds)
     lbx_x = np.full((nx, count + 1), -np.inf)
@@ -589,13 +738,85 @@ def _regrid(states: FloatArray, controls: FloatArray, count: int) -> tuple[Float
     return moved, held
 
 
+@dataclass(frozen=True, eq=False)
+class ReferenceSolution:
+    """The minimum-time solution with its trajectory.
+
+    Parameters
+    ----------
+    optimum : ReferenceOptimum
+        The figures.
+    states : ndarray
+        States at the N + 1 nodes (`_model`'s layout, SI units).
+    controls : ndarray
+        Jerks of s (and r) on the N intervals.
+    """
+
+    optimum: ReferenceOptimum
+    states: FloatArray
+    controls: FloatArray
+
+    def pose_samples(self, problem: PathProblem, sample_period_s: float) -> PoseSamples:
+        """The solution sampled at t = k Ts (the planner's export: `sample_path`'s grid, held
+        at the end after T): s and r integrated exactly over each interval of constant jerk
+        from the node states; pose R = Rot(r) R_path(s), bottom p(s) + c (R_path e_z - R e_z)
+        (module docstring)."""
+        duration, count = self.optimum.duration_s, self.controls.shape[1]
+        h = duration / count
+        samples = math.ceil(duration / sample_period_s - 1e-9)
+        t = np.minimum(np.arange(samples + 1) * sample_period_s, duration)
+        index = np.minimum((t / h).astype(int), count - 1)
+        tau = t - index * h
+
+        def integrate(rows: tuple[int, int, int], control: int) -> FloatArray:
+            x, v, a = (self.states[row, index] for row in rows)
+            jerk = self.controls[control, index]
+            return np.asarray(x + v * tau + a * tau**2 / 2 + jerk * tau**3 / 6)
+
+        path, tilt = problem.path, self.optimum.tilt
+        # rows: (r_x, r_y, r_x', r_y', r_x'', r_y'', chi, s, s', s'') tilted, (s, s', s'')
+        s = np.clip(integrate((7, 8, 9) if tilt else (0, 1, 2), 0), 0.0, path.length_m)
+        s[-1] = path.length_m
+        rotation = path.orientation(s)
+        position = path.position(s)
+        if tilt:
+            vector = np.c_[integrate((0, 2, 4), 1), integrate((1, 3, 5), 2), np.zeros(t.size)]
+            vector[-1] = 0.0
+            upright = rotation.apply([0.0, 0.0, 1.0])
+            rotation = Rotation.from_rotvec(vector) * rotation
+            centre = problem.tilt_centre_height_m
+            position = position + centre * (upright - rotation.apply([0.0, 0.0, 1.0]))
+        quaternions = rotation.as_quat()
+        flips = np.sign(np.sum(quaternions[1:] * quaternions[:-1], axis=1))
+        flips[flips == 0] = 1.0
+        quaternions *= np.concatenate(([1.0], np.cumprod(flips)))[:, None]
+        grid = np.arange(samples + 1, dtype=float) * sample_period_s
+        return PoseSamples(grid, np.asarray(position, dtype=float), quaternions)
+
+
 def reference_optimum(
     problem: PathProblem,
     tilt: bool = False,
     interval_s: float = 4e-3,
     max_iterations: int = 3000,
     print_level: int = 0,
+    slosh_model: str = "linear",
 ) -> ReferenceOptimum:
+    """The minimum time of ``problem`` (module docstring), with free tilt when ``tilt``:
+    `reference_solution`'s figures."""
+    return reference_solution(
+        problem, tilt, interval_s, max_iterations, print_level, slosh_model
+    ).optimum
+
+
+def reference_solution(
+    problem: PathProblem,
+    tilt: bool = False,
+    interval_s: float = 4e-3,
+    max_iterations: int = 3000,
+    print_level: int = 0,
+    slosh_model: str = "linear",
+) -> ReferenceSolution:
     """The minimum time of ``problem`` (module docstring), with free tilt when ``tilt``.
 
     Parameters
@@ -610,13 +831,15 @@ def reference_optimum(
         IPOPT iteration limit.
     print_level : int
         IPOPT's print level (0: silent).
+    slosh_model : str
+        ``"linear"`` (default) or ``"nonlinear"`` (the verification's large-angle pendulum).
 
     Returns
     -------
-    ReferenceOptimum
+    ReferenceSolution
     """
     started = time.perf_counter()
-    upright = _model(problem, False)
+    upright = _model(problem, False, slosh_model)
     upright_step = _rk4_step(upright)
     initial, states, controls = initial_guess(upright, problem, upright_step, interval_s)
 
@@ -635,7 +858,7 @@ def reference_optimum(
     )
     model = upright
     if tilt:
-        model = _model(problem, True)
+        model = _model(problem, True, slosh_model)
         step = _rk4_step(model)
         tilted_states = np.zeros((model.nx, count + 1))
         tilted_states[7:10] = states[0:3]
@@ -654,7 +877,7 @@ def reference_optimum(
     walls = np.asarray(model.wall.map(states.shape[1])(states))
     amplitude = np.sqrt(np.maximum(np.asarray(model.residual(states[:, -1])).ravel(), 0.0))
     peak_tilt = float(np.max(np.hypot(states[0], states[1]))) if tilt else 0.0
-    return ReferenceOptimum(
+    optimum = ReferenceOptimum(
         duration,
         status,
         success,
@@ -665,4 +888,6 @@ def reference_optimum(
         float(walls.max()),
         _band_residual(model, problem, amplitude),
         peak_tilt,
+        slosh_model,
     )
+    return ReferenceSolution(optimum, states, controls)
