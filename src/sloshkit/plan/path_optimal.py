@@ -832,7 +832,8 @@ def _minimum_time(
     acceleration binds: the next N solves r = 1 on the secant of log r against log N through the
     last two, kept inside the bracket of solved N (the largest infeasible, the smallest
     feasible) and within 20 % of the last; the search stops when the bracket is
-    `SEARCH_TOLERANCE` wide. Each r(N) starts from the nearest solved samples _rescaled.
+    `SEARCH_TOLERANCE` wide. Each r(N) starts from the nearest feasible samples _rescaled
+    (from the start while none is).
 
     Returns the best feasible iterate and the (N, r) pairs tried; raises `RuntimeError` when
     no N up to four times the start's meets the limits."""
@@ -864,7 +865,10 @@ def _minimum_time(
             new = (low + upper + 1) // 2
         if any(h[0] == new for h in history) or new > 4 * start.steps:
             break
-        guess = min(history, key=lambda h: abs(h[0] - new))[2].samples
+        # from the nearest feasible samples: stretching an infeasible iterate carries its
+        # broken residual along (from none yet, the start stretched)
+        solved = [h for h in history if h[1] <= 1.0]
+        guess = min(solved, key=lambda h: abs(h[0] - new))[2].samples if solved else start
         steps = new
     feasible = [h for h in history if h[1] <= 1.0]
     if not feasible:
