@@ -11,18 +11,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "src" / "sloshkit"
 
-#: Modules of plan/ that still write the grid rule or import private names: the 3-D planner's
-#: rewrite (issue 25, helper planner3d) moves them to the shared helpers, and then their
-#: entries go. No module outside plan/ may be added here.
-PLAN_PENDING = {
-    "plan/grid_moves.py",
-    "plan/path_search.py",
-    "plan/path_slp.py",
-    "plan/retime.py",
-    "plan/searches.py",
-    "plan/spatial.py",
-}
-
 
 def modules() -> dict[str, ast.Module]:
     """Every module of src/sloshkit, by its path relative to the package."""
@@ -58,7 +46,7 @@ def test_only_motion_sampling_writes_the_grid_rule():
     # The profile mesher counts pieces of at most one spacing with the same rounding; model/
     # sits below motion/ and cannot call it, and these are lengths, not the time grid.
     mesh_counts = {"model/axisymmetric.py", "model/profile.py"}
-    allowed = {"motion/sampling.py"} | PLAN_PENDING | mesh_counts
+    allowed = {"motion/sampling.py"} | mesh_counts
     copies = [
         f"{name}:{line}"
         for name, tree in modules().items()
@@ -135,7 +123,6 @@ def test_no_module_imports_a_private_name_of_another():
     found = {
         (name, module, private)
         for name, tree in modules().items()
-        if not name.startswith("plan/")  # the 3-D planner's rewrite (see PLAN_PENDING)
         for module, private in private_imports(tree)
     }
     assert sorted(found) == [], "make the name public or keep it inside"

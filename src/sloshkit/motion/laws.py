@@ -452,8 +452,3 @@ def make_law(
             distance_m, peak_velocity_m_s, None, acceleration_fraction
         ).duration_s
     return builders[name](distance_m, duration_s)
-
-
-#: The former private name, kept only for plan/transcription.py (the 3-D planner's rewrite
-#: moves it to `sloshkit.motion.profile.piecewise_constant_jerk`).
-_piecewise_constant_jerk = piecewise_constant_jerk

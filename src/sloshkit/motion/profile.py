@@ -329,8 +329,3 @@ def piecewise_constant_jerk(
         acceleration += jerk * width
         breaks.append(breaks[-1] + width)
     return Motion(name, PiecewisePolynomial(np.asarray(columns, dtype=float).T, breaks))
-
-
-#: The former private name, kept only for the modules of plan/ that still import it (the 3-D
-#: planner's rewrite moves them to `piecewise_constant_jerk`); nothing else may use it.
-_piecewise_constant_jerk = piecewise_constant_jerk

@@ -8,7 +8,6 @@ Control of Dynamic Systems*, 3rd ed. (1998) §6.3.2) against every limit.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -154,7 +153,9 @@ def steps_for_duration(duration_s: float, sample_period_s: float) -> tuple[int, 
     >>> steps_for_duration(0.01, 0.004)
     (3, 0.002)
     """
-    steps = max(1, math.ceil(duration_s / sample_period_s - 1e-9))
+    from sloshkit.motion.sampling import steps_to_reach
+
+    steps = max(1, steps_to_reach(duration_s, sample_period_s))
     return steps, round(duration_s - (steps - 1) * sample_period_s, 15)
 
 

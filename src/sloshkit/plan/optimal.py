@@ -30,10 +30,10 @@ from typing import Any
 
 from sloshkit.errors import warn_validity
 from sloshkit.motion.laws import s_curve
-from sloshkit.motion.profile import Motion, _piecewise_constant_jerk
+from sloshkit.motion.profile import Motion, piecewise_constant_jerk
 from sloshkit.plan.cost import duration_floor, optimal_refusal
 from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus
-from sloshkit.plan.verification import _candidate
+from sloshkit.plan.verification import checked_candidate
 
 #: Relative price in time of the smooth variant: its duration is (1 + price) times the minimum.
 #: Measured on the paper's vial (0.5 m, 5 deg, 0.25 deg, 4 ms; benchmarks/bench_plan.py), with
@@ -254,8 +254,8 @@ def plan_optimal(
             )
     name = "optimal" if variant == "time-optimal" else "optimal-smooth"
     durations = [ts] * (jerks.size - 1) + [last]
-    motion = Motion(name, _piecewise_constant_jerk(name, durations, list(jerks)).position_pp)
-    return _candidate(
+    motion = Motion(name, piecewise_constant_jerk(name, durations, list(jerks)).position_pp)
+    return checked_candidate(
         name,
         motion,
         problem,

@@ -20,10 +20,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.motion.laws import s_curve
-from sloshkit.motion.profile import Motion, _piecewise_constant_jerk
+from sloshkit.motion.profile import Motion, piecewise_constant_jerk
 from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus
 from sloshkit.plan.searches import plan_shaped
-from sloshkit.plan.verification import _candidate, _only_slosh_violations
+from sloshkit.plan.verification import checked_candidate, only_slosh_violations
 from sloshkit.sim.discretisation import linear_mode_response
 from sloshkit.sim.equations import pendulum_angular_acceleration
 from sloshkit.sim.metrics import (
@@ -105,9 +105,9 @@ def plan_optimal_nonlinear(
         if solution is None:
             break
         durations, jerks, stats = solution
-        motion = _piecewise_constant_jerk("optimal", [durations] * count, list(jerks))
+        motion = piecewise_constant_jerk("optimal", [durations] * count, list(jerks))
         motion = Motion("optimal", motion.position_pp)
-        candidate = _candidate(
+        candidate = checked_candidate(
             "optimal",
             motion,
             problem,
@@ -118,7 +118,7 @@ def plan_optimal_nonlinear(
             tightening=tightening,
         )
         last = candidate
-        if candidate.feasible or not _only_slosh_violations(candidate):
+        if candidate.feasible or not only_slosh_violations(candidate):
             return candidate
         check = candidate.verification
         assert check is not None

@@ -8,8 +8,8 @@ import math
 
 import numpy as np
 
+from sloshkit.motion.quaternions import conjugate, hamilton_product, rotated_z_axis, rotation_vector
 from sloshkit.plan.path import Path
-from sloshkit.plan.path_screen import _qaxis, _qconj, _qmul, _qrotvec
 from sloshkit.plan.spatial import PathProblem, PoseSamples
 
 
@@ -46,10 +46,10 @@ def kinematics(poses: PoseSamples) -> dict[str, float]:
     acceleration = np.diff(velocity, axis=0) / ts
     jerk = np.diff(acceleration, axis=0) / ts
     quaternion = poses.quaternion_xyzw
-    omega = _qrotvec(_qmul(quaternion[1:], _qconj(quaternion[:-1]))) / ts
+    omega = rotation_vector(hamilton_product(quaternion[1:], conjugate(quaternion[:-1]))) / ts
     omega = np.concatenate((np.zeros((1, 3)), omega, np.zeros((1, 3))))
     alpha = np.diff(omega, axis=0) / ts
-    axis = _qaxis(quaternion)
+    axis = rotated_z_axis(quaternion)
     return {
         "velocity": float(np.max(np.linalg.norm(velocity, axis=1))),
         "acceleration": float(np.max(np.linalg.norm(acceleration, axis=1))),

@@ -20,59 +20,22 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.motion.quaternions import (
+    conjugate,
+    hamilton_product,
+    rotate_inverse,
+    rotated_z_axis,
+    rotation_vector,
+)
 from sloshkit.plan.spatial import (
     GRAVITY,
     SEARCH_MARGIN,
     PathProblem,
     PoseSamples,
-    _second_difference,
+    second_difference,
 )
 
 FloatArray = NDArray[np.float64]
-
-
-def _qmul(a: FloatArray, b: FloatArray) -> FloatArray:
-    """Hamilton product of quaternion arrays (scalar last), the rotation a * b."""
-    ax, ay, az, aw = np.moveaxis(a, -1, 0)
-    bx, by, bz, bw = np.moveaxis(b, -1, 0)
-    return np.stack(
-        (
-            aw * bx + ax * bw + ay * bz - az * by,
-            aw * by - ax * bz + ay * bw + az * bx,
-            aw * bz + ax * by - ay * bx + az * bw,
-            aw * bw - ax * bx - ay * by - az * bz,
-        ),
-        axis=-1,
-    )
-
-
-def _qconj(q: FloatArray) -> FloatArray:
-    """Inverse of unit quaternions (scalar last)."""
-    return np.asarray(q * np.array([-1.0, -1.0, -1.0, 1.0]))
-
-
-def _qrotvec(q: FloatArray) -> FloatArray:
-    """Rotation vectors of unit quaternions (scalar last), angle in [0, pi]."""
-    q = np.where(q[..., 3:4] < 0.0, -q, q)
-    sine = np.linalg.norm(q[..., :3], axis=-1)
-    angle = 2.0 * np.arctan2(sine, q[..., 3])
-    # angle / sin(angle / 2), -> 2 for small angles (series 2 + angle^2 / 12)
-    scale = np.where(sine > 1e-6, angle / np.maximum(sine, 1e-300), 2.0 + angle**2 / 12.0)
-    return np.asarray(q[..., :3] * scale[..., None])
-
-
-def _qaxis(q: FloatArray) -> FloatArray:
-    """The rotated z axis R e_z of unit quaternions (scalar last)."""
-    x, y, z, w = np.moveaxis(q, -1, 0)
-    return np.stack((2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)), axis=-1)
-
-
-def _qapply_inverse(q: FloatArray, v: FloatArray) -> FloatArray:
-    """R^T v for unit quaternions q and vectors v (rows)."""
-    u = -q[..., :3]
-    w = q[..., 3:4]
-    t = 2.0 * np.cross(u, v)
-    return np.asarray(v + w * t + np.cross(u, t))
 
 
 @dataclass(frozen=True)
@@ -189,12 +152,12 @@ def screen_outputs(
 
     ts = float(poses.time_s[1] - poses.time_s[0])
     quaternion = poses.quaternion_xyzw
-    spin_rate = _qrotvec(_qmul(_qconj(quaternion[:-1]), quaternion[1:]))[:, 2]
+    spin_rate = rotation_vector(hamilton_product(conjugate(quaternion[:-1]), quaternion[1:]))[:, 2]
     spin = np.concatenate(([0.0], np.cumsum(spin_rate)))
     unspin = np.zeros((spin.size, 4))
     unspin[:, 2], unspin[:, 3] = np.sin(-0.5 * spin), np.cos(-0.5 * spin)
-    frame = _qmul(quaternion, unspin)
-    axis = _qaxis(quaternion)
+    frame = hamilton_product(quaternion, unspin)
+    axis = rotated_z_axis(quaternion)
     outputs: list[tuple[FloatArray, float, float, FloatArray]] = []
     for model in models:
         wall = np.zeros((poses.time_s.size, 2))
@@ -202,7 +165,7 @@ def screen_outputs(
         amplitudes = np.zeros((len(model.modes), 4))
         for index, mode in enumerate(model.modes):
             point = poses.position_m + mode.bob_height_m * axis
-            force = _qapply_inverse(frame, GRAVITY - _second_difference(point, ts))[:, :2]
+            force = rotate_inverse(frame, GRAVITY - second_difference(point, ts))[:, :2]
             rest = force / (mode.length_m * mode.omega_rad_s**2)
             # Equivalent velocity w with w' = -(f - f_0): linear_mode_response solves
             # theta'' + 2 zeta w theta' + w^2 theta = -w'/L.

@@ -20,10 +20,12 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.motion.shaping import Shaper
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.retime import ShaperFactory, family_member
-from sloshkit.plan.spatial import PathProblem, PoseSamples, _continuous, sample_path
+from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
 from sloshkit.plan.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
@@ -318,12 +320,12 @@ def warp_search(
 
     def ok(factors: FloatArray) -> bool:
         clock = warp_clock(grid, factors)
-        count = math.ceil(clock[-1] / period - 1e-9)
+        count = steps_to_reach(clock[-1], period)
         t = np.arange(count + 1, dtype=float) * period
         s = np.clip(seed.position(np.interp(t, clock, grid)), 0.0, problem.path.length_m)
         s[-1] = problem.path.length_m
         quaternions = problem.path.orientation(s).as_quat()
-        return passes(PoseSamples(t, problem.path.position(s), _continuous(quaternions)))
+        return passes(PoseSamples(t, problem.path.position(s), sign_continuous(quaternions)))
 
     factors = np.ones(knots)
     screens = 0

@@ -32,8 +32,10 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path_screen import linear_screen, screen_outputs
-from sloshkit.plan.spatial import SEARCH_MARGIN, PathProblem, PoseSamples, _continuous
+from sloshkit.plan.spatial import SEARCH_MARGIN, PathProblem, PoseSamples
 from sloshkit.plan.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
@@ -150,7 +152,7 @@ def slp_search(
         # exact: on the controller grid (the export's); otherwise on a grid whose period is
         # adjusted so that it ends at T exactly (smooth in the factors, for the differences).
         clock = warp_clock(grid, factors)
-        count = math.ceil(clock[-1] / period - 1e-9)
+        count = steps_to_reach(clock[-1], period)
         t = np.arange(count + 1, dtype=float) * period
         if not exact:
             t = np.linspace(0.0, clock[-1], count + 1)
@@ -158,7 +160,7 @@ def slp_search(
         s = np.clip(seed.position(u), 0.0, length)
         s[-1] = length
         quaternions = problem.path.orientation(s).as_quat()
-        poses = PoseSamples(t, problem.path.position(s), _continuous(quaternions))
+        poses = PoseSamples(t, problem.path.position(s), sign_continuous(quaternions))
         return (poses if transform is None else transform(poses)), u
 
     def outputs(factors: FloatArray) -> FloatArray:

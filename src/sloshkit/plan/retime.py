@@ -32,11 +32,13 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
+from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.motion.shaping import Shaper, zv, zvd
 from sloshkit.plan.path import Path
 from sloshkit.plan.path_limits import machine_violations
-from sloshkit.plan.spatial import PathProblem, PoseSamples, _continuous, sample_path
-from sloshkit.plan.timing import Timing, _fine_grid, box_smoothed, shaped_timing
+from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
+from sloshkit.plan.timing import Timing, box_smoothed, fine_grid, shaped_timing
 
 FloatArray = NDArray[np.float64]
 #: Grid spacing of the speed-profile integration [m].
@@ -80,7 +82,7 @@ def axis_shaped_samples(
     >>> poses.duration_s, poses.position_m[-1].tolist()
     (1.5, [0.3, 0.0, 0.0])
     """
-    count = math.ceil((timing.duration_s + float(shaper.times_s[-1])) / sample_period_s - 1e-9)
+    count = steps_to_reach(timing.duration_s + float(shaper.times_s[-1]), sample_period_s)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     positions = np.zeros((t.size, 3))
     mean_s = np.zeros(t.size)
@@ -91,7 +93,7 @@ def axis_shaped_samples(
     mean_s[-1] = path.length_m
     positions[-1] = path.position(path.length_m)
     quaternions = path.orientation(np.clip(mean_s, 0.0, path.length_m)).as_quat()
-    return PoseSamples(t, positions, _continuous(quaternions))
+    return PoseSamples(t, positions, sign_continuous(quaternions))
 
 
 def _profile_geometry(path: Path) -> tuple[FloatArray, ...]:
@@ -229,7 +231,7 @@ def capped_timing(problem: PathProblem, acceleration_cap: float) -> Timing:
     durations = 2.0 * np.diff(s) / np.maximum(rate[1:] + rate[:-1], 1e-12)
     t = np.concatenate(([0.0], np.cumsum(durations)))
     spline = CubicHermiteSpline(t, s, rate)
-    grid = _fine_grid(float(t[-1]))
+    grid = fine_grid(float(t[-1]))
     return Timing("capped", grid, np.asarray(spline(grid), dtype=float))
 
 

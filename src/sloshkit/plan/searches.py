@@ -16,7 +16,7 @@ from sloshkit.errors import InputError, warn_validity
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import make_law, s_curve
 from sloshkit.motion.profile import Motion
-from sloshkit.motion.sampling import steps_for
+from sloshkit.motion.sampling import steps_for, steps_to_reach
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv
 from sloshkit.plan.cost import slosh_floor_s, work_limit
@@ -28,7 +28,7 @@ from sloshkit.plan.problem import (
     PlanProblem,
     PlanStatus,
 )
-from sloshkit.plan.verification import _candidate, _only_slosh_violations
+from sloshkit.plan.verification import checked_candidate, only_slosh_violations
 from sloshkit.sim.batch import batch_metrics
 
 FloatArray = NDArray[np.float64]
@@ -63,7 +63,7 @@ def _velocity_matrix(
     """Velocity samples (samples x cases) of each motion, optionally shaped, and durations."""
     extra = 0.0 if shaper is None else shaper.duration_s
     durations = np.array([m.duration_s + extra for m in motions])
-    steps = math.ceil(float(durations.max()) / dt - 1e-9) + 2
+    steps = steps_to_reach(float(durations.max()), dt) + 2
     t = np.arange(steps, dtype=float) * dt
     matrix = np.zeros((steps, len(motions)))
     delays = np.zeros(1) if shaper is None else shaper.times_s
@@ -189,10 +189,10 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
     attempt: int | None = first
     while attempt is not None:
         duration = best if attempt == first else float(durations[attempt])
-        candidate = _candidate(
+        candidate = checked_candidate(
             law, make_law(law, problem.distance_m, duration_s=duration), problem, started
         )
-        if candidate.feasible or not _only_slosh_violations(candidate):
+        if candidate.feasible or not only_slosh_violations(candidate):
             return candidate
         attempt = scan.first_feasible(attempt + 1)
     return candidate
@@ -334,7 +334,7 @@ def plan_shaped(problem: PlanProblem, shapers: Sequence[str] = SHAPERS) -> Candi
             else:
                 high = middle
         base = s_curve(problem.distance_m, machine.max_velocity_m_s, low, jerk)
-        candidate = _candidate(
+        candidate = checked_candidate(
             f"shaped-{name}",
             shape_motion(base, shaper),
             problem,

@@ -19,6 +19,8 @@ from scipy.spatial.transform import Rotation
 
 from sloshkit.errors import require_in_range, require_positive
 from sloshkit.model.theory import GRAVITY_M_S2
+from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path import Path
 
 FloatArray = NDArray[np.float64]
@@ -239,22 +241,35 @@ def sample_path(path: Path, timing: Any, sample_period_s: float) -> PoseSamples:
     >>> poses.position_m[-1].tolist()
     [0.5, 0.0, 0.0]
     """
-    count = math.ceil(timing.duration_s / sample_period_s - 1e-9)
+    count = steps_to_reach(timing.duration_s, sample_period_s)
     t = np.arange(count + 1, dtype=float) * sample_period_s
     s = np.clip(timing.position(np.minimum(t, timing.duration_s)), 0.0, path.length_m)
     s[-1] = path.length_m
     quaternions = path.orientation(s).as_quat()
-    return PoseSamples(t, path.position(s), _continuous(quaternions))
+    return PoseSamples(t, path.position(s), sign_continuous(quaternions))
 
 
-def _continuous(quaternions: FloatArray) -> FloatArray:
-    flips = np.sign(np.sum(quaternions[1:] * quaternions[:-1], axis=1))
-    flips[flips == 0] = 1.0
-    signs = np.concatenate(([1.0], np.cumprod(flips)))
-    return np.asarray(quaternions * signs[:, None])
+def second_difference(values: FloatArray, step: float) -> FloatArray:
+    """Central second difference along axis 0 with the ends held at rest (the first and last
+    rows repeated), as the export's acceleration is measured (`sloshkit.plan.path_limits`).
 
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Samples (N, ...) of one sample period apart.
+    step : float
+        Sample period [s].
 
-def _second_difference(values: FloatArray, step: float) -> FloatArray:
-    """Central second difference along axis 0, the ends held at rest."""
+    Returns
+    -------
+    numpy.ndarray
+        (values[k+1] - 2 values[k] + values[k-1]) / step^2, (N, ...).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> second_difference(np.array([0.0, 0.0, 1.0, 4.0, 9.0]), 1.0).tolist()
+    [0.0, 1.0, 2.0, 2.0, -5.0]
+    """
     padded = np.concatenate((values[:1], values, values[-1:]))
     return np.asarray((padded[2:] - 2 * padded[1:-1] + padded[:-2]) / step**2)

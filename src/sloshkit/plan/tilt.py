@@ -29,7 +29,8 @@ from numpy.typing import NDArray
 from scipy.ndimage import gaussian_filter1d
 from scipy.spatial.transform import Rotation
 
-from sloshkit.plan.spatial import GRAVITY, PoseSamples, _continuous, _second_difference
+from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.plan.spatial import GRAVITY, PoseSamples, second_difference
 
 FloatArray = NDArray[np.float64]
 #: Standard deviation of the Gaussian smoothing of the acceleration [s].
@@ -120,7 +121,7 @@ def tilt_compensated(
     position = poses.position_m[index]
     base = Rotation.from_quat(poses.quaternion_xyzw[index])
     base_axis = base.apply([0.0, 0.0, 1.0])
-    acceleration = _second_difference(position + bob_height_m * base_axis, ts)
+    acceleration = second_difference(position + bob_height_m * base_axis, ts)
     if smoothing_s > 0:
         acceleration = gaussian_filter1d(acceleration, smoothing_s / ts, axis=0, mode="nearest")
     target = compensating_axis(acceleration, max_tilt_rad)
@@ -132,7 +133,7 @@ def tilt_compensated(
     centre = np.array([0.0, 0.0, centre_height_m])
     position = position + base.apply(centre) - rotation.apply(centre)
     time_s = np.arange(count, dtype=float) * ts
-    return PoseSamples(time_s, position, _continuous(rotation.as_quat()))
+    return PoseSamples(time_s, position, sign_continuous(rotation.as_quat()))
 
 
 def peak_tilt_rad(poses: PoseSamples) -> float:

@@ -106,7 +106,26 @@ class Timing:
         return Timing(self.name, self.time_s * factor, self.s_m)
 
 
-def _fine_grid(duration_s: float) -> FloatArray:
+def fine_grid(duration_s: float) -> FloatArray:
+    """Equally spaced times on [0, duration] at most `FINE_STEP_S` apart (at least 8 steps): the
+    grid on which the timings are filtered and resampled.
+
+    Parameters
+    ----------
+    duration_s : float
+        Length of the grid [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The times [s], both ends included.
+
+    Examples
+    --------
+    >>> grid = fine_grid(1.0)
+    >>> float(grid[0]), float(grid[-1]), bool(grid[1] - grid[0] <= FINE_STEP_S)
+    (0.0, 1.0, True)
+    """
     count = max(8, math.ceil(duration_s / FINE_STEP_S))
     return np.linspace(0.0, duration_s, count + 1)
 
@@ -138,7 +157,7 @@ def box_smoothed(timing: Timing, width_s: float) -> Timing:
     """
     if width_s <= 0.0:
         return timing
-    grid = _fine_grid(timing.duration_s + width_s)
+    grid = fine_grid(timing.duration_s + width_s)
     step = grid[1] - grid[0]
     values = timing.position(grid)
     integral = np.concatenate(([0.0], np.cumsum(0.5 * (values[1:] + values[:-1]) * step)))
@@ -174,7 +193,7 @@ def shaped_timing(timing: Timing, shaper: Shaper) -> Timing:
     >>> round(shaped_timing(ramp, shaper).duration_s, 3)
     1.5
     """
-    grid = _fine_grid(timing.duration_s + float(shaper.times_s[-1]))
+    grid = fine_grid(timing.duration_s + float(shaper.times_s[-1]))
     values = sum(
         amplitude * timing.position(grid - delay)
         for amplitude, delay in zip(shaper.amplitudes, shaper.times_s, strict=True)
@@ -249,7 +268,7 @@ def warped_timing(timing: Timing, factors: ArrayLike) -> Timing:
     coefficients = np.asarray(factors, dtype=float)
     if coefficients.ndim != 1 or coefficients.size < 4 or np.any(coefficients <= 0.0):
         raise InputError("factors", coefficients.size, "needs at least 4 positive factors")
-    u = _fine_grid(timing.duration_s)
+    u = fine_grid(timing.duration_s)
     elapsed = warp_clock(u, coefficients)
     s = timing.position(u)
     s[-1] = timing.length_m

@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
-from sloshkit.motion.laws import Motion, _piecewise_constant_jerk
+from sloshkit.motion.profile import Motion, piecewise_constant_jerk
 from sloshkit.plan.path import Path
 from sloshkit.plan.path_limits import machine_violations
 from sloshkit.plan.path_screen import linear_screen, screen_ok
@@ -328,7 +328,7 @@ def optimal_timing(
         return None
     solution = np.asarray(result["x"], dtype=float).ravel()
     interval = float(solution[0]) / count
-    timing = _piecewise_constant_jerk("retime", [interval] * count, list(solution[-count:]))
+    timing = piecewise_constant_jerk("retime", [interval] * count, list(solution[-count:]))
     return Motion("retime", timing.position_pp), status
 
 

@@ -173,16 +173,76 @@ def _verify_nonlinear(
     return peak, residual, wall
 
 
-def _candidate(
+def checked_candidate(
     method: str, motion: Motion, problem: PlanProblem, started: float, **detail: Any
 ) -> Candidate:
+    """A planner's motion as a `Candidate`, verified (`verify`): feasible only when its export
+    meets every limit, else its violations in the message.
+
+    Parameters
+    ----------
+    method : str
+        The planner's name.
+    motion : Motion
+        The planned motion.
+    problem : PlanProblem
+        Limits, model and sample period.
+    started : float
+        ``time.perf_counter()`` when the planner started (the compute time ends now).
+    **detail
+        The planner's own figures, kept in ``Candidate.detail``.
+
+    Returns
+    -------
+    Candidate
+
+    Examples
+    --------
+    >>> import time
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             0.04)
+    >>> problem = sk.PlanProblem(0.1, sk.MachineLimits(1.0, 5.0, 200.0),
+    ...                          sk.SloshLimits(0.3, 0.05), model)
+    >>> found = checked_candidate("quintic", sk.quintic(0.1, 1.5), problem, time.perf_counter())
+    >>> found.method, found.status.name, found.message
+    ('quintic', 'FEASIBLE', 'verified')
+    """
     check = verify(motion, problem)
     status = PlanStatus.FEASIBLE if check.feasible else PlanStatus.INFEASIBLE
     message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
     return Candidate(method, status, motion, check, time.perf_counter() - started, message, detail)
 
 
-def _only_slosh_violations(candidate: Candidate) -> bool:
+def only_slosh_violations(candidate: Candidate) -> bool:
+    """Whether a verified candidate breaks slosh limits only (peak or residual angle, wall
+    elevation), not a machine limit: then slowing it down can mend it.
+
+    Parameters
+    ----------
+    candidate : Candidate
+        A verified candidate (`checked_candidate`).
+
+    Returns
+    -------
+    bool
+        False when it was not verified or a machine limit is broken.
+
+    Examples
+    --------
+    >>> import time
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.0205), sk.get_liquid("water-25C"),
+    ...                             0.04)
+    >>> problem = sk.PlanProblem(0.1, sk.MachineLimits(1.0, 5.0, 200.0),
+    ...                          sk.SloshLimits(0.01, 0.005), model)
+    >>> fast = checked_candidate("quintic", sk.quintic(0.1, 0.5), problem, time.perf_counter())
+    >>> fast.status.name, only_slosh_violations(fast)
+    ('INFEASIBLE', True)
+    >>> faster = checked_candidate("quintic", sk.quintic(0.1, 0.3), problem, time.perf_counter())
+    >>> only_slosh_violations(faster)  # 6.4 m/s^2 > 5 m/s^2 too
+    False
+    """
     check = candidate.verification
     return check is not None and all(
         v.startswith(("peak angle", "residual angle", "wall elevation")) for v in check.violations
