@@ -116,7 +116,7 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(robot_vial: Sl
 
 def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshModel) -> None:
     """``optimal`` on a short corner path: verified with the nonlinear 3-D model, within one
-    sample of ``retime``, and no longer than its first search."""
+    sample of ``retime``, and the shortest of its verified rounds."""
     path = path_from_waypoints(
         [[0, 0, 0], [0.15, 0, 0], [0.15, 0.12, 0]], yaw_rad=[0.0, 0.0, math.pi / 2]
     )
@@ -130,5 +130,12 @@ def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshMode
     assert optimal.chosen.verification is not None and not optimal.chosen.verification.violations
     # the search ends on a bracket one sample wide (SEARCH_TOLERANCE): on this short corner
     # it may stop a sample above retime's timing (1.080 s against 1.076 s)
-    assert optimal.chosen.duration_s <= retime.chosen.duration_s + problem.sample_period_s
-    assert optimal.chosen.duration_s <= optimal.chosen.detail["first_search_s"] + 1e-9
+    assert optimal.chosen.duration_s <= retime.chosen.duration_s + problem.sample_period_s + 1e-9
+    # the plan is the shortest round whose export the verification passed (a round that
+    # failed it was searched again with the program's limit moved)
+    passed = [
+        r["duration_s"]
+        for r in optimal.chosen.detail["rounds"]
+        if r["verified_peak_m"] <= 0.008 and r["verified_residual_m"] <= 0.001
+    ]
+    assert optimal.chosen.duration_s == pytest.approx(min(passed))
