@@ -19,15 +19,15 @@ the nonlinear 3-D model.
 Last (``reference``), the issue #25 cases (the measured TRD_2D, LE_3D and RD_2D paths, the
 20-waypoint path and a pick-and-place: two waypoints 0.3 m apart with a 0.1 m lift and a 90 deg
 turn about the vertical) with the issue's settings (R 49 mm, h 80 mm, water-20C, zeta 0.0066;
-15 mm peak, 2 mm residual; 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms; no angular limits; tilt up to
-30 deg): each method of ``sloshkit.plan_path`` against the independent minimum time of the
-same problem (`ocp_reference`, casadi multiple shooting, upright for ``retime`` and ``shaped``,
+15 mm peak, 2 mm residual; 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms; no angular limits; tilt up to 30 deg):
+each method of ``sloshkit.plan_path`` against the independent minimum time of the same problem
+(`ocp_reference`, casadi multiple shooting, upright for ``retime``, ``shaped`` and ``optimal``,
 with free tilt for ``tilt``), once with the linear slosh model and once with the nonlinear one
 that verifies every plan (``slosh_model="nonlinear"``: the optimum of the problem a verified
-plan solves), without and with a robot's joint check (``--robot``, default ur5e at the base
-pose of docs/planning-3d.md). The reference optima are cached in ``ocp_reference_cache.json``
-(keyed by a hash of the problem, the slosh model and ``ocp_reference.py``; each takes minutes on
-the shared machine, and one missing from the cache is computed).
+plan solves), without and with a robot's joint check (``--robot``, default ur5e at the base pose
+of docs/planning-3d.md). The reference optima are cached in ``ocp_reference_cache.json`` (keyed
+by a hash of the problem, the slosh model and ``ocp_reference.py``; each takes minutes on the
+shared machine, and one missing from the cache is computed).
 
 Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--transcription] [--out table.md]
 [--docs docs/planning-3d.md] [--tables primary,strict,waypoints,reference] [--robot ur5e|none]
@@ -70,7 +70,7 @@ LIMITS = CartesianLimits(2.0, 10.0, 100.0)
 RESIDUAL_M = 0.002
 #: The reference table's cases: measured series, then the built paths.
 REFERENCE_SERIES = ("TRD_2D_0.3m_2.4s_270deg", "LE_3D_0m_5.3s_900deg", "RD_2D_0.3m_6.5s_720deg")
-REFERENCE_METHODS = ("retime", "shaped", "tilt")
+REFERENCE_METHODS = ("retime", "shaped", "tilt", "optimal")
 CACHE = Path(__file__).resolve().parent / "ocp_reference_cache.json"
 #: Where the arm sits for the robot rows (docs/planning-3d.md: the UR5e reaches the TRD path).
 ROBOT_BASE_XYZ_M = (-0.35, -0.6, 0.2)
@@ -308,8 +308,9 @@ def reference_table(
         "Against the independent optimum (`benchmarks/ocp_reference.py`) of the same problem "
         "(15 mm / 2 mm, 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms, no angular limits, tilt up to "
         "30 deg), with the linear slosh model (optimum) and with the nonlinear one that "
-        "verifies the plans (nonlinear optimum); `retime` and `shaped` divided by the upright "
-        "optimum, `tilt` by the tilted one; compute: wall time on the shared machine:",
+        "verifies the plans (nonlinear optimum); `retime`, `shaped` and `optimal` divided by "
+        "the upright optimum, `tilt` by the tilted one; compute: wall time on the shared "
+        "machine:",
         "",
         "| case | robot | optimum upright | optimum tilted | optimum compute "
         "| nonlinear optimum upright | nonlinear optimum tilted | nonlinear optimum compute | "
