@@ -235,13 +235,14 @@ class _PathProgram:
         body = Rotation.from_quat(quaternion[:-1]).inv() * Rotation.from_quat(quaternion[1:])
         spin = np.concatenate(([0.0], np.cumsum(body.as_rotvec()[:, 2])))
         frame = rotation * Rotation.from_rotvec(np.column_stack((0 * spin, 0 * spin, -spin)))
+        to_frame = frame.inv()
         axis = rotation.apply([0.0, 0.0, 1.0])
         force = np.empty((len(self.modes) + 1, samples.s_m.size, 3))
         for index, mode in enumerate(self.modes):
             point = _held(position + mode.pivot_height_m * axis, 1)
             hinge = (point[2:] - 2.0 * point[1:-1] + point[:-2]) / ts**2
-            force[index] = frame.inv().apply(self.gravity - hinge)
-        force[-1] = frame.inv().apply(self.gravity)
+            force[index] = to_frame.apply(self.gravity - hinge)
+        force[-1] = to_frame.apply(self.gravity)
         kinematic = {
             "velocity": velocity,
             "acceleration": acceleration,
@@ -249,7 +250,6 @@ class _PathProgram:
             "omega": omega,
             "alpha": alpha,
             "position": position,
-            "spin": spin,
         }
         return force, kinematic
 
