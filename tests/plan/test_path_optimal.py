@@ -13,12 +13,14 @@ from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import s_curve
 from sloshkit.plan.path import path_from_waypoints
 from sloshkit.plan.path_optimal import (
+    PROGRAM_MARGIN,
     _cone_step,
     _export_poses,
-    _minimum_time,
+    _free_time,
     _PathProgram,
     _ProgramLimits,
     _Samples,
+    _smoothed,
 )
 from sloshkit.plan.path_planner import plan_path
 from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
@@ -43,7 +45,7 @@ def _samples(problem: PathProblem, speed_m_s: float, acceleration_m_s2: float = 
     poses = sample_path(problem.path, law, problem.sample_period_s)
     s = np.clip(law.position(np.minimum(poses.time_s, law.duration_s)), 0, problem.path.length_m)
     s[-1] = problem.path.length_m
-    return _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
+    return _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)), problem.sample_period_s)
 
 
 def test_program_model_is_the_3d_simulation_of_the_export(robot_vial: SloshModel) -> None:
@@ -80,6 +82,48 @@ def test_cone_step_predicts_the_exact_margin_of_its_samples(robot_vial: SloshMod
     assert trial.excess < iterate.excess
 
 
+def test_dilated_cone_step_predicts_its_period_and_limits(robot_vial: SloshModel) -> None:
+    """With the period free, the program's predicted largest ratio (1 - margin + the largest
+    slack) and residual match the exact evaluation of the samples and period it returns to
+    2 % of the change it predicted (the derivatives in the period are right), and the period
+    moves."""
+    problem = _corner_problem(robot_vial)
+    program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    iterate = program.iterate(_samples(problem, 0.3, 1.0))
+    assert iterate.excess > 2.0  # an S-curve leaves four times the residual limit
+    step = _cone_step(program, iterate.samples, iterate.evaluation, 0.002, 1.0, 0.003)
+    assert step is not None
+    trial = program.iterate(step.samples)
+    assert step.samples.period_s != pytest.approx(iterate.samples.period_s, rel=1e-4)
+    predicted = 1.0 - PROGRAM_MARGIN + step.sigma
+    assert abs(trial.excess - predicted) <= 0.02 * abs(iterate.excess - predicted)
+    change = abs(iterate.ratios["residual slosh"] - step.residual)
+    assert abs(trial.ratios["residual slosh"] - step.residual) <= 0.02 * change
+
+
+def test_smoothed_timing_keeps_the_coarse_jerk_and_rest() -> None:
+    """A coarse timing spread on a four times finer grid by `_smoothed`: the same ends, at
+    rest, monotone, and no larger third difference per unit time cubed than the coarse one
+    (the cubic B-spline's jerk is its control points' third difference)."""
+    rng = np.random.default_rng(7)
+    coarse_period = 0.016
+    s = np.concatenate(([0.0, 0.0], np.cumsum(rng.uniform(0.0, 0.02, 40)), [0.0]))
+    s[-1] = s[-2]
+    coarse = _Samples(s, np.zeros((s.size, 2)), coarse_period)
+    duration = coarse.steps * coarse_period
+    fine = _smoothed(coarse, 4 * coarse.steps, duration / (4 * coarse.steps))
+    assert fine.s_m[0] == 0.0 and fine.s_m[-1] == s[-1]
+    assert np.all(np.diff(fine.s_m) >= 0.0)
+    assert fine.s_m[1] - fine.s_m[0] < 1e-6 and fine.s_m[-1] - fine.s_m[-2] < 1e-6
+
+    def jerk(values: np.ndarray, period: float) -> float:
+        padded = np.concatenate((values[:1].repeat(3), values, values[-1:].repeat(3)))
+        return float(np.max(np.abs(np.diff(padded, 3)))) / period**3
+
+    spread = (coarse.steps + 2) / coarse.steps  # the parameter spread over the duration
+    assert jerk(fine.s_m, fine.period_s) <= 1.01 * spread**3 * jerk(s, coarse_period)
+
+
 def test_straight_path_minimum_equals_the_one_dimensional_optimum(robot_vial: SloshModel) -> None:
     """On a straight path the program's linear minimum time is the 1-D planner's time-optimal
     move of the same limits rounded up to the export grid (the 3-D export ends on a sample;
@@ -107,7 +151,7 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(robot_vial: Sl
         robot_vial,
     )
     program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
-    best, _ = _minimum_time(program, _samples(problem, 0.55))
+    best, _ = _free_time(program, _samples(problem, 0.55))
     ts = problem.sample_period_s
     grid = math.ceil(one_d.chosen.duration_s / ts - 1e-9) * ts
     assert best.feasible

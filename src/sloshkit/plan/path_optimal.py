@@ -30,15 +30,18 @@ samples within a trust region on their speed change (sequential convex programmi
 & Acikmese, IEEE CDC (2016), doi:10.1109/CDC.2016.7798816; Nocedal & Wright, *Numerical
 Optimization*, 2nd ed. (2006) §18); solved by Clarabel (Goulart & Chen, arXiv:2405.12762
 (2024)). Polyhedral (LP) facets of the 3-D norms let the iterates break the jerk limit in
-directions no facet covered, so the norms are cones. The minimum time is the fewest samples
-whose best margin meets every limit: a bracketed secant search on the largest ratio r(N)
-(r = 1 at the minimum), each r(N) warm-started from the nearest solved N _rescaled in time
-(`_minimum_time`).
+directions no facet covered, so the norms are cones. The minimum time comes from programs
+whose sample period is a variable too, h (1 + epsilon) (free final time by time dilation:
+Szmuk & Acikmese, AIAA GNC (2018), doi:10.2514/6.2018-0617), minimising epsilon plus an
+exact penalty of the limits still exceeded: first on a grid four times coarser than the
+export's (programs a quarter the size; a bracketed search over N finds its start), then on the
+export's period from that timing spread by a cubic B-spline, then on the export grid itself
+(`_free_time`).
 
-The programs model what the verification simulates, so a search's best samples verify; a
-search restarted from them goes on where the last one stopped (each duration gets a few
-programs), and `plan_optimal` restarts while that shortens the plan. Should the verification
-still exceed a slosh limit, the program's limit is moved by regula falsi (`_next_limit`).
+The programs model what the verification simulates without its smoothing filter; the
+verification, which also simulates the export through that filter, can still exceed a slosh
+limit by a percent or two. The program's limit is then moved by regula falsi (`_next_limit`)
+and the search restarts from the last samples on the export's period (`plan_optimal`).
 """
 
 from __future__ import annotations
@@ -53,7 +56,13 @@ from scipy import sparse
 from scipy.spatial.transform import Rotation
 
 from sloshkit.model.theory import GRAVITY_M_S2
-from sloshkit.plan.path_pendulums import mode_slope, pendulum_track, slope_jacobian, step_jacobians
+from sloshkit.plan.path_pendulums import (
+    mode_slope,
+    pendulum_track,
+    period_jacobian,
+    slope_jacobian,
+    step_jacobians,
+)
 from sloshkit.sim.metrics import free_oscillation_components
 from sloshkit.sim.spatial_response import ellipse_semi_major
 
@@ -96,10 +105,12 @@ class _ProgramLimits:
 
 @dataclass(frozen=True, eq=False)
 class _Samples:
-    """Path parameter [m] and tilt rotation vector [rad] at the export samples."""
+    """Path parameter [m] and tilt rotation vector [rad] at samples ``period_s`` apart (the
+    export's period, or a dilated one while the duration is free, `_dilated_search`)."""
 
     s_m: FloatArray
     tilt_rad: FloatArray
+    period_s: float
 
     @property
     def steps(self) -> int:
@@ -130,7 +141,7 @@ def _with_rest(samples: _Samples) -> _Samples:
     """The samples followed by `HOLD` samples of rest at the last pose."""
     s = np.concatenate((samples.s_m, np.repeat(samples.s_m[-1:], HOLD)))
     tilt = np.concatenate((samples.tilt_rad, np.repeat(samples.tilt_rad[-1:], HOLD, axis=0)))
-    return _Samples(s, tilt)
+    return _Samples(s, tilt, samples.period_s)
 
 
 def _model_drive(model: Any, force: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -222,7 +233,7 @@ class _PathProgram:
         N + 1, 3) [m/s^2], with the kinematics (`sloshkit.sim.spatial_drive`: a mode whose
         omega_n^2 L_n differs from g adds (kappa_n - 1) times the last row).
         """
-        ts = self.ts
+        ts = samples.period_s
         position, rotation = _poses_of(self.path, samples, self.centre)
         quaternion = rotation.as_quat()
         padded = _held(position, 2)
@@ -266,7 +277,7 @@ class _PathProgram:
         drives = np.zeros_like(units)
         for m, model in enumerate(self.models):
             drive, rest = _model_drive(model, force)
-            unit, rate = pendulum_track(drive, rest, *_mode_arrays(model), self.ts)
+            unit, rate = pendulum_track(drive, rest, *_mode_arrays(model), samples.period_s)
             units[m], rates[m], drives[m] = unit, rate, drive
             for n, mode in enumerate(model.modes):
                 walls[m] += mode.wall_elevation_factor_m * mode_slope(unit[n])
@@ -277,7 +288,7 @@ class _PathProgram:
                 cosine, sine = free_oscillation_components(
                     offset, rate[n, -1, :2], mode.omega_rad_s, mode.damping_ratio
                 )
-                back = math.exp(mode.damping_ratio * mode.omega_rad_s * HOLD * self.ts)
+                back = math.exp(mode.damping_ratio * mode.omega_rad_s * HOLD * samples.period_s)
                 amplitudes[m, n] = (
                     back * mode.wall_elevation_factor_m * np.concatenate((cosine, sine))
                 )
@@ -313,11 +324,11 @@ class _PathProgram:
             )
         if self.tilt:
             tilt = _held(samples.tilt_rad, 2)
-            rate = np.diff(tilt, axis=0) / self.ts
+            rate = np.diff(tilt, axis=0) / samples.period_s
             ratios["tilt"] = _peak(samples.tilt_rad) / lim.max_tilt_rad
             ratios["tilt rate"] = _peak(rate) / lim.max_tilt_rate_rad_s
             ratios["tilt acceleration"] = (
-                _peak(np.diff(rate, axis=0) / self.ts) / lim.max_tilt_acceleration_rad_s2
+                _peak(np.diff(rate, axis=0) / samples.period_s) / lim.max_tilt_acceleration_rad_s2
             )
         return ratios
 
@@ -438,7 +449,8 @@ def _perturbed(
         tilt_plus[chosen, column] += step
         tilt_minus[chosen, column] -= step
         width[chosen] = 2.0 * step
-    return _Samples(s_plus, tilt_plus), _Samples(s_minus, tilt_minus), width
+    period = samples.period_s
+    return _Samples(s_plus, tilt_plus, period), _Samples(s_minus, tilt_minus, period), width
 
 
 def _residual_height(amplitude: FloatArray) -> float:
@@ -467,6 +479,10 @@ MAX_SEARCH = 14
 TIGHTENINGS = 5
 #: A verified plan whose peak or residual is within this fraction of its limit ends them.
 LIMIT_TOLERANCE = 0.02
+#: Weight of the limits' excess sigma against the relative period change while the duration
+#: is free (an exact penalty needs more than the multiplier, about 1/2: the duration scales
+#: about as the square root of the ratio to a limit).
+PENALTY = 10.0
 
 
 class _Conic:
@@ -536,15 +552,22 @@ def _cone_step(
     evaluation: Any,
     trust: float,
     residual_trust: float = 1.0,
+    dilation_trust: float | None = None,
 ) -> _Step | None:
     """One cone program around ``samples`` (module docstring), or None when the solver failed.
     ``trust``: the largest change of a step's speed [m/s] (a sample moves by at most 0.02 s
     times it); ``residual_trust``: the largest change of each free-oscillation entry e_n A, e_n B
     over the residual limit (the residual is the most sensitive quantity: a millimetre's shift
-    of the samples near the end moves it by millimetres)."""
+    of the samples near the end moves it by millimetres). With ``dilation_trust`` the sample
+    period is a variable too, h (1 + epsilon) with |epsilon| <= dilation_trust, and the program
+    minimises epsilon + `PENALTY` (sigma_k + sigma_w + sigma_r), each sigma >= 0, instead of
+    maximising the margin: an exact penalty of the limits it cannot meet yet (Mao, Szmuk &
+    Acikmese (2016)), with one slack for the kinematic limits, one for the wall height and one
+    for the residual, so that a limit still exceeded does not loosen the others."""
     import clarabel
 
-    lim, ts = program.limits, program.ts
+    lim, ts = program.limits, samples.period_s
+    dilate = dilation_trust is not None
     n = samples.s_m.size
     steps = n - 1
     keep = 1.0 - PROGRAM_MARGIN
@@ -562,7 +585,10 @@ def _cone_step(
         return state_base + ((m * modes + k) * 6 + np.asarray(comp)) * last + (np.asarray(i) - 1)
 
     t_base = state_base + models * modes * 6 * last
-    columns = t_base + 2 * models * modes
+    dilation = t_base + 2 * models * modes  # epsilon's column, when the period is free
+    columns = dilation + (3 if dilate else 0)
+    # the slacks of the wall heights and of the residual: sigma's own column unless dilated
+    wall_sigma, residual_sigma = (dilation + 1, dilation + 2) if dilate else (sigma, sigma)
     conic = _Conic()
 
     def d(i: Any) -> Any:
@@ -580,6 +606,20 @@ def _cone_step(
             evaluation.unit[m], evaluation.rate[m], evaluation.drive[m], lengths, omegas, zetas, ts
         )
         kappa = omegas**2 * lengths / model.gravity_m_s2
+        if dilate:
+            # x_{k+1} moves with the period directly and through the hinge accelerations
+            # (proportional to 1 / h^2: d f_n / d epsilon = 2 (R g - f_n), the gravity row
+            # unchanged)
+            along = period_jacobian(
+                evaluation.unit[m],
+                evaluation.rate[m],
+                evaluation.drive[m],
+                lengths,
+                omegas,
+                zetas,
+                ts,
+            )
+            pull = 2.0 * (evaluation.force[-1][None] - evaluation.force[:-1])
         for q in range(modes):
             r_list = [period * 6 + row for row in range(6)]
             c_list = [state(m, q, row, period + 1) for row in range(6)]
@@ -604,6 +644,16 @@ def _cone_step(
                         r_list.append(period[ok] * 6 + row)
                         c_list.append(d(sample[ok]))
                         v_list.append(-coefficient[ok, row])
+            if dilate:
+                total_change = (
+                    along[q]
+                    + np.einsum("kac,kc->ka", b_k[q], pull[q, :last])
+                    + np.einsum("kac,kc->ka", e_k[q], pull[q, 1 : last + 1])
+                )
+                for row in range(6):
+                    r_list.append(period * 6 + row)
+                    c_list.append(np.full(last, dilation))
+                    v_list.append(-total_change[:, row])
             conic.add(
                 "zero",
                 np.concatenate(r_list),
@@ -616,7 +666,7 @@ def _cone_step(
     count = moved.size
     for m, model in enumerate(program.models):
         r_list = [np.arange(count) * 3]
-        c_list = [np.full(count, sigma)]
+        c_list = [np.full(count, wall_sigma)]
         v_list = [-np.ones(count)]
         wall_b = np.zeros((count, 3))
         wall_b[:, 0] = keep
@@ -676,7 +726,7 @@ def _cone_step(
         conic.add(
             "nonneg",
             np.zeros(2 * modes + 1, dtype=int),
-            np.concatenate((t_base + 2 * m * modes + np.arange(2 * modes), [sigma])),
+            np.concatenate((t_base + 2 * m * modes + np.arange(2 * modes), [residual_sigma])),
             np.concatenate((np.full(2 * modes, 0.5), [-1.0])),
             [keep],
         )
@@ -697,6 +747,11 @@ def _cone_step(
                 r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
                 c_idx.append(d(k[use]))
                 v_idx.append(-coefficient[use])
+        if dilate:  # a difference of order p scales as h^-p
+            for c in range(3):
+                r_idx.append(np.arange(rows) * 4 + 1 + c)
+                c_idx.append(np.full(rows, dilation))
+                v_idx.append(order * values[:, c] / limit)
         _vector_cones(conic, r_idx, c_idx, v_idx, values / limit, keep)
     # ------------------------------------------------ angular velocity and acceleration cones
     angular: tuple[tuple[int, FloatArray, float | None], ...] = (
@@ -722,6 +777,11 @@ def _cone_step(
                     r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
                     c_idx.append(d(k[use]))
                     v_idx.append(-coefficient[use])
+        if dilate:
+            for c in range(3):
+                r_idx.append(np.arange(rows) * 4 + 1 + c)
+                c_idx.append(np.full(rows, dilation))
+                v_idx.append(order * values[:, c] / angular_limit)
         _vector_cones(conic, r_idx, c_idx, v_idx, values / angular_limit, keep)
     # ------------------------------------------------ monotone progress and trust region
     s = samples.s_m
@@ -743,9 +803,15 @@ def _cone_step(
         np.minimum(shift, (program.path.length_m - s[1:]) / unit),
     )
     conic.add("nonneg", idx, idx, -np.ones(steps), np.minimum(shift, s[1:] / unit))
-    matrix, rhs, cones = conic.assemble(columns)
     objective = np.zeros(columns)
     objective[sigma] = 1.0
+    if dilate:
+        slacks = [sigma, wall_sigma, residual_sigma]
+        conic.add("nonneg", [0, 1, 2], slacks, [-1.0] * 3, [0.0] * 3)
+        conic.add("nonneg", [0, 1], [dilation, dilation], [1.0, -1.0], [dilation_trust] * 2)
+        objective[slacks] = PENALTY
+        objective[dilation] = 1.0
+    matrix, rhs, cones = conic.assemble(columns)
     settings = clarabel.DefaultSettings()
     settings.verbose = False
     # The linearisation is re-evaluated exactly after each solve: 1e-6 is ample.
@@ -765,7 +831,9 @@ def _cone_step(
         0.5 * float(np.sum(x[t_base + 2 * m * modes : t_base + 2 * (m + 1) * modes]))
         for m in range(models)
     )
-    return _Step(_Samples(new_s, samples.tilt_rad.copy()), float(x[sigma]), residual)
+    new_period = ts * (1.0 + float(x[dilation])) if dilate else ts
+    margin = max(float(x[sigma]), float(x[wall_sigma]), float(x[residual_sigma]))
+    return _Step(_Samples(new_s, samples.tilt_rad.copy(), new_period), margin, residual)
 
 
 def _margin_at(
@@ -774,17 +842,21 @@ def _margin_at(
     trust: float = 0.1,
     iterations: int = 8,
     tolerance: float = 2e-3,
+    enough: float = 0.0,
 ) -> tuple[_Iterate, float]:
     """The samples of N steps (N from ``start``) whose largest ratio to a limit is least:
     cone programs (`_cone_step`) from ``start``, a step kept when its exact evaluation is
     better (the trust region then grows by half, else it halves). The residual's own trust
     region halves when its prediction missed the exact residual by more than a quarter of the
     predicted change (and 0.02), else grows by half. Stops when a step gains less than a
-    quarter of ``tolerance`` and its prediction was right to ``tolerance``.
+    quarter of ``tolerance`` and its prediction was right to ``tolerance``, or as soon as the
+    largest ratio is at most ``enough``.
     Returns the best iterate and its largest ratio."""
     current = program.iterate(start)
     residual_trust = 1.0
     for _ in range(iterations):
+        if current.excess <= enough:
+            break
         step = _cone_step(program, current.samples, current.evaluation, trust, residual_trust)
         if step is None:
             trust *= 0.5
@@ -811,16 +883,162 @@ def _margin_at(
     return current, current.excess
 
 
-def _rescaled(samples: _Samples, steps: int) -> _Samples:
-    """The same timing shape stretched to ``steps`` sample periods (linear interpolation of
-    s over normalised time; the ends stay at rest)."""
+def _rescaled(samples: _Samples, steps: int, period_s: float | None = None) -> _Samples:
+    """The same timing shape on ``steps`` sample periods of ``period_s`` (default: the
+    samples' own): s and the tilt over normalised time by the clamped cubic spline through the
+    samples (C2 and at rest at both ends, so that a coarse timing's jerk carries over to a finer
+    grid; de Boor, *A Practical Guide to Splines* (1978) ch. IV), s kept monotone on [0, S]."""
+    from scipy.interpolate import CubicSpline
+
     old = samples.s_m.size - 1
-    u_new = np.arange(steps + 1) / steps
-    s = np.interp(u_new, np.arange(old + 1) / old, samples.s_m)
-    tilt = np.column_stack(
-        [np.interp(u_new, np.arange(old + 1) / old, samples.tilt_rad[:, c]) for c in range(2)]
+    u_old, u_new = np.arange(old + 1) / old, np.arange(steps + 1) / steps
+    clamped = ((1, 0.0), (1, 0.0))
+    s = CubicSpline(u_old, samples.s_m, bc_type=clamped)(u_new)
+    s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
+    s[-1] = samples.s_m[-1]
+    still = ((1, np.zeros(2)), (1, np.zeros(2)))
+    tilt = CubicSpline(u_old, samples.tilt_rad, axis=0, bc_type=still)(u_new)
+    return _Samples(s, tilt, samples.period_s if period_s is None else period_s)
+
+
+def _smoothed(samples: _Samples, steps: int, period_s: float) -> _Samples:
+    """A coarse timing on ``steps`` finer periods: the uniform cubic B-spline whose control
+    points are the samples (each end repeated twice more, so the curve starts and ends at
+    rest), its parameter spread over the same duration. The B-spline's third derivative on each
+    segment is the third difference of its control points, so the finer grid sees no more
+    jerk (in s) than the coarse one (de Boor, *A Practical Guide to Splines* (1978) ch. IX);
+    an interpolating spline amplifies the coarse grid's alternating jerk up to threefold."""
+    points = np.concatenate((samples.s_m[:1].repeat(2), samples.s_m, samples.s_m[-1:].repeat(2)))
+    parameter = 1.0 + np.arange(steps + 1) / steps * (points.size - 3)
+    index = np.clip(np.floor(parameter).astype(int), 1, points.size - 3)
+    t = parameter - index
+    weights = (
+        (1.0 - t) ** 3 / 6.0,
+        (3.0 * t**3 - 6.0 * t**2 + 4.0) / 6.0,
+        (-3.0 * t**3 + 3.0 * t**2 + 3.0 * t + 1.0) / 6.0,
+        t**3 / 6.0,
     )
-    return _Samples(s, tilt)
+    s = sum(w * points[index + j - 1] for j, w in enumerate(weights))
+    s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
+    s[-1] = samples.s_m[-1]
+    tilt = _rescaled(samples, steps).tilt_rad
+    return _Samples(s, tilt, period_s)
+
+
+def _dilated_search(
+    program: _PathProgram,
+    start: _Samples,
+    iterations: int = 12,
+    trust: float = 0.1,
+    dilation_trust: float = 0.05,
+    tolerance: float = 1e-3,
+) -> _Iterate:
+    """The shortest samples of N steps (N from ``start``) whose period is free: cone programs
+    (`_cone_step` with ``dilation_trust``) from ``start``, a step kept when its exact merit
+    ln h + `PENALTY` max(0, ratio - 1 + `PROGRAM_MARGIN`) falls (the trust regions of the
+    speed and of epsilon then grow by half, else they halve). Stops when a kept step shortens
+    the period by less than ``tolerance`` with every limit met."""
+    keep = 1.0 - PROGRAM_MARGIN
+
+    def merit(iterate: _Iterate) -> float:
+        return math.log(iterate.samples.period_s) + PENALTY * max(0.0, iterate.excess - keep)
+
+    current = program.iterate(start)
+    for _ in range(iterations):
+        # the residual's own trust region stays open: the penalty must be able to remove an
+        # excess residual, and the merit test rejects a step that mispredicted it
+        step = _cone_step(program, current.samples, current.evaluation, trust, 1.0, dilation_trust)
+        if step is None:
+            trust, dilation_trust = 0.5 * trust, 0.5 * dilation_trust
+            continue
+        trial = program.iterate(step.samples)
+        gain = merit(current) - merit(trial)
+        if gain > 0.0:
+            shortened = current.samples.period_s - trial.samples.period_s
+            current = trial
+            trust, dilation_trust = min(1.5 * trust, 1.0), min(1.5 * dilation_trust, 0.2)
+            if current.feasible and shortened < tolerance * current.samples.period_s:
+                break
+        else:
+            trust, dilation_trust = 0.5 * trust, 0.5 * dilation_trust
+            if trust < 1e-3:
+                break
+    return current
+
+
+#: Sample period of the first, coarse free-time search [s] (about 20 samples per period of
+#: the fundamental mode of a vial; the export grid then refines it).
+COARSE_PERIOD_S = 0.016
+#: Export-grid durations tried after the free-time searches, at most.
+EXPORT_TRIES = 4
+
+
+def _free_time(
+    program: _PathProgram, start: _Samples, log: Any = None, coarse: bool = True
+) -> tuple[_Iterate, list[tuple[int, float]]]:
+    """The fewest export samples whose timing meets every limit.
+
+    1. On a grid of `COARSE_PERIOD_S` (when ``coarse``; its programs are a quarter the size):
+       the bracketed search over N (`_minimum_time`), then the same N with the period free
+       (`_dilated_search`): the coarse minimum time.
+    2. On the export's period Ts: that timing spread (`_smoothed`) over the steps of its
+       duration, the period free again (the finer grid sees the higher modes' residual the
+       coarse one smooths away).
+    3. On the export grid: N, the steps of that duration
+       (`sloshkit.motion.sampling.steps_to_reach`); its best margin (`_margin_at`, ended when
+       every limit is met with half `PROGRAM_MARGIN` to spare), N increased while a limit is
+       still exceeded (at most `EXPORT_TRIES`).
+
+    Returns the feasible iterate and the (N, r) pairs tried on the export grid; raises
+    `RuntimeError` when none met the limits."""
+    from sloshkit.motion.sampling import steps_to_reach
+
+    ts = start.period_s
+    duration = start.steps * ts
+    factor = max(1, int(COARSE_PERIOD_S / ts + 1e-9)) if coarse else 1
+
+    def free(samples: _Samples, steps: int, iterations: int, trust: float) -> _Iterate:
+        length = samples.steps * samples.period_s
+        spread = _smoothed if steps > samples.steps else _rescaled
+        found = _dilated_search(
+            program, spread(samples, steps, length / steps), iterations, trust, 0.5 * trust
+        )
+        if log:
+            log(
+                f"free period at N = {steps}: {found.samples.steps * found.samples.period_s:.4f}"
+                f" s, largest ratio {found.excess:.4f} ({program.programs} programs)"
+            )
+        return found
+
+    current = start
+    if factor > 1:
+        coarse_steps = steps_to_reach(duration, factor * ts)
+        found, _ = _minimum_time(program, _rescaled(start, coarse_steps, factor * ts), log)
+        # the coarse grid's own minimum, its period free
+        current = free(found.samples, found.samples.steps, 25, 0.1).samples
+    # on the export's period; it starts near its optimum: a quarter of the trust regions
+    duration = current.steps * current.period_s
+    found = free(current, steps_to_reach(duration, ts), 8, 0.025)
+    current, duration = found.samples, found.samples.steps * found.samples.period_s
+    steps = steps_to_reach(duration, ts)
+    history: list[tuple[int, float, _Iterate]] = []
+    for _ in range(EXPORT_TRIES):
+        # enough margin that the verification's finer checks pass as well
+        iterate, ratio = _margin_at(
+            program, _rescaled(current, steps, ts), iterations=4, enough=1.0 - 0.5 * PROGRAM_MARGIN
+        )
+        history.append((steps, ratio, iterate))
+        if log:
+            log(f"N = {steps}: largest ratio to a limit {ratio:.4f} ({program.programs} programs)")
+        if ratio <= 1.0:
+            return iterate, [(h[0], h[1]) for h in history]
+        current = iterate.samples
+        # half the step of r ~ (N0 / N)^2: near r = 1 the margin program, not the duration,
+        # is what fell short
+        steps += max(1, math.ceil(0.5 * steps * (math.sqrt(ratio) - 1.0)))
+    worst = min(history, key=lambda h: h[1])[2]
+    binding = max(worst.ratios, key=lambda key: worst.ratios[key])
+    raise RuntimeError(f"no timing up to {steps * ts:.3g} s meets the limits (binding: {binding})")
 
 
 def _minimum_time(
@@ -841,10 +1059,14 @@ def _minimum_time(
     steps = start.steps
     guess = start
     for _ in range(MAX_SEARCH):
-        iterate, ratio = _margin_at(program, _rescaled(guess, steps))
+        steps_now = _rescaled(guess, steps)
+        iterate, ratio = _margin_at(program, steps_now)
         history.append((steps, ratio, iterate))
         if log:
-            log(f"N = {steps}: largest ratio to a limit {ratio:.4f} ({program.programs} programs)")
+            log(
+                f"N = {steps} of {steps_now.period_s * 1e3:.4g} ms: largest ratio to a limit "
+                f"{ratio:.4f} ({program.programs} programs)"
+            )
         feasible = [h for h in history if h[1] <= 1.0]
         infeasible = [h for h in history if h[1] > 1.0]
         low = max((h[0] for h in infeasible), default=0)
@@ -885,13 +1107,15 @@ def _minimum_time(
 def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     """The minimum-time timing of the (untilted) path, verified.
 
-    Searches (`_minimum_time`) of the program, the first from the time-optimal speed profile
-    under the quasi-static acceleration that tilts a level surface to the height limit
-    (h = R a / g; `sloshkit.plan.retime.capped_timing`), each next one from the last one's
-    best samples while that shortens the verified plan (at most `TIGHTENINGS`; a slosh limit
-    the verification exceeds is moved in the program, module docstring); the shortest
-    verified timing is kept. A limit
-    outside the program (a robot's joint speeds) is met by a uniform stretch
+    Rounds of the free-time search (`_free_time`): the first from the time-optimal speed
+    profile under the quasi-static acceleration that tilts a level surface to the height
+    limit (h = R a / g; `sloshkit.plan.retime.capped_timing`), each next one from the last
+    one's samples on the export's period with the program's slosh limits moved towards the
+    values at which the verification meets its limits (`_next_limit`; at most `TIGHTENINGS`).
+    The rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
+    limit, when a round one sample shorter failed the verification, or when a round no
+    longer shortens the plan; the shortest verified timing is kept. A limit outside the
+    program (a robot's joint speeds) is met by a uniform stretch
     (`sloshkit.plan.path_result.verified_candidate`).
 
     Parameters
@@ -951,7 +1175,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         first.position(np.minimum(grid.time_s, first.duration_s)), 0.0, problem.path.length_m
     )
     s[-1] = problem.path.length_m
-    warm = _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)))
+    warm = _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)), ts)
     rounds: list[dict[str, float]] = []
     verified: list[tuple[int, _Iterate]] = []
     searches: list[tuple[int, float]] = []
@@ -959,7 +1183,8 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     for _ in range(TIGHTENINGS):
         program = _PathProgram(problem.path, problem.models(), limits, ts)
         try:
-            best, search = _minimum_time(program, warm, log)
+            # a later round starts from the last one's samples, already near its optimum
+            best, search = _free_time(program, warm, log, coarse=not rounds)
         except RuntimeError as error:
             if verified:
                 break
@@ -988,11 +1213,24 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         )
         if feasible:
             verified.append((best.samples.steps, best))
-            # a restart from the best samples goes on where the last search stopped (its
-            # durations were solved to a few programs each); stop when it no longer gains
-            if len(verified) >= 2 and verified[-1][0] >= verified[-2][0]:
+            closest = max(
+                check.peak_height_m / slosh.max_height_m,
+                check.residual_height_m / slosh.max_residual_height_m,
+            )
+            # done when the binding slosh limit is met within the tolerance, when a round one
+            # sample shorter failed the verification, or when moving the program's limits
+            # towards the limit no longer shortens the plan
+            shorter_failed = any(
+                r["duration_s"] < rounds[-1]["duration_s"] - 0.5 * ts
+                and r["duration_s"] >= rounds[-1]["duration_s"] - 1.5 * ts
+                for r in rounds[:-1]
+            )
+            if (
+                closest >= 1.0 - LIMIT_TOLERANCE
+                or shorter_failed
+                or (len(verified) >= 2 and verified[-1][0] >= verified[-2][0])
+            ):
                 break
-            continue
         limits = replace(
             limits,
             max_height_m=_next_limit(

@@ -35,6 +35,8 @@ FloatArray = NDArray[np.float64]
 MAX_OMEGA_STEP = 0.5
 #: Central-difference steps of the state (u, u') and of the force [m/s^2].
 _STATE_STEP, _FORCE_STEP = 1e-6, 1e-5
+#: Central-difference step of the relative sample period.
+_PERIOD_STEP = 1e-6
 
 
 def rk4_substeps(omegas_rad_s: Sequence[float], sample_period_s: float) -> int:
@@ -241,6 +243,62 @@ def step_jacobians(
     )
     jac = np.swapaxes(jac, 2, 3)  # (modes, K - 1, 6 outputs, 12 inputs)
     return jac[..., :6], jac[..., 6:9], jac[..., 9:12]
+
+
+def period_jacobian(
+    unit: FloatArray,
+    rate: FloatArray,
+    force_m_s2: FloatArray,
+    length_m: FloatArray,
+    omega_rad_s: FloatArray,
+    damping_ratio: FloatArray,
+    sample_period_s: float,
+) -> FloatArray:
+    """d x_{k+1} / d epsilon of every sample period along a track when the period is
+    h (1 + epsilon), the states and the force samples held (the time dilation of a free-final-
+    time program: Szmuk & Acikmese, AIAA GNC (2018), doi:10.2514/6.2018-0617). Central
+    differences of the same integrator as `step_jacobians`, at its number of Runge-Kutta steps.
+
+    Parameters
+    ----------
+    unit, rate, force_m_s2 : numpy.ndarray
+        The track (`pendulum_track`) and its drive, (modes, K, 3) each.
+    length_m, omega_rad_s, damping_ratio : numpy.ndarray
+        The modes' L_n, omega_n, zeta_n.
+    sample_period_s : float
+        Sample period h [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        (modes, K - 1, 6); x = (u, u').
+
+    Examples
+    --------
+    A swinging pendulum under gravity alone: a period longer by epsilon moves the state by
+    epsilon h times its rate of change, to first order.
+
+    >>> import numpy as np
+    >>> g, ts = 9.81, 0.004
+    >>> force = np.tile([0.0, 0.0, -g], (1, 3, 1))
+    >>> unit = np.tile([np.sin(0.2), 0.0, -np.cos(0.2)], (1, 3, 1))
+    >>> rate = np.zeros((1, 3, 3))
+    >>> args = (np.array([0.02]), np.array([np.sqrt(g / 0.02)]), np.array([0.0]), ts)
+    >>> change = period_jacobian(unit, rate, force, *args)[0, 0]
+    >>> acceleration = -g / 0.02 * np.sin(0.2) * np.cos(0.2)  # u_x'' at rest
+    >>> bool(np.isclose(change[3], acceleration * ts, rtol=0.02))
+    True
+    """
+    substeps = rk4_substeps(list(omega_rad_s), sample_period_s)
+    length = np.asarray(length_m, dtype=float)[:, None]
+    c = (2.0 * np.asarray(damping_ratio) * np.asarray(omega_rad_s))[:, None]
+    base = (unit[:, :-1], rate[:, :-1], force_m_s2[:, :-1], force_m_s2[:, 1:])
+    h = sample_period_s / substeps
+    states = [
+        np.concatenate(_period(*base, length, c, h * (1.0 + sign * _PERIOD_STEP), substeps), -1)
+        for sign in (1.0, -1.0)
+    ]
+    return np.asarray((states[0] - states[1]) / (2.0 * _PERIOD_STEP))
 
 
 def slope_jacobian(unit: FloatArray) -> FloatArray:
