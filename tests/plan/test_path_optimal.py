@@ -183,3 +183,31 @@ def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshMode
         if r["verified_peak_m"] <= 0.008 and r["verified_residual_m"] <= 0.001
     ]
     assert optimal.chosen.duration_s == pytest.approx(min(passed))
+
+
+def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshModel) -> None:
+    """A 90 deg yaw along a 50 mm move: without the arm the minimum-time plan needs the UR5e's
+    wrist_3 beyond its 3.14 rad/s. With the robot-aware verifier the programs limit the joint
+    speeds themselves: no uniform stretch, the fastest joint at its limit (within 3 %), and a
+    plan shorter than the robot-less one stretched uniformly until its joints pass."""
+    from sloshkit.export.frames import Mounting
+    from sloshkit.export.kinematics import load_arm
+    from sloshkit.export.path_robot import RobotVerifier, joint_speed_ratio
+    from sloshkit.plan.path_optimal import plan_optimal
+    from sloshkit.plan.path_result import verify
+
+    arm, mounting = load_arm("ur5e"), Mounting(base_xyz_m=(-0.45, -0.13, 0.3))
+    path = path_from_waypoints([[0, 0, 0], [0.05, 0, 0]], yaw_rad=[0.0, math.pi / 2], name="turn")
+    problem = PathProblem(
+        path, CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.015, 0.002), robot_vial
+    )
+    free = plan_optimal(problem, verify)
+    assert free.feasible and free.poses is not None
+    free_ratio, _ = joint_speed_ratio(arm, mounting, free.poses)
+    assert free_ratio > 1.2  # the joints bind
+    armed = plan_optimal(problem, RobotVerifier(arm, mounting))
+    assert armed.feasible and armed.poses is not None and armed.detail is not None
+    assert armed.detail["stretch"] == 1.0
+    ratio, _ = joint_speed_ratio(arm, mounting, armed.poses)
+    assert 0.97 <= ratio <= 1.0
+    assert armed.duration_s < free.duration_s * free_ratio

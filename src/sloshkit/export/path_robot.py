@@ -31,6 +31,17 @@ from sloshkit.plan.spatial import PathProblem, PoseSamples
 FloatArray = NDArray[np.float64]
 
 
+def _joint_path(arm: Arm, mounting: Mounting, poses: PoseSamples) -> Any:
+    """`sloshkit.export.ik.solve_joint_path` of the export's container poses, placed as
+    ``sloshkit export`` places them, without its velocity check."""
+    container = mounting.base_to_path[None] @ poses_to_matrices(
+        poses.position_m, poses.quaternion_xyzw
+    )
+    flange = container @ invert(mounting.flange_to_container)[None]
+    unlimited = dataclasses.replace(arm, velocity_limit_rad_s=np.full(arm.dof, np.inf))
+    return solve_joint_path(unlimited, flange, poses.time_s)
+
+
 def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple[float, str]:
     """Largest joint speed over its limit along the export, and that joint's description.
 
@@ -69,12 +80,7 @@ def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple
     >>> ratio < 1.0
     True
     """
-    container = mounting.base_to_path[None] @ poses_to_matrices(
-        poses.position_m, poses.quaternion_xyzw
-    )
-    flange = container @ invert(mounting.flange_to_container)[None]
-    unlimited = dataclasses.replace(arm, velocity_limit_rad_s=np.full(arm.dof, np.inf))
-    joints = solve_joint_path(unlimited, flange, poses.time_s)
+    joints = _joint_path(arm, mounting, poses)
     ratio = np.abs(joints.velocity_rad_s) / arm.velocity_limit_rad_s
     index, joint = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
     speed = float(np.abs(joints.velocity_rad_s[index, joint]))
@@ -82,8 +88,11 @@ def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple
     return float(ratio[index, joint]), f"{arm.joint_names[joint]} {speed:.3g} > {limit:.3g} rad/s"
 
 
-def robot_verifier(arm: Arm, mounting: Mounting, base: Verifier = verify) -> Verifier:
-    """The planner's verification plus the arm's joint-speed check (module docstring).
+@dataclasses.dataclass(frozen=True, eq=False)
+class RobotVerifier:
+    """The planner's verification plus an arm's joint-speed check (module docstring); also a
+    `sloshkit.plan.path_result.JointSpeedCheck`, so that ``--method optimal`` limits the joint
+    speeds in its programs.
 
     Parameters
     ----------
@@ -94,12 +103,6 @@ def robot_verifier(arm: Arm, mounting: Mounting, base: Verifier = verify) -> Ver
     base : callable
         The verification it extends (default the nonlinear 3-D model).
 
-    Returns
-    -------
-    callable
-        (problem, poses, tilted) -> Verification with ``joint speed ...`` or ``robot: ...``
-        violations added and ``required_stretch`` set to the joint-speed ratio.
-
     References
     ----------
     `sloshkit.export.ik.solve_joint_path`.
@@ -107,18 +110,24 @@ def robot_verifier(arm: Arm, mounting: Mounting, base: Verifier = verify) -> Ver
     Examples
     --------
     >>> from sloshkit.export.kinematics import load_arm
-    >>> from sloshkit.plan.path_result import linear_verifier
-    >>> check = robot_verifier(load_arm("ur5e"), Mounting(), linear_verifier)
-    >>> callable(check)
-    True
+    >>> from sloshkit.plan.path_result import JointSpeedCheck, linear_verifier
+    >>> check = RobotVerifier(load_arm("ur5e"), Mounting(), linear_verifier)
+    >>> callable(check), isinstance(check, JointSpeedCheck)
+    (True, True)
     """
 
-    def verifier(problem: PathProblem, poses: PoseSamples, tilted: bool) -> Verification:
-        found = base(problem, poses, tilted)
+    arm: Arm
+    mounting: Mounting
+    base: Verifier = verify
+
+    def __call__(self, problem: PathProblem, poses: PoseSamples, tilted: bool) -> Verification:
+        """The base verification with ``joint speed ...`` or ``robot: ...`` violations added
+        and ``required_stretch`` set to the joint-speed ratio."""
+        found = self.base(problem, poses, tilted)
         extra: list[str] = []
         stretch = 1.0
         try:
-            ratio, joint = joint_speed_ratio(arm, mounting, poses)
+            ratio, joint = joint_speed_ratio(self.arm, self.mounting, poses)
         except InputError as error:
             extra.append(f"robot: {error}")
         else:
@@ -131,7 +140,43 @@ def robot_verifier(arm: Arm, mounting: Mounting, base: Verifier = verify) -> Ver
         }
         return dataclasses.replace(found, **changes)
 
-    return verifier
+    def joint_positions(self, poses: PoseSamples) -> FloatArray:
+        """The arm's joints at the poses (n, dof) [rad], as ``sloshkit export`` solves them;
+        raises `sloshkit.errors.InputError` when the IK fails."""
+        return np.asarray(_joint_path(self.arm, self.mounting, poses).position_rad)
+
+    @property
+    def joint_speed_limits_rad_s(self) -> FloatArray:
+        """The arm's joint speed limits [rad/s]."""
+        return np.asarray(self.arm.velocity_limit_rad_s, dtype=float)
 
 
-__all__ = ["joint_speed_ratio", "robot_verifier"]
+def robot_verifier(arm: Arm, mounting: Mounting, base: Verifier = verify) -> RobotVerifier:
+    """`RobotVerifier` of an arm and its mounting.
+
+    Parameters
+    ----------
+    arm : Arm
+        The arm.
+    mounting : Mounting
+        Container in the flange and path in the base.
+    base : callable
+        The verification it extends (default the nonlinear 3-D model).
+
+    Returns
+    -------
+    RobotVerifier
+        (problem, poses, tilted) -> Verification.
+
+    Examples
+    --------
+    >>> from sloshkit.export.kinematics import load_arm
+    >>> from sloshkit.plan.path_result import linear_verifier
+    >>> check = robot_verifier(load_arm("ur5e"), Mounting(), linear_verifier)
+    >>> callable(check)
+    True
+    """
+    return RobotVerifier(arm, mounting, base)
+
+
+__all__ = ["RobotVerifier", "joint_speed_ratio", "robot_verifier"]

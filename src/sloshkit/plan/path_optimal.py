@@ -118,6 +118,47 @@ class _Samples:
         return int(self.s_m.size - 1)
 
 
+@dataclass(frozen=True, eq=False)
+class _JointMap:
+    """An arm's joints along the (untilted) path: q(s) [rad] by the cubic spline through the
+    export's IK at ``s_m``, and the joints' speed limits [rad/s]."""
+
+    s_m: FloatArray
+    joints_rad: FloatArray
+    limits_rad_s: FloatArray
+
+    def spline(self) -> Any:
+        from scipy.interpolate import CubicSpline
+
+        return CubicSpline(self.s_m, self.joints_rad, axis=0)
+
+
+#: Spacing of the path parameter at which the arm's IK is solved for the programs [m].
+JOINT_GRID_M = 0.005
+
+
+def _joint_map(problem: Any, check: Any) -> _JointMap | None:
+    """The arm's joints along the path from ``check`` (`sloshkit.plan.path_result.
+    JointSpeedCheck`) every `JOINT_GRID_M` (at least 50 points), or None when its IK fails
+    (the verification then reports why)."""
+    from sloshkit.errors import InputError
+    from sloshkit.motion.quaternions import sign_continuous
+    from sloshkit.plan.spatial import PoseSamples
+
+    length = problem.path.length_m
+    count = max(50, math.ceil(length / JOINT_GRID_M) + 1)
+    s = np.linspace(0.0, length, count)
+    rotation = problem.path.orientation(s)
+    poses = PoseSamples(
+        np.arange(count) * 1e-3, problem.path.position(s), sign_continuous(rotation.as_quat())
+    )
+    try:
+        joints = check.joint_positions(poses)
+    except InputError:
+        return None
+    return _JointMap(s, joints, np.asarray(check.joint_speed_limits_rad_s, dtype=float))
+
+
 def _poses_of(path: Any, samples: _Samples, centre_height_m: float) -> tuple[FloatArray, Rotation]:
     """Reference-point positions and container orientations of the samples.
 
@@ -175,7 +216,8 @@ class _Evaluation:
     grid), ``omega``/``alpha``: angular velocity and acceleration, ``force``: specific force
     per mode and gravity in N (`_PathProgram.forces`), ``wall``: wall height vectors per band
     model (models, N + 1, 2), ``amplitude``: free-oscillation vectors (models, modes, 4) scaled
-    by e_n; ``unit``, ``rate``, ``drive``: each model's pendulum tracks and their drive
+    by e_n; ``joint``: the arm's joint speeds over their limits (N, dof; empty without an
+    arm); ``unit``, ``rate``, ``drive``: each model's pendulum tracks and their drive
     (models, modes, N + 1, 3; `sloshkit.plan.path_pendulums`). N counts the rest samples.
     """
 
@@ -187,6 +229,7 @@ class _Evaluation:
     force: FloatArray
     wall: FloatArray = field(default_factory=lambda: np.empty(0))
     amplitude: FloatArray = field(default_factory=lambda: np.empty(0))
+    joint: FloatArray = field(default_factory=lambda: np.empty(0))
     unit: FloatArray = field(default_factory=lambda: np.empty(0))
     rate: FloatArray = field(default_factory=lambda: np.empty(0))
     drive: FloatArray = field(default_factory=lambda: np.empty(0))
@@ -209,6 +252,8 @@ class _PathProgram:
         Whether the tilt angles are variables.
     centre_height_m : float
         Tilt centre above the container bottom [m].
+    joints : _JointMap, optional
+        An arm's joints along the path: their speeds are limited too.
     """
 
     def __init__(
@@ -219,8 +264,11 @@ class _PathProgram:
         sample_period_s: float,
         tilt: bool = False,
         centre_height_m: float = 0.0,
+        joints: _JointMap | None = None,
     ) -> None:
         self.path, self.models, self.limits = path, models, limits
+        self.joints = joints
+        self.joint_spline: Any = None if joints is None else joints.spline()
         self.ts, self.tilt, self.centre = sample_period_s, tilt, centre_height_m
         self.modes = models[0].modes
         self.gravity = np.array([0.0, 0.0, -models[0].gravity_m_s2])
@@ -292,6 +340,11 @@ class _PathProgram:
                 amplitudes[m, n] = (
                     back * mode.wall_elevation_factor_m * np.concatenate((cosine, sine))
                 )
+        joint = np.empty(0)
+        if self.joints is not None:
+            # the joints' speeds as differences of the samples, over their limits
+            q = self.joint_spline(samples.s_m)
+            joint = np.diff(q, axis=0) / (samples.period_s * self.joints.limits_rad_s)
         return _Evaluation(
             kinematic["velocity"],
             kinematic["acceleration"],
@@ -301,6 +354,7 @@ class _PathProgram:
             force,
             walls,
             amplitudes,
+            joint,
             units,
             rates,
             drives,
@@ -316,6 +370,8 @@ class _PathProgram:
             "peak slosh": _peak(evaluation.wall) / lim.max_height_m,
             "residual slosh": _residual_height(evaluation.amplitude) / lim.max_residual_height_m,
         }
+        if evaluation.joint.size:
+            ratios["joint speed"] = float(np.max(np.abs(evaluation.joint)))
         if lim.max_angular_velocity_rad_s is not None:
             ratios["angular velocity"] = _peak(evaluation.omega) / lim.max_angular_velocity_rad_s
         if lim.max_angular_acceleration_rad_s2 is not None:
@@ -783,6 +839,37 @@ def _cone_step(
                 c_idx.append(np.full(rows, dilation))
                 v_idx.append(order * values[:, c] / angular_limit)
         _vector_cones(conic, r_idx, c_idx, v_idx, values / angular_limit, keep)
+    # ------------------------------------------------ the arm's joint speeds
+    if program.joints is not None:
+        # (q(s_{k+1}) - q(s_k)) / (h limit) within keep + sigma on both sides, linear in
+        # d_k, d_{k+1} through dq/ds; a free period scales it as 1 / h
+        slope = program.joint_spline(samples.s_m, 1)[:n] / (ts * program.joints.limits_rad_s)
+        joint = evaluation.joint[: n - 1]
+        dof = joint.shape[1]
+        for sign in (1.0, -1.0):
+            rows = np.arange((n - 1) * dof).reshape(n - 1, dof)
+            r_idx, c_idx, v_idx = (
+                [rows.ravel()],
+                [np.full(rows.size, sigma)],
+                [np.full(rows.size, -1.0)],
+            )
+            for shift, weight in ((1, 1.0), (0, -1.0)):
+                k = np.arange(n - 1) + shift  # the sample each difference moves with
+                ok = (k >= 1) & (k <= steps)
+                r_idx.append(rows[ok].ravel())
+                c_idx.append(np.repeat(d(k[ok]), dof))
+                v_idx.append((sign * weight * slope[k[ok]] * unit).ravel())
+            if dilate:
+                r_idx.append(rows.ravel())
+                c_idx.append(np.full(rows.size, dilation))
+                v_idx.append(-(sign * joint).ravel())
+            conic.add(
+                "nonneg",
+                np.concatenate(r_idx),
+                np.concatenate(c_idx),
+                np.concatenate(v_idx),
+                (keep - sign * joint).ravel(),
+            )
     # ------------------------------------------------ monotone progress and trust region
     s = samples.s_m
     inner = np.arange(1, n - 1)
@@ -1115,8 +1202,10 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     The rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
     limit, when a round one sample shorter failed the verification, or when a round no
     longer shortens the plan; the shortest verified timing is kept. A limit outside the
-    program (a robot's joint speeds) is met by a uniform stretch
-    (`sloshkit.plan.path_result.verified_candidate`).
+    program is met by a uniform stretch (`sloshkit.plan.path_result.verified_candidate`); a
+    verifier that checks an arm's joint speeds (`sloshkit.plan.path_result.JointSpeedCheck`)
+    lends the programs the joints along the path (the export's IK every `JOINT_GRID_M`), and
+    they limit the joint speeds themselves.
 
     Parameters
     ----------
@@ -1150,21 +1239,24 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     import time
     from dataclasses import replace
 
-    from sloshkit.plan.path_result import PathCandidate, verified_candidate
+    from sloshkit.plan.path_result import JointSpeedCheck, PathCandidate, verified_candidate
     from sloshkit.plan.retime import capped_timing
     from sloshkit.plan.spatial import sample_path
     from sloshkit.plan.timing import Timing
 
     started = time.perf_counter()
     machine, slosh = problem.machine, problem.slosh
+    # the program's slosh limits start where `_next_limit` aims: the verification's filtered
+    # simulation exceeds the program's model by a percent or so
+    aim = 1.0 - 0.5 * LIMIT_TOLERANCE
     limits = _ProgramLimits(
         machine.max_velocity_m_s,
         machine.max_acceleration_m_s2,
         machine.max_jerk_m_s3,
         machine.max_angular_velocity_rad_s,
         machine.max_angular_acceleration_rad_s2,
-        slosh.max_height_m,
-        slosh.max_residual_height_m,
+        aim * slosh.max_height_m,
+        aim * slosh.max_residual_height_m,
     )
     ts = problem.sample_period_s
     radius = float(problem.model.radius_m)
@@ -1176,12 +1268,13 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     )
     s[-1] = problem.path.length_m
     warm = _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)), ts)
+    joints = _joint_map(problem, verifier) if isinstance(verifier, JointSpeedCheck) else None
     rounds: list[dict[str, float]] = []
     verified: list[tuple[int, _Iterate]] = []
     searches: list[tuple[int, float]] = []
     programs = 0
     for _ in range(TIGHTENINGS):
-        program = _PathProgram(problem.path, problem.models(), limits, ts)
+        program = _PathProgram(problem.path, problem.models(), limits, ts, joints=joints)
         try:
             # a later round starts from the last one's samples, already near its optimum
             best, search = _free_time(program, warm, log, coarse=not rounds)

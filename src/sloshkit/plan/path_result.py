@@ -13,7 +13,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -176,6 +176,23 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
 
 
 Verifier = Callable[[PathProblem, PoseSamples, bool], Verification]
+
+
+@runtime_checkable
+class JointSpeedCheck(Protocol):
+    """A verifier that also checks an arm's joint speeds, and lends the path program the
+    joints along the path (`sloshkit.export.path_robot.RobotVerifier`): the program then
+    limits the joint speeds itself instead of leaving them to a uniform stretch."""
+
+    def joint_positions(self, poses: PoseSamples) -> FloatArray:
+        """The arm's joints (n, dof) [rad] at the poses, as the export solves them; raises
+        `sloshkit.errors.InputError` when the IK fails."""
+        ...
+
+    @property
+    def joint_speed_limits_rad_s(self) -> FloatArray:
+        """Each joint's speed limit [rad/s]."""
+        ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -440,6 +457,7 @@ def linear_verifier(problem: PathProblem, poses: PoseSamples, tilted: bool) -> V
 
 __all__ = [
     "ATTEMPTS",
+    "JointSpeedCheck",
     "PathCandidate",
     "PathPlanResult",
     "Verification",
