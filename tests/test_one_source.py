@@ -56,6 +56,24 @@ def test_only_motion_sampling_writes_the_grid_rule():
     assert copies == [], f"call sloshkit.motion.sampling.steps_to_reach instead: {copies}"
 
 
+def scripts() -> dict[str, ast.Module]:
+    """Every script of benchmarks/, validation/ and studies/, by its path from the root."""
+    found = {
+        path.relative_to(ROOT).as_posix(): ast.parse(path.read_text(encoding="utf-8"))
+        for folder in ("benchmarks", "validation", "studies")
+        for path in sorted((ROOT / folder).rglob("*.py"))
+    }
+    assert found, "the script folders are empty: the checks would pass on nothing"
+    return found
+
+
+def test_no_benchmark_validation_or_study_script_writes_the_grid_rule():
+    copies = [
+        f"{name}:{line}" for name, tree in scripts().items() for line in grid_rule_copies(tree)
+    ]
+    assert copies == [], f"call sloshkit.motion.sampling.steps_to_reach instead: {copies}"
+
+
 def test_the_grid_rule_finder_finds_a_copy_and_not_a_quote():
     copy = ast.parse("import math\nn = math.ceil(duration / period - 1e-9)\n")
     quote = ast.parse('"""ceil(T / Ts - 1e-9)"""\nn = math.ceil(x / y)\n')
@@ -85,6 +103,13 @@ def test_only_model_theory_writes_the_gravity_constant():
         for name, tree in modules().items()
         if name not in allowed
         for line in gravity_literals(tree)
+    ]
+    assert literals == [], f"import sloshkit.model.theory.GRAVITY_M_S2 instead: {literals}"
+
+
+def test_no_benchmark_validation_or_study_script_writes_a_gravity_constant():
+    literals = [
+        f"{name}:{line}" for name, tree in scripts().items() for line in gravity_literals(tree)
     ]
     assert literals == [], f"import sloshkit.model.theory.GRAVITY_M_S2 instead: {literals}"
 

@@ -25,13 +25,14 @@ from sloshkit.errors import InputError
 from sloshkit.export.frames import Mounting, invert, poses_to_matrices
 from sloshkit.export.ik import solve_joint_path
 from sloshkit.export.kinematics import Arm
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.plan.path_problem import PathProblem
 from sloshkit.plan.path_result import Verification, Verifier, verify
-from sloshkit.plan.spatial import PathProblem, PoseSamples
 
 FloatArray = NDArray[np.float64]
 
 
-def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple[float, str]:
+def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseTrajectory) -> tuple[float, str]:
     """Largest joint speed over its limit along the export, and that joint's description.
 
     Parameters
@@ -40,7 +41,7 @@ def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple
         The arm (`sloshkit.export.kinematics.load_arm`).
     mounting : Mounting
         Container in the flange, path in the robot base (as ``sloshkit export`` uses it).
-    poses : PoseSamples
+    poses : PoseTrajectory
         The planner's export (container bottom centre, path frame).
 
     Returns
@@ -63,8 +64,8 @@ def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple
     >>> arm = load_arm("ur5e")
     >>> t = np.arange(11) * 0.1
     >>> x = -0.4 + 0.1 * (t / t[-1]) ** 2 * (3 - 2 * t / t[-1])
-    >>> poses = PoseSamples(t, np.c_[x, -0.13 + 0 * t, 0.3 + 0 * t],
-    ...                     np.tile([0.0, 0.0, 0.0, 1.0], (t.size, 1)))
+    >>> poses = PoseTrajectory(t, np.c_[x, -0.13 + 0 * t, 0.3 + 0 * t],
+    ...                        np.tile([0.0, 0.0, 0.0, 1.0], (t.size, 1)))
     >>> ratio, joint = joint_speed_ratio(arm, Mounting(), poses)
     >>> ratio < 1.0
     True
@@ -113,7 +114,7 @@ def robot_verifier(arm: Arm, mounting: Mounting, base: Verifier = verify) -> Ver
     True
     """
 
-    def verifier(problem: PathProblem, poses: PoseSamples, tilted: bool) -> Verification:
+    def verifier(problem: PathProblem, poses: PoseTrajectory, tilted: bool) -> Verification:
         found = base(problem, poses, tilted)
         extra: list[str] = []
         stretch = 1.0

@@ -9,6 +9,13 @@ The container is assumed at rest before the first and after the last pose (rest-
 for every 1-D law). Kinematics (velocity, accelerations, angular velocity and acceleration)
 come from `PoseTrajectory.kinematics`, see `sloshkit.motion.pose_kinematics`.
 
+`PoseTrajectory` is the one type of sampled poses: pose files read into it
+(`sloshkit.io.poses`), the 3-D simulation takes it (`sloshkit.sim.spatial`), the 3-D planner
+exports it (`sloshkit.plan.path_problem.sample_path`), and the export's 3-D plan
+(`sloshkit.export.plans.PoseStream`) holds one with the exported files' metadata beside it.
+`sloshkit.motion.pose_kinematics.PoseKinematics` is not a second container of the poses but
+their time derivatives on a uniform grid, computed from a `PoseTrajectory`.
+
 References
 ----------
 - J. Diebel, "Representing attitude: Euler angles, unit quaternions, and rotation vectors",
@@ -130,6 +137,23 @@ class PoseTrajectory:
     def rotation(self) -> Rotation:
         """Orientations as one `scipy.spatial.transform.Rotation` (container -> world)."""
         return Rotation.from_quat(self.quaternion_xyzw)
+
+    def columns(self) -> dict[str, FloatArray]:
+        """The ``t,x,y,z,qx,qy,qz,qw`` columns of a pose file (SI; `sloshkit.io.poses`).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> upright = np.tile([0, 0, 0, 1.0], (2, 1))
+        >>> poses = PoseTrajectory(np.array([0.0, 0.1]), np.zeros((2, 3)), upright)
+        >>> list(poses.columns()), poses.columns()["qw"].tolist()
+        (['t', 'x', 'y', 'z', 'qx', 'qy', 'qz', 'qw'], [1.0, 1.0])
+        """
+        position = {name: self.position_m[:, i] for i, name in enumerate(("x", "y", "z"))}
+        quaternion = {
+            name: self.quaternion_xyzw[:, i] for i, name in enumerate(("qx", "qy", "qz", "qw"))
+        }
+        return {"t": self.time_s, **position, **quaternion}
 
     @property
     def axis_world(self) -> FloatArray:

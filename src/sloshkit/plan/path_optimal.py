@@ -926,9 +926,9 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     import time
     from dataclasses import replace
 
+    from sloshkit.plan.path_problem import sample_path
     from sloshkit.plan.path_result import PathCandidate, verified_candidate
     from sloshkit.plan.retime import capped_timing
-    from sloshkit.plan.spatial import sample_path
     from sloshkit.plan.timing import Timing
 
     started = time.perf_counter()
@@ -1024,14 +1024,14 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
 
 
 def _export_poses(problem: Any, samples: _Samples) -> Any:
-    """The samples as the export (`sloshkit.plan.spatial.PoseSamples`, quaternions
+    """The samples as the export (`sloshkit.motion.poses.PoseTrajectory`, quaternions
     sign-continuous)."""
+    from sloshkit.motion.poses import PoseTrajectory
     from sloshkit.motion.quaternions import sign_continuous
-    from sloshkit.plan.spatial import PoseSamples
 
     position, rotation = _poses_of(problem.path, samples, problem.tilt_centre_height_m)
     time_s = np.arange(samples.s_m.size) * problem.sample_period_s
-    return PoseSamples(time_s, position, sign_continuous(rotation.as_quat()))
+    return PoseTrajectory(time_s, position, sign_continuous(rotation.as_quat()))
 
 
 def _next_limit(
