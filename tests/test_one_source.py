@@ -151,3 +151,31 @@ def test_no_module_imports_a_private_name_of_another():
         for module, private in private_imports(tree)
     }
     assert sorted(found) == [], "make the name public or keep it inside"
+
+
+def pose_column_copies(tree: ast.Module, names: tuple[str, ...]) -> list[int]:
+    """Lines of a tuple or list of string constants equal to ``names``."""
+    return [
+        node.lineno
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Tuple | ast.List)
+        and all(isinstance(e, ast.Constant) and isinstance(e.value, str) for e in node.elts)
+        and tuple(e.value for e in node.elts) == names  # type: ignore[attr-defined]
+    ]
+
+
+def test_the_pose_file_columns_are_written_once():
+    from sloshkit.motion.poses import POSE_COLUMNS, PoseTrajectory
+
+    poses = PoseTrajectory([0.0, 1.0], [[0, 0, 0], [1, 2, 3]], [[0, 0, 0, 1.0], [0, 0, 0, 1.0]])
+    assert tuple(poses.columns()) == POSE_COLUMNS == ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
+    assert poses.columns()["z"].tolist() == [0.0, 3.0]
+    copies = [
+        f"{name}:{line}"
+        for name, tree in modules().items()
+        if name != "motion/poses.py"
+        for line in pose_column_copies(tree, POSE_COLUMNS)
+    ]
+    assert copies == [], f"import sloshkit.motion.poses.POSE_COLUMNS instead: {copies}"
+    copy = ast.parse('COLUMNS = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")\n')
+    assert pose_column_copies(copy, POSE_COLUMNS) == [1]

@@ -36,7 +36,6 @@ from sloshkit.motion.sampling import steps_to_reach
 FloatArray = NDArray[np.float64]
 
 LINE_COLUMNS = ("t_s", "position_m", "velocity_m_s", "acceleration_m_s2")
-POSE_COLUMNS = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
 
 
 @dataclass(frozen=True, eq=False)

@@ -46,6 +46,8 @@ FloatArray = NDArray[np.float64]
 
 #: Quaternions whose norm differs from 1 by more than this are rejected (not renormalised).
 QUATERNION_NORM_TOLERANCE = 1e-3
+#: The columns of a pose file, in order: time [s], bottom centre [m], quaternion (scalar last).
+POSE_COLUMNS: tuple[str, ...] = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
 
 
 @dataclass(frozen=True, eq=False)
@@ -139,7 +141,7 @@ class PoseTrajectory:
         return Rotation.from_quat(self.quaternion_xyzw)
 
     def columns(self) -> dict[str, FloatArray]:
-        """The ``t,x,y,z,qx,qy,qz,qw`` columns of a pose file (SI; `sloshkit.io.poses`).
+        """The `POSE_COLUMNS` of a pose file, ``t,x,y,z,qx,qy,qz,qw`` (SI; `sloshkit.io.poses`).
 
         Examples
         --------
@@ -149,11 +151,9 @@ class PoseTrajectory:
         >>> list(poses.columns()), poses.columns()["qw"].tolist()
         (['t', 'x', 'y', 'z', 'qx', 'qy', 'qz', 'qw'], [1.0, 1.0])
         """
-        position = {name: self.position_m[:, i] for i, name in enumerate(("x", "y", "z"))}
-        quaternion = {
-            name: self.quaternion_xyzw[:, i] for i, name in enumerate(("qx", "qy", "qz", "qw"))
-        }
-        return {"t": self.time_s, **position, **quaternion}
+        position = dict(zip(POSE_COLUMNS[1:4], self.position_m.T, strict=True))
+        quaternion = dict(zip(POSE_COLUMNS[4:], self.quaternion_xyzw.T, strict=True))
+        return {POSE_COLUMNS[0]: self.time_s, **position, **quaternion}
 
     @property
     def axis_world(self) -> FloatArray:
