@@ -32,7 +32,7 @@ from scipy.signal import lfilter
 from sloshkit import UprightCylinder, equivalent_model, get_liquid
 from sloshkit.model.modal import model_family
 from sloshkit.motion import make_law
-from sloshkit.motion.sampling import steps_for
+from sloshkit.motion.sampling import steps_for, steps_to_reach
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.sim.batch import batch_metrics
 from sloshkit.sim.batch_kernel import law_metrics
@@ -65,7 +65,7 @@ def baseline_case(model, motion, rtol=1e-8, atol=1e-10):
     factor = np.array([m.wall_elevation_factor_m for m in modes])
     acceleration = motion.derivative_pp(2)
     end = motion.duration_s
-    grid = np.arange(math.ceil(end / DT - 1e-9) + 1) * DT
+    grid = np.arange(steps_to_reach(end, DT) + 1) * DT
     grid = grid[grid <= end + 1e-12]
     edges = sorted({0.0, *motion.breakpoints_s.tolist(), end})
     state = np.zeros(2 * len(modes))

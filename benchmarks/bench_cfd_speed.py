@@ -6,7 +6,7 @@ the wall clock *and* the CPU time of the OpenFOAM processes, and the load averag
 after the run (a load above the core count means other work competed for the cores).
 
 Run: PYTHONPATH=src python benchmarks/bench_cfd_speed.py [--cells-per-radius 11] [--np 2]
-     [--max-step-ms 2] [--max-courant 0.5] [--json docs/cfd-speed.json]
+     [--max-step-ms 2] [--max-courant 0.5] [--json benchmarks/results/cfd-speed.json]
 """
 
 from __future__ import annotations

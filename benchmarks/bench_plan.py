@@ -39,7 +39,7 @@ from scipy.optimize import linprog
 from sloshkit import UprightCylinder, equivalent_model, get_liquid
 from sloshkit.errors import ValidityWarning
 from sloshkit.model.modal import SloshModel
-from sloshkit.motion.sampling import export_samples
+from sloshkit.motion.sampling import export_samples, steps_to_reach
 from sloshkit.plan.optimal import SMOOTH_PRICE, plan_optimal
 from sloshkit.plan.planner import plan
 from sloshkit.plan.problem import PAPER_LAWS, MachineLimits, PlanProblem, SloshLimits
@@ -107,7 +107,7 @@ def _feasible(problem: PlanProblem, duration: float) -> bool:
         machine.max_acceleration_m_s2,
         machine.max_velocity_m_s,
     )
-    steps = math.ceil(duration / ts - 1e-9)
+    steps = steps_to_reach(duration, ts)
     n = steps
     h = duration / n
     models = problem.models()

@@ -61,7 +61,7 @@ from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
 from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
 from sloshkit.plan.path_planner import plan_path
-from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.timing import Timing
 
 DATA = Path(__file__).resolve().parents[1] / "tests" / "data" / "measured-3d"

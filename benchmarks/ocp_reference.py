@@ -81,8 +81,10 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
 from sloshkit.model.theory import GRAVITY_M_S2
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path import Path
-from sloshkit.plan.spatial import PathProblem, PoseSamples
+from sloshkit.plan.path_problem import PathProblem
 
 FloatArray = NDArray[np.float64]
 
@@ -756,14 +758,14 @@ class ReferenceSolution:
     states: FloatArray
     controls: FloatArray
 
-    def pose_samples(self, problem: PathProblem, sample_period_s: float) -> PoseSamples:
+    def pose_samples(self, problem: PathProblem, sample_period_s: float) -> PoseTrajectory:
         """The solution sampled at t = k Ts (the planner's export: `sample_path`'s grid, held
         at the end after T): s and r integrated exactly over each interval of constant jerk
         from the node states; pose R = Rot(r) R_path(s), bottom p(s) + c (R_path e_z - R e_z)
         (module docstring)."""
         duration, count = self.optimum.duration_s, self.controls.shape[1]
         h = duration / count
-        samples = math.ceil(duration / sample_period_s - 1e-9)
+        samples = steps_to_reach(duration, sample_period_s)
         t = np.minimum(np.arange(samples + 1) * sample_period_s, duration)
         index = np.minimum((t / h).astype(int), count - 1)
         tau = t - index * h
@@ -786,12 +788,9 @@ class ReferenceSolution:
             rotation = Rotation.from_rotvec(vector) * rotation
             centre = problem.tilt_centre_height_m
             position = position + centre * (upright - rotation.apply([0.0, 0.0, 1.0]))
-        quaternions = rotation.as_quat()
-        flips = np.sign(np.sum(quaternions[1:] * quaternions[:-1], axis=1))
-        flips[flips == 0] = 1.0
-        quaternions *= np.concatenate(([1.0], np.cumprod(flips)))[:, None]
         grid = np.arange(samples + 1, dtype=float) * sample_period_s
-        return PoseSamples(grid, np.asarray(position, dtype=float), quaternions)
+        # PoseTrajectory makes the quaternions sign-continuous.
+        return PoseTrajectory(grid, np.asarray(position, dtype=float), rotation.as_quat())
 
 
 def reference_optimum(

@@ -56,6 +56,24 @@ def test_only_motion_sampling_writes_the_grid_rule():
     assert copies == [], f"call sloshkit.motion.sampling.steps_to_reach instead: {copies}"
 
 
+def scripts() -> dict[str, ast.Module]:
+    """Every script of benchmarks/, validation/ and studies/, by its path from the root."""
+    found = {
+        path.relative_to(ROOT).as_posix(): ast.parse(path.read_text(encoding="utf-8"))
+        for folder in ("benchmarks", "validation", "studies")
+        for path in sorted((ROOT / folder).rglob("*.py"))
+    }
+    assert found, "the script folders are empty: the checks would pass on nothing"
+    return found
+
+
+def test_no_benchmark_validation_or_study_script_writes_the_grid_rule():
+    copies = [
+        f"{name}:{line}" for name, tree in scripts().items() for line in grid_rule_copies(tree)
+    ]
+    assert copies == [], f"call sloshkit.motion.sampling.steps_to_reach instead: {copies}"
+
+
 def test_the_grid_rule_finder_finds_a_copy_and_not_a_quote():
     copy = ast.parse("import math\nn = math.ceil(duration / period - 1e-9)\n")
     quote = ast.parse('"""ceil(T / Ts - 1e-9)"""\nn = math.ceil(x / y)\n')
@@ -85,6 +103,13 @@ def test_only_model_theory_writes_the_gravity_constant():
         for name, tree in modules().items()
         if name not in allowed
         for line in gravity_literals(tree)
+    ]
+    assert literals == [], f"import sloshkit.model.theory.GRAVITY_M_S2 instead: {literals}"
+
+
+def test_no_benchmark_validation_or_study_script_writes_a_gravity_constant():
+    literals = [
+        f"{name}:{line}" for name, tree in scripts().items() for line in gravity_literals(tree)
     ]
     assert literals == [], f"import sloshkit.model.theory.GRAVITY_M_S2 instead: {literals}"
 
@@ -126,3 +151,31 @@ def test_no_module_imports_a_private_name_of_another():
         for module, private in private_imports(tree)
     }
     assert sorted(found) == [], "make the name public or keep it inside"
+
+
+def pose_column_copies(tree: ast.Module, names: tuple[str, ...]) -> list[int]:
+    """Lines of a tuple or list of string constants equal to ``names``."""
+    return [
+        node.lineno
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Tuple | ast.List)
+        and all(isinstance(e, ast.Constant) and isinstance(e.value, str) for e in node.elts)
+        and tuple(e.value for e in node.elts) == names  # type: ignore[attr-defined]
+    ]
+
+
+def test_the_pose_file_columns_are_written_once():
+    from sloshkit.motion.poses import POSE_COLUMNS, PoseTrajectory
+
+    poses = PoseTrajectory([0.0, 1.0], [[0, 0, 0], [1, 2, 3]], [[0, 0, 0, 1.0], [0, 0, 0, 1.0]])
+    assert tuple(poses.columns()) == POSE_COLUMNS == ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
+    assert poses.columns()["z"].tolist() == [0.0, 3.0]
+    copies = [
+        f"{name}:{line}"
+        for name, tree in modules().items()
+        if name != "motion/poses.py"
+        for line in pose_column_copies(tree, POSE_COLUMNS)
+    ]
+    assert copies == [], f"import sloshkit.motion.poses.POSE_COLUMNS instead: {copies}"
+    copy = ast.parse('COLUMNS = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")\n')
+    assert pose_column_copies(copy, POSE_COLUMNS) == [1]

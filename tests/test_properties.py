@@ -256,7 +256,7 @@ def test_random_short_path_plans_meet_their_limits_when_their_export_is_simulate
     from sloshkit.plan.path import path_from_waypoints
     from sloshkit.plan.path_limits import kinematics
     from sloshkit.plan.path_planner import plan_path
-    from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     from sloshkit.sim.spatial import simulate_spatial
 
     points = [[0.0, 0.0, 0.0], [first, 0.0, 0.0]]

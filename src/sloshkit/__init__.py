@@ -75,9 +75,9 @@ _API: dict[str, str] = {
     "SloshLimits": "sloshkit.plan.problem",
     "plan_path": "sloshkit.plan.path_planner",
     "PathPlanResult": "sloshkit.plan.path_result",
-    "PathProblem": "sloshkit.plan.spatial",
-    "CartesianLimits": "sloshkit.plan.spatial",
-    "SpatialSloshLimits": "sloshkit.plan.spatial",
+    "PathProblem": "sloshkit.plan.path_problem",
+    "CartesianLimits": "sloshkit.plan.path_problem",
+    "SpatialSloshLimits": "sloshkit.plan.path_problem",
     "path_from_waypoints": "sloshkit.plan.path",
     "path_from_poses": "sloshkit.plan.path",
     "calibrate": "sloshkit.calibration",
@@ -193,10 +193,10 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.motion.shaping import Shaper, ei, shape_motion, zv, zvd
     from sloshkit.plan.path import path_from_poses, path_from_waypoints
     from sloshkit.plan.path_planner import plan_path
+    from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     from sloshkit.plan.path_result import PathPlanResult
     from sloshkit.plan.planner import PlanResult, plan
     from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
-    from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
     from sloshkit.sim.response import SloshResponse
     from sloshkit.sim.simulate import simulate
     from sloshkit.sim.spatial import simulate_spatial

@@ -24,11 +24,11 @@ from scipy import integrate
 from scipy.special import j1, jvp
 
 from sloshkit.model.liquids import get_liquid
-from sloshkit.model.theory import damping_ratio_correlation
+from sloshkit.model.theory import GRAVITY_M_S2, damping_ratio_correlation
 
 STUDY = Path(__file__).resolve().parent
 DATA = STUDY / "data"
-RADIUS_M, FILL_M, GRAVITY = 0.0205, 0.039, 9.81
+RADIUS_M, FILL_M, GRAVITY = 0.0205, 0.039, GRAVITY_M_S2
 XI_1 = 1.8411837813406593  # first zero of J1'
 START, END = "<!-- damping-study:start -->", "<!-- damping-study:end -->"
 WALL_START, WALL_END = "<!-- wall-stability:start -->", "<!-- wall-stability:end -->"

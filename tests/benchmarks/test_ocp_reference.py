@@ -14,9 +14,9 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import SloshModel, equivalent_model
 from sloshkit.plan.path import path_from_waypoints
+from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.planner import plan
 from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
-from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.sim.spatial import simulate_spatial
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
@@ -83,7 +83,7 @@ def test_the_nonlinear_reference_agrees_with_the_verification() -> None:
     assert optimum.converged, optimum.status
     assert optimum.slosh_model == "nonlinear"
     assert optimum.peak_height_m == pytest.approx(HEIGHT_M, rel=1e-3)  # the slosh binds
-    poses = solution.pose_samples(lift, lift.sample_period_s).to_pose_trajectory()
+    poses = solution.pose_samples(lift, lift.sample_period_s)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
         exact = simulate_spatial(model, poses, nonlinear=True, cutoff_hz=None)

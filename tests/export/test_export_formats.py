@@ -27,6 +27,7 @@ from sloshkit.export.frames import Mounting
 from sloshkit.export.kinematics import load_arm
 from sloshkit.export.plans import LinePlan, PoseStream
 from sloshkit.export.readback import rebuild_container_poses
+from sloshkit.motion.poses import PoseTrajectory
 
 GOLDEN = Path(__file__).parents[1] / "data" / "export"
 MOUNTING = Mounting(base_xyz_m=(-0.49, -0.13, 0.39))
@@ -205,7 +206,8 @@ def test_cam_table_round_trips_and_refuses_3d_plans(tmp_path: Path) -> None:
     plan = quintic_plan()
     for name in ("time_s", "position_m", "velocity_m_s", "acceleration_m_s2"):
         np.testing.assert_allclose(getattr(line, name), getattr(plan, name), atol=1e-12)
-    stream = PoseStream(plan.time_s, np.zeros((11, 3)), np.tile([0, 0, 0, 1.0], (11, 1)))
+    upright = np.tile([0, 0, 0, 1.0], (11, 1))
+    stream = PoseStream(PoseTrajectory(plan.time_s, np.zeros((11, 3)), upright))
     with pytest.raises(InputError, match="1-D plan"):
         export_plan(stream, "cam-table", out, check=False)
 

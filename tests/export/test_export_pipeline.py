@@ -20,8 +20,9 @@ from sloshkit import UprightCylinder, equivalent_model, get_liquid
 from sloshkit.export.headers import plan_header, read_plan_header, write_plan_csv
 from sloshkit.export.plans import LinePlan, PoseStream, read_metadata, read_plan
 from sloshkit.export.roundtrip import line_metrics
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.plan.path_problem import SpatialSloshLimits
 from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
-from sloshkit.plan.spatial import SpatialSloshLimits
 
 README_PLAN = (
     "plan",
@@ -205,7 +206,8 @@ def test_export_checks_a_3d_plan_against_its_slosh_height_limits(tmp_path: Path)
     t = np.arange(151) * 0.004
     s = t / t[-1]
     x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
-    stream = PoseStream(t, np.column_stack((x, 0 * x, 0 * x)), np.tile([0, 0, 0, 1.0], (151, 1)))
+    upright = np.tile([0, 0, 0, 1.0], (151, 1))
+    stream = PoseStream(PoseTrajectory(t, np.column_stack((x, 0 * x, 0 * x)), upright))
     header = plan_header(_model(), SpatialSloshLimits(1e-4, 1e-4), 0.004)  # type: ignore[arg-type]
     plan = write_plan_csv(
         tmp_path / "poses.csv",

@@ -17,6 +17,7 @@ from sloshkit.export.frames import Mounting
 from sloshkit.export.kinematics import load_arm
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
 from sloshkit.export.roundtrip import LIMIT_TOLERANCE, TOLERANCE
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
 
 MOUNTING = Mounting(base_xyz_m=(-0.55, -0.13, 0.39))
@@ -144,9 +145,11 @@ def test_a_3d_pose_stream_keeps_its_slosh(fmt: str, tmp_path: Path, ur5e):
     smooth = s**3 * (10 - 15 * s + 6 * s**2)
     angles = np.column_stack([np.radians(8.0) * np.sin(np.pi * smooth), 0 * s, 0.3 * smooth])
     stream = PoseStream(
-        np.arange(count) * 0.004,
-        np.column_stack([0.1 * smooth, 0.05 * smooth, 0.02 * smooth]),
-        Rotation.from_euler("xyz", angles).as_quat(),
+        PoseTrajectory(
+            np.arange(count) * 0.004,
+            np.column_stack([0.1 * smooth, 0.05 * smooth, 0.02 * smooth]),
+            Rotation.from_euler("xyz", angles).as_quat(),
+        )
     )
     result = export_plan(
         stream,

@@ -8,13 +8,13 @@ from sloshkit.errors import ValidityWarning
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path_limits import kinematics
-from sloshkit.plan.spatial import CartesianLimits, PoseSamples
+from sloshkit.plan.path_problem import CartesianLimits
 from sloshkit.sim.spatial import simulate_spatial
 
 
 def assert_export_meets_limits(
     model: SloshModel,
-    poses: PoseSamples | None,
+    poses: PoseTrajectory | None,
     peak_m: float,
     residual_m: float,
     machine: CartesianLimits | None = None,
@@ -22,10 +22,9 @@ def assert_export_meets_limits(
     """A plan's sampled export, simulated again with the nonlinear 3-D model, keeps the slosh
     limits (and, given ``machine``, the Cartesian speed, acceleration and jerk limits)."""
     assert poses is not None
-    trajectory = PoseTrajectory(poses.time_s, poses.position_m, poses.quaternion_xyzw)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
-        response = simulate_spatial(model, trajectory, nonlinear=True, cutoff_hz=None)
+        response = simulate_spatial(model, poses, nonlinear=True, cutoff_hz=None)
     assert response.peak_slosh_height_m <= peak_m
     assert response.residual_slosh_height_m <= residual_m
     if machine is not None:

@@ -11,6 +11,7 @@ import pytest
 
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import s_curve
+from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path import path_from_waypoints
 from sloshkit.plan.path_optimal import (
     PROGRAM_MARGIN,
@@ -23,7 +24,7 @@ from sloshkit.plan.path_optimal import (
     _smoothed,
 )
 from sloshkit.plan.path_planner import plan_path
-from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
+from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.sim.spatial import simulate_spatial
 
 LIMITS = _ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)
@@ -58,7 +59,7 @@ def test_program_model_is_the_3d_simulation_of_the_export(robot_vial: SloshModel
     evaluation = program.evaluate(samples)
     response = simulate_spatial(
         robot_vial,
-        _export_poses(problem, samples).to_pose_trajectory(),
+        _export_poses(problem, samples),
         nonlinear=True,
         cutoff_hz=None,
     )
@@ -153,7 +154,7 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(robot_vial: Sl
     program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
     best, _ = _free_time(program, _samples(problem, 0.55))
     ts = problem.sample_period_s
-    grid = math.ceil(one_d.chosen.duration_s / ts - 1e-9) * ts
+    grid = steps_to_reach(one_d.chosen.duration_s, ts) * ts
     assert best.feasible
     assert best.samples.steps * ts == pytest.approx(grid, abs=ts + 1e-12)
 

@@ -20,15 +20,9 @@ from sloshkit.motion.laws import s_curve
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path import path_from_poses, path_from_waypoints
 from sloshkit.plan.path_planner import linear_verifier, plan_path
+from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import warp_search
-from sloshkit.plan.spatial import (
-    CartesianLimits,
-    PathProblem,
-    PoseSamples,
-    SpatialSloshLimits,
-    sample_path,
-)
 from sloshkit.plan.tilt import tilt_compensated
 from sloshkit.plan.timing import Timing
 from sloshkit.sim.spatial import simulate_spatial
@@ -170,7 +164,7 @@ def test_tilt_compensation_of_constant_horizontal_acceleration(robot_vial: Slosh
     velocity = np.cumsum(a) * ts
     x = np.cumsum(velocity) * ts
     rest = np.tile([0.0, 0.0, 0.0, 1.0], (t.size, 1))
-    poses = PoseSamples(t, np.c_[x, 0 * t, 0 * t], rest)
+    poses = PoseTrajectory(t, np.c_[x, 0 * t, 0 * t], rest)
     tilted = tilt_compensated(poses, robot_vial.modes[0].bob_height_m, math.radians(30), 0.0, 0.03)
     axis = tilted.rotation.apply([0.0, 0.0, 1.0])
     hold = (tilted.time_s > 0.75 + 0.09) & (tilted.time_s < 1.25 + 0.09)  # + padding
@@ -178,15 +172,8 @@ def test_tilt_compensation_of_constant_horizontal_acceleration(robot_vial: Slosh
     assert angle == pytest.approx(math.degrees(math.atan(accel / GRAVITY_M_S2)), abs=0.05)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ValidityWarning)
-        plain = simulate_spatial(
-            robot_vial, PoseTrajectory(t, poses.position_m, rest), nonlinear=True, cutoff_hz=None
-        )
-        calm = simulate_spatial(
-            robot_vial,
-            PoseTrajectory(tilted.time_s, tilted.position_m, tilted.quaternion_xyzw),
-            nonlinear=True,
-            cutoff_hz=None,
-        )
+        plain = simulate_spatial(robot_vial, poses, nonlinear=True, cutoff_hz=None)
+        calm = simulate_spatial(robot_vial, tilted, nonlinear=True, cutoff_hz=None)
     quasi_static = 0.9 * robot_vial.radius_m * accel / GRAVITY_M_S2
     assert plain.peak_slosh_height_m > quasi_static
     during = (calm.time_s > 0.9) & (calm.time_s < 1.4)  # the hold, after the padding
@@ -256,25 +243,51 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
 
 
 def test_angular_limits_parse_rad_and_deg() -> None:
-    from sloshkit.cli.plan_path import _angular
+    from sloshkit.io.requests import angular_rate_request
 
-    assert _angular("90deg/s", 1, "w") == pytest.approx(math.pi / 2)
-    assert _angular("2 rad/s**2", 2, "a") == pytest.approx(2.0)
-    assert _angular(None, 1, "w") is None
+    assert angular_rate_request("90deg/s", 1, "w") == pytest.approx(math.pi / 2)
+    assert angular_rate_request("2 rad/s**2", 2, "a") == pytest.approx(2.0)
+    assert angular_rate_request(None, 1, "w") is None
     with pytest.raises(InputError, match="angular rate"):
-        _angular("5 furlongs", 1, "max_angular_velocity")
+        angular_rate_request("5 furlongs", 1, "max_angular_velocity")
 
 
 def test_angular_limits_default_and_none() -> None:
-    from sloshkit.cli.plan_path import (
+    from sloshkit.io.command_requests import (
         DEFAULT_ANGULAR_ACCELERATION,
         DEFAULT_ANGULAR_VELOCITY,
-        _angular,
+        path_problem_request,
     )
+    from sloshkit.io.requests import angular_rate_request
 
-    assert _angular(DEFAULT_ANGULAR_VELOCITY, 1, "w") == pytest.approx(math.pi)
-    assert _angular(DEFAULT_ANGULAR_ACCELERATION, 2, "a") == pytest.approx(math.radians(1000))
-    assert _angular("none", 1, "w") is None
+    assert angular_rate_request(DEFAULT_ANGULAR_VELOCITY, 1, "w") == pytest.approx(math.pi)
+    assert angular_rate_request(DEFAULT_ANGULAR_ACCELERATION, 2, "a") == pytest.approx(
+        math.radians(1000)
+    )
+    assert angular_rate_request("none", 1, "w") is None
+    options = {
+        "vmax": "2m/s",
+        "amax": "10m/s^2",
+        "jmax": "100m/s^3",
+        "max_slosh_height": "15mm",
+        "max_residual_height": "2mm",
+        "max_surface_angle": None,
+        "band": 0.0,
+        "sample_period": "4ms",
+        "max_tilt": "30deg",
+        "tilt_centre": "0mm",
+    }
+    path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
+    defaults = path_problem_request(
+        None, path, max_angular_velocity=None, max_angular_acceleration=None, **options
+    ).machine
+    assert defaults.max_angular_velocity_rad_s == pytest.approx(math.pi)
+    assert defaults.max_angular_acceleration_rad_s2 == pytest.approx(math.radians(1000))
+    unlimited = path_problem_request(
+        None, path, max_angular_velocity="none", max_angular_acceleration="none", **options
+    ).machine
+    assert unlimited.max_angular_velocity_rad_s is None
+    assert unlimited.max_angular_acceleration_rad_s2 is None
 
 
 def test_robot_check_refuses_fast_joints_and_slows_the_plan_down(robot_vial: SloshModel) -> None:
@@ -370,7 +383,7 @@ def test_warp_search_keeps_the_screen_and_shortens_a_slow_seed(robot_vial: Slosh
     seed = Timing.from_samples("slow", t, law.position(t))
     models = problem.models()
 
-    def passes(poses: PoseSamples) -> bool:
+    def passes(poses: PoseTrajectory) -> bool:
         return screen_ok(problem, linear_screen(models, poses))
 
     assert passes(sample_path(path, seed, problem.sample_period_s))

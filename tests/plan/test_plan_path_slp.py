@@ -11,24 +11,19 @@ import numpy as np
 import pytest
 
 from sloshkit.model.modal import SloshModel
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan import path_improve
 from sloshkit.plan.path import path_from_waypoints
 from sloshkit.plan.path_improve import warped_candidates
 from sloshkit.plan.path_ladder import ladder_seeds
 from sloshkit.plan.path_limits import machine_violations
 from sloshkit.plan.path_planner import plan_retime
+from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.plan.path_result import verified_candidate, verify
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
 from sloshkit.plan.path_slp import slp_search
 from sloshkit.plan.retime import family_member
-from sloshkit.plan.spatial import (
-    CartesianLimits,
-    PathProblem,
-    PoseSamples,
-    SpatialSloshLimits,
-    sample_path,
-)
 from tests.plan.plan_checks import assert_export_meets_limits
 
 
@@ -39,10 +34,10 @@ def _bend(model: SloshModel) -> PathProblem:
     )
 
 
-def _screened(problem: PathProblem) -> Callable[[PoseSamples], bool]:
+def _screened(problem: PathProblem) -> Callable[[PoseTrajectory], bool]:
     models = problem.models()
 
-    def passes(poses: PoseSamples) -> bool:
+    def passes(poses: PoseTrajectory) -> bool:
         return screen_ok(problem, linear_screen(models, poses)) and not machine_violations(
             problem, poses, False
         )

@@ -11,10 +11,10 @@ import pytest
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan import path_tilt
 from sloshkit.plan.path import path_from_waypoints
+from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.path_result import verify
 from sloshkit.plan.path_tilt import improved_tilt, plan_tilt
 from sloshkit.plan.retime import family_member
-from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.tilt import peak_tilt_rad
 from tests.plan.plan_checks import assert_export_meets_limits
 

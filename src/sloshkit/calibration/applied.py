@@ -12,7 +12,6 @@ from sloshkit.errors import InputError
 from sloshkit.motion.profile import Motion
 from sloshkit.motion.recorded import from_samples
 
-POSE_COLUMNS: tuple[str, ...] = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
 AXES: dict[str, tuple[float, float, float]] = {
     "x": (1.0, 0.0, 0.0),
     "y": (0.0, 1.0, 0.0),

@@ -3,10 +3,10 @@
 Called by `sloshkit.cli.plan.plan_command` when a path is given; the 1-D ``plan --distance``
 is unchanged.
 
-Angular limits default to `DEFAULT_ANGULAR_VELOCITY` (180 deg/s, the joint speed limit of
-the UR5e's wrist joints and of most 5-10 kg collaborative arms: a container turning faster
-needs at least one joint faster than that) and `DEFAULT_ANGULAR_ACCELERATION` (1000 deg/s^2,
-that speed reached in 0.18 s); ``none`` lifts a limit. With ``--robot`` (or ``--urdf``) every
+The options become a `sloshkit.plan.path_problem.PathProblem` in
+`sloshkit.io.command_requests.path_problem_request` (angular limits default to 180 deg/s and
+1000 deg/s^2 there; ``none`` lifts a limit), a pose file's own timing the reference candidate
+in `sloshkit.plan.path_problem.reference_timing`. With ``--robot`` (or ``--urdf``) every
 candidate is also solved for the arm's joints as ``sloshkit export`` solves them, with the
 export's ``--base-pose``/``--tool-offset``/``--tool-rotation`` (`sloshkit.export.path_robot`):
 a plan the arm cannot run is not feasible (joint speeds too high are slowed down uniformly and
@@ -15,7 +15,6 @@ verified again).
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -31,51 +30,16 @@ from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.options import print_json
 from sloshkit.errors import InputError
 from sloshkit.io.checks import naming
+from sloshkit.io.command_requests import path_problem_request
 from sloshkit.io.poses import read_pose_file
-from sloshkit.io.units import parse_bounded, parse_quantity
+from sloshkit.io.units import parse_quantity
 from sloshkit.io.waypoints import read_waypoints, require_path_work
 from sloshkit.model.modal import SloshModel
-from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
+from sloshkit.plan.path import path_from_poses, path_from_waypoints
 from sloshkit.plan.path_planner import PATH_METHODS, plan_path
+from sloshkit.plan.path_problem import reference_timing
 from sloshkit.plan.path_result import verify
-from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.timing import Timing
-
-#: Default ``--max-angular-velocity`` (module docstring).
-DEFAULT_ANGULAR_VELOCITY = "180deg/s"
-#: Default ``--max-angular-acceleration`` (module docstring).
-DEFAULT_ANGULAR_ACCELERATION = "1000deg/s^2"
-
-
-def _quantity(text: str | None, kind: str, name: str) -> float | None:
-    return None if text is None else parse_quantity(text, kind, name)
-
-
-def _angular(text: str | None, power: int, name: str) -> float | None:
-    """``90deg/s``, ``2rad/s``, ``300deg/s^2`` (``s**2``, ``s2`` too) or a bare number in
-    rad/s^power, in the strict unit grammar (`sloshkit.io.units`; finite, > 0); ``none``: no
-    limit."""
-    if text is None or text.strip().lower() == "none":
-        return None
-    kind = "angular_velocity" if power == 1 else "angular_acceleration"
-    try:
-        return parse_bounded(text, kind, name, 0.0, math.inf)
-    except InputError as error:
-        example = "90deg/s" if power == 1 else "300deg/s^2"
-        raise InputError(
-            name, text, f"must be an angular rate > 0, e.g. {example}", error.valid
-        ) from None
-
-
-def _reference_timing(time_s: Any, positions: Any, quaternions: Any, length_m: float) -> Timing:
-    """The pose file's own timing s(t), from its first moving sample (rest before dropped)."""
-    from scipy.spatial.transform import Rotation
-
-    s = generalised_arc_length(positions, Rotation.from_quat(quaternions))
-    start = max(int(np.argmax(s > 1e-9)) - 1, 0)
-    moving = np.concatenate(([True], np.diff(s[start:]) > 0.0))
-    t = (time_s[start:] - time_s[start])[moving]
-    return Timing.from_samples("pose file", t, s[start:][moving] / s[-1] * length_m)
 
 
 def run_path_plan(
@@ -123,7 +87,8 @@ def run_path_plan(
         ``--vmax``, ``--amax``, ``--jmax`` (required).
     max_angular_velocity, max_angular_acceleration : str or None
         ``--max-angular-velocity``, ``--max-angular-acceleration`` (None: the defaults
-        `DEFAULT_ANGULAR_VELOCITY`, `DEFAULT_ANGULAR_ACCELERATION`; ``none``: no limit).
+        `sloshkit.io.command_requests.DEFAULT_ANGULAR_VELOCITY` and
+        ``DEFAULT_ANGULAR_ACCELERATION``; ``none``: no limit).
     tilt_compensation : bool
         ``--tilt-compensation``: ``auto`` may tilt.
     max_tilt, tilt_centre : str
@@ -181,10 +146,9 @@ def run_path_plan(
     reference: Timing | None = None
     if poses_file is not None:
         trajectory = read_pose_file(poses_file, parameter="path_from_poses")
-        time_s = trajectory.time_s
         positions, quaternions = trajectory.position_m, trajectory.quaternion_xyzw
         path = path_from_poses(positions, quaternions, name=poses_file.name)
-        reference = _reference_timing(time_s, positions, quaternions, path.length_m)
+        reference = reference_timing(trajectory, path)
         # the planner samples (and may stretch) the file's own timing at the sample period
         require_samples(
             "path_from_poses",
@@ -208,35 +172,21 @@ def run_path_plan(
         path_file if path_file is not None else poses_file,
         sample_period,
     )
-    problem = PathProblem(
-        path=path,
-        machine=CartesianLimits(
-            parse_quantity(str(vmax), "velocity", "vmax"),
-            parse_quantity(str(amax), "acceleration", "amax"),
-            parse_quantity(str(jmax), "jerk", "jmax"),
-            _angular(
-                DEFAULT_ANGULAR_VELOCITY if max_angular_velocity is None else max_angular_velocity,
-                1,
-                "max_angular_velocity",
-            ),
-            _angular(
-                DEFAULT_ANGULAR_ACCELERATION
-                if max_angular_acceleration is None
-                else max_angular_acceleration,
-                2,
-                "max_angular_acceleration",
-            ),
-        ),
-        slosh=SpatialSloshLimits(
-            parse_quantity(str(max_slosh_height), "length", "max_slosh_height"),
-            parse_quantity(str(max_residual_height), "length", "max_residual_height"),
-            _quantity(max_surface_angle, "angle", "max_surface_angle"),
-            band,
-        ),
-        model=model,
-        sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
-        max_tilt_rad=parse_quantity(max_tilt, "angle", "max_tilt"),
-        tilt_centre_height_m=parse_quantity(tilt_centre, "length", "tilt_centre"),
+    problem = path_problem_request(
+        model,
+        path,
+        vmax=str(vmax),
+        amax=str(amax),
+        jmax=str(jmax),
+        max_angular_velocity=max_angular_velocity,
+        max_angular_acceleration=max_angular_acceleration,
+        max_slosh_height=str(max_slosh_height),
+        max_residual_height=str(max_residual_height),
+        max_surface_angle=max_surface_angle,
+        band=band,
+        sample_period=sample_period,
+        max_tilt=max_tilt,
+        tilt_centre=tilt_centre,
     )
     verifier = _robot_verifier(export_settings)
     with stderr.status("planning the path") as status:

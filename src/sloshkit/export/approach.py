@@ -16,8 +16,8 @@ from numpy.typing import NDArray
 from sloshkit.export.frames import Mounting
 from sloshkit.export.kinematics import Arm
 from sloshkit.model.modal import SloshModel
+from sloshkit.plan.path_problem import SpatialSloshLimits
 from sloshkit.plan.problem import SloshLimits
-from sloshkit.plan.spatial import SpatialSloshLimits
 
 FloatArray = NDArray[np.float64]
 

@@ -33,8 +33,9 @@ from sloshkit.export.roundtrip import (
     container_poses_in_path,
 )
 from sloshkit.model.modal import SloshModel
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.plan.path_problem import SpatialSloshLimits
 from sloshkit.plan.problem import SloshLimits
-from sloshkit.plan.spatial import SpatialSloshLimits
 from sloshkit.version import __version__
 
 FloatArray = NDArray[np.float64]
@@ -302,7 +303,9 @@ def export_plan(
 
     if fmt == "pose-csv":
         position, quaternion = matrices_to_poses(container)
-        placed = PoseStream(stream.time_s, position, quaternion, stream.source, stream.metadata)
+        placed = PoseStream(
+            PoseTrajectory(stream.time_s, position, quaternion), stream.source, stream.metadata
+        )
         pose_csv.write_pose_csv(path, placed, metadata)
     elif fmt == "cam-table":
         if stream.line is None:

@@ -21,7 +21,7 @@ from sloshkit.model.modal import SloshModel
 from sloshkit.plan.problem import SloshLimits
 
 if TYPE_CHECKING:  # the 3-D limits' module imports the path library: only where 3-D is used
-    from sloshkit.plan.spatial import SpatialSloshLimits
+    from sloshkit.plan.path_problem import SpatialSloshLimits
 
 FloatArray = NDArray[np.float64]
 
@@ -100,7 +100,7 @@ def limits_document(limits: SloshLimits | SpatialSloshLimits) -> dict[str, float
 
     Examples
     --------
-    >>> from sloshkit.plan.spatial import SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import SpatialSloshLimits
     >>> limits_document(SpatialSloshLimits(0.015, 0.002))["max_slosh_height_m"]
     0.015
     """
@@ -137,7 +137,7 @@ def limits_from_document(document: dict[str, Any]) -> SloshLimits | SpatialSlosh
     0.01
     """
     if "max_slosh_height_m" in document:
-        from sloshkit.plan.spatial import SpatialSloshLimits
+        from sloshkit.plan.path_problem import SpatialSloshLimits
 
         return SpatialSloshLimits(
             float(document["max_slosh_height_m"]),

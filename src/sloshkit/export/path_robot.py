@@ -25,13 +25,14 @@ from sloshkit.errors import InputError
 from sloshkit.export.frames import Mounting, invert, poses_to_matrices
 from sloshkit.export.ik import solve_joint_path
 from sloshkit.export.kinematics import Arm
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.plan.path_problem import PathProblem
 from sloshkit.plan.path_result import Verification, Verifier, verify
-from sloshkit.plan.spatial import PathProblem, PoseSamples
 
 FloatArray = NDArray[np.float64]
 
 
-def _joint_path(arm: Arm, mounting: Mounting, poses: PoseSamples) -> Any:
+def _joint_path(arm: Arm, mounting: Mounting, poses: PoseTrajectory) -> Any:
     """`sloshkit.export.ik.solve_joint_path` of the export's container poses, placed as
     ``sloshkit export`` places them, without its velocity check."""
     container = mounting.base_to_path[None] @ poses_to_matrices(
@@ -42,7 +43,7 @@ def _joint_path(arm: Arm, mounting: Mounting, poses: PoseSamples) -> Any:
     return solve_joint_path(unlimited, flange, poses.time_s)
 
 
-def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple[float, str]:
+def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseTrajectory) -> tuple[float, str]:
     """Largest joint speed over its limit along the export, and that joint's description.
 
     Parameters
@@ -51,7 +52,7 @@ def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple
         The arm (`sloshkit.export.kinematics.load_arm`).
     mounting : Mounting
         Container in the flange, path in the robot base (as ``sloshkit export`` uses it).
-    poses : PoseSamples
+    poses : PoseTrajectory
         The planner's export (container bottom centre, path frame).
 
     Returns
@@ -74,8 +75,8 @@ def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseSamples) -> tuple
     >>> arm = load_arm("ur5e")
     >>> t = np.arange(11) * 0.1
     >>> x = -0.4 + 0.1 * (t / t[-1]) ** 2 * (3 - 2 * t / t[-1])
-    >>> poses = PoseSamples(t, np.c_[x, -0.13 + 0 * t, 0.3 + 0 * t],
-    ...                     np.tile([0.0, 0.0, 0.0, 1.0], (t.size, 1)))
+    >>> poses = PoseTrajectory(t, np.c_[x, -0.13 + 0 * t, 0.3 + 0 * t],
+    ...                        np.tile([0.0, 0.0, 0.0, 1.0], (t.size, 1)))
     >>> ratio, joint = joint_speed_ratio(arm, Mounting(), poses)
     >>> ratio < 1.0
     True
@@ -120,7 +121,7 @@ class RobotVerifier:
     mounting: Mounting
     base: Verifier = verify
 
-    def __call__(self, problem: PathProblem, poses: PoseSamples, tilted: bool) -> Verification:
+    def __call__(self, problem: PathProblem, poses: PoseTrajectory, tilted: bool) -> Verification:
         """The base verification with ``joint speed ...`` or ``robot: ...`` violations added
         and ``required_stretch`` set to the joint-speed ratio."""
         found = self.base(problem, poses, tilted)
@@ -140,7 +141,7 @@ class RobotVerifier:
         }
         return dataclasses.replace(found, **changes)
 
-    def joint_positions(self, poses: PoseSamples) -> FloatArray:
+    def joint_positions(self, poses: PoseTrajectory) -> FloatArray:
         """The arm's joints at the poses (n, dof) [rad], as ``sloshkit export`` solves them;
         raises `sloshkit.errors.InputError` when the IK fails."""
         return np.asarray(_joint_path(self.arm, self.mounting, poses).position_rad)

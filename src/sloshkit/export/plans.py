@@ -6,9 +6,10 @@
   polynomial laws, C2 for all), so resampling keeps the samples' own derivatives.
 - A pose stream is the container's bottom-centre pose: CSV ``t,x,y,z,qx,qy,qz,qw`` (SI, world
   z up, quaternion container-to-world with the scalar last), optionally preceded by ``# key:
-  value`` metadata lines. Resampling interpolates the positions with a quintic spline at rest at
-  both ends (as `sloshkit.motion.laws.from_samples`) and the orientations with scipy's
-  ``RotationSpline`` (C2 in angular rate).
+  value`` metadata lines; in memory a `sloshkit.motion.poses.PoseTrajectory` with the
+  metadata beside it (`PoseStream`). Resampling interpolates the positions with a quintic
+  spline at rest at both ends (as `sloshkit.motion.laws.from_samples`) and the orientations
+  with scipy's ``RotationSpline`` (C2 in angular rate).
 
 A 1-D plan becomes a pose stream along ``axis`` (a unit vector of the path frame) with the
 container upright.
@@ -29,13 +30,12 @@ from scipy.interpolate import BPoly, make_interp_spline
 from scipy.spatial.transform import Rotation, RotationSpline
 
 from sloshkit.errors import InputError, require_positive
-from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
 
 FloatArray = NDArray[np.float64]
 
 LINE_COLUMNS = ("t_s", "position_m", "velocity_m_s", "acceleration_m_s2")
-POSE_COLUMNS = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
 
 
 @dataclass(frozen=True, eq=False)
@@ -124,13 +124,16 @@ class LinePlan:
 
 @dataclass(frozen=True, eq=False)
 class PoseStream:
-    """Container poses on a uniform grid: bottom centre [m] and orientation (scalar last).
+    """A 3-D plan for export: container poses on a uniform grid with the export's metadata.
+
+    The poses are one `sloshkit.motion.poses.PoseTrajectory` (bottom centre [m], orientation
+    container -> world, scalar last, validated and sign-continuous); beside it the stream keeps
+    what the exported files carry (``source``, ``metadata``) and, for a 1-D plan, the plan and
+    its direction (``line``, ``axis``), so that resampling uses the plan's own derivatives.
 
     Attributes
     ----------
-    time_s : (N,) sample times [s]
-    position_m : (N, 3) container bottom centre [m]
-    quaternion_xyzw : (N, 4) container-to-world rotation, scalar last, sign-continuous
+    poses : the sampled poses
     source : where the stream came from
     metadata : ``key: value`` pairs carried to the exported files
     line : the 1-D plan the stream was made from, if any
@@ -139,18 +142,33 @@ class PoseStream:
     Examples
     --------
     >>> import numpy as np
-    >>> stream = PoseStream(np.arange(3) * 0.5, np.zeros((3, 3)), np.tile([0, 0, 0, 1.0], (3, 1)))
+    >>> from sloshkit.motion.poses import PoseTrajectory
+    >>> upright = np.tile([0, 0, 0, 1.0], (3, 1))
+    >>> stream = PoseStream(PoseTrajectory(np.arange(3) * 0.5, np.zeros((3, 3)), upright))
     >>> stream.sample_period_s, stream.resample(0.25).time_s.tolist()
     (0.5, [0.0, 0.25, 0.5, 0.75, 1.0])
     """
 
-    time_s: FloatArray
-    position_m: FloatArray
-    quaternion_xyzw: FloatArray
+    poses: PoseTrajectory
     source: str = ""
     metadata: dict[str, str] = field(default_factory=dict)
     line: LinePlan | None = None
     axis: FloatArray | None = None
+
+    @property
+    def time_s(self) -> FloatArray:
+        """Sample times (N,) [s]."""
+        return self.poses.time_s
+
+    @property
+    def position_m(self) -> FloatArray:
+        """Container bottom centre (N, 3) [m]."""
+        return self.poses.position_m
+
+    @property
+    def quaternion_xyzw(self) -> FloatArray:
+        """Container-to-world rotation (N, 4), scalar last, sign-continuous."""
+        return self.poses.quaternion_xyzw
 
     @property
     def sample_period_s(self) -> float:
@@ -175,8 +193,10 @@ class PoseStream:
 
         Examples
         --------
+        >>> from sloshkit.motion.poses import PoseTrajectory
         >>> t = np.arange(8) * 0.1
-        >>> stream = PoseStream(t, np.zeros((8, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (8, 1)))
+        >>> upright = np.tile([0.0, 0.0, 0.0, 1.0], (8, 1))
+        >>> stream = PoseStream(PoseTrajectory(t, np.zeros((8, 3)), upright))
         >>> stream.resample(0.05).time_s.size
         15
         """
@@ -194,13 +214,10 @@ class PoseStream:
         rest = ([(1, np.zeros(3)), (2, np.zeros(3))], [(1, np.zeros(3)), (2, np.zeros(3))])
         spline = make_interp_spline(self.time_s, self.position_m, k=5, bc_type=rest)
         rotations = RotationSpline(self.time_s, Rotation.from_quat(self.quaternion_xyzw))
-        return PoseStream(
-            times,
-            np.asarray(spline(inside), dtype=float),
-            sign_continuous(rotations(inside).as_quat()),
-            self.source,
-            dict(self.metadata),
+        poses = PoseTrajectory(
+            times, np.asarray(spline(inside), dtype=float), rotations(inside).as_quat()
         )
+        return PoseStream(poses, self.source, dict(self.metadata))
 
 
 def line_to_poses(
@@ -236,10 +253,13 @@ def line_to_poses(
     direction = direction / norm
     start = np.zeros(3) if start_m is None else np.asarray(start_m, dtype=float)
     count = line.time_s.size
+    poses = PoseTrajectory(
+        line.time_s,
+        start + np.outer(line.position_m - line.position_m[0], direction),
+        np.tile([0.0, 0.0, 0.0, 1.0], (count, 1)),
+    )
     return PoseStream(
-        time_s=line.time_s,
-        position_m=start + np.outer(line.position_m - line.position_m[0], direction),
-        quaternion_xyzw=np.tile([0.0, 0.0, 0.0, 1.0], (count, 1)),
+        poses,
         source=line.source,
         metadata=dict(line.metadata if metadata is None else metadata),
         line=line,
@@ -308,13 +328,10 @@ def read_plan(path: str | Path) -> LinePlan | PoseStream:
     table = read_plan_file(path, parameter="plan")
     metadata = read_metadata(path)
     if not isinstance(table, dict):
-        return PoseStream(
-            _uniform_time(table.time_s, path),
-            table.position_m,
-            sign_continuous(table.quaternion_xyzw),
-            source=str(path),
-            metadata=metadata,
+        poses = PoseTrajectory(
+            _uniform_time(table.time_s, path), table.position_m, table.quaternion_xyzw, table.name
         )
+        return PoseStream(poses, source=str(path), metadata=metadata)
     time = _uniform_time(table["t_s"], path)
     position = table["position_m"]
     if "velocity_m_s" in table and "acceleration_m_s2" in table:

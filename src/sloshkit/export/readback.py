@@ -52,7 +52,8 @@ def rebuild_container_poses(
     >>> import tempfile, pathlib
     >>> from sloshkit.export.plans import PoseStream
     >>> t = np.arange(4) * 0.1
-    >>> stream = PoseStream(t, np.ones((4, 3)), np.tile([0, 0, 0, 1.0], (4, 1)))
+    >>> from sloshkit.motion.poses import PoseTrajectory
+    >>> stream = PoseStream(PoseTrajectory(t, np.ones((4, 3)), np.tile([0, 0, 0, 1.0], (4, 1))))
     >>> from sloshkit.export.formats.pose_csv import write_pose_csv
     >>> out = write_pose_csv(pathlib.Path(tempfile.mkdtemp()) / "p.csv", stream, {})
     >>> rebuild_container_poses("pose-csv", out, None, Mounting())[1][3, :3, 3]

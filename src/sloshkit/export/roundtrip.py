@@ -37,8 +37,8 @@ from sloshkit.errors import ValidityWarning
 from sloshkit.export.frames import invert, rotation_angle_rad
 from sloshkit.export.plans import PoseStream
 from sloshkit.model.modal import SloshModel
+from sloshkit.plan.path_problem import SpatialSloshLimits
 from sloshkit.plan.problem import SloshLimits
-from sloshkit.plan.spatial import SpatialSloshLimits
 from sloshkit.sim.simulate import simulate
 
 FloatArray = NDArray[np.float64]
@@ -345,7 +345,8 @@ def compare_spatial(
     >>> s = t / t[-1]
     >>> x = 0.2 * s**3 * (10 - 15 * s + 6 * s**2)
     >>> upright = np.tile([0, 0, 0, 1.0], (101, 1))
-    >>> plan = PoseStream(t, np.column_stack((x, 0 * x, 0 * x)), upright)
+    >>> from sloshkit.motion.poses import PoseTrajectory
+    >>> plan = PoseStream(PoseTrajectory(t, np.column_stack((x, 0 * x, 0 * x)), upright))
     >>> check = compare_spatial(model, plan, t, poses_to_matrices(plan.position_m, upright))
     >>> check.passed, check.max_position_error_m
     (True, 0.0)
@@ -392,7 +393,7 @@ def limit_checks(
 
     Examples
     --------
-    >>> from sloshkit.plan.spatial import SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import SpatialSloshLimits
     >>> limit_checks(SpatialSloshLimits(0.015, 0.002), {"peak_slosh_height_m": 0.0})
     [('peak_slosh_height_m', 0.015), ('residual_slosh_height_m', 0.002)]
     """

@@ -64,9 +64,9 @@ def applied_motion_request(
     (2.0, True)
     """
     from sloshkit.calibration import AppliedMotion, applied_from_poses  # not start-up's
-    from sloshkit.calibration.applied import POSE_COLUMNS
     from sloshkit.io.motions import read_motion_file
     from sloshkit.io.poses import read_pose_file
+    from sloshkit.motion.poses import POSE_COLUMNS
 
     with naming("motion_file", path):
         header, data = read_table(path)

@@ -1,8 +1,8 @@
 """Requests of the command line built from its option values: the model of the model options
-or of a model file, a move, the simulation, the limits of a plan, the 1-D plan problem and the
-grid of a sweep (a calibration's record: `sloshkit.io.calibration_requests`). The options
-themselves (names, help, defaults) live in `sloshkit.cli`; what they build is written here,
-on `sloshkit.io.requests`."""
+or of a model file, a move, the simulation, the limits of a plan, the 1-D and the 3-D plan
+problems and the grid of a sweep (a calibration's record: `sloshkit.io.calibration_requests`).
+The options themselves (names, help, defaults) live in `sloshkit.cli`; what they build is
+written here, on `sloshkit.io.requests`."""
 
 from __future__ import annotations
 
@@ -16,16 +16,30 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.io.models import read_model_file
-from sloshkit.io.requests import check_bare_length, fraction_request, options_model_request
+from sloshkit.io.requests import (
+    angular_rate_request,
+    check_bare_length,
+    fraction_request,
+    options_model_request,
+)
 from sloshkit.io.units import parse_quantity, parse_range
 from sloshkit.model.modal import SloshModel
 
 FloatArray = NDArray[np.float64]
 
+#: Default ``--max-angular-velocity`` of a 3-D plan: 180 deg/s, the joint speed limit of the
+#: UR5e's wrist joints and of most 5-10 kg collaborative arms (a container turning faster needs
+#: at least one joint faster than that).
+DEFAULT_ANGULAR_VELOCITY = "180deg/s"
+#: Default ``--max-angular-acceleration`` of a 3-D plan: 1000 deg/s^2 (that speed in 0.18 s).
+DEFAULT_ANGULAR_ACCELERATION = "1000deg/s^2"
+
 if typing.TYPE_CHECKING:  # imported where used: the simulation and planning stacks are not
     # start-up's
     from sloshkit.model.profile import Container
     from sloshkit.motion.profile import Motion
+    from sloshkit.plan.path import Path
+    from sloshkit.plan.path_problem import PathProblem
     from sloshkit.plan.problem import PlanProblem, SloshLimits
     from sloshkit.sim.response import SloshResponse
 
@@ -363,6 +377,97 @@ def line_plan_request(
         max_duration_s=None
         if max_duration is None
         else parse_quantity(max_duration, "time", "max_duration"),
+    )
+
+
+def path_problem_request(
+    slosh_model: SloshModel,
+    path: Path,
+    *,
+    vmax: str,
+    amax: str,
+    jmax: str,
+    max_angular_velocity: str | None,
+    max_angular_acceleration: str | None,
+    max_slosh_height: str,
+    max_residual_height: str,
+    max_surface_angle: str | None,
+    band: float,
+    sample_period: str,
+    max_tilt: str,
+    tilt_centre: str,
+) -> PathProblem:
+    """The 3-D plan problem of ``sloshkit plan --path/--path-from-poses`` (text with units in,
+    SI out).
+
+    Parameters
+    ----------
+    slosh_model : SloshModel
+        The equivalent model.
+    path : Path
+        The geometry (`sloshkit.plan.path`).
+    vmax, amax, jmax : str
+        The Cartesian limits.
+    max_angular_velocity, max_angular_acceleration : str or None
+        The angular limits (`sloshkit.io.requests.angular_rate_request`; None: the defaults
+        `DEFAULT_ANGULAR_VELOCITY`, `DEFAULT_ANGULAR_ACCELERATION`; ``none``: no limit).
+    max_slosh_height, max_residual_height : str
+        The slosh-height limits.
+    max_surface_angle : str or None
+        An optional limit on the first mode's surface angle.
+    band : float
+        The frequency band as a fraction.
+    sample_period : str
+        The controller's sample period.
+    max_tilt, tilt_centre : str
+        The largest tilt and the height of the tilt's rotation centre.
+
+    Returns
+    -------
+    PathProblem
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
+    >>> problem = path_problem_request(None, path, vmax="2m/s", amax="10m/s^2",
+    ...     jmax="100m/s^3", max_angular_velocity=None, max_angular_acceleration="none",
+    ...     max_slosh_height="15mm", max_residual_height="2mm", max_surface_angle=None,
+    ...     band=0.1, sample_period="4ms", max_tilt="30deg", tilt_centre="0mm")
+    >>> round(problem.machine.max_angular_velocity_rad_s, 4), problem.slosh.max_height_m
+    (3.1416, 0.015)
+    """
+    from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+
+    angular_velocity = (
+        DEFAULT_ANGULAR_VELOCITY if max_angular_velocity is None else max_angular_velocity
+    )
+    angular_acceleration = (
+        DEFAULT_ANGULAR_ACCELERATION
+        if max_angular_acceleration is None
+        else max_angular_acceleration
+    )
+    return PathProblem(
+        path=path,
+        machine=CartesianLimits(
+            parse_quantity(vmax, "velocity", "vmax"),
+            parse_quantity(amax, "acceleration", "amax"),
+            parse_quantity(jmax, "jerk", "jmax"),
+            angular_rate_request(angular_velocity, 1, "max_angular_velocity"),
+            angular_rate_request(angular_acceleration, 2, "max_angular_acceleration"),
+        ),
+        slosh=SpatialSloshLimits(
+            parse_quantity(max_slosh_height, "length", "max_slosh_height"),
+            parse_quantity(max_residual_height, "length", "max_residual_height"),
+            None
+            if max_surface_angle is None
+            else parse_quantity(max_surface_angle, "angle", "max_surface_angle"),
+            band,
+        ),
+        model=slosh_model,
+        sample_period_s=parse_quantity(sample_period, "time", "sample_period"),
+        max_tilt_rad=parse_quantity(max_tilt, "angle", "max_tilt"),
+        tilt_centre_height_m=parse_quantity(tilt_centre, "length", "tilt_centre"),
     )
 
 

@@ -26,12 +26,12 @@ from sloshkit.io.checks import (
 )
 from sloshkit.io.tables import base_name, read_table, unit_from_name
 from sloshkit.io.units import parse_quantity
-from sloshkit.motion.poses import PoseTrajectory, poses_from_rpy
+from sloshkit.motion.poses import POSE_COLUMNS, PoseTrajectory, poses_from_rpy
 
 FloatArray = NDArray[np.float64]
 
 _TIME_NAMES = ("t", "time")
-_QUATERNION = ("qx", "qy", "qz", "qw")
+_QUATERNION = POSE_COLUMNS[4:]
 _RPY = ("roll", "pitch", "yaw")
 
 #: Largest position a pose file may hold [m]: beyond it the units are surely wrong, and the

@@ -5,13 +5,14 @@ scenario tables only name their values.
 
 from __future__ import annotations
 
+import math
 import typing
 import warnings
 from pathlib import Path
 
 from sloshkit.errors import InputError, ValidityWarning
 from sloshkit.io.profiles import read_profile_file
-from sloshkit.io.units import parse_quantity
+from sloshkit.io.units import parse_bounded, parse_quantity
 from sloshkit.model.catalogue import catalogue_container
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import Liquid, get_liquid
@@ -317,6 +318,42 @@ def fraction_request(text: str | float, parameter: str) -> float:
         return float(stripped.rstrip("%")) / (100.0 if stripped.endswith("%") else 1.0)
     except ValueError:
         raise InputError(parameter, text, "must be a fraction or a percentage, e.g. 10%") from None
+
+
+def angular_rate_request(text: str | None, power: int, parameter: str) -> float | None:
+    """An angular speed (``power=1``) or acceleration (``power=2``) limit: ``90deg/s``,
+    ``2rad/s``, ``300deg/s^2`` (``s**2``, ``s2`` too) or a bare number in rad/s^power, in the
+    strict unit grammar (`sloshkit.io.units`; finite, > 0); None or ``none``: no limit.
+
+    Parameters
+    ----------
+    text : str or None
+        The limit.
+    power : int
+        1 for rad/s, 2 for rad/s^2.
+    parameter : str
+        Its name in the error message.
+
+    Returns
+    -------
+    float or None
+        The limit [rad/s or rad/s^2], None for no limit.
+
+    Examples
+    --------
+    >>> round(angular_rate_request("90deg/s", 1, "w"), 6), angular_rate_request("none", 2, "a")
+    (1.570796, None)
+    """
+    if text is None or text.strip().lower() == "none":
+        return None
+    kind = "angular_velocity" if power == 1 else "angular_acceleration"
+    try:
+        return parse_bounded(text, kind, parameter, 0.0, math.inf)
+    except InputError as error:
+        example = "90deg/s" if power == 1 else "300deg/s^2"
+        raise InputError(
+            parameter, text, f"must be an angular rate > 0, e.g. {example}", error.valid
+        ) from None
 
 
 def check_bare_length(text: str | None, value_m: float, parameter: str) -> None:

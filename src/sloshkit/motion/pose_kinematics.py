@@ -80,6 +80,10 @@ SAVGOL_DEGREE = 4
 class PoseKinematics:
     """Smoothed pose, velocities and accelerations on a uniform time grid (SI).
 
+    The time derivatives of a `sloshkit.motion.poses.PoseTrajectory` (`pose_kinematics`, or
+    `PoseTrajectory.kinematics`), what the 3-D drive (`sloshkit.sim.spatial_drive`) and the
+    CFD excitation read; the poses themselves stay in the trajectory.
+
     Attributes
     ----------
     time_s : uniform times (M,) [s]

@@ -9,6 +9,13 @@ The container is assumed at rest before the first and after the last pose (rest-
 for every 1-D law). Kinematics (velocity, accelerations, angular velocity and acceleration)
 come from `PoseTrajectory.kinematics`, see `sloshkit.motion.pose_kinematics`.
 
+`PoseTrajectory` is the one type of sampled poses: pose files read into it
+(`sloshkit.io.poses`), the 3-D simulation takes it (`sloshkit.sim.spatial`), the 3-D planner
+exports it (`sloshkit.plan.path_problem.sample_path`), and the export's 3-D plan
+(`sloshkit.export.plans.PoseStream`) holds one with the exported files' metadata beside it.
+`sloshkit.motion.pose_kinematics.PoseKinematics` is not a second container of the poses but
+their time derivatives on a uniform grid, computed from a `PoseTrajectory`.
+
 References
 ----------
 - J. Diebel, "Representing attitude: Euler angles, unit quaternions, and rotation vectors",
@@ -39,6 +46,8 @@ FloatArray = NDArray[np.float64]
 
 #: Quaternions whose norm differs from 1 by more than this are rejected (not renormalised).
 QUATERNION_NORM_TOLERANCE = 1e-3
+#: The columns of a pose file, in order: time [s], bottom centre [m], quaternion (scalar last).
+POSE_COLUMNS: tuple[str, ...] = ("t", "x", "y", "z", "qx", "qy", "qz", "qw")
 
 
 @dataclass(frozen=True, eq=False)
@@ -130,6 +139,21 @@ class PoseTrajectory:
     def rotation(self) -> Rotation:
         """Orientations as one `scipy.spatial.transform.Rotation` (container -> world)."""
         return Rotation.from_quat(self.quaternion_xyzw)
+
+    def columns(self) -> dict[str, FloatArray]:
+        """The `POSE_COLUMNS` of a pose file, ``t,x,y,z,qx,qy,qz,qw`` (SI; `sloshkit.io.poses`).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> upright = np.tile([0, 0, 0, 1.0], (2, 1))
+        >>> poses = PoseTrajectory(np.array([0.0, 0.1]), np.zeros((2, 3)), upright)
+        >>> list(poses.columns()), poses.columns()["qw"].tolist()
+        (['t', 'x', 'y', 'z', 'qx', 'qy', 'qz', 'qw'], [1.0, 1.0])
+        """
+        position = dict(zip(POSE_COLUMNS[1:4], self.position_m.T, strict=True))
+        quaternion = dict(zip(POSE_COLUMNS[4:], self.quaternion_xyzw.T, strict=True))
+        return {POSE_COLUMNS[0]: self.time_s, **position, **quaternion}
 
     @property
     def axis_world(self) -> FloatArray:

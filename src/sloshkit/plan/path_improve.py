@@ -31,8 +31,10 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path_ladder import targeted
 from sloshkit.plan.path_limits import machine_violations
+from sloshkit.plan.path_problem import SEARCH_MARGIN, PathProblem
 from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import (
@@ -45,7 +47,6 @@ from sloshkit.plan.path_search import (
     warp_search,
 )
 from sloshkit.plan.path_slp import SLP_KNOTS, slp_search
-from sloshkit.plan.spatial import SEARCH_MARGIN, PathProblem, PoseSamples
 from sloshkit.plan.timing import Timing
 
 #: The screened search chains `warped_candidates` runs from every verified seed, each search
@@ -71,12 +72,12 @@ Seeded = tuple[PathCandidate, Timing]
 #: Largest number of steps (each a linear screen or a nonlinear simulation) of one polishing.
 POLISH_SCREENS = 400
 
-Transform = Callable[[PoseSamples], PoseSamples] | None
+Transform = Callable[[PoseTrajectory], PoseTrajectory] | None
 
 
 def _exporter(
     problem: PathProblem, timing: Timing, transform: Transform
-) -> Callable[[float], PoseSamples]:
+) -> Callable[[float], PoseTrajectory]:
     """The export of ``timing`` stretched by a factor, through ``transform`` when given."""
     plain = stretcher(problem, timing)
     if transform is None:
@@ -109,10 +110,10 @@ def _polished(
     candidate, timing = seed
     tilted = transform is not None
 
-    def machine(poses: PoseSamples) -> bool:
+    def machine(poses: PoseTrajectory) -> bool:
         return not machine_violations(problem, poses, tilted)
 
-    def reference(poses: PoseSamples) -> tuple[float, float]:
+    def reference(poses: PoseTrajectory) -> tuple[float, float]:
         check = verify(problem, poses, tilted)
         return check.peak_height_m, check.residual_height_m
 
@@ -173,7 +174,7 @@ def _listed(found: Seeded | None) -> list[Seeded]:
 def _chain(
     problem: PathProblem,
     seed: Timing,
-    passes: Callable[[PoseSamples], bool],
+    passes: Callable[[PoseTrajectory], bool],
     chain: tuple[str, ...],
     budget: int,
     transform: Transform = None,
@@ -183,7 +184,7 @@ def _chain(
     screens = 0
     timing = seed
 
-    def screened(poses: PoseSamples) -> bool:
+    def screened(poses: PoseTrajectory) -> bool:
         return passes(poses if transform is None else transform(poses))
 
     for search in chain:
@@ -240,7 +241,7 @@ def _screened(
             problem, slosh=replace(limits, max_height_m=height, max_residual_height_m=residual)
         )
 
-        def passes(poses: PoseSamples, tight: PathProblem = tight) -> bool:
+        def passes(poses: PoseTrajectory, tight: PathProblem = tight) -> bool:
             return screen_ok(tight, linear_screen(models, poses)) and not machine_violations(
                 problem, poses, tilted
             )
@@ -329,7 +330,7 @@ def warped_candidates(
         ``polish`` on their own budget (`LADDER_SAMPLE_BUDGET`, and what the searches above
         left).
     transform : callable, optional
-        PoseSamples -> PoseSamples turning a sampled timing into the export (e.g. ``tilt``'s
+        PoseTrajectory -> PoseTrajectory turning a sampled timing into the export (e.g. ``tilt``'s
         tilt compensation, `sloshkit.plan.path_tilt`): every search screens, and every
         verification checks, the transformed poses, with the tilt limit when given.
     budget : float, optional

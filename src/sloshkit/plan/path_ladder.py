@@ -21,13 +21,14 @@ import time
 from collections.abc import Sequence
 from dataclasses import replace
 
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.shaping import Shaper
 from sloshkit.plan.path_limits import machine_stretch
+from sloshkit.plan.path_problem import PathProblem
 from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
 from sloshkit.plan.retime import ShaperFactory, family_member
-from sloshkit.plan.spatial import PathProblem, PoseSamples
 from sloshkit.plan.timing import Timing
 
 #: The ladder of internal targets (fractions of the peak and of the residual limit) under
@@ -170,7 +171,7 @@ def ladder_seeds(
     for target in ladder:
         tight = targeted(problem, target)
 
-        def passes(poses: PoseSamples, tight: PathProblem = tight) -> bool:
+        def passes(poses: PoseTrajectory, tight: PathProblem = tight) -> bool:
             return screen_ok(tight, linear_screen(models, poses))
 
         found = fastest_capped(tight, passes, shaper)

@@ -8,17 +8,18 @@ import math
 
 import numpy as np
 
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.quaternions import conjugate, hamilton_product, rotated_z_axis, rotation_vector
 from sloshkit.plan.path import Path
-from sloshkit.plan.spatial import PathProblem, PoseSamples
+from sloshkit.plan.path_problem import PathProblem
 
 
-def kinematics(poses: PoseSamples) -> dict[str, float]:
+def kinematics(poses: PoseTrajectory) -> dict[str, float]:
     """Peaks of the sampled export by finite differences (the ends held at rest).
 
     Parameters
     ----------
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
 
     Returns
@@ -30,8 +31,8 @@ def kinematics(poses: PoseSamples) -> dict[str, float]:
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, PoseSamples,
-    ...                                   SpatialSloshLimits, sample_path)
+    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    ...                                         SpatialSloshLimits, sample_path)
     >>> from sloshkit.motion.laws import s_curve
     >>> poses = sample_path(path_from_waypoints([[0, 0, 0], [0.5, 0, 0]]),
     ...                     s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
@@ -60,14 +61,14 @@ def kinematics(poses: PoseSamples) -> dict[str, float]:
     }
 
 
-def machine_violations(problem: PathProblem, poses: PoseSamples, tilted: bool) -> list[str]:
+def machine_violations(problem: PathProblem, poses: PoseTrajectory, tilted: bool) -> list[str]:
     """Names and values of the Cartesian, angular and tilt limits the export breaks.
 
     Parameters
     ----------
     problem : PathProblem
         The limits.
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
     tilted : bool
         Whether the tilt limit applies.
@@ -80,8 +81,8 @@ def machine_violations(problem: PathProblem, poses: PoseSamples, tilted: bool) -
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, PoseSamples,
-    ...                                   SpatialSloshLimits, sample_path)
+    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    ...                                         SpatialSloshLimits, sample_path)
     >>> from sloshkit.motion.laws import s_curve
     >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
     >>> problem = PathProblem(path, CartesianLimits(2.0, 1.0, 100.0),
@@ -123,7 +124,7 @@ def machine_violations(problem: PathProblem, poses: PoseSamples, tilted: bool) -
     ]
 
 
-def machine_stretch(problem: PathProblem, poses: PoseSamples) -> float:
+def machine_stretch(problem: PathProblem, poses: PoseTrajectory) -> float:
     """Smallest uniform stretch in time c >= 1 after which the export meets the Cartesian and
     angular limits (speeds scale as 1/c, accelerations 1/c^2, jerks 1/c^3).
 
@@ -131,7 +132,7 @@ def machine_stretch(problem: PathProblem, poses: PoseSamples) -> float:
     ----------
     problem : PathProblem
         The limits.
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
 
     Returns
@@ -141,8 +142,8 @@ def machine_stretch(problem: PathProblem, poses: PoseSamples) -> float:
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, PoseSamples,
-    ...                                   SpatialSloshLimits, sample_path)
+    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    ...                                         SpatialSloshLimits, sample_path)
     >>> from sloshkit.motion.laws import s_curve
     >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
     >>> problem = PathProblem(path, CartesianLimits(0.5, 10.0, 100.0),
@@ -168,14 +169,14 @@ def machine_stretch(problem: PathProblem, poses: PoseSamples) -> float:
     return float(max(1.0, *needs))
 
 
-def path_deviation(path: Path, poses: PoseSamples) -> float:
+def path_deviation(path: Path, poses: PoseTrajectory) -> float:
     """Largest distance [m] of the exported positions from the path (`Path.distance_to`).
 
     Parameters
     ----------
     path : Path
         The geometry.
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
 
     Returns
@@ -185,11 +186,11 @@ def path_deviation(path: Path, poses: PoseSamples) -> float:
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, PoseSamples,
-    ...                                   SpatialSloshLimits, sample_path)
+    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    ...                                         SpatialSloshLimits, sample_path)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
-    >>> poses = PoseSamples(np.arange(2) * 0.1, np.array([[0.1, 0.002, 0], [0.3, 0, 0]]),
-    ...                     np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)))
+    >>> poses = PoseTrajectory(np.arange(2) * 0.1, np.array([[0.1, 0.002, 0], [0.3, 0, 0]]),
+    ...                        np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)))
     >>> round(path_deviation(path, poses), 6)
     0.002
     """

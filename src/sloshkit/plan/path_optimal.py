@@ -142,16 +142,13 @@ def _joint_map(problem: Any, check: Any) -> _JointMap | None:
     JointSpeedCheck`) every `JOINT_GRID_M` (at least 50 points), or None when its IK fails
     (the verification then reports why)."""
     from sloshkit.errors import InputError
-    from sloshkit.motion.quaternions import sign_continuous
-    from sloshkit.plan.spatial import PoseSamples
+    from sloshkit.motion.poses import PoseTrajectory
 
     length = problem.path.length_m
     count = max(50, math.ceil(length / JOINT_GRID_M) + 1)
     s = np.linspace(0.0, length, count)
     rotation = problem.path.orientation(s)
-    poses = PoseSamples(
-        np.arange(count) * 1e-3, problem.path.position(s), sign_continuous(rotation.as_quat())
-    )
+    poses = PoseTrajectory(np.arange(count) * 1e-3, problem.path.position(s), rotation.as_quat())
     try:
         joints = check.joint_positions(poses)
     except InputError:
@@ -1239,9 +1236,9 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     import time
     from dataclasses import replace
 
+    from sloshkit.plan.path_problem import sample_path
     from sloshkit.plan.path_result import JointSpeedCheck, PathCandidate, verified_candidate
     from sloshkit.plan.retime import capped_timing
-    from sloshkit.plan.spatial import sample_path
     from sloshkit.plan.timing import Timing
 
     started = time.perf_counter()
@@ -1355,14 +1352,13 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
 
 
 def _export_poses(problem: Any, samples: _Samples) -> Any:
-    """The samples as the export (`sloshkit.plan.spatial.PoseSamples`, quaternions
-    sign-continuous)."""
-    from sloshkit.motion.quaternions import sign_continuous
-    from sloshkit.plan.spatial import PoseSamples
+    """The samples as the export (`sloshkit.motion.poses.PoseTrajectory`, which makes the
+    quaternions sign-continuous)."""
+    from sloshkit.motion.poses import PoseTrajectory
 
     position, rotation = _poses_of(problem.path, samples, problem.tilt_centre_height_m)
     time_s = np.arange(samples.s_m.size) * problem.sample_period_s
-    return PoseSamples(time_s, position, sign_continuous(rotation.as_quat()))
+    return PoseTrajectory(time_s, position, rotation.as_quat())
 
 
 def _next_limit(

@@ -39,9 +39,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path_improve import fastest_improved, ladder_affordable
 from sloshkit.plan.path_ladder import TARGET_LADDER, ladder_seeds, method_timing, plan_uniform
 from sloshkit.plan.path_limits import machine_violations, path_deviation
+from sloshkit.plan.path_problem import PathProblem, sample_path
 from sloshkit.plan.path_result import (
     PathCandidate,
     PathPlanResult,
@@ -57,7 +59,6 @@ from sloshkit.plan.retime import (
     axis_shaped_samples,
     first_mode_shaper,
 )
-from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
 from sloshkit.plan.timing import Timing
 from sloshkit.plan.transcription import transcribed_timing
 
@@ -99,10 +100,10 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
     shaper = first_mode_shaper(problem)
     models = problem.models()
 
-    def sampler(member: Timing) -> PoseSamples:
+    def sampler(member: Timing) -> PoseTrajectory:
         return axis_shaped_samples(problem.path, member, shaper, problem.sample_period_s)
 
-    def passes(poses: PoseSamples) -> bool:
+    def passes(poses: PoseTrajectory) -> bool:
         return (
             screen_ok(problem, linear_screen(models, poses))
             and not machine_violations(problem, poses, False)
@@ -114,7 +115,7 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
         return _failed("shaped", started, "no per-axis shaped timing meets the limits")
     cap, member = found
 
-    def poses_for(factor: float) -> PoseSamples:
+    def poses_for(factor: float) -> PoseTrajectory:
         return sampler(member.stretched(factor))
 
     return verified_candidate(
@@ -360,7 +361,7 @@ def _example_problem() -> PathProblem:
     from sloshkit.model.liquids import get_liquid
     from sloshkit.model.modal import equivalent_model
     from sloshkit.plan.path import path_from_waypoints
-    from sloshkit.plan.spatial import CartesianLimits, SpatialSloshLimits
+    from sloshkit.plan.path_problem import CartesianLimits, SpatialSloshLimits
 
     model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     return PathProblem(

@@ -19,14 +19,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path_limits import (
     kinematics,
     machine_stretch,
     machine_violations,
     path_deviation,
 )
+from sloshkit.plan.path_problem import PathProblem
 from sloshkit.plan.path_screen import linear_screen
-from sloshkit.plan.spatial import PathProblem, PoseSamples
 from sloshkit.results import ResultMixin
 
 FloatArray = NDArray[np.float64]
@@ -91,7 +92,7 @@ class Verification:
         return not self.violations
 
 
-def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Verification:
+def verify(problem: PathProblem, poses: PoseTrajectory, tilted: bool = False) -> Verification:
     """Simulate the export with the nonlinear 3-D model (all modes, every band frequency) and
     check the slosh, Cartesian, angular and tilt limits.
 
@@ -105,7 +106,7 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
     ----------
     problem : PathProblem
         Limits and model.
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
     tilted : bool
         Whether the tilt limit applies.
@@ -122,7 +123,7 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
     --------
     >>> from sloshkit.plan.path_planner import _example_problem
     >>> from sloshkit.plan.retime import family_member
-    >>> from sloshkit.plan.spatial import sample_path
+    >>> from sloshkit.plan.path_problem import sample_path
     >>> problem = _example_problem()
     >>> poses = sample_path(problem.path, family_member(problem, 10.0, None), 0.01)
     >>> verify(problem, poses).violations[0][:17]
@@ -134,7 +135,6 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
     from sloshkit.motion.pose_kinematics import DEFAULT_CUTOFF_HZ
     from sloshkit.sim.spatial import simulate_spatial
 
-    trajectory = poses.to_pose_trajectory()
     peak = residual = angle = 0.0
     series: tuple[FloatArray, FloatArray] = (np.empty(0), np.empty(0))
     models = problem.models()
@@ -142,7 +142,7 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
         for cutoff in (None, DEFAULT_CUTOFF_HZ):
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)
-                response = simulate_spatial(model, trajectory, nonlinear=True, cutoff_hz=cutoff)
+                response = simulate_spatial(model, poses, nonlinear=True, cutoff_hz=cutoff)
             peak = max(peak, float(response.peak_slosh_height_m))
             residual = max(residual, float(response.residual_slosh_height_m))
             angle = max(angle, float(response.peak_angle_rad))
@@ -175,7 +175,7 @@ def verify(problem: PathProblem, poses: PoseSamples, tilted: bool = False) -> Ve
     )
 
 
-Verifier = Callable[[PathProblem, PoseSamples, bool], Verification]
+Verifier = Callable[[PathProblem, PoseTrajectory, bool], Verification]
 
 
 @runtime_checkable
@@ -184,7 +184,7 @@ class JointSpeedCheck(Protocol):
     joints along the path (`sloshkit.export.path_robot.RobotVerifier`): the program then
     limits the joint speeds itself instead of leaving them to a uniform stretch."""
 
-    def joint_positions(self, poses: PoseSamples) -> FloatArray:
+    def joint_positions(self, poses: PoseTrajectory) -> FloatArray:
         """The arm's joints (n, dof) [rad] at the poses, as the export solves them; raises
         `sloshkit.errors.InputError` when the IK fails."""
         ...
@@ -203,7 +203,7 @@ class PathCandidate:
     ----------
     method : str
         ``retime``, ``shaped``, ``tilt`` or ``uniform``.
-    poses : PoseSamples or None
+    poses : PoseTrajectory or None
         The sampled export (None when the method found nothing).
     verification : Verification or None
         Its verification.
@@ -221,7 +221,7 @@ class PathCandidate:
     """
 
     method: str
-    poses: PoseSamples | None
+    poses: PoseTrajectory | None
     verification: Verification | None
     compute_time_s: float
     message: str
@@ -271,7 +271,7 @@ class PathPlanResult(ResultMixin):
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(1.0, 5.0, 50.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None)
@@ -316,7 +316,7 @@ class PathPlanResult(ResultMixin):
 def verified_candidate(
     method: str,
     problem: PathProblem,
-    poses_for: Callable[[float], PoseSamples],
+    poses_for: Callable[[float], PoseTrajectory],
     factor: float,
     started: float,
     verifier: Verifier,
@@ -358,7 +358,7 @@ def verified_candidate(
     >>> from sloshkit.plan.path import path_from_waypoints
     >>> from sloshkit.plan.path_search import stretcher
     >>> from sloshkit.plan.retime import family_member
-    >>> from sloshkit.plan.spatial import CartesianLimits, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
     >>> problem = PathProblem(path, CartesianLimits(2.0, 10.0, 100.0),
@@ -394,7 +394,7 @@ def _stretchable(check: Verification) -> bool:
     return all(v.startswith(STRETCHABLE) for v in check.violations)
 
 
-def _required_stretch(problem: PathProblem, poses: PoseSamples, check: Verification) -> float:
+def _required_stretch(problem: PathProblem, poses: PoseTrajectory, check: Verification) -> float:
     """Uniform stretch c >= 1 that brings every stretchable peak within its limit: slosh
     heights taken as quadratic in the accelerations (c^-2), speeds c^-1, accelerations c^-2,
     jerks c^-3, joint speeds as the verifier estimates (``required_stretch``)."""
@@ -407,7 +407,7 @@ def _required_stretch(problem: PathProblem, poses: PoseSamples, check: Verificat
     return max(math.sqrt(excess), machine_stretch(problem, poses), check.required_stretch)
 
 
-def linear_verifier(problem: PathProblem, poses: PoseSamples, tilted: bool) -> Verification:
+def linear_verifier(problem: PathProblem, poses: PoseTrajectory, tilted: bool) -> Verification:
     """A verification with the linear screen instead of the nonlinear model (for tests and
     examples of the search logic only; the CLI never calls a plan feasible with it).
 
@@ -415,7 +415,7 @@ def linear_verifier(problem: PathProblem, poses: PoseSamples, tilted: bool) -> V
     ----------
     problem : PathProblem
         Limits and model.
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
     tilted : bool
         Whether the tilt limit applies.
@@ -431,7 +431,7 @@ def linear_verifier(problem: PathProblem, poses: PoseSamples, tilted: bool) -> V
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion.laws import s_curve
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, SpatialSloshLimits, sample_path
+    >>> from sloshkit.plan.path_problem import CartesianLimits, SpatialSloshLimits, sample_path
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
     >>> problem = PathProblem(path, CartesianLimits(2.0, 10.0, 100.0),

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.quaternions import (
     conjugate,
     hamilton_product,
@@ -27,13 +28,7 @@ from sloshkit.motion.quaternions import (
     rotated_z_axis,
     rotation_vector,
 )
-from sloshkit.plan.spatial import (
-    GRAVITY,
-    SEARCH_MARGIN,
-    PathProblem,
-    PoseSamples,
-    second_difference,
-)
+from sloshkit.plan.path_problem import GRAVITY, SEARCH_MARGIN, PathProblem, second_difference
 
 FloatArray = NDArray[np.float64]
 
@@ -62,7 +57,7 @@ class ScreenResult:
     peak_angle_rad: float
 
 
-def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
+def linear_screen(models: list[Any], poses: PoseTrajectory) -> ScreenResult:
     """Slosh of the sampled ``poses`` by the linear spherical-pendulum model (module docstring).
 
     The liquid starts in equilibrium with the first pose; the residual height is the bound
@@ -73,7 +68,7 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
     ----------
     models : list of SloshModel
         The models of the band (`PathProblem.models`).
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
 
     Returns
@@ -89,8 +84,8 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, PoseSamples,
-    ...                                   SpatialSloshLimits, sample_path)
+    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    ...                                         SpatialSloshLimits, sample_path)
     >>> from sloshkit.motion.laws import s_curve
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
@@ -110,7 +105,7 @@ def linear_screen(models: list[Any], poses: PoseSamples) -> ScreenResult:
 
 
 def screen_outputs(
-    models: list[Any], poses: PoseSamples
+    models: list[Any], poses: PoseTrajectory
 ) -> list[tuple[FloatArray, float, float, FloatArray]]:
     """The linear screen's outputs per model of the band (`linear_screen` takes their worst).
 
@@ -118,7 +113,7 @@ def screen_outputs(
     ----------
     models : list of SloshModel
         The models of the band (`PathProblem.models`).
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
 
     Returns
@@ -136,7 +131,7 @@ def screen_outputs(
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import sample_path
+    >>> from sloshkit.plan.path_problem import sample_path
     >>> from sloshkit.motion.laws import s_curve
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
@@ -208,8 +203,8 @@ def screen_ok(problem: PathProblem, result: ScreenResult, margin: float = SEARCH
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import (CartesianLimits, PathProblem, PoseSamples,
-    ...                                   SpatialSloshLimits, sample_path)
+    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    ...                                         SpatialSloshLimits, sample_path)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None)

@@ -20,18 +20,18 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.motion.shaping import Shaper
+from sloshkit.plan.path_problem import PathProblem, sample_path
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.retime import ShaperFactory, family_member
-from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
 from sloshkit.plan.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
 
 
-def stretcher(problem: PathProblem, timing: Timing) -> Callable[[float], PoseSamples]:
+def stretcher(problem: PathProblem, timing: Timing) -> Callable[[float], PoseTrajectory]:
     """Sampled poses of ``timing`` stretched uniformly in time by a factor c.
 
     Parameters
@@ -44,12 +44,12 @@ def stretcher(problem: PathProblem, timing: Timing) -> Callable[[float], PoseSam
     Returns
     -------
     callable
-        c -> PoseSamples of s(t / c).
+        c -> PoseTrajectory of s(t / c).
 
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None, sample_period_s=0.01)
@@ -58,7 +58,7 @@ def stretcher(problem: PathProblem, timing: Timing) -> Callable[[float], PoseSam
     2.0
     """
 
-    def poses_for(factor: float) -> PoseSamples:
+    def poses_for(factor: float) -> PoseTrajectory:
         return sample_path(problem.path, timing.stretched(factor), problem.sample_period_s)
 
     return poses_for
@@ -113,8 +113,8 @@ def stretch_until(
 
 
 def slowed_until(
-    problem: PathProblem, poses_for: Callable[[float], PoseSamples], start: float = 1.0
-) -> tuple[float, PoseSamples] | None:
+    problem: PathProblem, poses_for: Callable[[float], PoseTrajectory], start: float = 1.0
+) -> tuple[float, PoseTrajectory] | None:
     """Smallest uniform stretch c >= ``start`` at which ``poses_for(c)`` passes the linear
     slosh screen, and its poses.
 
@@ -123,7 +123,7 @@ def slowed_until(
     problem : PathProblem
         Limits and model.
     poses_for : callable
-        c -> PoseSamples (e.g. `stretcher`).
+        c -> PoseTrajectory (e.g. `stretcher`).
     start : float
         First stretch tried.
 
@@ -139,7 +139,7 @@ def slowed_until(
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion.laws import s_curve
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
@@ -158,10 +158,10 @@ def slowed_until(
 
 def fastest_capped(
     problem: PathProblem,
-    passes: Callable[[PoseSamples], bool],
+    passes: Callable[[PoseTrajectory], bool],
     shaper: Shaper | ShaperFactory | None,
     low_fraction: float = 1e-3,
-    sampler: Callable[[Timing], PoseSamples] | None = None,
+    sampler: Callable[[Timing], PoseTrajectory] | None = None,
 ) -> tuple[float, Timing] | None:
     """The largest acceleration cap A between ``low_fraction`` amax and amax whose family
     member's export passes ``passes`` (module docstring).
@@ -171,13 +171,13 @@ def fastest_capped(
     problem : PathProblem
         Path and limits.
     passes : callable
-        PoseSamples -> bool.
+        PoseTrajectory -> bool.
     shaper : Shaper, callable or None
         Shaper of the family's timings (or a function of the cap giving it).
     low_fraction : float
         Smallest cap tried, as a fraction of amax.
     sampler : callable, optional
-        Timing -> PoseSamples (default `sloshkit.plan.spatial.sample_path`).
+        Timing -> PoseTrajectory (default `sloshkit.plan.path_problem.sample_path`).
 
     Returns
     -------
@@ -188,7 +188,7 @@ def fastest_capped(
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
     >>> from sloshkit.plan.path_limits import kinematics
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None, sample_period_s=0.01)
@@ -264,7 +264,7 @@ WARP_ROUNDS = 5
 def warp_search(
     problem: PathProblem,
     seed: Timing,
-    passes: Callable[[PoseSamples], bool],
+    passes: Callable[[PoseTrajectory], bool],
     knots: int = WARP_KNOTS,
     max_screens: int = WARP_SCREENS,
 ) -> tuple[Timing, int]:
@@ -282,7 +282,7 @@ def warp_search(
     seed : Timing
         A timing whose export passes.
     passes : callable
-        PoseSamples -> bool (the linear slosh screen and the machine limits).
+        PoseTrajectory -> bool (the linear slosh screen and the machine limits).
     knots : int
         Number of warp factors.
     max_screens : int
@@ -301,7 +301,7 @@ def warp_search(
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
     >>> from sloshkit.plan.path_limits import kinematics
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None, sample_period_s=0.01)
@@ -325,7 +325,7 @@ def warp_search(
         s = np.clip(seed.position(np.interp(t, clock, grid)), 0.0, problem.path.length_m)
         s[-1] = problem.path.length_m
         quaternions = problem.path.orientation(s).as_quat()
-        return passes(PoseSamples(t, problem.path.position(s), sign_continuous(quaternions)))
+        return passes(PoseTrajectory(t, problem.path.position(s), quaternions))
 
     factors = np.ones(knots)
     screens = 0

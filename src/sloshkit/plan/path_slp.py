@@ -32,10 +32,10 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
+from sloshkit.plan.path_problem import SEARCH_MARGIN, PathProblem
 from sloshkit.plan.path_screen import linear_screen, screen_outputs
-from sloshkit.plan.spatial import SEARCH_MARGIN, PathProblem, PoseSamples
 from sloshkit.plan.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
@@ -61,12 +61,12 @@ REFERENCE_KEEP = 0.99
 def slp_search(
     problem: PathProblem,
     seed: Timing,
-    passes: Callable[[PoseSamples], bool],
+    passes: Callable[[PoseTrajectory], bool],
     knots: int = SLP_KNOTS,
     max_screens: int = SLP_SCREENS,
     margin: float = SEARCH_MARGIN,
-    reference: Callable[[PoseSamples], tuple[float, float]] | None = None,
-    transform: Callable[[PoseSamples], PoseSamples] | None = None,
+    reference: Callable[[PoseTrajectory], tuple[float, float]] | None = None,
+    transform: Callable[[PoseTrajectory], PoseTrajectory] | None = None,
 ) -> tuple[Timing, int]:
     """Shorten a feasible timing by trust-region SLP on its warp coefficients (module
     docstring): the linearised duration is minimised under the linearised residual and
@@ -79,7 +79,7 @@ def slp_search(
     seed : Timing
         A timing whose export passes.
     passes : callable
-        PoseSamples -> bool, the acceptance test (the screen against the same limits and the
+        PoseTrajectory -> bool, the acceptance test (the screen against the same limits and the
         Cartesian and angular limits).
     knots : int
         Number of warp coefficients (at least 4).
@@ -89,13 +89,13 @@ def slp_search(
     margin : float
         Relative margin the LP keeps from each slosh limit.
     reference : callable, optional
-        PoseSamples -> (peak, residual) slosh heights of a more exact model (the nonlinear 3-D
+        PoseTrajectory -> (peak, residual) slosh heights of a more exact model (the nonlinear 3-D
         model, `sloshkit.plan.path_result.verify`). Then a step is accepted only when these
         are within the limits (1 % kept) and ``passes`` holds, and the LP's limits are
         corrected by the gap between this model and the screen at the current timing (defect
         correction: the screen gives the sensitivities, the reference the levels).
     transform : callable, optional
-        PoseSamples -> PoseSamples applied to each sampled timing before it is screened,
+        PoseTrajectory -> PoseTrajectory applied to each sampled timing before it is screened,
         linearised, passed to ``passes`` and ``reference`` (e.g. ``tilt``'s tilt
         compensation); it may add equally many rest samples at both ends.
 
@@ -131,7 +131,7 @@ def slp_search(
     keep = (1.0 - margin) * SLP_BACKOFF
     slosh = problem.slosh
 
-    def corrected(poses: PoseSamples) -> tuple[float, float] | None:
+    def corrected(poses: PoseTrajectory) -> tuple[float, float] | None:
         # The LP's (residual, height) limits; None when the reference rejects ``poses``.
         if reference is None:
             return keep * slosh.max_residual_height_m, keep * slosh.max_height_m
@@ -148,7 +148,7 @@ def slp_search(
 
     modes = [len(model.modes) for model in models]
 
-    def sample(factors: FloatArray, exact: bool = True) -> tuple[PoseSamples, FloatArray]:
+    def sample(factors: FloatArray, exact: bool = True) -> tuple[PoseTrajectory, FloatArray]:
         # exact: on the controller grid (the export's); otherwise on a grid whose period is
         # adjusted so that it ends at T exactly (smooth in the factors, for the differences).
         clock = warp_clock(grid, factors)
@@ -160,7 +160,7 @@ def slp_search(
         s = np.clip(seed.position(u), 0.0, length)
         s[-1] = length
         quaternions = problem.path.orientation(s).as_quat()
-        poses = PoseSamples(t, problem.path.position(s), sign_continuous(quaternions))
+        poses = PoseTrajectory(t, problem.path.position(s), quaternions)
         return (poses if transform is None else transform(poses)), u
 
     def outputs(factors: FloatArray) -> FloatArray:

@@ -23,15 +23,16 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.shaping import Shaper
 from sloshkit.plan.path_improve import ladder_affordable, warped_candidates
 from sloshkit.plan.path_ladder import method_timing
 from sloshkit.plan.path_limits import machine_stretch, machine_violations
+from sloshkit.plan.path_problem import PathProblem
 from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
 from sloshkit.plan.path_screen import linear_screen, screen_ok
 from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
 from sloshkit.plan.retime import ShaperFactory, curve_shaper, first_mode_shaper
-from sloshkit.plan.spatial import PathProblem, PoseSamples
 from sloshkit.plan.tilt import tilt_compensated
 from sloshkit.plan.timing import Timing
 
@@ -68,7 +69,9 @@ def timing_shapers(problem: PathProblem) -> list[tuple[str, Shaper | ShaperFacto
     return shapers
 
 
-def tilt_transform(problem: PathProblem) -> tuple[Callable[[PoseSamples], PoseSamples], float]:
+def tilt_transform(
+    problem: PathProblem,
+) -> tuple[Callable[[PoseTrajectory], PoseTrajectory], float]:
     """The tilt compensation of the ``tilt`` method (`sloshkit.plan.tilt.tilt_compensated` with
     the first mode's bob height, ``max_tilt_rad`` and ``tilt_centre_height_m``) and its
     smoothing: a fifth of the first mode's period (the tilt's angular acceleration excites the
@@ -82,7 +85,7 @@ def tilt_transform(problem: PathProblem) -> tuple[Callable[[PoseSamples], PoseSa
     Returns
     -------
     tuple
-        (PoseSamples -> tilted PoseSamples, the smoothing [s]).
+        (PoseTrajectory -> tilted PoseTrajectory, the smoothing [s]).
 
     References
     ----------
@@ -98,7 +101,7 @@ def tilt_transform(problem: PathProblem) -> tuple[Callable[[PoseSamples], PoseSa
     bob = problem.model.modes[0].bob_height_m
     smoothing = 2.0 * math.pi / problem.model.modes[0].omega_rad_s / 5.0
 
-    def tilted(poses: PoseSamples) -> PoseSamples:
+    def tilted(poses: PoseTrajectory) -> PoseTrajectory:
         return tilt_compensated(
             poses, bob, problem.max_tilt_rad, problem.tilt_centre_height_m, smoothing
         )
@@ -148,13 +151,13 @@ def plan_tilt(
     models = problem.models()
     tilted, smoothing = tilt_transform(problem)
 
-    def passes(poses: PoseSamples) -> bool:
+    def passes(poses: PoseTrajectory) -> bool:
         candidate = tilted(poses)
         return screen_ok(problem, linear_screen(models, candidate)) and not machine_violations(
             problem, candidate, True
         )
 
-    best: tuple[float, float, Callable[[float], PoseSamples], str] | None = None
+    best: tuple[float, float, Callable[[float], PoseTrajectory], str] | None = None
     # The curve shaper is not tried: tilting removes the turning forcing it is for (on the
     # series' paths it never gave a faster tilted plan and cost a third more compute).
     for name, shaper in timing_shapers(problem)[:2]:
@@ -239,7 +242,9 @@ def improved_tilt(
     for timing in seeds:
         plain = stretcher(problem, timing)
 
-        def poses_for(factor: float, plain: Callable[[float], PoseSamples] = plain) -> PoseSamples:
+        def poses_for(
+            factor: float, plain: Callable[[float], PoseTrajectory] = plain
+        ) -> PoseTrajectory:
             return tilted(plain(factor))
 
         slowed = slowed_until(problem, poses_for, machine_stretch(problem, poses_for(1.0)))

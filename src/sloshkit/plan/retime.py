@@ -32,12 +32,12 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
-from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.motion.shaping import Shaper, zv, zvd
 from sloshkit.plan.path import Path
 from sloshkit.plan.path_limits import machine_violations
-from sloshkit.plan.spatial import PathProblem, PoseSamples, sample_path
+from sloshkit.plan.path_problem import PathProblem, sample_path
 from sloshkit.plan.timing import Timing, box_smoothed, fine_grid, shaped_timing
 
 FloatArray = NDArray[np.float64]
@@ -47,7 +47,7 @@ PROFILE_STEP_M = 1e-3
 
 def axis_shaped_samples(
     path: Path, timing: Timing, shaper: Shaper, sample_period_s: float
-) -> PoseSamples:
+) -> PoseTrajectory:
     """Per-axis input shaping: positions sum_i A_i p(s(t - t_i)) (each Cartesian axis shaped,
     so the lateral forcing of every direction is shaped and the residual of the shaped mode
     cancels in the linear model), orientation R(sum_i A_i s(t - t_i)). Corners are cut: the
@@ -66,7 +66,7 @@ def axis_shaped_samples(
 
     Returns
     -------
-    PoseSamples
+    PoseTrajectory
 
     References
     ----------
@@ -93,7 +93,7 @@ def axis_shaped_samples(
     mean_s[-1] = path.length_m
     positions[-1] = path.position(path.length_m)
     quaternions = path.orientation(np.clip(mean_s, 0.0, path.length_m)).as_quat()
-    return PoseSamples(t, positions, sign_continuous(quaternions))
+    return PoseTrajectory(t, positions, quaternions)
 
 
 def _profile_geometry(path: Path) -> tuple[FloatArray, ...]:
@@ -138,7 +138,7 @@ def speed_profile(
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> path = path_from_waypoints([[0, 0, 0], [1.0, 0, 0]])
     >>> problem = PathProblem(path, CartesianLimits(0.5, 10.0, 100.0),
     ...                       SpatialSloshLimits(0.01, 0.002), None)
@@ -220,7 +220,7 @@ def capped_timing(problem: PathProblem, acceleration_cap: float) -> Timing:
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [1.0, 0, 0]]),
     ...                       CartesianLimits(0.5, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None)
@@ -257,7 +257,7 @@ def first_mode_shaper(problem: PathProblem) -> Shaper:
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
@@ -310,7 +310,7 @@ def curve_shaper(problem: PathProblem) -> ShaperFactory:
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0], [0.3, 0.3, 0]], blend_radius_m=0.1)
     >>> problem = PathProblem(path, CartesianLimits(2.0, 10.0, 100.0),
@@ -363,7 +363,7 @@ def family_member(
     Examples
     --------
     >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.spatial import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [1.0, 0, 0]]),
     ...                       CartesianLimits(0.5, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None)

@@ -29,8 +29,8 @@ from numpy.typing import NDArray
 from scipy.ndimage import gaussian_filter1d
 from scipy.spatial.transform import Rotation
 
-from sloshkit.motion.quaternions import sign_continuous
-from sloshkit.plan.spatial import GRAVITY, PoseSamples, second_difference
+from sloshkit.motion.poses import PoseTrajectory
+from sloshkit.plan.path_problem import GRAVITY, second_difference
 
 FloatArray = NDArray[np.float64]
 #: Standard deviation of the Gaussian smoothing of the acceleration [s].
@@ -73,17 +73,17 @@ def compensating_axis(acceleration_m_s2: FloatArray, max_tilt_rad: float) -> Flo
 
 
 def tilt_compensated(
-    poses: PoseSamples,
+    poses: PoseTrajectory,
     bob_height_m: float,
     max_tilt_rad: float,
     centre_height_m: float = 0.0,
     smoothing_s: float = SMOOTHING_S,
-) -> PoseSamples:
+) -> PoseTrajectory:
     """``poses`` re-oriented so the container axis follows the apparent gravity (module doc).
 
     Parameters
     ----------
-    poses : PoseSamples
+    poses : PoseTrajectory
         The untilted export (uniform sample period, at rest at both ends).
     bob_height_m : float
         Height of the first mode's bob above the container bottom [m].
@@ -96,7 +96,7 @@ def tilt_compensated(
 
     Returns
     -------
-    PoseSamples
+    PoseTrajectory
         Rest samples added before and after (3 ``smoothing_s`` each); positions change only
         when the centre is not the bottom.
 
@@ -108,7 +108,7 @@ def tilt_compensated(
     --------
     >>> t = np.arange(0, 401) * 0.005
     >>> x = 0.5 * 2.0 * t**2  # constant 2 m/s^2 along x
-    >>> poses = PoseSamples(t, np.c_[x, 0 * t, 0 * t], np.tile([0, 0, 0, 1.0], (t.size, 1)))
+    >>> poses = PoseTrajectory(t, np.c_[x, 0 * t, 0 * t], np.tile([0, 0, 0, 1.0], (t.size, 1)))
     >>> tilted = tilt_compensated(poses, 0.03, np.radians(30), smoothing_s=0.0)
     >>> axis = tilted.rotation.apply([0, 0, 1])[200]
     >>> round(float(np.degrees(np.arctan2(axis[0], axis[2]))), 2)  # atan(2 / g)
@@ -133,15 +133,15 @@ def tilt_compensated(
     centre = np.array([0.0, 0.0, centre_height_m])
     position = position + base.apply(centre) - rotation.apply(centre)
     time_s = np.arange(count, dtype=float) * ts
-    return PoseSamples(time_s, position, sign_continuous(rotation.as_quat()))
+    return PoseTrajectory(time_s, position, rotation.as_quat())
 
 
-def peak_tilt_rad(poses: PoseSamples) -> float:
+def peak_tilt_rad(poses: PoseTrajectory) -> float:
     """Largest angle between the container axis and the vertical [rad].
 
     Parameters
     ----------
-    poses : PoseSamples
+    poses : PoseTrajectory
         The export.
 
     Returns
@@ -152,7 +152,7 @@ def peak_tilt_rad(poses: PoseSamples) -> float:
     --------
     >>> from scipy.spatial.transform import Rotation
     >>> q = Rotation.from_euler("x", [[0.0], [0.2]]).as_quat()
-    >>> round(peak_tilt_rad(PoseSamples(np.arange(2) * 0.1, np.zeros((2, 3)), q)), 6)
+    >>> round(peak_tilt_rad(PoseTrajectory(np.arange(2) * 0.1, np.zeros((2, 3)), q)), 6)
     0.2
     """
     axis = poses.rotation.apply([0.0, 0.0, 1.0])

@@ -3,7 +3,7 @@
 Casadi/IPOPT (Betts, *Practical Methods for Optimal Control*, 2nd ed., SIAM (2010) ch. 4):
 states s, s', s'' and, for every mode and every frequency of the robustness band, the 2-D
 deflection of the spherical pendulum and its rate (the linear model of
-`sloshkit.plan.spatial`); control: the path jerk s''', piecewise constant; path-dependent speed,
+`sloshkit.plan.path_screen`); control: the path jerk s''', piecewise constant; path-dependent speed,
 acceleration (tangential and centripetal), jerk and angular-speed limits and the slosh-height
 limit at the nodes, the residual amplitude at the end. The path enters through tables of its
 derivatives on a grid of s (linear interpolants, evaluated at the nodes; the RK4 stages use the
@@ -28,8 +28,8 @@ from scipy.spatial.transform import Rotation
 from sloshkit.motion.profile import Motion, piecewise_constant_jerk
 from sloshkit.plan.path import Path
 from sloshkit.plan.path_limits import machine_violations
+from sloshkit.plan.path_problem import GRAVITY, SEARCH_MARGIN, PathProblem, sample_path
 from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.spatial import GRAVITY, SEARCH_MARGIN, PathProblem, sample_path
 from sloshkit.plan.timing import FINE_STEP_S, Timing
 
 FloatArray = NDArray[np.float64]

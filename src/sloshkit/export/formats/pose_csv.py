@@ -34,23 +34,15 @@ def write_pose_csv(path: str | Path, stream: PoseStream, metadata: Mapping[str, 
     Examples
     --------
     >>> import tempfile, pathlib, numpy as np
-    >>> stream = PoseStream(np.arange(3) * 0.1, np.zeros((3, 3)), np.tile([0, 0, 0, 1.0], (3, 1)))
+    >>> from sloshkit.motion.poses import PoseTrajectory
+    >>> upright = np.tile([0, 0, 0, 1.0], (3, 1))
+    >>> stream = PoseStream(PoseTrajectory(np.arange(3) * 0.1, np.zeros((3, 3)), upright))
     >>> out = write_pose_csv(pathlib.Path(tempfile.mkdtemp()) / "p.csv", stream, {"units": UNITS})
     >>> out.read_text().splitlines()[1]
     't,x,y,z,qx,qy,qz,qw'
     """
-    columns = {
-        "t": stream.time_s,
-        "x": stream.position_m[:, 0],
-        "y": stream.position_m[:, 1],
-        "z": stream.position_m[:, 2],
-        "qx": stream.quaternion_xyzw[:, 0],
-        "qy": stream.quaternion_xyzw[:, 1],
-        "qz": stream.quaternion_xyzw[:, 2],
-        "qw": stream.quaternion_xyzw[:, 3],
-    }
     with atomic_open(path) as handle:
-        handle.write(header_lines(metadata) + rows_csv(columns))
+        handle.write(header_lines(metadata) + rows_csv(stream.poses.columns()))
     return Path(path)
 
 
@@ -69,7 +61,9 @@ def read_pose_csv(path: str | Path) -> PoseStream:
     Examples
     --------
     >>> import tempfile, pathlib, numpy as np
-    >>> stream = PoseStream(np.arange(3) * 0.1, np.ones((3, 3)), np.tile([0, 0, 0, 1.0], (3, 1)))
+    >>> from sloshkit.motion.poses import PoseTrajectory
+    >>> upright = np.tile([0, 0, 0, 1.0], (3, 1))
+    >>> stream = PoseStream(PoseTrajectory(np.arange(3) * 0.1, np.ones((3, 3)), upright))
     >>> out = write_pose_csv(pathlib.Path(tempfile.mkdtemp()) / "p.csv", stream, {})
     >>> read_pose_csv(out).position_m[2]
     array([1., 1., 1.])

@@ -1,4 +1,7 @@
-"""3-D path planning: the problem (path, limits, model) and sampled pose exports.
+"""3-D path planning: the problem (path, limits, model) and its sampled pose export.
+
+The export of every method is a `sloshkit.motion.poses.PoseTrajectory` on the controller's
+grid t = k Ts (`sample_path`), at rest at both ends.
 
 The planner's methods (`sloshkit.plan.retime`, `sloshkit.plan.tilt`) search with a fast linear
 model of the lateral modes along the sampled export (`sloshkit.plan.path_screen`) and check
@@ -15,13 +18,13 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.spatial.transform import Rotation
 
 from sloshkit.errors import require_in_range, require_positive
 from sloshkit.model.theory import GRAVITY_M_S2
-from sloshkit.motion.quaternions import sign_continuous
+from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
-from sloshkit.plan.path import Path
+from sloshkit.plan.path import Path, generalised_arc_length
+from sloshkit.plan.timing import Timing
 
 FloatArray = NDArray[np.float64]
 #: Gravity in the world frame (z up) [m/s^2], from the model's constant.
@@ -162,61 +165,9 @@ def _scaled(model: Any, factor: float) -> Any:
     return replace(model, modes=modes)
 
 
-@dataclass(frozen=True, eq=False)
-class PoseSamples:
-    """A sampled pose trajectory on a uniform grid, at rest at both ends.
-
-    Parameters
-    ----------
-    time_s : ndarray
-        Sample times [s] from 0, uniform.
-    position_m : ndarray, shape (n, 3)
-        Reference-point (container bottom centre) positions, world frame [m].
-    quaternion_xyzw : ndarray, shape (n, 4)
-        Container-to-world unit quaternions, scalar last.
-
-    Examples
-    --------
-    >>> t = np.arange(3) * 0.1
-    >>> poses = PoseSamples(t, np.zeros((3, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (3, 1)))
-    >>> poses.duration_s, sorted(poses.columns())[:3]
-    (0.2, ['qw', 'qx', 'qy'])
-    """
-
-    time_s: FloatArray
-    position_m: FloatArray
-    quaternion_xyzw: FloatArray
-
-    @property
-    def duration_s(self) -> float:
-        """Time of the last sample [s]."""
-        return float(self.time_s[-1])
-
-    @property
-    def rotation(self) -> Rotation:
-        """Container-to-world rotations."""
-        return Rotation.from_quat(self.quaternion_xyzw)
-
-    def columns(self) -> dict[str, FloatArray]:
-        """``t,x,y,z,qx,qy,qz,qw`` columns (the pose-file format)."""
-        names = ("x", "y", "z")
-        quaternions = ("qx", "qy", "qz", "qw")
-        return {
-            "t": self.time_s,
-            **{n: self.position_m[:, i] for i, n in enumerate(names)},
-            **{n: self.quaternion_xyzw[:, i] for i, n in enumerate(quaternions)},
-        }
-
-    def to_pose_trajectory(self, name: str = "plan") -> Any:
-        """The same samples as a `sloshkit.motion.poses.PoseTrajectory`."""
-        from sloshkit.motion.poses import PoseTrajectory
-
-        return PoseTrajectory(self.time_s, self.position_m, self.quaternion_xyzw, name=name)
-
-
-def sample_path(path: Path, timing: Any, sample_period_s: float) -> PoseSamples:
+def sample_path(path: Path, timing: Any, sample_period_s: float) -> PoseTrajectory:
     """Sample ``path`` along the timing s(t) at t = k Ts until the first sample at or after the
-    end; quaternions sign-continuous.
+    end; quaternions sign-continuous (`sloshkit.motion.poses.PoseTrajectory` makes them so).
 
     Parameters
     ----------
@@ -229,7 +180,7 @@ def sample_path(path: Path, timing: Any, sample_period_s: float) -> PoseSamples:
 
     Returns
     -------
-    PoseSamples
+    PoseTrajectory
         The export, ending exactly on the path's last pose.
 
     Examples
@@ -246,7 +197,45 @@ def sample_path(path: Path, timing: Any, sample_period_s: float) -> PoseSamples:
     s = np.clip(timing.position(np.minimum(t, timing.duration_s)), 0.0, path.length_m)
     s[-1] = path.length_m
     quaternions = path.orientation(s).as_quat()
-    return PoseSamples(t, path.position(s), sign_continuous(quaternions))
+    return PoseTrajectory(t, path.position(s), quaternions)
+
+
+def reference_timing(poses: PoseTrajectory, path: Path) -> Timing:
+    """The poses' own timing s(t) along ``path`` (made from them, `path_from_poses`), from
+    their first moving sample on (the rest before it dropped).
+
+    s is the generalised arc length of the poses (`sloshkit.plan.path.generalised_arc_length`),
+    scaled to the path's length; samples where it does not grow are dropped, so the timing is
+    strictly increasing.
+
+    Parameters
+    ----------
+    poses : PoseTrajectory
+        The poses (e.g. of a pose file).
+    path : Path
+        The path through them.
+
+    Returns
+    -------
+    Timing
+        s(t) from t = 0 at the last rest sample before the motion.
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path import path_from_poses
+    >>> t = np.arange(6) * 0.1
+    >>> x = np.array([0.0, 0.0, 0.1, 0.2, 0.3, 0.3])
+    >>> poses = PoseTrajectory(t, np.c_[x, 0 * t, 0 * t], np.tile([0, 0, 0, 1.0], (6, 1)))
+    >>> timing = reference_timing(poses, path_from_poses(poses.position_m, poses.quaternion_xyzw))
+    >>> round(timing.duration_s, 3), round(float(timing.position(timing.duration_s)), 3)
+    (0.3, 0.3)
+    """
+    rotation = poses.rotation
+    s = generalised_arc_length(poses.position_m, rotation)
+    start = max(int(np.argmax(s > 1e-9)) - 1, 0)
+    moving = np.concatenate(([True], np.diff(s[start:]) > 0.0))
+    t = (poses.time_s[start:] - poses.time_s[start])[moving]
+    return Timing.from_samples("pose file", t, s[start:][moving] / s[-1] * path.length_m)
 
 
 def second_difference(values: FloatArray, step: float) -> FloatArray:
