@@ -212,3 +212,22 @@ def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshM
     ratio, _ = joint_speed_ratio(arm, mounting, armed.poses)
     assert 0.97 <= ratio <= 1.0
     assert armed.duration_s < free.duration_s * free_ratio
+
+
+def test_optimal_refuses_a_path_the_arm_cannot_reach(robot_vial: SloshModel) -> None:
+    """A path 3 m from the UR5e's base: the IK along the path fails, and ``optimal`` says so
+    (the untilted poses are the path's, whatever the timing) without searching."""
+    from sloshkit.export.frames import Mounting
+    from sloshkit.export.kinematics import load_arm
+    from sloshkit.export.path_robot import RobotVerifier
+    from sloshkit.plan.path_optimal import plan_optimal
+
+    problem = PathProblem(
+        path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
+        CartesianLimits(2.0, 10.0, 100.0),
+        SpatialSloshLimits(0.015, 0.002),
+        robot_vial,
+    )
+    found = plan_optimal(problem, RobotVerifier(load_arm("ur5e"), Mounting(base_xyz_m=(3, 0, 0))))
+    assert not found.feasible and found.poses is None
+    assert found.message.startswith("robot: ")

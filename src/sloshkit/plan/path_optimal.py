@@ -137,10 +137,10 @@ class _JointMap:
 JOINT_GRID_M = 0.005
 
 
-def _joint_map(problem: Any, check: Any) -> _JointMap | None:
+def _joint_map(problem: Any, check: Any) -> _JointMap | str:
     """The arm's joints along the path from ``check`` (`sloshkit.plan.path_result.
-    JointSpeedCheck`) every `JOINT_GRID_M` (at least 50 points), or None when its IK fails
-    (the verification then reports why)."""
+    JointSpeedCheck`) every `JOINT_GRID_M` (at least 50 points), or the IK's message when it
+    fails: the untilted poses are the path's whatever the timing, so no plan can pass."""
     from sloshkit.errors import InputError
     from sloshkit.motion.poses import PoseTrajectory
 
@@ -151,8 +151,8 @@ def _joint_map(problem: Any, check: Any) -> _JointMap | None:
     poses = PoseTrajectory(np.arange(count) * 1e-3, problem.path.position(s), rotation.as_quat())
     try:
         joints = check.joint_positions(poses)
-    except InputError:
-        return None
+    except InputError as error:
+        return f"robot: {error}"
     return _JointMap(s, joints, np.asarray(check.joint_speed_limits_rad_s, dtype=float))
 
 
@@ -1266,6 +1266,8 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     s[-1] = problem.path.length_m
     warm = _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)), ts)
     joints = _joint_map(problem, verifier) if isinstance(verifier, JointSpeedCheck) else None
+    if isinstance(joints, str):
+        return PathCandidate("optimal", None, None, time.perf_counter() - started, joints)
     rounds: list[dict[str, float]] = []
     verified: list[tuple[int, _Iterate]] = []
     searches: list[tuple[int, float]] = []
