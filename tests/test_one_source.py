@@ -153,6 +153,18 @@ def test_no_module_imports_a_private_name_of_another():
     assert sorted(found) == [], "make the name public or keep it inside"
 
 
+def test_no_test_imports_a_private_name_of_the_package():
+    """The tests use the package's public names (white-box tests too: what they need of a
+    module is part of its documented interface)."""
+    tests = Path(__file__).resolve().parent
+    found = {
+        (str(path.relative_to(tests)), module, private)
+        for path in sorted(tests.rglob("*.py"))
+        for module, private in private_imports(ast.parse(path.read_text(encoding="utf-8")))
+    }
+    assert sorted(found) == [], "use (or make) a public name"
+
+
 def pose_column_copies(tree: ast.Module, names: tuple[str, ...]) -> list[int]:
     """Lines of a tuple or list of string constants equal to ``names``."""
     return [

@@ -174,6 +174,24 @@ def plotter_for(result_type: type) -> PlotFunction:
     raise TypeError(f"no plotting function registered for {result_type.__name__}")
 
 
+def registered_plotters() -> dict[type, PlotFunction]:
+    """The plotting functions registered so far, by result type (a copy).
+
+    Returns
+    -------
+    dict
+        Result type -> plotting function.
+
+    Examples
+    --------
+    >>> from sloshkit.sim.response import SloshResponse
+    >>> _ = plotter_for(SloshResponse)
+    >>> registered_plotters()[SloshResponse].__name__
+    'plot_response'
+    """
+    return dict(_PLOTTERS)
+
+
 def require_pandas() -> Any:
     """Import pandas or raise an `ImportError` that says how to install it.
 

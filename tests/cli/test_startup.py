@@ -81,16 +81,17 @@ def test_plot_registry_names_every_figure_and_a_sweep_imports_only_its_own():
     import importlib
 
     from sloshkit.plotting import load_all
-    from sloshkit.results import _PLOTTERS, PLOTS
+    from sloshkit.results import PLOTS, registered_plotters
 
     load_all()
+    plotters = registered_plotters()
     for name, target in PLOTS.items():
         module, _, klass = name.rpartition(".")
         result_type = getattr(importlib.import_module(module), klass)
         figure_module, _, function = target.partition(":")
-        assert _PLOTTERS[result_type] is getattr(importlib.import_module(figure_module), function)
+        assert plotters[result_type] is getattr(importlib.import_module(figure_module), function)
     registered = {
-        f"{k.__module__}.{k.__qualname__}" for k in _PLOTTERS if k.__module__.startswith("sloshkit")
+        f"{k.__module__}.{k.__qualname__}" for k in plotters if k.__module__.startswith("sloshkit")
     }
     assert registered <= set(PLOTS), "add the new figure to sloshkit.results.PLOTS"
     code = (

@@ -1,6 +1,6 @@
-"""The minimum-time path program (`sloshkit.plan.path_optimal`): its linear model against the
-3-D simulation, its derivatives against its exact evaluation, the straight path against the
-1-D planner, and the verified method."""
+"""The minimum-time path program (`sloshkit.plan.path_program`, `path_cone`, `path_optimal`):
+its model against the 3-D simulation, its derivatives against its exact evaluation, the
+straight path against the 1-D planner, the robot's joints, and the verified method."""
 
 from __future__ import annotations
 
@@ -13,21 +13,20 @@ from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path import path_from_waypoints
-from sloshkit.plan.path_optimal import (
-    PROGRAM_MARGIN,
-    _cone_step,
-    _export_poses,
-    _free_time,
-    _PathProgram,
-    _ProgramLimits,
-    _Samples,
-    _smoothed,
-)
+from sloshkit.plan.path_cone import PROGRAM_MARGIN, cone_step
+from sloshkit.plan.path_optimal import free_time
 from sloshkit.plan.path_planner import plan_path
 from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
+from sloshkit.plan.path_program import (
+    PathProgram,
+    PathSamples,
+    ProgramLimits,
+    export_poses,
+    smoothed,
+)
 from sloshkit.sim.spatial import simulate_spatial
 
-LIMITS = _ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)
+LIMITS = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)
 
 
 def _corner_problem(model: SloshModel) -> PathProblem:
@@ -40,13 +39,13 @@ def _corner_problem(model: SloshModel) -> PathProblem:
     )
 
 
-def _samples(problem: PathProblem, speed_m_s: float, acceleration_m_s2: float = 4.0) -> _Samples:
+def _samples(problem: PathProblem, speed_m_s: float, acceleration_m_s2: float = 4.0) -> PathSamples:
     """An S-curve timing of the path (jerk 10 times the acceleration) on the export grid."""
     law = s_curve(problem.path.length_m, speed_m_s, acceleration_m_s2, 10.0 * acceleration_m_s2)
     poses = sample_path(problem.path, law, problem.sample_period_s)
     s = np.clip(law.position(np.minimum(poses.time_s, law.duration_s)), 0, problem.path.length_m)
     s[-1] = problem.path.length_m
-    return _Samples(np.maximum.accumulate(s), np.zeros((s.size, 2)), problem.sample_period_s)
+    return PathSamples(np.maximum.accumulate(s), np.zeros((s.size, 2)), problem.sample_period_s)
 
 
 def test_program_model_is_the_3d_simulation_of_the_export(robot_vial: SloshModel) -> None:
@@ -54,12 +53,12 @@ def test_program_model_is_the_3d_simulation_of_the_export(robot_vial: SloshModel
     kinematics) to 0.5 %; the residual bound at least its residual (the bound adds the free
     oscillations' amplitudes, the simulation takes each one's semi-major axis)."""
     problem = _corner_problem(robot_vial)
-    program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
     samples = _samples(problem, 0.3, 1.0)  # gentle: the linear regime (about 5 deg)
     evaluation = program.evaluate(samples)
     response = simulate_spatial(
         robot_vial,
-        _export_poses(problem, samples),
+        export_poses(problem, samples),
         nonlinear=True,
         cutoff_hz=None,
     )
@@ -73,9 +72,9 @@ def test_cone_step_predicts_the_exact_margin_of_its_samples(robot_vial: SloshMod
     """The program's predicted margin (linearised) and the exact evaluation of the samples it
     returns agree to 1 % of the limits for a small trust region (the derivatives are right)."""
     problem = _corner_problem(robot_vial)
-    program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
     iterate = program.iterate(_samples(problem, 0.3, 1.0))
-    step = _cone_step(program, iterate.samples, iterate.evaluation, 0.01, 0.05)
+    step = cone_step(program, iterate.samples, iterate.evaluation, 0.01, 0.05)
     assert step is not None
     trial = program.iterate(step.samples)
     assert trial.excess == pytest.approx(1.0 - 2e-3 + step.sigma, abs=0.01)
@@ -89,10 +88,10 @@ def test_dilated_cone_step_predicts_its_period_and_limits(robot_vial: SloshModel
     2 % of the change it predicted (the derivatives in the period are right), and the period
     moves."""
     problem = _corner_problem(robot_vial)
-    program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
     iterate = program.iterate(_samples(problem, 0.3, 1.0))
     assert iterate.excess > 2.0  # an S-curve leaves four times the residual limit
-    step = _cone_step(program, iterate.samples, iterate.evaluation, 0.002, 1.0, 0.003)
+    step = cone_step(program, iterate.samples, iterate.evaluation, 0.002, 1.0, 0.003)
     assert step is not None
     trial = program.iterate(step.samples)
     assert step.samples.period_s != pytest.approx(iterate.samples.period_s, rel=1e-4)
@@ -103,16 +102,16 @@ def test_dilated_cone_step_predicts_its_period_and_limits(robot_vial: SloshModel
 
 
 def test_smoothed_timing_keeps_the_coarse_jerk_and_rest() -> None:
-    """A coarse timing spread on a four times finer grid by `_smoothed`: the same ends, at
+    """A coarse timing spread on a four times finer grid by `smoothed`: the same ends, at
     rest, monotone, and no larger third difference per unit time cubed than the coarse one
     (the cubic B-spline's jerk is its control points' third difference)."""
     rng = np.random.default_rng(7)
     coarse_period = 0.016
     s = np.concatenate(([0.0, 0.0], np.cumsum(rng.uniform(0.0, 0.02, 40)), [0.0]))
     s[-1] = s[-2]
-    coarse = _Samples(s, np.zeros((s.size, 2)), coarse_period)
+    coarse = PathSamples(s, np.zeros((s.size, 2)), coarse_period)
     duration = coarse.steps * coarse_period
-    fine = _smoothed(coarse, 4 * coarse.steps, duration / (4 * coarse.steps))
+    fine = smoothed(coarse, 4 * coarse.steps, duration / (4 * coarse.steps))
     assert fine.s_m[0] == 0.0 and fine.s_m[-1] == s[-1]
     assert np.all(np.diff(fine.s_m) >= 0.0)
     assert fine.s_m[1] - fine.s_m[0] < 1e-6 and fine.s_m[-1] - fine.s_m[-2] < 1e-6
@@ -151,8 +150,8 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(robot_vial: Sl
         SpatialSloshLimits(height, residual),
         robot_vial,
     )
-    program = _PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
-    best, _ = _free_time(program, _samples(problem, 0.55))
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    best, _ = free_time(program, _samples(problem, 0.55))
     ts = problem.sample_period_s
     grid = steps_to_reach(one_d.chosen.duration_s, ts) * ts
     assert best.feasible

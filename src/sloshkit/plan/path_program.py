@@ -1,0 +1,557 @@
+"""The model of the 3-D path program: the path parameter at the samples, and everything the
+verification checks as functions of them, with their derivatives.
+
+The decision variables are the path parameter s_k at every sample t_k = k h of a uniform grid
+(k = 0..N, s_0 = 0, s_N = S: the whole path; on the export's grid the samples are the export,
+`poses_of`, `export_poses`). Every quantity the verification checks is a function of these
+samples (`PathProgram.evaluate`):
+
+- the Cartesian velocity, acceleration and jerk of the reference point and the container's
+  angular velocity and acceleration, by finite differences of the samples with the ends held at
+  rest (as `sloshkit.plan.path_limits.kinematics` measures them);
+- the slosh of every mode n of every model of the robustness band: the damped spherical
+  pendulum the verification simulates (`sloshkit.sim.spatial`; Abramson, NASA SP-106 (1966)
+  ch. 6; Dodge, SwRI (2000) ch. 3), driven by kappa_n g - a_hinge at its hinge in the
+  container's non-spinning frame, from rest in the first pose, integrated by the 3-D
+  simulation's Runge-Kutta kernel along the sampled drive (`sloshkit.plan.path_pendulums`);
+  the wall height |sum_n e_n tan(deflection_n)| at every sample and the residual
+  sum_n e_n |[A_n B_n]|_2 (the semi-major axis of each mode's free oscillation) `HOLD`
+  samples after the move, scaled back to its end (as `sloshkit.sim.spatial_response.
+  SpatialResponse` measures them). On the export this equals `simulate_spatial(...,
+  nonlinear=True, cutoff_hz=None)` to the accuracy of the spline differentiation (0.04 % of
+  the peak on the test's corner path);
+- with an arm, its joint speeds, from the export's IK along the path (`joint_map`).
+
+`PathProgram.jacobians` differentiates the positions, angular velocities and forces banded, by
+colouring; `sloshkit.plan.path_cone.cone_step` builds one program from them. `rescaled` and
+`smoothed` carry a timing to another grid.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation
+
+from sloshkit.plan.path_pendulums import mode_slope, pendulum_track
+from sloshkit.sim.metrics import free_oscillation_components
+from sloshkit.sim.spatial_response import ellipse_semi_major
+
+FloatArray = NDArray[np.float64]
+
+
+#: PathSamples of rest after the move before its free oscillation is measured (the 3-D
+#: simulation's `sloshkit.sim.spatial_response.SpatialResponse.free_amplitudes_rad` waits
+#: max(window / 2, 4) + 1 samples for an unsmoothed drive).
+HOLD = 5
+
+
+@dataclass(frozen=True)
+class ProgramLimits:
+    """The limits the program imposes (SI), the slosh ones already tightened as asked.
+
+    Parameters
+    ----------
+    max_velocity_m_s, max_acceleration_m_s2, max_jerk_m_s3 : float
+        Cartesian limits of the reference point.
+    max_angular_velocity_rad_s, max_angular_acceleration_rad_s2 : float or None
+        Angular limits of the container (None: none).
+    max_height_m, max_residual_height_m : float
+        Linear wall height during the move and residual bound after it [m].
+    max_tilt_rad, max_tilt_rate_rad_s, max_tilt_acceleration_rad_s2 : float
+        Tilt limits (used only when the program tilts).
+    """
+
+    max_velocity_m_s: float
+    max_acceleration_m_s2: float
+    max_jerk_m_s3: float
+    max_angular_velocity_rad_s: float | None
+    max_angular_acceleration_rad_s2: float | None
+    max_height_m: float
+    max_residual_height_m: float
+    max_tilt_rad: float = 0.0
+    max_tilt_rate_rad_s: float = math.pi
+    max_tilt_acceleration_rad_s2: float = math.radians(1000.0)
+
+
+@dataclass(frozen=True, eq=False)
+class PathSamples:
+    """Path parameter [m] and tilt rotation vector [rad] at samples ``period_s`` apart (the
+    export's period, or a dilated one while the duration is free, `dilated_search`)."""
+
+    s_m: FloatArray
+    tilt_rad: FloatArray
+    period_s: float
+
+    @property
+    def steps(self) -> int:
+        """N, the number of sample periods."""
+        return int(self.s_m.size - 1)
+
+
+@dataclass(frozen=True, eq=False)
+class JointMap:
+    """An arm's joints along the (untilted) path: q(s) [rad] by the cubic spline through the
+    export's IK at ``s_m``, and the joints' speed limits [rad/s]."""
+
+    s_m: FloatArray
+    joints_rad: FloatArray
+    limits_rad_s: FloatArray
+
+    def spline(self) -> Any:
+        from scipy.interpolate import CubicSpline
+
+        return CubicSpline(self.s_m, self.joints_rad, axis=0)
+
+
+#: Spacing of the path parameter at which the arm's IK is solved for the programs [m].
+JOINT_GRID_M = 0.005
+
+
+def joint_map(problem: Any, check: Any) -> JointMap | str:
+    """The arm's joints along the path from ``check`` (`sloshkit.plan.path_result.
+    JointSpeedCheck`) every `JOINT_GRID_M` (at least 50 points), or the IK's message when it
+    fails: the untilted poses are the path's whatever the timing, so no plan can pass."""
+    from sloshkit.errors import InputError
+    from sloshkit.motion.poses import PoseTrajectory
+
+    length = problem.path.length_m
+    count = max(50, math.ceil(length / JOINT_GRID_M) + 1)
+    s = np.linspace(0.0, length, count)
+    rotation = problem.path.orientation(s)
+    poses = PoseTrajectory(np.arange(count) * 1e-3, problem.path.position(s), rotation.as_quat())
+    try:
+        joints = check.joint_positions(poses)
+    except InputError as error:
+        return f"robot: {error}"
+    return JointMap(s, joints, np.asarray(check.joint_speed_limits_rad_s, dtype=float))
+
+
+def poses_of(
+    path: Any, samples: PathSamples, centre_height_m: float
+) -> tuple[FloatArray, Rotation]:
+    """Reference-point positions and container orientations of the samples.
+
+    The tilt rotation R_t = exp([r_x, r_y, 0]) acts on the path's orientation R_p(s) about the
+    tilt centre c = (0, 0, h_c) of the container frame: q = R_t R_p, P = p(s) + R_p c - q c
+    (the centre stays on the path; `sloshkit.plan.tilt` uses the same convention).
+    """
+    base = path.orientation(samples.s_m)
+    position = path.position(samples.s_m)
+    if not np.any(samples.tilt_rad):
+        return position, base
+    rotvec = np.column_stack((samples.tilt_rad, np.zeros(samples.s_m.size)))
+    rotation = Rotation.from_rotvec(rotvec) * base
+    if centre_height_m:
+        centre = np.array([0.0, 0.0, centre_height_m])
+        position = position + base.apply(centre) - rotation.apply(centre)
+    return position, rotation
+
+
+def with_rest(samples: PathSamples) -> PathSamples:
+    """The samples followed by `HOLD` samples of rest at the last pose."""
+    s = np.concatenate((samples.s_m, np.repeat(samples.s_m[-1:], HOLD)))
+    tilt = np.concatenate((samples.tilt_rad, np.repeat(samples.tilt_rad[-1:], HOLD, axis=0)))
+    return PathSamples(s, tilt, samples.period_s)
+
+
+def model_drive(model: Any, force: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """One band model's drive (modes, K, 3) and rest force (modes, 3) from `PathProgram.forces`:
+    kappa_n g - a_hinge with kappa_n = omega_n^2 L_n / g (`sloshkit.sim.spatial_drive`)."""
+    kappa = np.array([m.omega_rad_s**2 * m.length_m / model.gravity_m_s2 for m in model.modes])
+    drive = force[:-1] + (kappa - 1.0)[:, None, None] * force[-1][None]
+    return drive, kappa[:, None] * force[-1, 0][None]
+
+
+def mode_arrays(model: Any) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """L_n [m], omega_n [rad/s] and zeta_n of a model's modes."""
+    modes = model.modes
+    return (
+        np.array([m.length_m for m in modes]),
+        np.array([m.omega_rad_s for m in modes]),
+        np.array([m.damping_ratio for m in modes]),
+    )
+
+
+def held(values: FloatArray, pad: int) -> FloatArray:
+    """``values`` with ``pad`` copies of the first and last rows (at rest before and after)."""
+    return np.concatenate((values[:1],) * pad + (values,) + (values[-1:],) * pad)
+
+
+@dataclass(frozen=True, eq=False)
+class ProgramEvaluation:
+    """Everything the limits see, for one set of samples.
+
+    ``velocity`` ... ``jerk``: finite differences of the positions (rows for the padded
+    grid), ``omega``/``alpha``: angular velocity and acceleration, ``force``: specific force
+    per mode and gravity in N (`PathProgram.forces`), ``wall``: wall height vectors per band
+    model (models, N + 1, 2), ``amplitude``: free-oscillation vectors (models, modes, 4) scaled
+    by e_n; ``joint``: the arm's joint speeds over their limits (N, dof; empty without an
+    arm); ``unit``, ``rate``, ``drive``: each model's pendulum tracks and their drive
+    (models, modes, N + 1, 3; `sloshkit.plan.path_pendulums`). N counts the rest samples.
+    """
+
+    velocity: FloatArray
+    acceleration: FloatArray
+    jerk: FloatArray
+    omega: FloatArray
+    alpha: FloatArray
+    force: FloatArray
+    wall: FloatArray = field(default_factory=lambda: np.empty(0))
+    amplitude: FloatArray = field(default_factory=lambda: np.empty(0))
+    joint: FloatArray = field(default_factory=lambda: np.empty(0))
+    unit: FloatArray = field(default_factory=lambda: np.empty(0))
+    rate: FloatArray = field(default_factory=lambda: np.empty(0))
+    drive: FloatArray = field(default_factory=lambda: np.empty(0))
+
+
+class PathProgram:
+    """The sequential cone programs of one path problem (module docstring).
+
+    Parameters
+    ----------
+    path : Path
+        The geometry.
+    models : list of SloshModel
+        The band's models (all share the bob heights; only the frequencies differ).
+    limits : ProgramLimits
+        Limits, slosh ones as the program should impose them.
+    sample_period_s : float
+        Export sample period Ts [s].
+    tilt : bool
+        Whether the tilt angles are variables.
+    centre_height_m : float
+        Tilt centre above the container bottom [m].
+    joints : JointMap, optional
+        An arm's joints along the path: their speeds are limited too.
+    """
+
+    def __init__(
+        self,
+        path: Any,
+        models: list[Any],
+        limits: ProgramLimits,
+        sample_period_s: float,
+        tilt: bool = False,
+        centre_height_m: float = 0.0,
+        joints: JointMap | None = None,
+    ) -> None:
+        self.path, self.models, self.limits = path, models, limits
+        self.joints = joints
+        self.joint_spline: Any = None if joints is None else joints.spline()
+        self.ts, self.tilt, self.centre = sample_period_s, tilt, centre_height_m
+        self.modes = models[0].modes
+        self.gravity = np.array([0.0, 0.0, -models[0].gravity_m_s2])
+        self.programs = 0
+        self._kernels: dict[int, list[list[tuple[FloatArray, FloatArray]]]] = {}
+
+    # ----------------------------------------------------------------- evaluation
+    def forces(self, samples: PathSamples) -> tuple[FloatArray, dict[str, FloatArray]]:
+        """Specific force g - a_hinge at each mode's hinge in N, and g itself in N, (modes + 1,
+        N + 1, 3) [m/s^2], with the kinematics (`sloshkit.sim.spatial_drive`: a mode whose
+        omega_n^2 L_n differs from g adds (kappa_n - 1) times the last row).
+        """
+        ts = samples.period_s
+        position, rotation = poses_of(self.path, samples, self.centre)
+        quaternion = rotation.as_quat()
+        padded = held(position, 2)
+        velocity = np.diff(padded, axis=0) / ts
+        acceleration = np.diff(velocity, axis=0) / ts
+        jerk = np.diff(acceleration, axis=0) / ts
+        increments = Rotation.from_quat(quaternion[1:]) * Rotation.from_quat(quaternion[:-1]).inv()
+        omega = np.concatenate((np.zeros((1, 3)), increments.as_rotvec() / ts, np.zeros((1, 3))))
+        alpha = np.diff(omega, axis=0) / ts
+        body = Rotation.from_quat(quaternion[:-1]).inv() * Rotation.from_quat(quaternion[1:])
+        spin = np.concatenate(([0.0], np.cumsum(body.as_rotvec()[:, 2])))
+        frame = rotation * Rotation.from_rotvec(np.column_stack((0 * spin, 0 * spin, -spin)))
+        to_frame = frame.inv()
+        axis = rotation.apply([0.0, 0.0, 1.0])
+        force = np.empty((len(self.modes) + 1, samples.s_m.size, 3))
+        for index, mode in enumerate(self.modes):
+            point = held(position + mode.pivot_height_m * axis, 1)
+            hinge = (point[2:] - 2.0 * point[1:-1] + point[:-2]) / ts**2
+            force[index] = to_frame.apply(self.gravity - hinge)
+        force[-1] = to_frame.apply(self.gravity)
+        kinematic = {
+            "velocity": velocity,
+            "acceleration": acceleration,
+            "jerk": jerk,
+            "omega": omega,
+            "alpha": alpha,
+            "position": position,
+        }
+        return force, kinematic
+
+    def evaluate(self, samples: PathSamples) -> ProgramEvaluation:
+        """Kinematics, forces, pendulum tracks, wall heights and residual amplitudes."""
+        samples = with_rest(samples)
+        force, kinematic = self.forces(samples)
+        steps = samples.steps
+        count = len(self.modes)
+        walls = np.zeros((len(self.models), steps + 1, 2))
+        amplitudes = np.zeros((len(self.models), count, 4))
+        units = np.zeros((len(self.models), count, steps + 1, 3))
+        rates = np.zeros_like(units)
+        drives = np.zeros_like(units)
+        for m, model in enumerate(self.models):
+            drive, rest = model_drive(model, force)
+            unit, rate = pendulum_track(drive, rest, *mode_arrays(model), samples.period_s)
+            units[m], rates[m], drives[m] = unit, rate, drive
+            for n, mode in enumerate(model.modes):
+                walls[m] += mode.wall_elevation_factor_m * mode_slope(unit[n])
+                # the free oscillation HOLD samples after the move (as the 3-D simulation
+                # measures its residual), about the rest direction, scaled back to the end
+                final = drive[n, -1]
+                offset = unit[n, -1, :2] - final[:2] / np.linalg.norm(final)
+                cosine, sine = free_oscillation_components(
+                    offset, rate[n, -1, :2], mode.omega_rad_s, mode.damping_ratio
+                )
+                back = math.exp(mode.damping_ratio * mode.omega_rad_s * HOLD * samples.period_s)
+                amplitudes[m, n] = (
+                    back * mode.wall_elevation_factor_m * np.concatenate((cosine, sine))
+                )
+        joint = np.empty(0)
+        if self.joints is not None:
+            # the joints' speeds as differences of the samples, over their limits
+            q = self.joint_spline(samples.s_m)
+            joint = np.diff(q, axis=0) / (samples.period_s * self.joints.limits_rad_s)
+        return ProgramEvaluation(
+            kinematic["velocity"],
+            kinematic["acceleration"],
+            kinematic["jerk"],
+            kinematic["omega"],
+            kinematic["alpha"],
+            force,
+            walls,
+            amplitudes,
+            joint,
+            units,
+            rates,
+            drives,
+        )
+
+    def worst(self, evaluation: ProgramEvaluation, samples: PathSamples) -> dict[str, float]:
+        """Each limited quantity's peak divided by its limit."""
+        lim = self.limits
+        ratios = {
+            "velocity": peak_norm(evaluation.velocity) / lim.max_velocity_m_s,
+            "acceleration": peak_norm(evaluation.acceleration) / lim.max_acceleration_m_s2,
+            "jerk": peak_norm(evaluation.jerk) / lim.max_jerk_m_s3,
+            "peak slosh": peak_norm(evaluation.wall) / lim.max_height_m,
+            "residual slosh": residual_height(evaluation.amplitude) / lim.max_residual_height_m,
+        }
+        if evaluation.joint.size:
+            ratios["joint speed"] = float(np.max(np.abs(evaluation.joint)))
+        if lim.max_angular_velocity_rad_s is not None:
+            ratios["angular velocity"] = (
+                peak_norm(evaluation.omega) / lim.max_angular_velocity_rad_s
+            )
+        if lim.max_angular_acceleration_rad_s2 is not None:
+            ratios["angular acceleration"] = (
+                peak_norm(evaluation.alpha) / lim.max_angular_acceleration_rad_s2
+            )
+        if self.tilt:
+            tilt = held(samples.tilt_rad, 2)
+            rate = np.diff(tilt, axis=0) / samples.period_s
+            ratios["tilt"] = peak_norm(samples.tilt_rad) / lim.max_tilt_rad
+            ratios["tilt rate"] = peak_norm(rate) / lim.max_tilt_rate_rad_s
+            ratios["tilt acceleration"] = (
+                peak_norm(np.diff(rate, axis=0) / samples.period_s)
+                / lim.max_tilt_acceleration_rad_s2
+            )
+        return ratios
+
+    # ----------------------------------------------------------------- linearisation
+    def jacobians(self, samples: PathSamples) -> list[ProgramBands]:
+        """Banded derivatives of the samples' positions, angular velocities and forces with
+        respect to each variable block (s, then r_x, r_y with tilt).
+
+        Every quantity at sample k depends on the samples k-1..k+1 only (positions on k, the
+        angular velocity on k-1 and k, the forces on k-1..k+1 through the second difference),
+        so perturbing every third sample at once separates the bands (Curtis, Powell & Reid,
+        IMA J. Appl. Math. 13 (1974) 117-119); central differences. The spin about the axis is
+        recomputed: a sample's change moves only its own spin when the axis keeps its direction
+        (the increments telescope; holding it fixed rotated N by the yaw change instead).
+        """
+        samples = with_rest(samples)
+        n = samples.s_m.size
+        columns: list[int | None] = [None] + ([0, 1] if self.tilt else [])
+        bands = []
+        for column in columns:
+            step = 1e-7 * max(self.path.length_m, 1.0) if column is None else 1e-7
+            force = np.zeros((3, len(self.modes) + 1, n, 3))
+            position = np.zeros((n, 3))
+            omega = np.zeros((2, n + 1, 3))
+            for colour in range(3):
+                chosen = np.arange(colour, n, 3)
+                plus, minus, width = perturbed(samples, chosen, column, step, self.path.length_m)
+                (fp, kp), (fm, km) = self.forces(plus), self.forces(minus)
+                dforce = fp - fm
+                position[chosen] = (kp["position"] - km["position"])[chosen] / width[chosen, None]
+                domega = kp["omega"] - km["omega"]
+                for offset in (-1, 0, 1):
+                    k = chosen - offset  # the force at k sees the perturbed sample k + offset
+                    k = k[(k >= 0) & (k < n)]
+                    force[offset + 1][:, k] = dforce[:, k] / width[k + offset][None, :, None]
+                # omega row i (1..n-1) uses samples i-1 and i
+                own = chosen[(chosen >= 1) & (chosen <= n - 1)]
+                omega[1][own] = domega[own] / width[own, None]
+                prev = chosen[chosen + 1 <= n - 1] + 1
+                omega[0][prev] = domega[prev] / width[prev - 1, None]
+            bands.append(ProgramBands(position, omega, force))
+        return bands
+
+    def iterate(self, samples: PathSamples) -> ProgramIterate:
+        """The samples with their exact evaluation and ratios to the limits."""
+        evaluation = self.evaluate(samples)
+        return ProgramIterate(samples, evaluation, self.worst(evaluation, samples))
+
+
+@dataclass(frozen=True, eq=False)
+class ProgramIterate:
+    """PathSamples, their evaluation and each limited quantity's peak over its limit."""
+
+    samples: PathSamples
+    evaluation: ProgramEvaluation
+    ratios: dict[str, float]
+
+    @property
+    def excess(self) -> float:
+        """The largest ratio of a quantity to its limit (<= 1: every limit met)."""
+        return max(self.ratios.values())
+
+    @property
+    def feasible(self) -> bool:
+        """Every limit met (to 1e-9)."""
+        return self.excess <= 1.0 + 1e-9
+
+    @property
+    def reach(self) -> float:
+        """s_N [m]."""
+        return float(self.samples.s_m[-1])
+
+
+@dataclass(frozen=True, eq=False)
+class ProgramBands:
+    """Derivatives of one variable block: ``position`` (n, 3) d P_k / d x_k, ``omega``
+    (2, n + 1, 3) d w_i / d x_{i-1} and d w_i / d x_i, ``force`` (3, modes, n, 2)
+    d f_k / d x_{k+o} for o = -1, 0, 1."""
+
+    position: FloatArray
+    omega: FloatArray
+    force: FloatArray
+
+
+def perturbed(
+    samples: PathSamples, chosen: Any, column: int | None, step: float, length_m: float
+) -> tuple[PathSamples, PathSamples, FloatArray]:
+    """The samples with the ``chosen`` ones moved by +- ``step`` in s (kept on [0, S]: one-sided
+    at the ends, where the path is clipped) or in a tilt angle, and each sample's width of the
+    difference (plus - minus; 1 where not perturbed)."""
+    s_plus, s_minus = samples.s_m.copy(), samples.s_m.copy()
+    tilt_plus, tilt_minus = samples.tilt_rad.copy(), samples.tilt_rad.copy()
+    width = np.ones(samples.s_m.size)
+    if column is None:
+        s_plus[chosen] = np.minimum(s_plus[chosen] + step, length_m)
+        s_minus[chosen] = np.maximum(s_minus[chosen] - step, 0.0)
+        width[chosen] = s_plus[chosen] - s_minus[chosen]
+    else:
+        tilt_plus[chosen, column] += step
+        tilt_minus[chosen, column] -= step
+        width[chosen] = 2.0 * step
+    period = samples.period_s
+    return PathSamples(s_plus, tilt_plus, period), PathSamples(s_minus, tilt_minus, period), width
+
+
+def residual_height(amplitude: FloatArray) -> float:
+    """The residual bound of the worst band model: sum_n e_n |M_n|_2 with M_n = [A_n B_n] the
+    free oscillation's cosine and sine vectors (its semi-major axis,
+    `sloshkit.sim.spatial_response.ellipse_semi_major`), from (models, modes, 4) [m]."""
+    semi = ellipse_semi_major(amplitude[..., :2], amplitude[..., 2:])
+    return float(np.max(np.sum(semi, axis=1)))
+
+
+def peak_norm(values: FloatArray) -> float:
+    """Largest Euclidean norm along the last axis."""
+    return float(np.max(np.linalg.norm(values, axis=-1))) if values.size else 0.0
+
+
+def rescaled(samples: PathSamples, steps: int, period_s: float | None = None) -> PathSamples:
+    """The same timing shape on ``steps`` sample periods of ``period_s`` (default: the
+    samples' own): s and the tilt over normalised time by the clamped cubic spline through the
+    samples (C2 and at rest at both ends, so that a coarse timing's jerk carries over to a finer
+    grid; de Boor, *A Practical Guide to Splines* (1978) ch. IV), s kept monotone on [0, S]."""
+    from scipy.interpolate import CubicSpline
+
+    old = samples.s_m.size - 1
+    u_old, u_new = np.arange(old + 1) / old, np.arange(steps + 1) / steps
+    clamped = ((1, 0.0), (1, 0.0))
+    s = CubicSpline(u_old, samples.s_m, bc_type=clamped)(u_new)
+    s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
+    s[-1] = samples.s_m[-1]
+    still = ((1, np.zeros(2)), (1, np.zeros(2)))
+    tilt = CubicSpline(u_old, samples.tilt_rad, axis=0, bc_type=still)(u_new)
+    return PathSamples(s, tilt, samples.period_s if period_s is None else period_s)
+
+
+def smoothed(samples: PathSamples, steps: int, period_s: float) -> PathSamples:
+    """A coarse timing on ``steps`` finer periods: the uniform cubic B-spline whose control
+    points are the samples (each end repeated twice more, so the curve starts and ends at
+    rest), its parameter spread over the same duration. The B-spline's third derivative on each
+    segment is the third difference of its control points, so the finer grid sees no more
+    jerk (in s) than the coarse one (de Boor, *A Practical Guide to Splines* (1978) ch. IX);
+    an interpolating spline amplifies the coarse grid's alternating jerk up to threefold."""
+    points = np.concatenate((samples.s_m[:1].repeat(2), samples.s_m, samples.s_m[-1:].repeat(2)))
+    parameter = 1.0 + np.arange(steps + 1) / steps * (points.size - 3)
+    index = np.clip(np.floor(parameter).astype(int), 1, points.size - 3)
+    t = parameter - index
+    weights = (
+        (1.0 - t) ** 3 / 6.0,
+        (3.0 * t**3 - 6.0 * t**2 + 4.0) / 6.0,
+        (-3.0 * t**3 + 3.0 * t**2 + 3.0 * t + 1.0) / 6.0,
+        t**3 / 6.0,
+    )
+    s = sum(w * points[index + j - 1] for j, w in enumerate(weights))
+    s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
+    s[-1] = samples.s_m[-1]
+    tilt = rescaled(samples, steps).tilt_rad
+    return PathSamples(s, tilt, period_s)
+
+
+def export_poses(problem: Any, samples: PathSamples) -> Any:
+    """The samples as the export (`sloshkit.motion.poses.PoseTrajectory`, which makes the
+    quaternions sign-continuous)."""
+    from sloshkit.motion.poses import PoseTrajectory
+
+    position, rotation = poses_of(problem.path, samples, problem.tilt_centre_height_m)
+    time_s = np.arange(samples.s_m.size) * problem.sample_period_s
+    return PoseTrajectory(time_s, position, rotation.as_quat())
+
+
+__all__ = [
+    "HOLD",
+    "JOINT_GRID_M",
+    "JointMap",
+    "PathProgram",
+    "PathSamples",
+    "ProgramBands",
+    "ProgramEvaluation",
+    "ProgramIterate",
+    "ProgramLimits",
+    "export_poses",
+    "held",
+    "joint_map",
+    "mode_arrays",
+    "model_drive",
+    "peak_norm",
+    "perturbed",
+    "poses_of",
+    "rescaled",
+    "residual_height",
+    "smoothed",
+    "with_rest",
+]
