@@ -35,7 +35,9 @@ Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--transcription] [--out
 the reference table's first case only, without the robot; ``--cached-only``: an optimum missing
 from the cache is shown as "not cached" instead of computed). With
 ``--docs`` the tables replace the text between the ``<!-- bench_plan3d:start -->`` and
-``<!-- bench_plan3d:end -->`` markers of that file, so the docs carry no hand-typed figures.
+``<!-- bench_plan3d:end -->`` markers of that file (the reference table alone, ``--tables
+reference``, between ``<!-- bench_plan3d-reference:start -->`` and its end marker), so the docs
+carry no hand-typed figures.
 """
 
 from __future__ import annotations
@@ -421,7 +423,9 @@ def main() -> None:
         arguments.out.write_text(text + "\n")
     if arguments.docs is not None:
         document = arguments.docs.read_text()
-        start, end = "<!-- bench_plan3d:start -->", "<!-- bench_plan3d:end -->"
+        # the reference table alone has its own place in the docs
+        marker = "bench_plan3d-reference" if tables == ["reference"] else "bench_plan3d"
+        start, end = f"<!-- {marker}:start -->", f"<!-- {marker}:end -->"
         head, _, rest = document.partition(start)
         _, _, tail = rest.partition(end)
         arguments.docs.write_text(f"{head}{start}\n{text}\n{end}{tail}")
