@@ -327,7 +327,7 @@ def _tight():
 
 
 def test_slosh_floor_bounds_every_plan_and_is_the_quasi_static_bound_within_sqrt2():
-    from sloshkit.plan.cost import slosh_floor_s
+    from sloshkit.plan.work_estimate import slosh_floor_s
 
     problem = _problem()
     floor = slosh_floor_s(problem)

@@ -31,9 +31,9 @@ from typing import Any
 from sloshkit.errors import warn_validity
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.profile import Motion, piecewise_constant_jerk
-from sloshkit.plan.cost import duration_floor, optimal_refusal
 from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus
 from sloshkit.plan.verification import checked_candidate
+from sloshkit.plan.work_estimate import duration_floor, optimal_refusal
 
 #: Relative price in time of the smooth variant: its duration is (1 + price) times the minimum.
 #: Measured on the paper's vial (0.5 m, 5 deg, 0.25 deg, 4 ms; benchmarks/bench_plan.py), with
@@ -45,7 +45,8 @@ from sloshkit.plan.verification import checked_candidate
 SMOOTH_PRICE = 0.005
 
 #: Longest move the search may try (export samples). Requests whose shortest possible move is
-#: already too long for the programs are refused earlier (`sloshkit.plan.cost.optimal_refusal`).
+#: already too long for the programs are refused earlier
+#: (`sloshkit.plan.work_estimate.optimal_refusal`).
 MAX_STEPS = 8000
 
 #: The search stops when the longest move at the feasible end of the bracket exceeds the

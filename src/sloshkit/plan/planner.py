@@ -32,10 +32,10 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.sampling import export_samples
-from sloshkit.plan.cost import check_cost
 from sloshkit.plan.optimal import plan_optimal
 from sloshkit.plan.problem import PAPER_LAWS, Candidate, PlanProblem
 from sloshkit.plan.searches import plan_paper_law, plan_shaped
+from sloshkit.plan.work_estimate import check_cost
 from sloshkit.results import ResultMixin
 from sloshkit.sim.discretisation import linear_response
 

@@ -19,7 +19,6 @@ from sloshkit.motion.profile import Motion
 from sloshkit.motion.sampling import steps_for, steps_to_reach
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv
-from sloshkit.plan.cost import slosh_floor_s, work_limit
 from sloshkit.plan.problem import (
     SEARCH_MARGIN,
     SHAPERS,
@@ -29,6 +28,7 @@ from sloshkit.plan.problem import (
     PlanStatus,
 )
 from sloshkit.plan.verification import checked_candidate, only_slosh_violations
+from sloshkit.plan.work_estimate import slosh_floor_s, work_limit
 from sloshkit.sim.batch import batch_metrics
 
 FloatArray = NDArray[np.float64]
@@ -143,8 +143,8 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
 
     started = time.perf_counter()
     shape = unit_duration_shape(make_law(law, problem.distance_m, duration_s=1.0))
-    # No move is shorter than the slosh bound (`sloshkit.plan.cost.slosh_floor_s`; 1 % below
-    # it, as the angle is checked at the samples only): under tight slosh limits the scan
+    # No move is shorter than the slosh bound (`sloshkit.plan.work_estimate.slosh_floor_s`;
+    # 1 % below it, as the angle is checked at the samples only): under tight slosh limits the scan
     # starts there instead of widening from the machine's floor.
     floor = max(_machine_floor(shape, problem.machine), 0.99 * slosh_floor_s(problem))
     dt = problem.sample_period_s  # screen on the grid the verification uses
