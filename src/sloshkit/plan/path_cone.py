@@ -32,8 +32,8 @@ from sloshkit.plan.path_program import HOLD, FloatArray, PathProgram, PathSample
 PROGRAM_MARGIN = 2e-3
 
 
-def vector_cones(
-    conic: ConeRows, r_idx: list[Any], c_idx: list[Any], v_idx: list[Any], scaled: Any, keep: float
+def _vector_cones(
+    conic: _ConeRows, r_idx: list[Any], c_idx: list[Any], v_idx: list[Any], scaled: Any, keep: float
 ) -> None:
     """One 4-D cone per row of ``scaled`` (values over their limit, (rows, 3)): the linearised
     vector within keep + sigma, its entries gathered in the index lists."""
@@ -52,7 +52,7 @@ def vector_cones(
 
 
 #: Finite-difference weights of orders 0..3 (the forward differences of the padded samples).
-DIFFERENCE_WEIGHTS = {0: (1.0,), 1: (-1.0, 1.0), 2: (1.0, -2.0, 1.0), 3: (-1.0, 3.0, -3.0, 1.0)}
+_DIFFERENCE_WEIGHTS = {0: (1.0,), 1: (-1.0, 1.0), 2: (1.0, -2.0, 1.0), 3: (-1.0, 3.0, -3.0, 1.0)}
 
 
 #: Weight of the limits' excess sigma against the relative period change while the duration
@@ -61,7 +61,7 @@ DIFFERENCE_WEIGHTS = {0: (1.0,), 1: (-1.0, 1.0), 2: (1.0, -2.0, 1.0), 3: (-1.0, 
 PENALTY = 10.0
 
 
-class ConeRows:
+class _ConeRows:
     """Rows b - A x in a cone, gathered by kind: equalities, inequalities, second-order cones."""
 
     def __init__(self) -> None:
@@ -115,7 +115,25 @@ class ConeRows:
 
 @dataclass(frozen=True, eq=False)
 class ConeStep:
-    """A cone program's samples, its predicted margin sigma and predicted residual ratio."""
+    """A cone program's result.
+
+    Parameters
+    ----------
+    samples : PathSamples
+        The new samples (and period).
+    sigma : float
+        The predicted margin: the largest ratio to a limit is predicted at
+        1 - `PROGRAM_MARGIN` + sigma (the largest slack when the period is free).
+    residual : float
+        The predicted residual over its limit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> step = ConeStep(PathSamples(np.zeros(2), np.zeros((2, 2)), 0.004), -0.1, 0.5)
+    >>> step.sigma < 0.0
+    True
+    """
 
     samples: PathSamples
     sigma: float
@@ -130,16 +148,62 @@ def cone_step(
     residual_trust: float = 1.0,
     dilation_trust: float | None = None,
 ) -> ConeStep | None:
-    """One cone program around ``samples`` (module docstring), or None when the solver failed.
-    ``trust``: the largest change of a step's speed [m/s] (a sample moves by at most 0.02 s
-    times it); ``residual_trust``: the largest change of each free-oscillation entry e_n A, e_n B
-    over the residual limit (the residual is the most sensitive quantity: a millimetre's shift
-    of the samples near the end moves it by millimetres). With ``dilation_trust`` the sample
-    period is a variable too, h (1 + epsilon) with |epsilon| <= dilation_trust, and the program
-    minimises epsilon + `PENALTY` (sigma_k + sigma_w + sigma_r), each sigma >= 0, instead of
-    maximising the margin: an exact penalty of the limits it cannot meet yet (Mao, Szmuk &
-    Acikmese (2016)), with one slack for the kinematic limits, one for the wall height and one
-    for the residual, so that a limit still exceeded does not loosen the others."""
+    """One cone program around ``samples`` (module docstring).
+
+    With ``dilation_trust`` the sample period is a variable too, h (1 + epsilon) with
+    |epsilon| <= dilation_trust, and the program minimises epsilon + `PENALTY` (sigma_k +
+    sigma_w + sigma_r), each sigma >= 0, instead of maximising the margin: an exact penalty of
+    the limits it cannot meet yet (Mao, Szmuk & Acikmese (2016)), with one slack for the
+    kinematic limits, one for the wall height and one for the residual, so that a limit still
+    exceeded does not loosen the others.
+
+    Parameters
+    ----------
+    program : PathProgram
+        The problem's model.
+    samples : PathSamples
+        The current samples.
+    evaluation : object
+        Their evaluation (`PathProgram.evaluate`).
+    trust : float
+        The largest change of a step's speed [m/s] (a sample moves by at most 0.02 s times it).
+    residual_trust : float
+        The largest change of each free-oscillation entry e_n A, e_n B over the residual limit
+        (the residual is the most sensitive quantity: a millimetre's shift of the samples near
+        the end moves it by millimetres).
+    dilation_trust : float, optional
+        The largest relative change of the period; None keeps it fixed.
+
+    Returns
+    -------
+    ConeStep or None
+        The program's samples and predictions, or None when the solver failed.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path_program import ProgramLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
+    >>> path = path_from_waypoints([[0, 0, 0], [0.1, 0, 0]])
+    >>> program = PathProgram(path, [model], limits, 0.01)
+    >>> t = np.arange(51) / 50  # a quintic rest-to-rest timing of 0.5 s: too fast
+    >>> samples = PathSamples(0.1 * t**3 * (10 - 15 * t + 6 * t**2), np.zeros((51, 2)), 0.01)
+    >>> iterate = program.iterate(samples)
+    >>> step = cone_step(program, iterate.samples, iterate.evaluation, 0.01, 0.05)
+    >>> trial = program.iterate(step.samples)
+    >>> bool(trial.excess < iterate.excess)
+    True
+    >>> free = cone_step(program, iterate.samples, iterate.evaluation, 0.01, 1.0, 0.02)
+    >>> round(free.samples.period_s, 6)  # too fast: the period grows by the trust region
+    0.0102
+    >>> bool(abs(program.iterate(free.samples).excess - (1 - PROGRAM_MARGIN + free.sigma)) < 0.01)
+    True
+    """
     import clarabel
 
     lim, ts = program.limits, samples.period_s
@@ -165,7 +229,7 @@ def cone_step(
     columns = dilation + (3 if dilate else 0)
     # the slacks of the wall heights and of the residual: sigma's own column unless dilated
     wall_sigma, residual_sigma = (dilation + 1, dilation + 2) if dilate else (sigma, sigma)
-    conic = ConeRows()
+    conic = _ConeRows()
 
     def d(i: Any) -> Any:
         return np.asarray(i) - 1
@@ -314,7 +378,7 @@ def cone_step(
     ):
         rows = values.shape[0]
         r_idx, c_idx, v_idx = [np.arange(rows) * 4], [np.full(rows, sigma)], [np.full(rows, -1.0)]
-        for j, weight in enumerate(DIFFERENCE_WEIGHTS[order]):
+        for j, weight in enumerate(_DIFFERENCE_WEIGHTS[order]):
             k = np.clip(np.arange(rows) + j - 2, 0, total - 1)
             moving = (k >= 1) & (k <= steps)
             for c in range(3):
@@ -328,7 +392,7 @@ def cone_step(
                 r_idx.append(np.arange(rows) * 4 + 1 + c)
                 c_idx.append(np.full(rows, dilation))
                 v_idx.append(order * values[:, c] / limit)
-        vector_cones(conic, r_idx, c_idx, v_idx, values / limit, keep)
+        _vector_cones(conic, r_idx, c_idx, v_idx, values / limit, keep)
     # ------------------------------------------------ angular velocity and acceleration cones
     angular: tuple[tuple[int, FloatArray, float | None], ...] = (
         (1, evaluation.omega, lim.max_angular_velocity_rad_s),
@@ -358,7 +422,7 @@ def cone_step(
                 r_idx.append(np.arange(rows) * 4 + 1 + c)
                 c_idx.append(np.full(rows, dilation))
                 v_idx.append(order * values[:, c] / angular_limit)
-        vector_cones(conic, r_idx, c_idx, v_idx, values / angular_limit, keep)
+        _vector_cones(conic, r_idx, c_idx, v_idx, values / angular_limit, keep)
     # ------------------------------------------------ the arm's joint speeds
     if program.joints is not None:
         # (q(s_{k+1}) - q(s_k)) / (h limit) within keep + sigma on both sides, linear in
@@ -444,11 +508,8 @@ def cone_step(
 
 
 __all__ = [
-    "DIFFERENCE_WEIGHTS",
     "PENALTY",
     "PROGRAM_MARGIN",
-    "ConeRows",
     "ConeStep",
     "cone_step",
-    "vector_cones",
 ]

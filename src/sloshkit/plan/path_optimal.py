@@ -1,14 +1,14 @@
 """The minimum-time timing of a 3-D path on the export grid, by sequential second-order-cone
 programming (`sloshkit.plan.path_program`, the model; `sloshkit.plan.path_cone`, one program).
 
-The minimum time comes from programs whose sample period is a variable too (`dilated_search`):
+The minimum time comes from programs whose sample period is a variable too (`_dilated_search`):
 first on a grid four times coarser than the export's (programs a quarter the size; a bracketed
-search over N finds its start, `minimum_time`), then on the export's period from that timing
+search over N finds its start, `_minimum_time`), then on the export's period from that timing
 spread by a cubic B-spline, then on the export grid itself (`free_time`).
 
 The programs model what the verification simulates without its smoothing filter; the
 verification, which also simulates the export through that filter, can still exceed a slosh
-limit by a percent or two. The program's limit is then moved by regula falsi (`next_limit`)
+limit by a percent or two. The program's limit is then moved by regula falsi (`_next_limit`)
 and the search restarts from the last samples on the export's period (`plan_optimal`).
 """
 
@@ -37,13 +37,13 @@ SEARCH_TOLERANCE = 2e-3
 #: Durations solved per search, at most.
 MAX_SEARCH = 14
 #: Searches of `plan_optimal`, each with the program's slosh limits moved towards the values
-#: at which the verification meets its limits (`next_limit`), at most.
+#: at which the verification meets its limits (`_next_limit`), at most.
 TIGHTENINGS = 5
 #: A verified plan whose peak or residual is within this fraction of its limit ends them.
 LIMIT_TOLERANCE = 0.02
 
 
-def margin_at(
+def _margin_at(
     program: PathProgram,
     start: PathSamples,
     trust: float = 0.1,
@@ -90,7 +90,7 @@ def margin_at(
     return current, current.excess
 
 
-def dilated_search(
+def _dilated_search(
     program: PathProgram,
     start: PathSamples,
     iterations: int = 12,
@@ -144,18 +144,54 @@ def free_time(
     """The fewest export samples whose timing meets every limit.
 
     1. On a grid of `COARSE_PERIOD_S` (when ``coarse``; its programs are a quarter the size):
-       the bracketed search over N (`minimum_time`), then the same N with the period free
-       (`dilated_search`): the coarse minimum time.
+       the bracketed search over N (`_minimum_time`), then the same N with the period free
+       (`_dilated_search`): the coarse minimum time.
     2. On the export's period Ts: that timing spread (`smoothed`) over the steps of its
        duration, the period free again (the finer grid sees the higher modes' residual the
        coarse one smooths away).
     3. On the export grid: N, the steps of that duration
-       (`sloshkit.motion.sampling.steps_to_reach`); its best margin (`margin_at`, ended when
+       (`sloshkit.motion.sampling.steps_to_reach`); its best margin (`_margin_at`, ended when
        every limit is met with half `PROGRAM_MARGIN` to spare), N increased while a limit is
-       still exceeded (at most `EXPORT_TRIES`).
+       still exceeded (at most `EXPORT_TRIES`), each N from the timing nearest to meeting
+       the limits so far.
 
-    Returns the feasible iterate and the (N, r) pairs tried on the export grid; raises
-    `RuntimeError` when none met the limits."""
+    Parameters
+    ----------
+    program : PathProgram
+        The problem's model.
+    start : PathSamples
+        The first timing, on the export grid.
+    log : callable, optional
+        Receives one line per search.
+    coarse : bool
+        Whether to start on the coarse grid (False: ``start`` is already near the optimum).
+
+    Returns
+    -------
+    tuple
+        The feasible iterate (`ProgramIterate`) and the (N, r) pairs tried on the export grid.
+
+    Raises
+    ------
+    RuntimeError
+        When no export-grid duration met the limits.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
+    >>> program = PathProgram(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]), [model], limits, 0.01)
+    >>> t = np.arange(61) / 60  # a quintic rest-to-rest timing of 0.6 s
+    >>> start = PathSamples(0.1 * t**3 * (10 - 15 * t + 6 * t**2), np.zeros((61, 2)), 0.01)
+    >>> best, tried = free_time(program, start)
+    >>> best.feasible, best.samples.steps < 60
+    (True, True)
+    """
     from sloshkit.motion.sampling import steps_to_reach
 
     ts = start.period_s
@@ -165,7 +201,7 @@ def free_time(
     def free(samples: PathSamples, steps: int, iterations: int, trust: float) -> ProgramIterate:
         length = samples.steps * samples.period_s
         spread = smoothed if steps > samples.steps else rescaled
-        found = dilated_search(
+        found = _dilated_search(
             program, spread(samples, steps, length / steps), iterations, trust, 0.5 * trust
         )
         if log:
@@ -178,7 +214,7 @@ def free_time(
     current = start
     if factor > 1:
         coarse_steps = steps_to_reach(duration, factor * ts)
-        found, _ = minimum_time(program, rescaled(start, coarse_steps, factor * ts), log)
+        found, _ = _minimum_time(program, rescaled(start, coarse_steps, factor * ts), log)
         # the coarse grid's own minimum, its period free
         current = free(found.samples, found.samples.steps, 25, 0.1).samples
     # on the export's period; it starts near its optimum: a quarter of the trust regions
@@ -194,7 +230,7 @@ def free_time(
     for _ in range(EXPORT_TRIES):
         base = min(bases, key=lambda b: b.excess).samples
         # enough margin that the verification's finer checks pass as well
-        iterate, ratio = margin_at(
+        iterate, ratio = _margin_at(
             program, rescaled(base, steps, ts), iterations=4, enough=1.0 - 0.5 * PROGRAM_MARGIN
         )
         history.append((steps, ratio, iterate))
@@ -211,10 +247,10 @@ def free_time(
     raise RuntimeError(f"no timing up to {steps * ts:.3g} s meets the limits (binding: {binding})")
 
 
-def minimum_time(
+def _minimum_time(
     program: PathProgram, start: PathSamples, log: Any = None
 ) -> tuple[ProgramIterate, list[tuple[int, float]]]:
-    """The fewest steps N whose best samples (`margin_at`) meet every limit.
+    """The fewest steps N whose best samples (`_margin_at`) meet every limit.
 
     r(N), the largest ratio to a limit, falls about as (N0 / N)^2 when the slosh or the
     acceleration binds: the next N solves r = 1 on the secant of log r against log N through the
@@ -230,7 +266,7 @@ def minimum_time(
     guess = start
     for _ in range(MAX_SEARCH):
         steps_now = rescaled(guess, steps)
-        iterate, ratio = margin_at(program, steps_now)
+        iterate, ratio = _margin_at(program, steps_now)
         history.append((steps, ratio, iterate))
         if log:
             log(
@@ -281,7 +317,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     profile under the quasi-static acceleration that tilts a level surface to the height
     limit (h = R a / g; `sloshkit.plan.retime.capped_timing`), each next one from the last
     one's samples on the export's period with the program's slosh limits moved towards the
-    values at which the verification meets its limits (`next_limit`; at most `TIGHTENINGS`).
+    values at which the verification meets its limits (`_next_limit`; at most `TIGHTENINGS`).
     The rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
     limit, when a round one sample shorter failed the verification, or when a round no
     longer shortens the plan; the shortest verified timing is kept. A limit outside the
@@ -329,7 +365,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
 
     started = time.perf_counter()
     machine, slosh = problem.machine, problem.slosh
-    # the program's slosh limits start where `next_limit` aims: the verification's filtered
+    # the program's slosh limits start where `_next_limit` aims: the verification's filtered
     # simulation exceeds the program's model by a percent or so
     aim = 1.0 - 0.5 * LIMIT_TOLERANCE
     limits = ProgramLimits(
@@ -411,10 +447,10 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
                 break
         limits = replace(
             limits,
-            max_height_m=next_limit(
+            max_height_m=_next_limit(
                 rounds, "height_limit_m", "verified_peak_m", slosh.max_height_m
             ),
-            max_residual_height_m=next_limit(
+            max_residual_height_m=_next_limit(
                 rounds, "residual_limit_m", "verified_residual_m", slosh.max_residual_height_m
             ),
         )
@@ -439,7 +475,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, False, detail)
 
 
-def next_limit(
+def _next_limit(
     rounds: list[dict[str, float]], program_key: str, verified_key: str, limit: float
 ) -> float:
     """The program's next limit: the verification's value is an increasing function v(p) of
@@ -464,10 +500,6 @@ __all__ = [
     "MAX_SEARCH",
     "SEARCH_TOLERANCE",
     "TIGHTENINGS",
-    "dilated_search",
     "free_time",
-    "margin_at",
-    "minimum_time",
-    "next_limit",
     "plan_optimal",
 ]

@@ -3,7 +3,7 @@ verification checks as functions of them, with their derivatives.
 
 The decision variables are the path parameter s_k at every sample t_k = k h of a uniform grid
 (k = 0..N, s_0 = 0, s_N = S: the whole path; on the export's grid the samples are the export,
-`poses_of`, `export_poses`). Every quantity the verification checks is a function of these
+`_poses_of`, `export_poses`). Every quantity the verification checks is a function of these
 samples (`PathProgram.evaluate`):
 
 - the Cartesian velocity, acceleration and jerk of the reference point and the container's
@@ -64,6 +64,11 @@ class ProgramLimits:
         Linear wall height during the move and residual bound after it [m].
     max_tilt_rad, max_tilt_rate_rad_s, max_tilt_acceleration_rad_s2 : float
         Tilt limits (used only when the program tilts).
+
+    Examples
+    --------
+    >>> ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002).max_tilt_rad
+    0.0
     """
 
     max_velocity_m_s: float
@@ -80,8 +85,24 @@ class ProgramLimits:
 
 @dataclass(frozen=True, eq=False)
 class PathSamples:
-    """Path parameter [m] and tilt rotation vector [rad] at samples ``period_s`` apart (the
-    export's period, or a dilated one while the duration is free, `dilated_search`)."""
+    """Path parameter [m] and tilt rotation vector [rad] at uniform samples.
+
+    Parameters
+    ----------
+    s_m : numpy.ndarray
+        Path parameter s_k at the samples, (N + 1,) [m], from 0 to the path's length.
+    tilt_rad : numpy.ndarray
+        Tilt rotation vector (r_x, r_y) at the samples, (N + 1, 2) [rad].
+    period_s : float
+        Sample period h [s]: the export's, or a dilated one while the duration is free
+        (`sloshkit.plan.path_optimal.free_time`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> PathSamples(np.linspace(0.0, 0.1, 11), np.zeros((11, 2)), 0.004).steps
+    10
+    """
 
     s_m: FloatArray
     tilt_rad: FloatArray
@@ -94,7 +115,7 @@ class PathSamples:
 
 
 @dataclass(frozen=True, eq=False)
-class JointMap:
+class _JointMap:
     """An arm's joints along the (untilted) path: q(s) [rad] by the cubic spline through the
     export's IK at ``s_m``, and the joints' speed limits [rad/s]."""
 
@@ -112,10 +133,42 @@ class JointMap:
 JOINT_GRID_M = 0.005
 
 
-def joint_map(problem: Any, check: Any) -> JointMap | str:
-    """The arm's joints along the path from ``check`` (`sloshkit.plan.path_result.
-    JointSpeedCheck`) every `JOINT_GRID_M` (at least 50 points), or the IK's message when it
-    fails: the untilted poses are the path's whatever the timing, so no plan can pass."""
+def joint_map(problem: Any, check: Any) -> _JointMap | str:
+    """The arm's joints along the path every `JOINT_GRID_M` (at least 50 points).
+
+    Parameters
+    ----------
+    problem : PathProblem
+        The path.
+    check : JointSpeedCheck
+        The verifier that solves the arm (`sloshkit.plan.path_result.JointSpeedCheck`).
+
+    Returns
+    -------
+    _JointMap or str
+        The joints q(s), or the IK's message when it fails: the untilted poses are the path's
+        whatever the timing, so no plan can pass.
+
+    Examples
+    --------
+    >>> from sloshkit.export.frames import Mounting
+    >>> from sloshkit.export.kinematics import load_arm
+    >>> from sloshkit.export.path_robot import RobotVerifier
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
+    ...     CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.015, 0.002), model)
+    >>> arm = load_arm("ur5e")
+    >>> reached = joint_map(problem, RobotVerifier(arm, Mounting(base_xyz_m=(-0.45, -0.13, 0.3))))
+    >>> reached.joints_rad.shape
+    (50, 6)
+    >>> joint_map(problem, RobotVerifier(arm, Mounting(base_xyz_m=(3.0, 0.0, 0.0))))[:7]
+    'robot: '
+    """
     from sloshkit.errors import InputError
     from sloshkit.motion.poses import PoseTrajectory
 
@@ -128,10 +181,10 @@ def joint_map(problem: Any, check: Any) -> JointMap | str:
         joints = check.joint_positions(poses)
     except InputError as error:
         return f"robot: {error}"
-    return JointMap(s, joints, np.asarray(check.joint_speed_limits_rad_s, dtype=float))
+    return _JointMap(s, joints, np.asarray(check.joint_speed_limits_rad_s, dtype=float))
 
 
-def poses_of(
+def _poses_of(
     path: Any, samples: PathSamples, centre_height_m: float
 ) -> tuple[FloatArray, Rotation]:
     """Reference-point positions and container orientations of the samples.
@@ -152,14 +205,14 @@ def poses_of(
     return position, rotation
 
 
-def with_rest(samples: PathSamples) -> PathSamples:
+def _with_rest(samples: PathSamples) -> PathSamples:
     """The samples followed by `HOLD` samples of rest at the last pose."""
     s = np.concatenate((samples.s_m, np.repeat(samples.s_m[-1:], HOLD)))
     tilt = np.concatenate((samples.tilt_rad, np.repeat(samples.tilt_rad[-1:], HOLD, axis=0)))
     return PathSamples(s, tilt, samples.period_s)
 
 
-def model_drive(model: Any, force: FloatArray) -> tuple[FloatArray, FloatArray]:
+def _model_drive(model: Any, force: FloatArray) -> tuple[FloatArray, FloatArray]:
     """One band model's drive (modes, K, 3) and rest force (modes, 3) from `PathProgram.forces`:
     kappa_n g - a_hinge with kappa_n = omega_n^2 L_n / g (`sloshkit.sim.spatial_drive`)."""
     kappa = np.array([m.omega_rad_s**2 * m.length_m / model.gravity_m_s2 for m in model.modes])
@@ -168,7 +221,27 @@ def model_drive(model: Any, force: FloatArray) -> tuple[FloatArray, FloatArray]:
 
 
 def mode_arrays(model: Any) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """L_n [m], omega_n [rad/s] and zeta_n of a model's modes."""
+    """The lengths, frequencies and damping ratios of a model's modes.
+
+    Parameters
+    ----------
+    model : SloshModel
+        The model.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        L_n [m], omega_n [rad/s] and zeta_n.
+
+    Examples
+    --------
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> [round(float(w), 1) for w in mode_arrays(model)[1]]
+    [19.2, 32.7, 41.3]
+    """
     modes = model.modes
     return (
         np.array([m.length_m for m in modes]),
@@ -177,13 +250,13 @@ def mode_arrays(model: Any) -> tuple[FloatArray, FloatArray, FloatArray]:
     )
 
 
-def held(values: FloatArray, pad: int) -> FloatArray:
+def _held(values: FloatArray, pad: int) -> FloatArray:
     """``values`` with ``pad`` copies of the first and last rows (at rest before and after)."""
     return np.concatenate((values[:1],) * pad + (values,) + (values[-1:],) * pad)
 
 
 @dataclass(frozen=True, eq=False)
-class ProgramEvaluation:
+class _ProgramEvaluation:
     """Everything the limits see, for one set of samples.
 
     ``velocity`` ... ``jerk``: finite differences of the positions (rows for the padded
@@ -226,8 +299,25 @@ class PathProgram:
         Whether the tilt angles are variables.
     centre_height_m : float
         Tilt centre above the container bottom [m].
-    joints : JointMap, optional
-        An arm's joints along the path: their speeds are limited too.
+    joints : _JointMap, optional
+        An arm's joints along the path (`joint_map`): their speeds are limited too.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
+    >>> path = path_from_waypoints([[0, 0, 0], [0.1, 0, 0]])
+    >>> program = PathProgram(path, [model], limits, 0.01)
+    >>> t = np.arange(61) / 60  # a quintic rest-to-rest timing of 0.6 s
+    >>> samples = PathSamples(0.1 * t**3 * (10 - 15 * t + 6 * t**2), np.zeros((61, 2)), 0.01)
+    >>> iterate = program.iterate(samples)
+    >>> iterate.feasible, max(iterate.ratios, key=iterate.ratios.__getitem__)
+    (True, 'peak slosh')
     """
 
     def __init__(
@@ -238,7 +328,7 @@ class PathProgram:
         sample_period_s: float,
         tilt: bool = False,
         centre_height_m: float = 0.0,
-        joints: JointMap | None = None,
+        joints: _JointMap | None = None,
     ) -> None:
         self.path, self.models, self.limits = path, models, limits
         self.joints = joints
@@ -256,9 +346,9 @@ class PathProgram:
         omega_n^2 L_n differs from g adds (kappa_n - 1) times the last row).
         """
         ts = samples.period_s
-        position, rotation = poses_of(self.path, samples, self.centre)
+        position, rotation = _poses_of(self.path, samples, self.centre)
         quaternion = rotation.as_quat()
-        padded = held(position, 2)
+        padded = _held(position, 2)
         velocity = np.diff(padded, axis=0) / ts
         acceleration = np.diff(velocity, axis=0) / ts
         jerk = np.diff(acceleration, axis=0) / ts
@@ -272,7 +362,7 @@ class PathProgram:
         axis = rotation.apply([0.0, 0.0, 1.0])
         force = np.empty((len(self.modes) + 1, samples.s_m.size, 3))
         for index, mode in enumerate(self.modes):
-            point = held(position + mode.pivot_height_m * axis, 1)
+            point = _held(position + mode.pivot_height_m * axis, 1)
             hinge = (point[2:] - 2.0 * point[1:-1] + point[:-2]) / ts**2
             force[index] = to_frame.apply(self.gravity - hinge)
         force[-1] = to_frame.apply(self.gravity)
@@ -286,9 +376,9 @@ class PathProgram:
         }
         return force, kinematic
 
-    def evaluate(self, samples: PathSamples) -> ProgramEvaluation:
+    def evaluate(self, samples: PathSamples) -> _ProgramEvaluation:
         """Kinematics, forces, pendulum tracks, wall heights and residual amplitudes."""
-        samples = with_rest(samples)
+        samples = _with_rest(samples)
         force, kinematic = self.forces(samples)
         steps = samples.steps
         count = len(self.modes)
@@ -298,7 +388,7 @@ class PathProgram:
         rates = np.zeros_like(units)
         drives = np.zeros_like(units)
         for m, model in enumerate(self.models):
-            drive, rest = model_drive(model, force)
+            drive, rest = _model_drive(model, force)
             unit, rate = pendulum_track(drive, rest, *mode_arrays(model), samples.period_s)
             units[m], rates[m], drives[m] = unit, rate, drive
             for n, mode in enumerate(model.modes):
@@ -319,7 +409,7 @@ class PathProgram:
             # the joints' speeds as differences of the samples, over their limits
             q = self.joint_spline(samples.s_m)
             joint = np.diff(q, axis=0) / (samples.period_s * self.joints.limits_rad_s)
-        return ProgramEvaluation(
+        return _ProgramEvaluation(
             kinematic["velocity"],
             kinematic["acceleration"],
             kinematic["jerk"],
@@ -334,39 +424,39 @@ class PathProgram:
             drives,
         )
 
-    def worst(self, evaluation: ProgramEvaluation, samples: PathSamples) -> dict[str, float]:
+    def worst(self, evaluation: _ProgramEvaluation, samples: PathSamples) -> dict[str, float]:
         """Each limited quantity's peak divided by its limit."""
         lim = self.limits
         ratios = {
-            "velocity": peak_norm(evaluation.velocity) / lim.max_velocity_m_s,
-            "acceleration": peak_norm(evaluation.acceleration) / lim.max_acceleration_m_s2,
-            "jerk": peak_norm(evaluation.jerk) / lim.max_jerk_m_s3,
-            "peak slosh": peak_norm(evaluation.wall) / lim.max_height_m,
-            "residual slosh": residual_height(evaluation.amplitude) / lim.max_residual_height_m,
+            "velocity": _peak_norm(evaluation.velocity) / lim.max_velocity_m_s,
+            "acceleration": _peak_norm(evaluation.acceleration) / lim.max_acceleration_m_s2,
+            "jerk": _peak_norm(evaluation.jerk) / lim.max_jerk_m_s3,
+            "peak slosh": _peak_norm(evaluation.wall) / lim.max_height_m,
+            "residual slosh": _residual_height(evaluation.amplitude) / lim.max_residual_height_m,
         }
         if evaluation.joint.size:
             ratios["joint speed"] = float(np.max(np.abs(evaluation.joint)))
         if lim.max_angular_velocity_rad_s is not None:
             ratios["angular velocity"] = (
-                peak_norm(evaluation.omega) / lim.max_angular_velocity_rad_s
+                _peak_norm(evaluation.omega) / lim.max_angular_velocity_rad_s
             )
         if lim.max_angular_acceleration_rad_s2 is not None:
             ratios["angular acceleration"] = (
-                peak_norm(evaluation.alpha) / lim.max_angular_acceleration_rad_s2
+                _peak_norm(evaluation.alpha) / lim.max_angular_acceleration_rad_s2
             )
         if self.tilt:
-            tilt = held(samples.tilt_rad, 2)
+            tilt = _held(samples.tilt_rad, 2)
             rate = np.diff(tilt, axis=0) / samples.period_s
-            ratios["tilt"] = peak_norm(samples.tilt_rad) / lim.max_tilt_rad
-            ratios["tilt rate"] = peak_norm(rate) / lim.max_tilt_rate_rad_s
+            ratios["tilt"] = _peak_norm(samples.tilt_rad) / lim.max_tilt_rad
+            ratios["tilt rate"] = _peak_norm(rate) / lim.max_tilt_rate_rad_s
             ratios["tilt acceleration"] = (
-                peak_norm(np.diff(rate, axis=0) / samples.period_s)
+                _peak_norm(np.diff(rate, axis=0) / samples.period_s)
                 / lim.max_tilt_acceleration_rad_s2
             )
         return ratios
 
     # ----------------------------------------------------------------- linearisation
-    def jacobians(self, samples: PathSamples) -> list[ProgramBands]:
+    def jacobians(self, samples: PathSamples) -> list[_ProgramBands]:
         """Banded derivatives of the samples' positions, angular velocities and forces with
         respect to each variable block (s, then r_x, r_y with tilt).
 
@@ -377,7 +467,7 @@ class PathProgram:
         recomputed: a sample's change moves only its own spin when the axis keeps its direction
         (the increments telescope; holding it fixed rotated N by the yaw change instead).
         """
-        samples = with_rest(samples)
+        samples = _with_rest(samples)
         n = samples.s_m.size
         columns: list[int | None] = [None] + ([0, 1] if self.tilt else [])
         bands = []
@@ -388,7 +478,7 @@ class PathProgram:
             omega = np.zeros((2, n + 1, 3))
             for colour in range(3):
                 chosen = np.arange(colour, n, 3)
-                plus, minus, width = perturbed(samples, chosen, column, step, self.path.length_m)
+                plus, minus, width = _perturbed(samples, chosen, column, step, self.path.length_m)
                 (fp, kp), (fm, km) = self.forces(plus), self.forces(minus)
                 dforce = fp - fm
                 position[chosen] = (kp["position"] - km["position"])[chosen] / width[chosen, None]
@@ -402,7 +492,7 @@ class PathProgram:
                 omega[1][own] = domega[own] / width[own, None]
                 prev = chosen[chosen + 1 <= n - 1] + 1
                 omega[0][prev] = domega[prev] / width[prev - 1, None]
-            bands.append(ProgramBands(position, omega, force))
+            bands.append(_ProgramBands(position, omega, force))
         return bands
 
     def iterate(self, samples: PathSamples) -> ProgramIterate:
@@ -413,10 +503,37 @@ class PathProgram:
 
 @dataclass(frozen=True, eq=False)
 class ProgramIterate:
-    """PathSamples, their evaluation and each limited quantity's peak over its limit."""
+    """Samples, their exact evaluation and each limited quantity's peak over its limit.
+
+    Parameters
+    ----------
+    samples : PathSamples
+        The samples.
+    evaluation : _ProgramEvaluation
+        Everything the limits see (`PathProgram.evaluate`).
+    ratios : dict
+        Each limited quantity's peak over its limit (`PathProgram.worst`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
+    >>> path = path_from_waypoints([[0, 0, 0], [0.1, 0, 0]])
+    >>> program = PathProgram(path, [model], limits, 0.01)
+    >>> t = np.arange(61) / 60  # a quintic rest-to-rest timing of 0.6 s
+    >>> samples = PathSamples(0.1 * t**3 * (10 - 15 * t + 6 * t**2), np.zeros((61, 2)), 0.01)
+    >>> iterate = program.iterate(samples)
+    >>> round(iterate.reach, 3), iterate.ratios["velocity"] < 1.0
+    (0.1, True)
+    """
 
     samples: PathSamples
-    evaluation: ProgramEvaluation
+    evaluation: _ProgramEvaluation
     ratios: dict[str, float]
 
     @property
@@ -436,7 +553,7 @@ class ProgramIterate:
 
 
 @dataclass(frozen=True, eq=False)
-class ProgramBands:
+class _ProgramBands:
     """Derivatives of one variable block: ``position`` (n, 3) d P_k / d x_k, ``omega``
     (2, n + 1, 3) d w_i / d x_{i-1} and d w_i / d x_i, ``force`` (3, modes, n, 2)
     d f_k / d x_{k+o} for o = -1, 0, 1."""
@@ -446,7 +563,7 @@ class ProgramBands:
     force: FloatArray
 
 
-def perturbed(
+def _perturbed(
     samples: PathSamples, chosen: Any, column: int | None, step: float, length_m: float
 ) -> tuple[PathSamples, PathSamples, FloatArray]:
     """The samples with the ``chosen`` ones moved by +- ``step`` in s (kept on [0, S]: one-sided
@@ -467,7 +584,7 @@ def perturbed(
     return PathSamples(s_plus, tilt_plus, period), PathSamples(s_minus, tilt_minus, period), width
 
 
-def residual_height(amplitude: FloatArray) -> float:
+def _residual_height(amplitude: FloatArray) -> float:
     """The residual bound of the worst band model: sum_n e_n |M_n|_2 with M_n = [A_n B_n] the
     free oscillation's cosine and sine vectors (its semi-major axis,
     `sloshkit.sim.spatial_response.ellipse_semi_major`), from (models, modes, 4) [m]."""
@@ -475,16 +592,40 @@ def residual_height(amplitude: FloatArray) -> float:
     return float(np.max(np.sum(semi, axis=1)))
 
 
-def peak_norm(values: FloatArray) -> float:
+def _peak_norm(values: FloatArray) -> float:
     """Largest Euclidean norm along the last axis."""
     return float(np.max(np.linalg.norm(values, axis=-1))) if values.size else 0.0
 
 
 def rescaled(samples: PathSamples, steps: int, period_s: float | None = None) -> PathSamples:
-    """The same timing shape on ``steps`` sample periods of ``period_s`` (default: the
-    samples' own): s and the tilt over normalised time by the clamped cubic spline through the
-    samples (C2 and at rest at both ends, so that a coarse timing's jerk carries over to a finer
-    grid; de Boor, *A Practical Guide to Splines* (1978) ch. IV), s kept monotone on [0, S]."""
+    """The same timing shape on another number of samples.
+
+    s and the tilt over normalised time by the clamped cubic spline through the samples (C2
+    and at rest at both ends; de Boor, *A Practical Guide to Splines* (1978) ch. IV), s kept
+    monotone on [0, S].
+
+    Parameters
+    ----------
+    samples : PathSamples
+        The timing.
+    steps : int
+        Sample periods of the result.
+    period_s : float, optional
+        Its sample period [s] (default: the samples' own).
+
+    Returns
+    -------
+    PathSamples
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(11) / 10
+    >>> timing = PathSamples(t**2 * (3 - 2 * t), np.zeros((11, 2)), 0.1)
+    >>> longer = rescaled(timing, 20, 0.05)
+    >>> longer.steps, float(longer.s_m[10]), float(longer.s_m[-1])
+    (20, 0.5, 1.0)
+    """
     from scipy.interpolate import CubicSpline
 
     old = samples.s_m.size - 1
@@ -499,12 +640,37 @@ def rescaled(samples: PathSamples, steps: int, period_s: float | None = None) ->
 
 
 def smoothed(samples: PathSamples, steps: int, period_s: float) -> PathSamples:
-    """A coarse timing on ``steps`` finer periods: the uniform cubic B-spline whose control
-    points are the samples (each end repeated twice more, so the curve starts and ends at
-    rest), its parameter spread over the same duration. The B-spline's third derivative on each
-    segment is the third difference of its control points, so the finer grid sees no more
-    jerk (in s) than the coarse one (de Boor, *A Practical Guide to Splines* (1978) ch. IX);
-    an interpolating spline amplifies the coarse grid's alternating jerk up to threefold."""
+    """A coarse timing on a finer grid, its jerk kept.
+
+    The uniform cubic B-spline whose control points are the samples (each end repeated twice
+    more, so the curve starts and ends at rest), its parameter spread over the same duration.
+    The B-spline's third derivative on each segment is the third difference of its control
+    points, so the finer grid sees no more jerk (in s) than the coarse one (de Boor, *A
+    Practical Guide to Splines* (1978) ch. IX); an interpolating spline amplifies the coarse
+    grid's alternating jerk up to threefold.
+
+    Parameters
+    ----------
+    samples : PathSamples
+        The coarse timing.
+    steps : int
+        Sample periods of the result.
+    period_s : float
+        Its sample period [s].
+
+    Returns
+    -------
+    PathSamples
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(11) / 10
+    >>> coarse = PathSamples(t**2 * (3 - 2 * t), np.zeros((11, 2)), 0.1)
+    >>> fine = smoothed(coarse, 40, 0.025)
+    >>> fine.steps, float(fine.s_m[0]), float(fine.s_m[-1]), bool(np.all(np.diff(fine.s_m) >= 0))
+    (40, 0.0, 1.0, True)
+    """
     points = np.concatenate((samples.s_m[:1].repeat(2), samples.s_m, samples.s_m[-1:].repeat(2)))
     parameter = 1.0 + np.arange(steps + 1) / steps * (points.size - 3)
     index = np.clip(np.floor(parameter).astype(int), 1, points.size - 3)
@@ -523,11 +689,40 @@ def smoothed(samples: PathSamples, steps: int, period_s: float) -> PathSamples:
 
 
 def export_poses(problem: Any, samples: PathSamples) -> Any:
-    """The samples as the export (`sloshkit.motion.poses.PoseTrajectory`, which makes the
-    quaternions sign-continuous)."""
+    """The samples as the export.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        The path, its export period and tilt centre.
+    samples : PathSamples
+        The timing on the export grid.
+
+    Returns
+    -------
+    PoseTrajectory
+        The container's poses at the samples (`sloshkit.motion.poses.PoseTrajectory`, which
+        makes the quaternions sign-continuous).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
+    ...     CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.015, 0.002), model)
+    >>> samples = PathSamples(np.linspace(0.0, 0.1, 6), np.zeros((6, 2)), 0.004)
+    >>> poses = export_poses(problem, samples)
+    >>> float(poses.duration_s), poses.position_m[-1].round(3).tolist()
+    (0.02, [0.1, 0.0, 0.0])
+    """
     from sloshkit.motion.poses import PoseTrajectory
 
-    position, rotation = poses_of(problem.path, samples, problem.tilt_centre_height_m)
+    position, rotation = _poses_of(problem.path, samples, problem.tilt_centre_height_m)
     time_s = np.arange(samples.s_m.size) * problem.sample_period_s
     return PoseTrajectory(time_s, position, rotation.as_quat())
 
@@ -535,23 +730,13 @@ def export_poses(problem: Any, samples: PathSamples) -> Any:
 __all__ = [
     "HOLD",
     "JOINT_GRID_M",
-    "JointMap",
     "PathProgram",
     "PathSamples",
-    "ProgramBands",
-    "ProgramEvaluation",
     "ProgramIterate",
     "ProgramLimits",
     "export_poses",
-    "held",
     "joint_map",
     "mode_arrays",
-    "model_drive",
-    "peak_norm",
-    "perturbed",
-    "poses_of",
     "rescaled",
-    "residual_height",
     "smoothed",
-    "with_rest",
 ]

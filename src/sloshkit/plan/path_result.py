@@ -182,7 +182,13 @@ Verifier = Callable[[PathProblem, PoseTrajectory, bool], Verification]
 class JointSpeedCheck(Protocol):
     """A verifier that also checks an arm's joint speeds, and lends the path program the
     joints along the path (`sloshkit.export.path_robot.RobotVerifier`): the program then
-    limits the joint speeds itself instead of leaving them to a uniform stretch."""
+    limits the joint speeds itself instead of leaving them to a uniform stretch.
+
+    Examples
+    --------
+    >>> isinstance(verify, JointSpeedCheck)
+    False
+    """
 
     def joint_positions(self, poses: PoseTrajectory) -> FloatArray:
         """The arm's joints (n, dof) [rad] at the poses, as the export solves them; raises
