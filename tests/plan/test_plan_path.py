@@ -242,6 +242,24 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
     assert both.returncode == 2 and "exactly one of --path" in both.stderr
 
 
+def test_optimal_with_tilt_compensation_warns_that_it_plans_upright(tmp_path: Path) -> None:
+    """``--method optimal`` does not tilt yet: with ``--tilt-compensation`` the command says so
+    on stderr and in the JSON ``warnings``, and the plan is upright."""
+    waypoints = tmp_path / "w.csv"
+    waypoints.write_text("x [mm],y [mm],z [mm]\n0,0,0\n100,0,0\n")
+    done = run_entry_point(
+        "plan", "--path", str(waypoints), "--radius", "49mm", "--fill-height", "80mm",
+        "--liquid", "water-20C", "--max-slosh-height", "15mm", "--max-residual-height", "2mm",
+        "--vmax", "2m/s", "--amax", "10m/s^2", "--jmax", "100m/s^3",
+        "--method", "optimal", "--tilt-compensation", "--json",
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    payload = json.loads(done.stdout)
+    assert payload["feasible"] and payload["peak_tilt_deg"] == 0.0
+    assert any(w.startswith("--tilt-compensation: --method optimal") for w in payload["warnings"])
+    assert "--tilt-compensation" in done.stderr
+
+
 def test_angular_limits_parse_rad_and_deg() -> None:
     from sloshkit.io.requests import angular_rate_request
 
