@@ -152,8 +152,7 @@ def free_time(
     3. On the export grid: N, the steps of that duration
        (`sloshkit.motion.sampling.steps_to_reach`); its best margin (`_margin_at`, ended when
        every limit is met with half `PROGRAM_MARGIN` to spare), N increased while a limit is
-       still exceeded (at most `EXPORT_TRIES`), each N from the timing nearest to meeting
-       the limits so far.
+       still exceeded (at most `EXPORT_TRIES`), each N from the last one's samples.
 
     Parameters
     ----------
@@ -219,26 +218,21 @@ def free_time(
         current = free(found.samples, found.samples.steps, 25, 0.1).samples
     # on the export's period; it starts near its optimum: a quarter of the trust regions
     duration = current.steps * current.period_s
-    fine_steps = steps_to_reach(duration, ts)
-    spread = program.iterate(smoothed(current, fine_steps, duration / fine_steps))
-    found = free(current, fine_steps, 8, 0.025)
-    # each export-grid duration starts from the timing nearest to meeting the limits: the
-    # free search's, or the coarse timing spread when that search ended further off
-    bases = [found, spread]
-    steps = steps_to_reach(found.samples.steps * found.samples.period_s, ts)
+    found = free(current, steps_to_reach(duration, ts), 8, 0.025)
+    current, duration = found.samples, found.samples.steps * found.samples.period_s
+    steps = steps_to_reach(duration, ts)
     history: list[tuple[int, float, ProgramIterate]] = []
     for _ in range(EXPORT_TRIES):
-        base = min(bases, key=lambda b: b.excess).samples
         # enough margin that the verification's finer checks pass as well
         iterate, ratio = _margin_at(
-            program, rescaled(base, steps, ts), iterations=4, enough=1.0 - 0.5 * PROGRAM_MARGIN
+            program, rescaled(current, steps, ts), iterations=4, enough=1.0 - 0.5 * PROGRAM_MARGIN
         )
         history.append((steps, ratio, iterate))
         if log:
             log(f"N = {steps}: largest ratio to a limit {ratio:.4f} ({program.programs} programs)")
         if ratio <= 1.0:
             return iterate, [(h[0], h[1]) for h in history]
-        bases.append(iterate)
+        current = iterate.samples
         # half the step of r ~ (N0 / N)^2: near r = 1 the margin program, not the duration,
         # is what fell short
         steps += max(1, math.ceil(0.5 * steps * (math.sqrt(ratio) - 1.0)))
