@@ -21,13 +21,13 @@ import numpy as np
 
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.plan.path_cone import PENALTY, PROGRAM_MARGIN, cone_step
+from sloshkit.plan.path_joints import joint_map
 from sloshkit.plan.path_program import (
     PathProgram,
     PathSamples,
     ProgramIterate,
     ProgramLimits,
     export_poses,
-    joint_map,
     rescaled,
     smoothed,
 )
@@ -317,8 +317,8 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     longer shortens the plan; the shortest verified timing is kept. A limit outside the
     program is met by a uniform stretch (`sloshkit.plan.path_result.verified_candidate`); a
     verifier that checks an arm's joint speeds (`sloshkit.plan.path_result.JointSpeedCheck`)
-    lends the programs the joints along the path (the export's IK every `JOINT_GRID_M`), and
-    they limit the joint speeds themselves.
+    lends the programs the joints along the path (`sloshkit.plan.path_joints.joint_map`),
+    and they limit the joint speeds themselves.
 
     Parameters
     ----------

@@ -20,7 +20,8 @@ samples (`PathProgram.evaluate`):
   SpatialResponse` measures them). On the export this equals `simulate_spatial(...,
   nonlinear=True, cutoff_hz=None)` to the accuracy of the spline differentiation (0.04 % of
   the peak on the test's corner path);
-- with an arm, its joint speeds, from the export's IK along the path (`joint_map`).
+- with an arm, its joint speeds, from the export's IK along the path
+  (`sloshkit.plan.path_joints.joint_map`).
 
 `PathProgram.jacobians` differentiates the positions, angular velocities and forces banded, by
 colouring; `sloshkit.plan.path_cone.cone_step` builds one program from them. `rescaled` and
@@ -37,6 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
+from sloshkit.plan.path_joints import JointMap
 from sloshkit.plan.path_pendulums import mode_slope, pendulum_track
 from sloshkit.sim.metrics import free_oscillation_components
 from sloshkit.sim.spatial_response import ellipse_semi_major
@@ -112,76 +114,6 @@ class PathSamples:
     def steps(self) -> int:
         """N, the number of sample periods."""
         return int(self.s_m.size - 1)
-
-
-@dataclass(frozen=True, eq=False)
-class _JointMap:
-    """An arm's joints along the (untilted) path: q(s) [rad] by the cubic spline through the
-    export's IK at ``s_m``, and the joints' speed limits [rad/s]."""
-
-    s_m: FloatArray
-    joints_rad: FloatArray
-    limits_rad_s: FloatArray
-
-    def spline(self) -> Any:
-        from scipy.interpolate import CubicSpline
-
-        return CubicSpline(self.s_m, self.joints_rad, axis=0)
-
-
-#: Spacing of the path parameter at which the arm's IK is solved for the programs [m].
-JOINT_GRID_M = 0.005
-
-
-def joint_map(problem: Any, check: Any) -> _JointMap | str:
-    """The arm's joints along the path every `JOINT_GRID_M` (at least 50 points).
-
-    Parameters
-    ----------
-    problem : PathProblem
-        The path.
-    check : JointSpeedCheck
-        The verifier that solves the arm (`sloshkit.plan.path_result.JointSpeedCheck`).
-
-    Returns
-    -------
-    _JointMap or str
-        The joints q(s), or the IK's message when it fails: the untilted poses are the path's
-        whatever the timing, so no plan can pass.
-
-    Examples
-    --------
-    >>> from sloshkit.export.frames import Mounting
-    >>> from sloshkit.export.kinematics import load_arm
-    >>> from sloshkit.export.path_robot import RobotVerifier
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
-    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
-    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
-    ...     CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.015, 0.002), model)
-    >>> arm = load_arm("ur5e")
-    >>> reached = joint_map(problem, RobotVerifier(arm, Mounting(base_xyz_m=(-0.45, -0.13, 0.3))))
-    >>> reached.joints_rad.shape
-    (50, 6)
-    >>> joint_map(problem, RobotVerifier(arm, Mounting(base_xyz_m=(3.0, 0.0, 0.0))))[:7]
-    'robot: '
-    """
-    from sloshkit.errors import InputError
-    from sloshkit.motion.poses import PoseTrajectory
-
-    length = problem.path.length_m
-    count = max(50, math.ceil(length / JOINT_GRID_M) + 1)
-    s = np.linspace(0.0, length, count)
-    rotation = problem.path.orientation(s)
-    poses = PoseTrajectory(np.arange(count) * 1e-3, problem.path.position(s), rotation.as_quat())
-    try:
-        joints = check.joint_positions(poses)
-    except InputError as error:
-        return f"robot: {error}"
-    return _JointMap(s, joints, np.asarray(check.joint_speed_limits_rad_s, dtype=float))
 
 
 def _poses_of(
@@ -299,7 +231,7 @@ class PathProgram:
         Whether the tilt angles are variables.
     centre_height_m : float
         Tilt centre above the container bottom [m].
-    joints : _JointMap, optional
+    joints : JointMap, optional
         An arm's joints along the path (`joint_map`): their speeds are limited too.
 
     Examples
@@ -328,7 +260,7 @@ class PathProgram:
         sample_period_s: float,
         tilt: bool = False,
         centre_height_m: float = 0.0,
-        joints: _JointMap | None = None,
+        joints: JointMap | None = None,
     ) -> None:
         self.path, self.models, self.limits = path, models, limits
         self.joints = joints
@@ -729,13 +661,11 @@ def export_poses(problem: Any, samples: PathSamples) -> Any:
 
 __all__ = [
     "HOLD",
-    "JOINT_GRID_M",
     "PathProgram",
     "PathSamples",
     "ProgramIterate",
     "ProgramLimits",
     "export_poses",
-    "joint_map",
     "mode_arrays",
     "rescaled",
     "smoothed",
