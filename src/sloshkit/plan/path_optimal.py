@@ -41,6 +41,9 @@ MAX_SEARCH = 14
 TIGHTENINGS = 5
 #: A verified plan whose peak or residual is within this fraction of its limit ends them.
 LIMIT_TOLERANCE = 0.02
+#: Where the program's slosh limits aim, as a fraction of the limits: the first round starts
+#: there and `_next_limit` moves them towards the verification meeting it.
+LIMIT_AIM = 1.0 - 0.5 * LIMIT_TOLERANCE
 
 
 def _margin_at(
@@ -361,7 +364,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     machine, slosh = problem.machine, problem.slosh
     # the program's slosh limits start where `_next_limit` aims: the verification's filtered
     # simulation exceeds the program's model by a percent or so
-    aim = 1.0 - 0.5 * LIMIT_TOLERANCE
+    aim = LIMIT_AIM
     limits = ProgramLimits(
         machine.max_velocity_m_s,
         machine.max_acceleration_m_s2,
@@ -475,7 +478,7 @@ def _next_limit(
     """The program's next limit: the verification's value is an increasing function v(p) of
     the program's limit p (v = p for a linear verification); regula falsi for v(p) = limit
     (slightly below) on the rounds that bracket it, else p limit / v (at most the limit)."""
-    aim = (1.0 - 0.5 * LIMIT_TOLERANCE) * limit
+    aim = LIMIT_AIM * limit
     points = sorted((r[program_key], r[verified_key]) for r in rounds)
     below = [p for p in points if p[1] <= aim]
     above = [p for p in points if p[1] > aim]
@@ -490,6 +493,7 @@ def _next_limit(
 __all__ = [
     "COARSE_PERIOD_S",
     "EXPORT_TRIES",
+    "LIMIT_AIM",
     "LIMIT_TOLERANCE",
     "MAX_SEARCH",
     "SEARCH_TOLERANCE",

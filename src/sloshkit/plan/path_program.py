@@ -566,9 +566,19 @@ def rescaled(samples: PathSamples, steps: int, period_s: float | None = None) ->
     s = CubicSpline(u_old, samples.s_m, bc_type=clamped)(u_new)
     s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
     s[-1] = samples.s_m[-1]
+    period = samples.period_s if period_s is None else period_s
+    return PathSamples(s, _tilt_on(samples, steps), period)
+
+
+def _tilt_on(samples: PathSamples, steps: int) -> FloatArray:
+    """The samples' tilt over normalised time on ``steps`` periods: the clamped cubic spline
+    (at rest at both ends), as `rescaled` carries it."""
+    from scipy.interpolate import CubicSpline
+
+    old = samples.s_m.size - 1
+    u_old, u_new = np.arange(old + 1) / old, np.arange(steps + 1) / steps
     still = ((1, np.zeros(2)), (1, np.zeros(2)))
-    tilt = CubicSpline(u_old, samples.tilt_rad, axis=0, bc_type=still)(u_new)
-    return PathSamples(s, tilt, samples.period_s if period_s is None else period_s)
+    return np.asarray(CubicSpline(u_old, samples.tilt_rad, axis=0, bc_type=still)(u_new))
 
 
 def smoothed(samples: PathSamples, steps: int, period_s: float) -> PathSamples:
@@ -616,7 +626,7 @@ def smoothed(samples: PathSamples, steps: int, period_s: float) -> PathSamples:
     s = sum(w * points[index + j - 1] for j, w in enumerate(weights))
     s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
     s[-1] = samples.s_m[-1]
-    tilt = rescaled(samples, steps).tilt_rad
+    tilt = _tilt_on(samples, steps)
     return PathSamples(s, tilt, period_s)
 
 
