@@ -211,9 +211,10 @@ def cone_step(
     n = samples.s_m.size
     steps = n - 1
     keep = 1.0 - PROGRAM_MARGIN
-    band = program.jacobians(samples)[0]
-    derivative = band.position
+    bands = program.jacobians(samples)
+    band = bands[0]
     unit = lim.max_jerk_m_s3 * ts**3
+    tilting = program.tilt
     sigma = steps
     models, modes = len(program.models), len(program.modes)
     state_base = steps + 1
@@ -226,13 +227,33 @@ def cone_step(
 
     t_base = state_base + models * modes * 6 * last
     dilation = t_base + 2 * models * modes  # epsilon's column, when the period is free
-    columns = dilation + (3 if dilate else 0)
+    # the tilt deviations (r_x, r_y) of samples 1..N-1 in units of a tilt acceleration's
+    # change over one period (the tilt is zero at both ends)
+    tilt_base = dilation + (3 if dilate else 0)
+    tilt_unit = lim.max_tilt_acceleration_rad_s2 * ts**2
+    columns = tilt_base + (2 * (steps - 1) if tilting else 0)
     # the slacks of the wall heights and of the residual: sigma's own column unless dilated
     wall_sigma, residual_sigma = (dilation + 1, dilation + 2) if dilate else (sigma, sigma)
     conic = _ConeRows()
 
     def d(i: Any) -> Any:
         return np.asarray(i) - 1
+
+    # each variable block: its bands, the column of a sample's deviation, which samples have
+    # one, and its unit
+    blocks: list[tuple[Any, Any, Any, float]] = [
+        (band, d, lambda k: (k >= 1) & (k <= steps), unit)
+    ]
+    if tilting:
+        for c in (0, 1):
+            blocks.append(
+                (
+                    bands[1 + c],
+                    lambda k, c=c: tilt_base + (np.asarray(k) - 1) * 2 + c,
+                    lambda k: (k >= 1) & (k <= steps - 1),
+                    tilt_unit,
+                )
+            )
 
     # the end sample is fixed: d_N = (S - s_N) / unit -> an equality
     conic.add("zero", [0], [d(steps)], [1.0], [(program.path.length_m - samples.s_m[-1]) / unit])
@@ -259,7 +280,18 @@ def cone_step(
                 zetas,
                 ts,
             )
-            pull = 2.0 * (evaluation.force[-1][None] - evaluation.force[:-1])
+            # the force rows as above, N's angular velocity as 1 / h and its derivative as 1 / h^2
+            drive_rates = evaluation.drive[m][0, :, 3:]
+            pull = np.concatenate(
+                (
+                    2.0 * (evaluation.force[-1][None] - evaluation.force[:-1]),
+                    np.broadcast_to(
+                        np.concatenate((-drive_rates[:, :2], -2.0 * drive_rates[:, 2:]), -1),
+                        (modes, *drive_rates.shape[:1], 4),
+                    ),
+                ),
+                axis=-1,
+            )
         for q in range(modes):
             r_list = [period * 6 + row for row in range(6)]
             c_list = [state(m, q, row, period + 1) for row in range(6)]
@@ -273,17 +305,21 @@ def cone_step(
             for shift, matrix in ((0, b_k[q]), (1, e_k[q])):
                 force_at = period + shift
                 for o in (-1, 0, 1):
-                    gain = (
-                        band.force[o + 1][q, force_at]
-                        + (kappa[q] - 1.0) * band.force[o + 1][-1, force_at]
-                    )
-                    coefficient = np.einsum("kac,kc->ka", matrix, gain) * unit
                     sample = force_at + o
-                    ok = (sample >= 1) & (sample <= steps)
-                    for row in range(6):
-                        r_list.append(period[ok] * 6 + row)
-                        c_list.append(d(sample[ok]))
-                        v_list.append(-coefficient[ok, row])
+                    for block, column_of, has, scale in blocks:
+                        gain = (
+                            block.force[o + 1][q, force_at]
+                            + (kappa[q] - 1.0) * block.force[o + 1][-1, force_at]
+                        )
+                        coefficient = (
+                            np.einsum("kac,kc->ka", matrix[..., :3], gain)
+                            + np.einsum("kac,kc->ka", matrix[..., 3:], block.rates[o + 1][force_at])
+                        ) * scale
+                        ok = has(sample)
+                        for row in range(6):
+                            r_list.append(period[ok] * 6 + row)
+                            c_list.append(column_of(sample[ok]))
+                            v_list.append(-coefficient[ok, row])
             if dilate:
                 total_change = (
                     along[q]
@@ -380,13 +416,14 @@ def cone_step(
         r_idx, c_idx, v_idx = [np.arange(rows) * 4], [np.full(rows, sigma)], [np.full(rows, -1.0)]
         for j, weight in enumerate(_DIFFERENCE_WEIGHTS[order]):
             k = np.clip(np.arange(rows) + j - 2, 0, total - 1)
-            moving = (k >= 1) & (k <= steps)
-            for c in range(3):
-                coefficient = weight / ts**order * derivative[k, c] * unit / limit
-                use = moving & (coefficient != 0.0)
-                r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
-                c_idx.append(d(k[use]))
-                v_idx.append(-coefficient[use])
+            for block, column_of, has, scale in blocks:
+                moving = has(k)
+                for c in range(3):
+                    coefficient = weight / ts**order * block.position[k, c] * scale / limit
+                    use = moving & (coefficient != 0.0)
+                    r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
+                    c_idx.append(column_of(k[use]))
+                    v_idx.append(-coefficient[use])
         if dilate:  # a difference of order p scales as h^-p
             for c in range(3):
                 r_idx.append(np.arange(rows) * 4 + 1 + c)
@@ -409,14 +446,17 @@ def cone_step(
             w_row = np.arange(rows) + shift
             for slot, sample_shift in ((0, -1), (1, 0)):
                 k = w_row + sample_shift
-                ok = (w_row >= 1) & (w_row <= total - 1) & (k >= 1) & (k <= steps)
-                for c in range(3):
-                    coefficient = np.zeros(rows)
-                    coefficient[ok] = weight * band.omega[slot][w_row[ok], c] * unit / angular_limit
-                    use = ok & (coefficient != 0.0)
-                    r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
-                    c_idx.append(d(k[use]))
-                    v_idx.append(-coefficient[use])
+                for block, column_of, has, scale in blocks:
+                    ok = (w_row >= 1) & (w_row <= total - 1) & has(k)
+                    for c in range(3):
+                        coefficient = np.zeros(rows)
+                        coefficient[ok] = (
+                            weight * block.omega[slot][w_row[ok], c] * scale / angular_limit
+                        )
+                        use = ok & (coefficient != 0.0)
+                        r_idx.append(np.flatnonzero(use) * 4 + 1 + c)
+                        c_idx.append(column_of(k[use]))
+                        v_idx.append(-coefficient[use])
         if dilate:
             for c in range(3):
                 r_idx.append(np.arange(rows) * 4 + 1 + c)
@@ -454,6 +494,9 @@ def cone_step(
                 np.concatenate(v_idx),
                 (keep - sign * joint).ravel(),
             )
+    # ------------------------------------------------ the tilt, its rate and acceleration
+    if tilting:
+        _tilt_rows(conic, samples, lim, tilt_base, tilt_unit, sigma, keep, trust, dilation, dilate)
     # ------------------------------------------------ monotone progress and trust region
     s = samples.s_m
     inner = np.arange(1, n - 1)
@@ -504,7 +547,73 @@ def cone_step(
     )
     new_period = ts * (1.0 + float(x[dilation])) if dilate else ts
     margin = max(float(x[sigma]), float(x[wall_sigma]), float(x[residual_sigma]))
-    return ConeStep(PathSamples(new_s, samples.tilt_rad.copy(), new_period), margin, residual)
+    new_tilt = samples.tilt_rad.copy()
+    if tilting:
+        new_tilt[1:-1] += tilt_unit * x[tilt_base:].reshape(steps - 1, 2)
+    return ConeStep(PathSamples(new_s, new_tilt, new_period), margin, residual)
+
+
+def _tilt_rows(
+    conic: _ConeRows,
+    samples: PathSamples,
+    lim: Any,
+    base: int,
+    scale: float,
+    sigma: int,
+    keep: float,
+    trust: float,
+    dilation: int,
+    dilate: bool,
+) -> None:
+    """The tilt's cones: |r_k|, |r_k+1 - r_k| / h and |r_k+1 - 2 r_k + r_k-1| / h^2 within
+    keep + sigma of their limits (exact: linear in the deviations; a free period scales the
+    differences of order p as h^-p), and its trust region |change| <= trust max_tilt (trust
+    in m/s read as a fraction of the tilt range per program; the tilt's columns from
+    ``base``, the deviations of samples 1..N-1 in units of ``scale``)."""
+    tilt, ts = samples.tilt_rad, samples.period_s
+    last = tilt.shape[0] - 1  # N; r_0 = r_N = 0 and the rest samples hold r_N
+
+    def column(k: Any, c: int) -> Any:
+        return base + (np.asarray(k) - 1) * 2 + c
+
+    for order, limit, first, rows in (
+        (0, lim.max_tilt_rad, 1, last - 1),
+        (1, lim.max_tilt_rate_rad_s, 0, last),
+        (2, lim.max_tilt_acceleration_rad_s2, 0, last + 1),
+    ):
+        row = np.arange(rows)
+        values = np.zeros((rows, 2))
+        r_idx, c_idx, v_idx = [row * 3], [np.full(rows, sigma)], [np.full(rows, -1.0)]
+        # row i of order p differences the samples i + first - (p == 2) ... onwards
+        start = row + first - (1 if order == 2 else 0)
+        for j, weight in enumerate(_DIFFERENCE_WEIGHTS[order]):
+            k = start + j
+            values += weight * tilt[np.clip(k, 0, last)] / ts**order
+            free = (k >= 1) & (k <= last - 1)
+            for c in (0, 1):
+                r_idx.append(row[free] * 3 + 1 + c)
+                c_idx.append(column(k[free], c))
+                v_idx.append(np.full(int(free.sum()), -weight * scale / ts**order / limit))
+        if dilate and order:
+            for c in (0, 1):
+                r_idx.append(row * 3 + 1 + c)
+                c_idx.append(np.full(rows, dilation))
+                v_idx.append(order * values[:, c] / limit)
+        b = np.zeros((rows, 3))
+        b[:, 0] = keep
+        b[:, 1:] = values / limit
+        conic.add(
+            "soc",
+            np.concatenate(r_idx),
+            np.concatenate(c_idx),
+            np.concatenate(v_idx),
+            b.ravel(),
+            [3] * rows,
+        )
+    inner = np.arange(2 * (last - 1))
+    bound = np.full(inner.size, min(trust, 1.0) * lim.max_tilt_rad / scale)
+    conic.add("nonneg", inner, base + inner, np.ones(inner.size), bound)
+    conic.add("nonneg", inner, base + inner, -np.ones(inner.size), bound)
 
 
 __all__ = [

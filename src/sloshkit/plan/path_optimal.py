@@ -41,6 +41,10 @@ MAX_SEARCH = 14
 TIGHTENINGS = 5
 #: A verified plan whose peak or residual is within this fraction of its limit ends them.
 LIMIT_TOLERANCE = 0.02
+#: The tilt's rate and acceleration limits where the angular ones are lifted [rad/s, rad/s^2]
+#: (as `benchmarks/ocp_reference.py`'s tilted problem).
+TILT_RATE_RAD_S = math.pi
+TILT_ACCELERATION_RAD_S2 = math.radians(1000.0)
 #: Where the program's slosh limits aim, as a fraction of the limits: the first round starts
 #: there and `_next_limit` moves them towards the verification meeting it.
 LIMIT_AIM = 1.0 - 0.5 * LIMIT_TOLERANCE
@@ -307,8 +311,8 @@ def _minimum_time(
     return best[2], [(h[0], h[1]) for h in history]
 
 
-def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
-    """The minimum-time timing of the (untilted) path, verified.
+def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = False) -> Any:
+    """The minimum-time timing (and, with ``tilt``, the tilt) of the path, verified.
 
     Rounds of the free-time search (`free_time`): the first from the time-optimal speed
     profile under the quasi-static acceleration that tilts a level surface to the height
@@ -331,6 +335,10 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         (problem, poses, tilted) -> Verification.
     log : callable, optional
         Receives one line per solved duration.
+    tilt : bool
+        Whether the two tilt angles of every sample are variables of the programs (zero at
+        both ends; limited to ``problem.max_tilt_rad``, the angular velocity and acceleration
+        limits, else pi rad/s and 1000 deg/s^2, about ``problem.tilt_centre_height_m``).
 
     Returns
     -------
@@ -373,7 +381,13 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         machine.max_angular_acceleration_rad_s2,
         aim * slosh.max_height_m,
         aim * slosh.max_residual_height_m,
+        max_tilt_rad=problem.max_tilt_rad,
+        max_tilt_rate_rad_s=machine.max_angular_velocity_rad_s or TILT_RATE_RAD_S,
+        max_tilt_acceleration_rad_s2=(
+            machine.max_angular_acceleration_rad_s2 or TILT_ACCELERATION_RAD_S2
+        ),
     )
+    tilt = tilt and problem.max_tilt_rad > 0.0
     ts = problem.sample_period_s
     radius = float(problem.model.radius_m)
     cap = min(machine.max_acceleration_m_s2, GRAVITY_M_S2 * slosh.max_height_m / radius)
@@ -392,7 +406,15 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     searches: list[tuple[int, float]] = []
     programs = 0
     for _ in range(TIGHTENINGS):
-        program = PathProgram(problem.path, problem.models(), limits, ts, joints=joints)
+        program = PathProgram(
+            problem.path,
+            problem.models(),
+            limits,
+            ts,
+            tilt=tilt,
+            centre_height_m=problem.tilt_centre_height_m,
+            joints=joints,
+        )
         try:
             # a later round starts from the last one's samples, already near its optimum
             best, search = free_time(program, warm, log, coarse=not rounds)
@@ -403,7 +425,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         warm = best.samples
         searches += search
         programs += program.programs
-        check = verifier(problem, export_poses(problem, best.samples), False)
+        check = verifier(problem, export_poses(problem, best.samples), tilt)
         rounds.append(
             {
                 "duration_s": best.samples.steps * ts,
@@ -461,6 +483,8 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
     def poses_for(factor: float) -> Any:
         if factor == 1.0:
             return export_poses(problem, samples)
+        if tilt:  # the timing and the tilt together, over the stretched duration
+            return export_poses(problem, rescaled(samples, math.ceil(samples.steps * factor)))
         return sample_path(problem.path, timing.stretched(factor), ts)
 
     detail = {
@@ -469,7 +493,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None) -> Any:
         "rounds": rounds,
         "search": searches,
     }
-    return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, False, detail)
+    return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, tilt, detail)
 
 
 def _next_limit(
@@ -498,6 +522,8 @@ __all__ = [
     "MAX_SEARCH",
     "SEARCH_TOLERANCE",
     "TIGHTENINGS",
+    "TILT_ACCELERATION_RAD_S2",
+    "TILT_RATE_RAD_S",
     "free_time",
     "plan_optimal",
 ]

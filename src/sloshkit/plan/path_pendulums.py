@@ -78,7 +78,8 @@ def pendulum_track(
     ----------
     force_m_s2 : numpy.ndarray
         Specific force at each mode's hinge in N at the samples, (modes, K, 3) [m/s^2], linear
-        between them.
+        between them; or (modes, K, 7) with the lateral angular velocity (p, q) of N [rad/s]
+        and its derivative [rad/s^2] after it (the same for every mode).
     rest_force_m_s2 : numpy.ndarray
         The same at rest before the first sample (modes, 3): the pendulums start at rest
         along it.
@@ -108,18 +109,19 @@ def pendulum_track(
     """
     from sloshkit.sim.spatial_kernels import nonlinear_pendulums
 
-    modes, samples, _ = force_m_s2.shape
+    modes, samples, width = force_m_s2.shape
     substeps = rk4_substeps(list(omega_rad_s), sample_period_s)
     fractions = np.arange(2 * substeps) / (2 * substeps)
     start, end = force_m_s2[:, :-1], force_m_s2[:, 1:]
     half = start[:, :, None] + fractions[None, None, :, None] * (end - start)[:, :, None]
-    half = np.concatenate((half.reshape(modes, -1, 3), force_m_s2[:, -1:]), axis=1)
-    still = np.zeros((half.shape[1], 2))
+    half = np.concatenate((half.reshape(modes, -1, width), force_m_s2[:, -1:]), axis=1)
+    # the tilt rates are the same for every mode (the frame's)
+    rates = half[0, :, 3:] if width == 7 else np.zeros((half.shape[1], 4))
     unit, rate = nonlinear_pendulums(
-        half,
+        np.ascontiguousarray(half[..., :3]),
         rest_force_m_s2,
-        still,
-        still,
+        np.ascontiguousarray(rates[:, :2]),
+        np.ascontiguousarray(rates[:, 2:]),
         np.asarray(length_m, dtype=float),
         np.asarray(omega_rad_s, dtype=float),
         np.asarray(damping_ratio, dtype=float),
@@ -131,9 +133,24 @@ def pendulum_track(
 def _rhs(
     u: FloatArray, v: FloatArray, f: FloatArray, length: FloatArray, c: FloatArray
 ) -> FloatArray:
-    """u'' of the damped spherical pendulum in N without tilt rates (`sloshkit.sim.spatial`):
-    the force and damping across the rod over L, minus the centripetal |u'|^2 u."""
-    force = f - (c * length)[..., None] * v
+    """u'' of the damped spherical pendulum in N (`sloshkit.sim.spatial_numba.pendulum_rhs`):
+    the force across the rod over L, minus the centripetal |u'|^2 u. The drive ``f`` is the
+    specific force (3 components) or the specific force, the lateral angular velocity (p, q)
+    of N and its derivative (7): F = f - Omega' x rho - Omega x (Omega x rho)
+    - 2 Omega x rho' - c rho' with rho = L u, Omega = (p, q, 0) (Goldstein, *Classical
+    Mechanics*, 3rd ed. (2002) §4.10)."""
+    rod, rod_rate = length[..., None] * u, length[..., None] * v
+    force = f[..., :3] - c[..., None] * rod_rate
+    if f.shape[-1] == 7:
+        zero = np.zeros(f.shape[:-1] + (1,))
+        spin = np.concatenate((f[..., 3:5], zero), axis=-1)
+        spin_rate = np.concatenate((f[..., 5:7], zero), axis=-1)
+        force = (
+            force
+            - np.cross(spin_rate, rod)
+            - np.cross(spin, np.cross(spin, rod))
+            - 2.0 * np.cross(spin, rod_rate)
+        )
     radial = np.sum(u * force, axis=-1, keepdims=True)
     speed2 = np.sum(v * v, axis=-1, keepdims=True)
     return np.asarray((force - radial * u) / length[..., None] - speed2 * u)
@@ -184,7 +201,8 @@ def step_jacobians(
     Parameters
     ----------
     unit, rate, force_m_s2 : numpy.ndarray
-        The track (`pendulum_track`) and its drive, (modes, K, 3) each.
+        The track (`pendulum_track`) and its drive, (modes, K, 3) each (the drive (modes, K,
+        7) with the tilt rates).
     length_m, omega_rad_s, damping_ratio : numpy.ndarray
         The modes' L_n, omega_n, zeta_n.
     sample_period_s : float
@@ -193,8 +211,8 @@ def step_jacobians(
     Returns
     -------
     tuple of numpy.ndarray
-        A (modes, K - 1, 6, 6): d x_{k+1} / d x_k; B and E (modes, K - 1, 6, 3): d x_{k+1} /
-        d f_k and / d f_{k+1}; x = (u, u').
+        A (modes, K - 1, 6, 6): d x_{k+1} / d x_k; B and E (modes, K - 1, 6, W): d x_{k+1} /
+        d f_k and / d f_{k+1} for a drive of width W; x = (u, u').
 
     Examples
     --------
@@ -226,23 +244,26 @@ def step_jacobians(
         (2.0 * np.asarray(damping_ratio) * np.asarray(omega_rad_s))[:, None],
         (modes, samples - 1),
     )
+    width = force_m_s2.shape[-1]
     base = (unit[:, :-1], rate[:, :-1], force_m_s2[:, :-1], force_m_s2[:, 1:])
-    # 12 input directions (u, u', f_k, f_{k+1}; 3 each), + and - at once: axis 2
-    inputs = [np.repeat(part[:, :, None], 24, axis=2).copy() for part in base]
-    steps = (_STATE_STEP, _STATE_STEP, _FORCE_STEP, _FORCE_STEP)
-    for direction in range(12):
-        block, component = divmod(direction, 3)
-        inputs[block][:, :, 2 * direction, component] += steps[block]
-        inputs[block][:, :, 2 * direction + 1, component] -= steps[block]
+    # the input directions (u, u', drive_k, drive_{k+1}), + and - at once: axis 2
+    sizes = (3, 3, width, width)
+    count = sum(sizes)
+    inputs = [np.repeat(part[:, :, None], 2 * count, axis=2).copy() for part in base]
+    steps = np.repeat([_STATE_STEP, _STATE_STEP, _FORCE_STEP, _FORCE_STEP], sizes)
+    direction = 0
+    for block, size in enumerate(sizes):
+        for component in range(size):
+            inputs[block][:, :, 2 * direction, component] += steps[direction]
+            inputs[block][:, :, 2 * direction + 1, component] -= steps[direction]
+            direction += 1
     u, v = _period(
         inputs[0], inputs[1], inputs[2], inputs[3], length[..., None], c[..., None], h, substeps
     )
-    state = np.concatenate((u, v), axis=-1)  # (modes, K - 1, 24, 6)
-    jac = (state[:, :, 0::2] - state[:, :, 1::2]) / (
-        2.0 * np.repeat(np.asarray(steps), 3)[None, None, :, None]
-    )
-    jac = np.swapaxes(jac, 2, 3)  # (modes, K - 1, 6 outputs, 12 inputs)
-    return jac[..., :6], jac[..., 6:9], jac[..., 9:12]
+    state = np.concatenate((u, v), axis=-1)  # (modes, K - 1, 2 count, 6)
+    jac = (state[:, :, 0::2] - state[:, :, 1::2]) / (2.0 * steps[None, None, :, None])
+    jac = np.swapaxes(jac, 2, 3)  # (modes, K - 1, 6 outputs, count inputs)
+    return jac[..., :6], jac[..., 6 : 6 + width], jac[..., 6 + width :]
 
 
 def period_jacobian(

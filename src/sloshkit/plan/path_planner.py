@@ -314,7 +314,7 @@ def plan_path(
         from sloshkit.plan.path_optimal import plan_optimal
 
         say("optimal: the minimum-time timing by sequential cone programs")
-        candidates.append(plan_optimal(problem, verifier, say))
+        candidates.append(plan_optimal(problem, verifier, say, tilt=tilt))
     if method in ("auto", "shaped"):
         say("shaped: per-axis input shaping")
         candidates.append(plan_shaped(problem, verifier))

@@ -196,8 +196,9 @@ class _ProgramEvaluation:
     per mode and gravity in N (`PathProgram.forces`), ``wall``: wall height vectors per band
     model (models, N + 1, 2), ``amplitude``: free-oscillation vectors (models, modes, 4) scaled
     by e_n; ``joint``: the arm's joint speeds over their limits (N, dof; empty without an
-    arm); ``unit``, ``rate``, ``drive``: each model's pendulum tracks and their drive
-    (models, modes, N + 1, 3; `sloshkit.plan.path_pendulums`). N counts the rest samples.
+    arm); ``unit``, ``rate``: each model's pendulum tracks (models, modes, N + 1, 3), ``drive``
+    their drive (models, modes, N + 1, 7: the specific force, then N's lateral angular
+    velocity and its derivative; `sloshkit.plan.path_pendulums`). N counts the rest samples.
     """
 
     velocity: FloatArray
@@ -298,7 +299,16 @@ class PathProgram:
             hinge = (point[2:] - 2.0 * point[1:-1] + point[:-2]) / ts**2
             force[index] = to_frame.apply(self.gravity - hinge)
         force[-1] = to_frame.apply(self.gravity)
+        # the lateral angular velocity (p, q) of N in N and its derivative at the samples: the
+        # increments of N over each period (zero before and after: at rest), averaged and
+        # differenced about each sample
+        turn = (frame[:-1].inv() * frame[1:]).as_rotvec()[:, :2] / ts
+        turn = np.concatenate((np.zeros((1, 2)), turn, np.zeros((1, 2))))
+        kinematic_rates = np.concatenate(
+            (0.5 * (turn[1:] + turn[:-1]), np.diff(turn, axis=0) / ts), axis=1
+        )
         kinematic = {
+            "tilt_rates": kinematic_rates,
             "velocity": velocity,
             "acceleration": acceleration,
             "jerk": jerk,
@@ -318,16 +328,18 @@ class PathProgram:
         amplitudes = np.zeros((len(self.models), count, 4))
         units = np.zeros((len(self.models), count, steps + 1, 3))
         rates = np.zeros_like(units)
-        drives = np.zeros_like(units)
+        drives = np.zeros((len(self.models), count, steps + 1, 7))
+        turning = kinematic["tilt_rates"]
         for m, model in enumerate(self.models):
             drive, rest = _model_drive(model, force)
+            drive = np.concatenate((drive, np.broadcast_to(turning, (count, *turning.shape))), -1)
             unit, rate = pendulum_track(drive, rest, *mode_arrays(model), samples.period_s)
             units[m], rates[m], drives[m] = unit, rate, drive
             for n, mode in enumerate(model.modes):
                 walls[m] += mode.wall_elevation_factor_m * mode_slope(unit[n])
                 # the free oscillation HOLD samples after the move (as the 3-D simulation
                 # measures its residual), about the rest direction, scaled back to the end
-                final = drive[n, -1]
+                final = drive[n, -1, :3]
                 offset = unit[n, -1, :2] - final[:2] / np.linalg.norm(final)
                 cosine, sine = free_oscillation_components(
                     offset, rate[n, -1, :2], mode.omega_rad_s, mode.damping_ratio
@@ -406,6 +418,7 @@ class PathProgram:
         for column in columns:
             step = 1e-7 * max(self.path.length_m, 1.0) if column is None else 1e-7
             force = np.zeros((3, len(self.modes) + 1, n, 3))
+            rates = np.zeros((3, n, 4))
             position = np.zeros((n, 3))
             omega = np.zeros((2, n + 1, 3))
             for colour in range(3):
@@ -413,18 +426,20 @@ class PathProgram:
                 plus, minus, width = _perturbed(samples, chosen, column, step, self.path.length_m)
                 (fp, kp), (fm, km) = self.forces(plus), self.forces(minus)
                 dforce = fp - fm
+                drates = kp["tilt_rates"] - km["tilt_rates"]
                 position[chosen] = (kp["position"] - km["position"])[chosen] / width[chosen, None]
                 domega = kp["omega"] - km["omega"]
                 for offset in (-1, 0, 1):
                     k = chosen - offset  # the force at k sees the perturbed sample k + offset
                     k = k[(k >= 0) & (k < n)]
                     force[offset + 1][:, k] = dforce[:, k] / width[k + offset][None, :, None]
+                    rates[offset + 1][k] = drates[k] / width[k + offset][:, None]
                 # omega row i (1..n-1) uses samples i-1 and i
                 own = chosen[(chosen >= 1) & (chosen <= n - 1)]
                 omega[1][own] = domega[own] / width[own, None]
                 prev = chosen[chosen + 1 <= n - 1] + 1
                 omega[0][prev] = domega[prev] / width[prev - 1, None]
-            bands.append(_ProgramBands(position, omega, force))
+            bands.append(_ProgramBands(position, omega, force, rates))
         return bands
 
     def iterate(self, samples: PathSamples) -> ProgramIterate:
@@ -488,11 +503,13 @@ class ProgramIterate:
 class _ProgramBands:
     """Derivatives of one variable block: ``position`` (n, 3) d P_k / d x_k, ``omega``
     (2, n + 1, 3) d w_i / d x_{i-1} and d w_i / d x_i, ``force`` (3, modes, n, 2)
-    d f_k / d x_{k+o} for o = -1, 0, 1."""
+    d f_k / d x_{k+o} for o = -1, 0, 1, ``rates`` (3, n, 4) the same of N's lateral angular
+    velocity and its derivative (the drive's last four components)."""
 
     position: FloatArray
     omega: FloatArray
     force: FloatArray
+    rates: FloatArray
 
 
 def _perturbed(
