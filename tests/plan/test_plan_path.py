@@ -242,22 +242,29 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
     assert both.returncode == 2 and "exactly one of --path" in both.stderr
 
 
-def test_optimal_with_tilt_compensation_warns_that_it_plans_upright(tmp_path: Path) -> None:
-    """``--method optimal`` does not tilt yet: with ``--tilt-compensation`` the command says so
-    on stderr and in the JSON ``warnings``, and the plan is upright."""
+def test_optimal_with_tilt_compensation_tilts_and_is_faster(tmp_path: Path) -> None:
+    """``--method optimal --tilt-compensation``: the tilt is a variable of the programs, so the
+    verified plan tilts (within ``--max-tilt``), is zero at both ends and is shorter than the
+    upright optimum of the same problem; stdout is the JSON alone."""
     waypoints = tmp_path / "w.csv"
     waypoints.write_text("x [mm],y [mm],z [mm]\n0,0,0\n100,0,0\n")
-    done = run_entry_point(
+    common = (
         "plan", "--path", str(waypoints), "--radius", "49mm", "--fill-height", "80mm",
         "--liquid", "water-20C", "--max-slosh-height", "15mm", "--max-residual-height", "2mm",
-        "--vmax", "2m/s", "--amax", "10m/s^2", "--jmax", "100m/s^3",
-        "--method", "optimal", "--tilt-compensation", "--json",
+        "--vmax", "2m/s", "--amax", "10m/s^2", "--jmax", "100m/s^3", "--max-tilt", "20deg",
+        "--method", "optimal", "--json",
     )  # fmt: skip
-    assert done.returncode == 0, done.stderr
-    payload = json.loads(done.stdout)
-    assert payload["feasible"] and payload["peak_tilt_deg"] == 0.0
-    assert any(w.startswith("--tilt-compensation: --method optimal") for w in payload["warnings"])
-    assert "--tilt-compensation" in done.stderr
+    upright = run_entry_point(*common)
+    tilted = run_entry_point(*common, "--tilt-compensation", "--out", str(tmp_path / "plan.csv"))
+    assert upright.returncode == 0 and tilted.returncode == 0, tilted.stderr
+    flat, tilt = json.loads(upright.stdout), json.loads(tilted.stdout)
+    assert flat["feasible"] and tilt["feasible"]
+    assert flat["peak_tilt_deg"] == 0.0 and 0.5 < tilt["peak_tilt_deg"] <= 20.0 + 1e-6
+    assert tilt["duration_s"] < flat["duration_s"]
+    assert not any("--tilt-compensation" in w for w in tilt["warnings"])
+    poses = read_pose_file(tmp_path / "plan.csv")
+    quaternion_xy = poses.quaternion_xyzw[:, :2]  # zero when upright (the path does not turn)
+    assert np.abs(quaternion_xy[[0, -1]]).max() < 1e-9 and np.abs(quaternion_xy).max() > 1e-3
 
 
 def test_angular_limits_parse_rad_and_deg() -> None:

@@ -189,17 +189,6 @@ def run_path_plan(
         tilt_centre=tilt_centre,
     )
     verifier = _robot_verifier(export_settings)
-    if method == "optimal" and tilt_compensation:
-        import warnings
-
-        from sloshkit.errors import ValidityWarning
-
-        warnings.warn(
-            "--tilt-compensation: --method optimal plans the container upright (tilt is not "
-            "yet a variable of its programs); --method tilt or auto tilts it",
-            ValidityWarning,
-            stacklevel=1,
-        )
     with stderr.status("planning the path") as status:
         result = plan_path(
             problem,
