@@ -133,7 +133,7 @@ def plan_command(
     ] = None,
     tilt_compensation: Annotated[
         bool,
-        typer.Option("--tilt-compensation", help="3-D: let auto tilt the container."),
+        typer.Option("--tilt-compensation", help="3-D: let auto and optimal tilt the container."),
     ] = False,
     max_tilt: Annotated[
         str, typer.Option("--max-tilt", help="3-D: largest tilt from vertical, e.g. 30deg.")
@@ -154,8 +154,8 @@ def plan_command(
       --amax 20m/s^2 --jmax 500m/s^3 --damping-ratio 0.03 --out traj.csv --plot plan.png
 
     With --path or --path-from-poses the timing (and, with --tilt-compensation, the tilt) of a
-    3-D path is planned instead (methods auto, retime, shaped, tilt; limits --max-slosh-height,
-    --max-residual-height); the export is a pose file (t,x,y,z,qx,qy,qz,qw).
+    3-D path is planned instead (methods auto, retime, shaped, tilt, optimal; limits
+    --max-slosh-height, --max-residual-height); the export is a pose file (t,x,y,z,qx,qy,qz,qw).
     """
     check_file(out, "out")
     check_file(plot, "plot", "figure")

@@ -90,7 +90,7 @@ def run_path_plan(
         `sloshkit.io.command_requests.DEFAULT_ANGULAR_VELOCITY` and
         ``DEFAULT_ANGULAR_ACCELERATION``; ``none``: no limit).
     tilt_compensation : bool
-        ``--tilt-compensation``: ``auto`` may tilt.
+        ``--tilt-compensation``: ``auto`` and ``optimal`` may tilt.
     max_tilt, tilt_centre : str
         ``--max-tilt``, ``--tilt-centre``.
     method : str

@@ -241,9 +241,7 @@ def cone_step(
 
     # each variable block: its bands, the column of a sample's deviation, which samples have
     # one, and its unit
-    blocks: list[tuple[Any, Any, Any, float]] = [
-        (band, d, lambda k: (k >= 1) & (k <= steps), unit)
-    ]
+    blocks: list[tuple[Any, Any, Any, float]] = [(band, d, lambda k: (k >= 1) & (k <= steps), unit)]
     if tilting:
         for c in (0, 1):
             blocks.append(

@@ -142,7 +142,7 @@ def _rhs(
     rod, rod_rate = length[..., None] * u, length[..., None] * v
     force = f[..., :3] - c[..., None] * rod_rate
     if f.shape[-1] == 7:
-        zero = np.zeros(f.shape[:-1] + (1,))
+        zero = np.zeros((*f.shape[:-1], 1))
         spin = np.concatenate((f[..., 3:5], zero), axis=-1)
         spin_rate = np.concatenate((f[..., 5:7], zero), axis=-1)
         force = (

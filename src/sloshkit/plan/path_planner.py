@@ -271,7 +271,8 @@ def plan_path(
         from the family (and the reference) for ``retime``; off by default (see
         docs/planning-3d.md for the measured figures).
     tilt : bool
-        Whether ``auto`` may tilt the container (``method="tilt"`` always does).
+        Whether ``auto`` may tilt the container and whether ``optimal`` makes the tilt
+        variables of its programs (``method="tilt"`` always tilts).
 
     Returns
     -------
