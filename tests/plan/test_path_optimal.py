@@ -258,6 +258,11 @@ def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshM
     ratio, _ = joint_speed_ratio(arm, mounting, armed.poses)
     assert 0.97 <= ratio <= 1.0
     assert armed.duration_s < free.duration_s * free_ratio
+    # with the arm the joints along the path are solved upright: a tilt request plans upright
+    tilted = plan_optimal(problem, RobotVerifier(arm, mounting), tilt=True)
+    assert tilted.detail is not None and "upright" in tilted.detail
+    assert tilted.duration_s == armed.duration_s
+    assert tilted.verification is not None and tilted.verification.peak_tilt_rad == 0.0
 
 
 def test_optimal_refuses_a_path_the_arm_cannot_reach(robot_vial: SloshModel) -> None:

@@ -189,6 +189,17 @@ def run_path_plan(
         tilt_centre=tilt_centre,
     )
     verifier = _robot_verifier(export_settings)
+    if method == "optimal" and tilt_compensation and verifier is not None:
+        import warnings
+
+        from sloshkit.errors import ValidityWarning
+
+        warnings.warn(
+            "--tilt-compensation with --robot/--urdf: --method optimal plans the container "
+            "upright (the arm's joints along the path are solved upright)",
+            ValidityWarning,
+            stacklevel=1,
+        )
     with stderr.status("planning the path") as status:
         result = plan_path(
             problem,

@@ -342,6 +342,9 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
         Whether the two tilt angles of every sample are variables of the programs (zero at
         both ends; limited to ``problem.max_tilt_rad``, the angular velocity and acceleration
         limits, else pi rad/s and 1000 deg/s^2, about ``problem.tilt_centre_height_m``).
+        With an arm's joint check (`sloshkit.plan.path_result.JointSpeedCheck`) the plan is
+        upright (``detail["upright"]`` says why): the joints along the path are solved
+        upright.
 
     Returns
     -------
@@ -404,6 +407,10 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     joints = joint_map(problem, verifier) if isinstance(verifier, JointSpeedCheck) else None
     if isinstance(joints, str):
         return PathCandidate("optimal", None, None, time.perf_counter() - started, joints)
+    # the joints along the path are solved upright: a tilt would move them, and the tilted
+    # programs with an arm diverged on the export grid (TRD_2D with the UR5e)
+    upright_for_arm = tilt and joints is not None
+    tilt = tilt and not upright_for_arm
     rounds: list[dict[str, float]] = []
     verified: list[tuple[int, ProgramIterate]] = []
     searches: list[tuple[int, float]] = []
@@ -490,12 +497,14 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
             return export_poses(problem, rescaled(samples, math.ceil(samples.steps * factor)))
         return sample_path(problem.path, timing.stretched(factor), ts)
 
-    detail = {
+    detail: dict[str, Any] = {
         "first_search_s": rounds[0]["duration_s"],
         "programs": programs,
         "rounds": rounds,
         "search": searches,
     }
+    if upright_for_arm:
+        detail["upright"] = "the arm's joints along the path are solved upright"
     return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, tilt, detail)
 
 
