@@ -20,8 +20,8 @@ from pathlib import Path
 from sloshkit import UprightCylinder, equivalent_model, get_liquid
 from sloshkit.export import FORMATS, Mounting, export_plan, load_arm
 from sloshkit.export.exporter import SUFFIXES
-from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.planner import plan
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 
 
 def main() -> None:

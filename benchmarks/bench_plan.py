@@ -40,10 +40,10 @@ from sloshkit import UprightCylinder, equivalent_model, get_liquid
 from sloshkit.errors import ValidityWarning
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.sampling import export_samples, steps_to_reach
-from sloshkit.plan.optimal import SMOOTH_PRICE, plan_optimal
-from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import PAPER_LAWS, MachineLimits, PlanProblem, SloshLimits
-from sloshkit.plan.searches import plan_paper_law, plan_shaped
+from sloshkit.plan.line.optimal import SMOOTH_PRICE, plan_optimal
+from sloshkit.plan.line.planner import plan
+from sloshkit.plan.line.problem import PAPER_LAWS, MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.searches import plan_paper_law, plan_shaped
 
 POLYGON = 64  # sides of the residual polygon
 

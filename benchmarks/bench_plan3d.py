@@ -62,10 +62,10 @@ from sloshkit.io.poses import read_pose_file
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
-from sloshkit.plan.path import generalised_arc_length, path_from_poses, path_from_waypoints
-from sloshkit.plan.path_planner import plan_path
-from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
-from sloshkit.plan.timing import Timing
+from sloshkit.plan.path.geometry import generalised_arc_length, path_from_poses, path_from_waypoints
+from sloshkit.plan.path.planner import plan_path
+from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
+from sloshkit.plan.path.timing import Timing
 
 DATA = Path(__file__).resolve().parents[1] / "tests" / "data" / "measured-3d"
 SERIES = ("LE_3D_0m_5.3s_900deg", "RD_2D_0.3m_6.5s_720deg", "TRD_2D_0.3m_2.4s_270deg")

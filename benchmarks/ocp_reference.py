@@ -83,8 +83,8 @@ from scipy.spatial.transform import Rotation
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
-from sloshkit.plan.path import Path
-from sloshkit.plan.path_problem import PathProblem
+from sloshkit.plan.path.geometry import Path
+from sloshkit.plan.path.problem import PathProblem
 
 FloatArray = NDArray[np.float64]
 

@@ -16,8 +16,8 @@ from sloshkit.errors import InputError
 from sloshkit.io.units import UNITS, parse_quantity
 from sloshkit.model import LIQUIDS, Liquid, UprightCylinder, equivalent_model, get_liquid
 from sloshkit.motion.laws import make_law
-from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.planner import plan
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 from sloshkit.sim.simulate import simulate
 
 FAST = settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -253,10 +253,10 @@ def test_random_short_path_plans_meet_their_limits_when_their_export_is_simulate
 ) -> None:
     from sloshkit.errors import ValidityWarning
     from sloshkit.io.poses import read_pose_file
-    from sloshkit.plan.path import path_from_waypoints
-    from sloshkit.plan.path_limits import kinematics
-    from sloshkit.plan.path_planner import plan_path
-    from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    from sloshkit.plan.path.geometry import path_from_waypoints
+    from sloshkit.plan.path.limits import kinematics
+    from sloshkit.plan.path.planner import plan_path
+    from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     from sloshkit.sim.spatial import simulate_spatial
 
     points = [[0.0, 0.0, 0.0], [first, 0.0, 0.0]]

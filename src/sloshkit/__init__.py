@@ -69,17 +69,17 @@ _API: dict[str, str] = {
     "run_sweep": "sloshkit.sweep",
     "SweepResult": "sloshkit.sweep",
     "plan": "sloshkit",  # the callable package sloshkit.plan (see its docstring)
-    "PlanResult": "sloshkit.plan.planner",
-    "PlanProblem": "sloshkit.plan.problem",
-    "MachineLimits": "sloshkit.plan.problem",
-    "SloshLimits": "sloshkit.plan.problem",
-    "plan_path": "sloshkit.plan.path_planner",
-    "PathPlanResult": "sloshkit.plan.path_result",
-    "PathProblem": "sloshkit.plan.path_problem",
-    "CartesianLimits": "sloshkit.plan.path_problem",
-    "SpatialSloshLimits": "sloshkit.plan.path_problem",
-    "path_from_waypoints": "sloshkit.plan.path",
-    "path_from_poses": "sloshkit.plan.path",
+    "PlanResult": "sloshkit.plan.line.planner",
+    "PlanProblem": "sloshkit.plan.line.problem",
+    "MachineLimits": "sloshkit.plan.line.problem",
+    "SloshLimits": "sloshkit.plan.line.problem",
+    "plan_path": "sloshkit.plan.path.planner",
+    "PathPlanResult": "sloshkit.plan.path.result",
+    "PathProblem": "sloshkit.plan.path.problem",
+    "CartesianLimits": "sloshkit.plan.path.problem",
+    "SpatialSloshLimits": "sloshkit.plan.path.problem",
+    "path_from_waypoints": "sloshkit.plan.path.geometry",
+    "path_from_poses": "sloshkit.plan.path.geometry",
     "calibrate": "sloshkit.calibration",
     "CalibrationResult": "sloshkit.calibration",
     # files and controller export
@@ -191,12 +191,12 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from sloshkit.motion.profile import Motion
     from sloshkit.motion.recorded import from_samples
     from sloshkit.motion.shaping import Shaper, ei, shape_motion, zv, zvd
-    from sloshkit.plan.path import path_from_poses, path_from_waypoints
-    from sloshkit.plan.path_planner import plan_path
-    from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
-    from sloshkit.plan.path_result import PathPlanResult
-    from sloshkit.plan.planner import PlanResult, plan
-    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+    from sloshkit.plan.line.planner import PlanResult, plan
+    from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
+    from sloshkit.plan.path.geometry import path_from_poses, path_from_waypoints
+    from sloshkit.plan.path.planner import plan_path
+    from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    from sloshkit.plan.path.result import PathPlanResult
     from sloshkit.sim.response import SloshResponse
     from sloshkit.sim.simulate import simulate
     from sloshkit.sim.spatial import simulate_spatial

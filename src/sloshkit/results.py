@@ -52,8 +52,8 @@ PLOTS: dict[str, str] = {
     "sloshkit.calibration.forced.ForcedIdentification": (
         "sloshkit.plotting.calibration:plot_forced_identification"
     ),
-    "sloshkit.plan.planner.PlanResult": "sloshkit.plotting.plan:plot_plan",
-    "sloshkit.plan.path_result.PathPlanResult": "sloshkit.plotting.plan3d:plot_path_plan",
+    "sloshkit.plan.line.planner.PlanResult": "sloshkit.plotting.plan:plot_plan",
+    "sloshkit.plan.path.result.PathPlanResult": "sloshkit.plotting.plan3d:plot_path_plan",
     "sloshkit.cfd.validation.CfdValidation": "sloshkit.plotting.cfd:plot_cfd_validation",
 }
 

@@ -13,10 +13,10 @@ from sloshkit.errors import ValidityWarning
 from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import SloshModel, equivalent_model
-from sloshkit.plan.path import path_from_waypoints
-from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
-from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.planner import plan
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.path.geometry import path_from_waypoints
+from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.sim.spatial import simulate_spatial
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))

@@ -21,8 +21,8 @@ from sloshkit.export.headers import plan_header, read_plan_header, write_plan_cs
 from sloshkit.export.plans import LinePlan, PoseStream, read_metadata, read_plan
 from sloshkit.export.roundtrip import line_metrics
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path_problem import SpatialSloshLimits
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.path.problem import SpatialSloshLimits
 
 README_PLAN = (
     "plan",
@@ -123,7 +123,7 @@ def test_plan_on_the_check_grid_is_exact_at_2ms() -> None:
     hold of the exact motion's velocity samples), meets its limits to solver precision; on
     the old 4 ms-only check the same problem's optimum left 5.019 deg at 2 ms."""
     from sloshkit.motion.sampling import export_samples
-    from sloshkit.plan.optimal import plan_optimal
+    from sloshkit.plan.line.optimal import plan_optimal
     from sloshkit.sim.discretisation import linear_response
     from sloshkit.sim.metrics import free_amplitude
 

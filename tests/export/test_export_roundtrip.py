@@ -18,7 +18,7 @@ from sloshkit.export.kinematics import load_arm
 from sloshkit.export.plans import LinePlan, PoseStream, line_to_poses, read_plan
 from sloshkit.export.roundtrip import LIMIT_TOLERANCE, TOLERANCE
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 
 MOUNTING = Mounting(base_xyz_m=(-0.55, -0.13, 0.39))
 LIMITS = SloshLimits(math.radians(5.0), math.radians(0.25))
@@ -27,7 +27,7 @@ LIMITS = SloshLimits(math.radians(5.0), math.radians(0.25))
 @pytest.fixture(scope="module")
 def planned(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The fastest shaped move of 80 mm for the seed vial, as `sloshkit plan --out` writes."""
-    from sloshkit.plan.planner import plan
+    from sloshkit.plan.line.planner import plan
 
     problem = PlanProblem(
         distance_m=0.08,

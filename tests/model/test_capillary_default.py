@@ -15,9 +15,9 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import CAPILLARY_THRESHOLD, equivalent_model
 from sloshkit.model.theory import bessel_roots, bond_number, surface_tension_factor
-from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
-from sloshkit.plan.verification import verify
+from sloshkit.plan.line.planner import plan
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.verification import verify
 
 SMALL = UprightCylinder(0.008)
 WATER = get_liquid("water-25C")  # the how-do-i plan uses the default liquid

@@ -7,8 +7,8 @@ import warnings
 from sloshkit.errors import ValidityWarning
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path_limits import kinematics
-from sloshkit.plan.path_problem import CartesianLimits
+from sloshkit.plan.path.limits import kinematics
+from sloshkit.plan.path.problem import CartesianLimits
 from sloshkit.sim.spatial import simulate_spatial
 
 

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from conftest import run_entry_point, seed_vial_table3
 
-from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.planner import plan
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 
 pytestmark = pytest.mark.filterwarnings("ignore::sloshkit.errors.ValidityWarning")
 

@@ -1,5 +1,6 @@
-"""The minimum-time path program (`sloshkit.plan.path_program`, `path_cone`, `path_optimal`):
-its model against the 3-D simulation, its derivatives against its exact evaluation, the
+"""The minimum-time path program (`sloshkit.plan.path.program`, `sloshkit.plan.path.cone`,
+`sloshkit.plan.path.optimal`): its model against the 3-D simulation, its derivatives against
+its exact evaluation, the
 straight path against the 1-D planner, the robot's joints, and the verified method."""
 
 from __future__ import annotations
@@ -13,12 +14,12 @@ import pytest
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.sampling import steps_to_reach
-from sloshkit.plan.path import path_from_waypoints
-from sloshkit.plan.path_cone import PROGRAM_MARGIN, cone_step
-from sloshkit.plan.path_optimal import free_time
-from sloshkit.plan.path_planner import plan_path
-from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
-from sloshkit.plan.path_program import (
+from sloshkit.plan.path.cone import PROGRAM_MARGIN, cone_step
+from sloshkit.plan.path.geometry import path_from_waypoints
+from sloshkit.plan.path.optimal import free_time
+from sloshkit.plan.path.planner import plan_path
+from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
+from sloshkit.plan.path.program import (
     PathProgram,
     PathSamples,
     ProgramLimits,
@@ -175,8 +176,8 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(robot_vial: Sl
     """On a straight path the program's linear minimum time is the 1-D planner's time-optimal
     move of the same limits rounded up to the export grid (the 3-D export ends on a sample;
     the 1-D move's last step is shorter)."""
-    from sloshkit.plan.planner import plan
-    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+    from sloshkit.plan.line.planner import plan
+    from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 
     height, residual = 0.008, 0.001
     factor = robot_vial.modes[0].wall_elevation_factor_m
@@ -240,8 +241,8 @@ def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshM
     from sloshkit.export.frames import Mounting
     from sloshkit.export.kinematics import load_arm
     from sloshkit.export.path_robot import RobotVerifier, joint_speed_ratio
-    from sloshkit.plan.path_optimal import plan_optimal
-    from sloshkit.plan.path_result import verify
+    from sloshkit.plan.path.optimal import plan_optimal
+    from sloshkit.plan.path.result import verify
 
     arm, mounting = load_arm("ur5e"), Mounting(base_xyz_m=(-0.45, -0.13, 0.3))
     path = path_from_waypoints([[0, 0, 0], [0.05, 0, 0]], yaw_rad=[0.0, math.pi / 2], name="turn")
@@ -271,7 +272,7 @@ def test_optimal_refuses_a_path_the_arm_cannot_reach(robot_vial: SloshModel) -> 
     from sloshkit.export.frames import Mounting
     from sloshkit.export.kinematics import load_arm
     from sloshkit.export.path_robot import RobotVerifier
-    from sloshkit.plan.path_optimal import plan_optimal
+    from sloshkit.plan.path.optimal import plan_optimal
 
     problem = PathProblem(
         path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),

@@ -18,13 +18,13 @@ from sloshkit.model.modal import SloshModel
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path import path_from_poses, path_from_waypoints
-from sloshkit.plan.path_planner import linear_verifier, plan_path
-from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
-from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import warp_search
-from sloshkit.plan.tilt import tilt_compensated
-from sloshkit.plan.timing import Timing
+from sloshkit.plan.path.geometry import path_from_poses, path_from_waypoints
+from sloshkit.plan.path.planner import linear_verifier, plan_path
+from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
+from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.search import warp_search
+from sloshkit.plan.path.tilt_compensation import tilt_compensated
+from sloshkit.plan.path.timing import Timing
 from sloshkit.sim.spatial import simulate_spatial
 from tests.conftest import run_entry_point
 from tests.plan.plan_checks import assert_export_meets_limits
@@ -90,8 +90,8 @@ def test_straight_path_plan_matches_one_dimensional_planner(robot_vial: SloshMod
     wall height in the 3-D screen (1 %), and the 3-D retime duration is within 20 % of the
     1-D shaped one (different families: capped time-optimal profile with a box filter vs
     S-curves with four shapers and searched jerk)."""
-    from sloshkit.plan.planner import plan
-    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+    from sloshkit.plan.line.planner import plan
+    from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 
     height, residual_height = 0.008, 0.001
     factor = robot_vial.modes[0].wall_elevation_factor_m
@@ -323,9 +323,9 @@ def test_robot_check_refuses_fast_joints_and_slows_the_plan_down(robot_vial: Slo
     from sloshkit.export.frames import Mounting
     from sloshkit.export.kinematics import load_arm
     from sloshkit.export.path_robot import joint_speed_ratio, robot_verifier
-    from sloshkit.plan.path_result import linear_verifier, verified_candidate
-    from sloshkit.plan.path_search import stretcher
-    from sloshkit.plan.timing import Timing
+    from sloshkit.plan.path.result import linear_verifier, verified_candidate
+    from sloshkit.plan.path.search import stretcher
+    from sloshkit.plan.path.timing import Timing
 
     arm, mounting = load_arm("ur5e"), Mounting(base_xyz_m=(-0.45, -0.13, 0.3))
     path = path_from_waypoints([[0, 0, 0], [0.05, 0, 0]], yaw_rad=[0.0, math.pi / 2], name="turn")
@@ -358,7 +358,7 @@ def test_curve_shaper_cancels_more_residual_on_a_circle(robot_vial: SloshModel) 
     with the curve shaper (notches at w and w(1 -+ r)) leaves less residual than the one shaped
     with the first-mode ZV at every cap from 2 to 5 m/s^2, and under half of it in total
     (linear screen of the sampled export)."""
-    from sloshkit.plan.retime import curve_shaper, family_member, first_mode_shaper
+    from sloshkit.plan.path.retime import curve_shaper, family_member, first_mode_shaper
 
     t = np.linspace(0.0, 1.0, 721)
     circle = np.c_[0.3 * np.cos(2 * np.pi * t), 0.3 * np.sin(2 * np.pi * t), 0 * t]

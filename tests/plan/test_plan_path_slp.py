@@ -1,5 +1,5 @@
-"""The SLP on the speed-scaling warp (`sloshkit.plan.path_slp`) and the improvement of verified
-``retime`` seeds (`sloshkit.plan.path_improve`)."""
+"""The SLP on the speed-scaling warp (`sloshkit.plan.path.slp`) and the improvement of verified
+``retime`` seeds (`sloshkit.plan.path.improve`)."""
 
 from __future__ import annotations
 
@@ -12,18 +12,18 @@ import pytest
 
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan import path_improve
-from sloshkit.plan.path import path_from_waypoints
-from sloshkit.plan.path_improve import warped_candidates
-from sloshkit.plan.path_ladder import ladder_seeds
-from sloshkit.plan.path_limits import machine_violations
-from sloshkit.plan.path_planner import plan_retime
-from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
-from sloshkit.plan.path_result import verified_candidate, verify
-from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
-from sloshkit.plan.path_slp import slp_search
-from sloshkit.plan.retime import family_member
+from sloshkit.plan.path import improve as path_improve
+from sloshkit.plan.path.geometry import path_from_waypoints
+from sloshkit.plan.path.improve import warped_candidates
+from sloshkit.plan.path.ladder import ladder_seeds
+from sloshkit.plan.path.limits import machine_violations
+from sloshkit.plan.path.planner import plan_retime
+from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
+from sloshkit.plan.path.result import verified_candidate, verify
+from sloshkit.plan.path.retime import family_member
+from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.search import fastest_capped, slowed_until, stretcher
+from sloshkit.plan.path.slp import slp_search
 from tests.plan.plan_checks import assert_export_meets_limits
 
 

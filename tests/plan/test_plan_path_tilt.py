@@ -1,4 +1,4 @@
-"""The ``tilt`` method's improvement (`sloshkit.plan.path_tilt`): the local searches of
+"""The ``tilt`` method's improvement (`sloshkit.plan.path.tilt`): the local searches of
 ``retime`` run on the tilted export."""
 
 from __future__ import annotations
@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 
 from sloshkit.model.modal import SloshModel
-from sloshkit.plan import path_tilt
-from sloshkit.plan.path import path_from_waypoints
-from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
-from sloshkit.plan.path_result import verify
-from sloshkit.plan.path_tilt import improved_tilt, plan_tilt
-from sloshkit.plan.retime import family_member
-from sloshkit.plan.tilt import peak_tilt_rad
+from sloshkit.plan.path import tilt as path_tilt
+from sloshkit.plan.path.geometry import path_from_waypoints
+from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
+from sloshkit.plan.path.result import verify
+from sloshkit.plan.path.retime import family_member
+from sloshkit.plan.path.tilt import improved_tilt, plan_tilt
+from sloshkit.plan.path.tilt_compensation import peak_tilt_rad
 from tests.plan.plan_checks import assert_export_meets_limits
 
 

@@ -16,11 +16,11 @@ from sloshkit.errors import InputError
 from sloshkit.io.motions import read_motion_file
 from sloshkit.motion import s_curve
 from sloshkit.motion.shaping import ei, residual_vibration, shape_motion, zv, zvd
-from sloshkit.plan.optimal import plan_optimal
-from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits, scale_frequencies
-from sloshkit.plan.searches import plan_paper_law, plan_shaped
-from sloshkit.plan.verification import verify
+from sloshkit.plan.line.optimal import plan_optimal
+from sloshkit.plan.line.planner import plan
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits, scale_frequencies
+from sloshkit.plan.line.searches import plan_paper_law, plan_shaped
+from sloshkit.plan.line.verification import verify
 from sloshkit.sim.simulate import simulate
 
 OMEGA, ZETA = 29.66, 0.03
@@ -146,14 +146,14 @@ def test_optimal_plan_is_verified_and_fastest():
     assert optimal.duration_s > 1.5663
     # Minimum: the longest move 0.01 % shorter (a linear program over every move of the
     # class) does not reach the target.
-    from sloshkit.plan.optimal import exact_grid_for
+    from sloshkit.plan.line.optimal import exact_grid_for
 
     grid = exact_grid_for(problem, optimal.detail["steps"] + 4)
     assert grid.longest(optimal.duration_s * (1 - 1e-4)).distance_m < problem.distance_m
 
 
 def test_smooth_variant_costs_its_stated_price_and_has_a_gentler_jerk():
-    from sloshkit.plan.optimal import SMOOTH_PRICE
+    from sloshkit.plan.line.optimal import SMOOTH_PRICE
 
     problem = _problem(distance_m=0.2)
     fastest = plan_optimal(problem)
@@ -327,7 +327,7 @@ def _tight():
 
 
 def test_slosh_floor_bounds_every_plan_and_is_the_quasi_static_bound_within_sqrt2():
-    from sloshkit.plan.work_estimate import slosh_floor_s
+    from sloshkit.plan.line.work_estimate import slosh_floor_s
 
     problem = _problem()
     floor = slosh_floor_s(problem)

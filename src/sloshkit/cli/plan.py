@@ -30,7 +30,7 @@ from sloshkit.io.command_requests import line_plan_request
 from sloshkit.io.outputs import all_or_nothing, check_file
 from sloshkit.io.requests import fraction_request
 from sloshkit.model.modal import SloshModel
-from sloshkit.plan.planner import plan
+from sloshkit.plan.line.planner import plan
 
 
 @app.command("plan")

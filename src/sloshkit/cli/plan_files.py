@@ -84,7 +84,7 @@ def plan_file_header(
     --------
     >>> import math
     >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
-    >>> from sloshkit.plan.problem import SloshLimits
+    >>> from sloshkit.plan.line.problem import SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     >>> plan_file_header(None, model, SloshLimits(0.1, 0.01), 0.004)["model_options"] is None
     True
@@ -230,7 +230,7 @@ def export_limits(header: dict[str, Any] | None, command_limits: Any) -> Any:
 
     Examples
     --------
-    >>> from sloshkit.plan.problem import SloshLimits
+    >>> from sloshkit.plan.line.problem import SloshLimits
     >>> header = {"limits": {"max_angle_rad": 0.1, "max_residual_rad": 0.01}}
     >>> export_limits(header, None).max_angle_rad
     0.1

@@ -3,10 +3,10 @@
 Called by `sloshkit.cli.plan.plan_command` when a path is given; the 1-D ``plan --distance``
 is unchanged.
 
-The options become a `sloshkit.plan.path_problem.PathProblem` in
+The options become a `sloshkit.plan.path.problem.PathProblem` in
 `sloshkit.io.command_requests.path_problem_request` (angular limits default to 180 deg/s and
 1000 deg/s^2 there; ``none`` lifts a limit), a pose file's own timing the reference candidate
-in `sloshkit.plan.path_problem.reference_timing`. With ``--robot`` (or ``--urdf``) every
+in `sloshkit.plan.path.problem.reference_timing`. With ``--robot`` (or ``--urdf``) every
 candidate is also solved for the arm's joints as ``sloshkit export`` solves them, with the
 export's ``--base-pose``/``--tool-offset``/``--tool-rotation`` (`sloshkit.export.path_robot`):
 a plan the arm cannot run is not feasible (joint speeds too high are slowed down uniformly and
@@ -35,11 +35,11 @@ from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.io.waypoints import read_waypoints, require_path_work
 from sloshkit.model.modal import SloshModel
-from sloshkit.plan.path import path_from_poses, path_from_waypoints
-from sloshkit.plan.path_planner import PATH_METHODS, plan_path
-from sloshkit.plan.path_problem import reference_timing
-from sloshkit.plan.path_result import verify
-from sloshkit.plan.timing import Timing
+from sloshkit.plan.path.geometry import path_from_poses, path_from_waypoints
+from sloshkit.plan.path.planner import PATH_METHODS, plan_path
+from sloshkit.plan.path.problem import reference_timing
+from sloshkit.plan.path.result import verify
+from sloshkit.plan.path.timing import Timing
 
 
 def run_path_plan(

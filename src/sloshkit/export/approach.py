@@ -16,8 +16,8 @@ from numpy.typing import NDArray
 from sloshkit.export.frames import Mounting
 from sloshkit.export.kinematics import Arm
 from sloshkit.model.modal import SloshModel
-from sloshkit.plan.path_problem import SpatialSloshLimits
-from sloshkit.plan.problem import SloshLimits
+from sloshkit.plan.line.problem import SloshLimits
+from sloshkit.plan.path.problem import SpatialSloshLimits
 
 FloatArray = NDArray[np.float64]
 
@@ -71,7 +71,7 @@ def approach_settle_time(
     --------
     >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
     >>> from sloshkit.export.kinematics import load_arm
-    >>> from sloshkit.plan.problem import SloshLimits
+    >>> from sloshkit.plan.line.problem import SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039,
     ...                          damping_ratio=0.03)
     >>> arm = load_arm("ur5e")

@@ -34,8 +34,8 @@ from sloshkit.export.roundtrip import (
 )
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path_problem import SpatialSloshLimits
-from sloshkit.plan.problem import SloshLimits
+from sloshkit.plan.line.problem import SloshLimits
+from sloshkit.plan.path.problem import SpatialSloshLimits
 from sloshkit.version import __version__
 
 FloatArray = NDArray[np.float64]

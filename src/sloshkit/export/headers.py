@@ -18,10 +18,10 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.model.modal import SloshModel
-from sloshkit.plan.problem import SloshLimits
+from sloshkit.plan.line.problem import SloshLimits
 
 if TYPE_CHECKING:  # the 3-D limits' module imports the path library: only where 3-D is used
-    from sloshkit.plan.path_problem import SpatialSloshLimits
+    from sloshkit.plan.path.problem import SpatialSloshLimits
 
 FloatArray = NDArray[np.float64]
 
@@ -72,7 +72,7 @@ def plan_header(
     ('line', 0.087266, 0.002)
     """
     from sloshkit.model.document import model_to_document
-    from sloshkit.plan.verification import slosh_substeps
+    from sloshkit.plan.line.verification import slosh_substeps
 
     document: dict[str, object] = {
         "version": PLAN_HEADER_VERSION,
@@ -100,7 +100,7 @@ def limits_document(limits: SloshLimits | SpatialSloshLimits) -> dict[str, float
 
     Examples
     --------
-    >>> from sloshkit.plan.path_problem import SpatialSloshLimits
+    >>> from sloshkit.plan.path.problem import SpatialSloshLimits
     >>> limits_document(SpatialSloshLimits(0.015, 0.002))["max_slosh_height_m"]
     0.015
     """
@@ -137,7 +137,7 @@ def limits_from_document(document: dict[str, Any]) -> SloshLimits | SpatialSlosh
     0.01
     """
     if "max_slosh_height_m" in document:
-        from sloshkit.plan.path_problem import SpatialSloshLimits
+        from sloshkit.plan.path.problem import SpatialSloshLimits
 
         return SpatialSloshLimits(
             float(document["max_slosh_height_m"]),

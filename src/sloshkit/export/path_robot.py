@@ -1,6 +1,6 @@
 """A robot's joint-speed check for the 3-D path planner's verification.
 
-The 3-D planner (`sloshkit.plan.path_planner`) knows Cartesian and angular limits only; a plan
+The 3-D planner (`sloshkit.plan.path.planner`) knows Cartesian and angular limits only; a plan
 that meets them may still need joint speeds the arm does not have (a tilted container near a
 wrist singularity, for instance). `robot_verifier` wraps the planner's verification: every
 export is also solved for the arm's joints, exactly as ``sloshkit export`` solves it
@@ -26,8 +26,8 @@ from sloshkit.export.frames import Mounting, invert, poses_to_matrices
 from sloshkit.export.ik import solve_joint_path
 from sloshkit.export.kinematics import Arm
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path_problem import PathProblem
-from sloshkit.plan.path_result import Verification, Verifier, verify
+from sloshkit.plan.path.problem import PathProblem
+from sloshkit.plan.path.result import Verification, Verifier, verify
 
 FloatArray = NDArray[np.float64]
 
@@ -92,7 +92,7 @@ def joint_speed_ratio(arm: Arm, mounting: Mounting, poses: PoseTrajectory) -> tu
 @dataclasses.dataclass(frozen=True, eq=False)
 class RobotVerifier:
     """The planner's verification plus an arm's joint-speed check (module docstring); also a
-    `sloshkit.plan.path_result.JointSpeedCheck`, so that ``--method optimal`` limits the joint
+    `sloshkit.plan.path.result.JointSpeedCheck`, so that ``--method optimal`` limits the joint
     speeds in its programs.
 
     Parameters
@@ -111,7 +111,7 @@ class RobotVerifier:
     Examples
     --------
     >>> from sloshkit.export.kinematics import load_arm
-    >>> from sloshkit.plan.path_result import JointSpeedCheck, linear_verifier
+    >>> from sloshkit.plan.path.result import JointSpeedCheck, linear_verifier
     >>> check = RobotVerifier(load_arm("ur5e"), Mounting(), linear_verifier)
     >>> callable(check), isinstance(check, JointSpeedCheck)
     (True, True)
@@ -172,7 +172,7 @@ def robot_verifier(arm: Arm, mounting: Mounting, base: Verifier = verify) -> Rob
     Examples
     --------
     >>> from sloshkit.export.kinematics import load_arm
-    >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.path.result import linear_verifier
     >>> check = robot_verifier(load_arm("ur5e"), Mounting(), linear_verifier)
     >>> callable(check)
     True

@@ -37,8 +37,8 @@ from sloshkit.errors import ValidityWarning
 from sloshkit.export.frames import invert, rotation_angle_rad
 from sloshkit.export.plans import PoseStream
 from sloshkit.model.modal import SloshModel
-from sloshkit.plan.path_problem import SpatialSloshLimits
-from sloshkit.plan.problem import SloshLimits
+from sloshkit.plan.line.problem import SloshLimits
+from sloshkit.plan.path.problem import SpatialSloshLimits
 from sloshkit.sim.simulate import simulate
 
 FloatArray = NDArray[np.float64]
@@ -148,7 +148,7 @@ def container_poses_in_path(container_in_base: FloatArray, base_to_path: FloatAr
 def line_metrics(model: SloshModel, time_s: FloatArray, position_m: FloatArray) -> dict[str, float]:
     """Peak and residual slosh of a 1-D position sample stream (linear model), simulated on
     the planner's slosh check grid (the sample period divided by
-    `sloshkit.plan.verification.slosh_substeps`, at most 2 ms).
+    `sloshkit.plan.line.verification.slosh_substeps`, at most 2 ms).
 
     Parameters
     ----------
@@ -176,7 +176,7 @@ def line_metrics(model: SloshModel, time_s: FloatArray, position_m: FloatArray) 
     True
     """
     from sloshkit.motion.laws import from_samples
-    from sloshkit.plan.verification import slosh_substeps
+    from sloshkit.plan.line.verification import slosh_substeps
 
     motion = from_samples(time_s, position_m=position_m, name="export")
     period = float(time_s[1] - time_s[0])
@@ -393,7 +393,7 @@ def limit_checks(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_problem import SpatialSloshLimits
+    >>> from sloshkit.plan.path.problem import SpatialSloshLimits
     >>> limit_checks(SpatialSloshLimits(0.015, 0.002), {"peak_slosh_height_m": 0.0})
     [('peak_slosh_height_m', 0.015), ('residual_slosh_height_m', 0.002)]
     """

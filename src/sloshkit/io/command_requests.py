@@ -38,9 +38,9 @@ if typing.TYPE_CHECKING:  # imported where used: the simulation and planning sta
     # start-up's
     from sloshkit.model.profile import Container
     from sloshkit.motion.profile import Motion
-    from sloshkit.plan.path import Path
-    from sloshkit.plan.path_problem import PathProblem
-    from sloshkit.plan.problem import PlanProblem, SloshLimits
+    from sloshkit.plan.line.problem import PlanProblem, SloshLimits
+    from sloshkit.plan.path.geometry import Path
+    from sloshkit.plan.path.problem import PathProblem
     from sloshkit.sim.response import SloshResponse
 
 
@@ -278,7 +278,7 @@ def slosh_limits_request(max_angle: str | None, max_residual: str | None) -> Slo
     >>> round(limits.max_angle_rad, 6), slosh_limits_request(None, None)
     (0.087266, None)
     """
-    from sloshkit.plan.problem import SloshLimits
+    from sloshkit.plan.line.problem import SloshLimits
 
     if max_angle is None and max_residual is None:
         return None
@@ -341,7 +341,7 @@ def line_plan_request(
     ...
     sloshkit.errors.InputError: plan = 'incomplete' is invalid: needs --vmax, --amax, --jmax, ...
     """
-    from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+    from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 
     missing = [
         name
@@ -405,7 +405,7 @@ def path_problem_request(
     slosh_model : SloshModel
         The equivalent model.
     path : Path
-        The geometry (`sloshkit.plan.path`).
+        The geometry (`sloshkit.plan.path.geometry`).
     vmax, amax, jmax : str
         The Cartesian limits.
     max_angular_velocity, max_angular_acceleration : str or None
@@ -428,7 +428,7 @@ def path_problem_request(
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
     >>> problem = path_problem_request(None, path, vmax="2m/s", amax="10m/s^2",
     ...     jmax="100m/s^3", max_angular_velocity=None, max_angular_acceleration="none",
@@ -437,7 +437,7 @@ def path_problem_request(
     >>> round(problem.machine.max_angular_velocity_rad_s, 4), problem.slosh.max_height_m
     (3.1416, 0.015)
     """
-    from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
 
     angular_velocity = (
         DEFAULT_ANGULAR_VELOCITY if max_angular_velocity is None else max_angular_velocity

@@ -50,7 +50,7 @@ def read_waypoints(path: str | FilePath) -> tuple[FloatArray, FloatArray | None]
 
     References
     ----------
-    The waypoint format of `sloshkit.plan.path.path_from_waypoints`.
+    The waypoint format of `sloshkit.plan.path.geometry.path_from_waypoints`.
 
     Examples
     --------

@@ -11,7 +11,7 @@ come from `PoseTrajectory.kinematics`, see `sloshkit.motion.pose_kinematics`.
 
 `PoseTrajectory` is the one type of sampled poses: pose files read into it
 (`sloshkit.io.poses`), the 3-D simulation takes it (`sloshkit.sim.spatial`), the 3-D planner
-exports it (`sloshkit.plan.path_problem.sample_path`), and the export's 3-D plan
+exports it (`sloshkit.plan.path.problem.sample_path`), and the export's 3-D plan
 (`sloshkit.export.plans.PoseStream`) holds one with the exported files' metadata beside it.
 `sloshkit.motion.pose_kinematics.PoseKinematics` is not a second container of the poses but
 their time derivatives on a uniform grid, computed from a `PoseTrajectory`.

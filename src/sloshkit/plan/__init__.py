@@ -1,27 +1,27 @@
-"""Planning of the fastest rest-to-rest move that keeps the slosh within limits.
+"""Motion planning within slosh limits, in two halves.
 
-- `sloshkit.plan.problem`: limits, `PlanProblem`, candidates.
-- `sloshkit.plan.verification`: every candidate re-simulated from its sampled export.
-- `sloshkit.plan.searches`: the paper's laws and shaped S-curves.
-- `sloshkit.plan.optimal`: minimum-time control on the export grid (linear programs, HiGHS;
-  large-angle pendulums by casadi/IPOPT).
-- `sloshkit.plan.planner`: `plan` and `PlanResult`.
+- `sloshkit.plan.line`: the 1-D planner, the fastest rest-to-rest move along a line
+  (`sloshkit.plan.line.planner.plan`, `PlanProblem`, `PlanResult`).
+- `sloshkit.plan.path`: the 3-D path planner, the slosh-safe timing (and tilt) of a given path
+  (`sloshkit.plan.path.planner.plan_path`, `PathProblem`, `PathPlanResult`).
+
+The two halves do not import each other; each sub-package's docstring lists its modules.
 
 The package itself is callable: ``sloshkit.plan(problem, ...)`` is
-`sloshkit.plan.planner.plan` (a package attribute of ``sloshkit`` cannot also be a function,
-so the package forwards the call).
+`sloshkit.plan.line.planner.plan` (a package attribute of ``sloshkit`` cannot also be a
+function, so the package forwards the call).
 """
 
 import sys
 import types
 from typing import Any
 
-from sloshkit.plan.planner import PlanResult
-from sloshkit.plan.planner import plan as _plan
+from sloshkit.plan.line.planner import PlanResult
+from sloshkit.plan.line.planner import plan as _plan
 
 
 class _CallablePackage(types.ModuleType):
-    """Module type of `sloshkit.plan`: calling it runs `sloshkit.plan.planner.plan`."""
+    """Module type of `sloshkit.plan`: calling it runs `sloshkit.plan.line.planner.plan`."""
 
     def __call__(self, *args: Any, **kwargs: Any) -> PlanResult:
         return _plan(*args, **kwargs)

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from sloshkit.plan.planner import PlanResult
+from sloshkit.plan.line.planner import PlanResult
 from sloshkit.plotting.base import panels, save_figure
 from sloshkit.results import register_plot
 

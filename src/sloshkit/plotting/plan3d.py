@@ -1,6 +1,6 @@
 """Figure of a 3-D path plan: top view of the path and the slosh height of every candidate.
 
-Draws a `sloshkit.plan.path_result.PathPlanResult` (registered for ``plot()``): the slosh
+Draws a `sloshkit.plan.path.result.PathPlanResult` (registered for ``plot()``): the slosh
 heights are those its verification simulated (nothing is simulated here).
 """
 
@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from sloshkit.plan.path_result import PathPlanResult
+from sloshkit.plan.path.result import PathPlanResult
 from sloshkit.plotting.base import panels, save_figure
 from sloshkit.results import register_plot
 
@@ -35,7 +35,7 @@ def plot_path_plan(result: PathPlanResult, ax: Any = None, path: str | Path | No
 
     References
     ----------
-    The verification of `sloshkit.plan.path_result.verify`.
+    The verification of `sloshkit.plan.path.result.verify`.
 
     Examples
     --------

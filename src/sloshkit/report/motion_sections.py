@@ -11,8 +11,8 @@ from sloshkit.files import write_columns_csv
 from sloshkit.io.scenario import Scenario
 from sloshkit.model.modal import SloshModel, model_family
 from sloshkit.motion.laws import comparison_s_curve_limits, make_law
-from sloshkit.plan.planner import plan
-from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+from sloshkit.plan.line.planner import plan
+from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 from sloshkit.plotting import plot_law_comparison, plot_slosh_comparison, plot_sweep_map
 from sloshkit.report.writer import ReportWriter, recorded_warnings, render
 from sloshkit.sim.simulate import LARGE_ANGLE_DEG, simulate
@@ -45,7 +45,7 @@ def law_label(name: str) -> str:
 
 def _best_paper_law(payload: dict[str, typing.Any]) -> tuple[str, float] | None:
     """The fastest feasible candidate among the paper's laws: (name, duration [s])."""
-    from sloshkit.plan.problem import PAPER_LAWS
+    from sloshkit.plan.line.problem import PAPER_LAWS
 
     feasible = [
         (c["method"], float(c["duration_s"]))

@@ -1,5 +1,5 @@
-"""Searches over the timing family of `sloshkit.plan.retime`: the largest acceleration cap whose
-member passes a test, and the smallest uniform slow-down of a timing that does.
+"""Searches over the timing family of `sloshkit.plan.path.retime`: the largest acceleration cap
+whose member passes a test, and the smallest uniform slow-down of a timing that does.
 
 Slosh is not monotone in the cap A (the residual oscillates with the move's duration), so
 `fastest_capped` scans 20 log-spaced caps downwards from amax, refines the first passing one by
@@ -7,8 +7,8 @@ bisection towards the next larger (failing) grid value, also bisects over the wh
 can land in a passing pocket between grid values), and keeps the larger passing cap. A uniform
 stretch in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative
 the planner compares with. `warp_search` improves a feasible timing locally by a piecewise
-(B-spline) speed scaling under the screen (`sloshkit.plan.path_improve.warped_candidates` runs it,
-with the SLP of `sloshkit.plan.path_slp`, from verified seeds and keeps the fastest verified
+(B-spline) speed scaling under the screen (`sloshkit.plan.path.improve.warped_candidates` runs it,
+with the SLP of `sloshkit.plan.path.slp`, from verified seeds and keeps the fastest verified
 result, so ``retime`` is never slower than its seeds).
 """
 
@@ -23,10 +23,10 @@ from numpy.typing import NDArray
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.motion.shaping import Shaper
-from sloshkit.plan.path_problem import PathProblem, sample_path
-from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.retime import ShaperFactory, family_member
-from sloshkit.plan.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
+from sloshkit.plan.path.problem import PathProblem, sample_path
+from sloshkit.plan.path.retime import ShaperFactory, family_member
+from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
 
@@ -48,8 +48,8 @@ def stretcher(problem: PathProblem, timing: Timing) -> Callable[[float], PoseTra
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None, sample_period_s=0.01)
@@ -138,8 +138,8 @@ def slowed_until(
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion.laws import s_curve
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
@@ -177,7 +177,7 @@ def fastest_capped(
     low_fraction : float
         Smallest cap tried, as a fraction of amax.
     sampler : callable, optional
-        Timing -> PoseTrajectory (default `sloshkit.plan.path_problem.sample_path`).
+        Timing -> PoseTrajectory (default `sloshkit.plan.path.problem.sample_path`).
 
     Returns
     -------
@@ -186,9 +186,9 @@ def fastest_capped(
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_limits import kinematics
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.limits import kinematics
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None, sample_period_s=0.01)
@@ -269,7 +269,7 @@ def warp_search(
     max_screens: int = WARP_SCREENS,
 ) -> tuple[Timing, int]:
     """Local improvement of a feasible timing by piecewise speed scaling
-    (`sloshkit.plan.timing.warped_timing`): from all factors 1 (the seed), each factor in turn
+    (`sloshkit.plan.path.timing.warped_timing`): from all factors 1 (the seed), each factor in turn
     is lowered by 30 %, 15 %, 7 % and 3 % while the export still passes (a monotone pattern
     search, Hooke & Jeeves, J. ACM 8(2) (1961) 212-229, doi:10.1145/321062.321069); every
     accepted step shortens the timing and keeps it passing, so the result is never slower
@@ -299,9 +299,9 @@ def warp_search(
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_limits import kinematics
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.limits import kinematics
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None, sample_period_s=0.01)

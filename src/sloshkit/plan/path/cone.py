@@ -1,9 +1,9 @@
 """One sequential second-order-cone program of the 3-D path planner.
 
-`cone_step` linearises the path program's model (`sloshkit.plan.path_program`) around the
+`cone_step` linearises the path program's model (`sloshkit.plan.path.program`) around the
 current samples: the force derivatives banded (`PathProgram.jacobians`), the pendulums as the
 time-varying linear system of one Runge-Kutta period differentiated along the current track
-(`sloshkit.plan.path_pendulums.step_jacobians`), their states variables of banded dynamics rows.
+(`sloshkit.plan.path.pendulums.step_jacobians`), their states variables of banded dynamics rows.
 Every norm stays an exact second-order cone (the semi-major axis of a 2 x 2 matrix as half the
 sum of two norms). At a fixed period the program maximises the largest common margin sigma of
 all limits (value <= limit (1 - margin + sigma)) over the samples within a trust region on their
@@ -25,8 +25,8 @@ from typing import Any
 import numpy as np
 from scipy import sparse
 
-from sloshkit.plan.path_pendulums import period_jacobian, slope_jacobian, step_jacobians
-from sloshkit.plan.path_program import HOLD, FloatArray, PathProgram, PathSamples, mode_arrays
+from sloshkit.plan.path.pendulums import period_jacobian, slope_jacobian, step_jacobians
+from sloshkit.plan.path.program import HOLD, FloatArray, PathProgram, PathSamples, mode_arrays
 
 #: Relative margin the programs keep from every limit (the export is then verified exactly).
 PROGRAM_MARGIN = 2e-3
@@ -185,8 +185,8 @@ def cone_step(
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_program import ProgramLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.program import ProgramLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
     >>> path = path_from_waypoints([[0, 0, 0], [0.1, 0, 0]])
@@ -256,8 +256,9 @@ def cone_step(
     # the end sample is fixed: d_N = (S - s_N) / unit -> an equality
     conic.add("zero", [0], [d(steps)], [1.0], [(program.path.length_m - samples.s_m[-1]) / unit])
     # ------------------------------------------------ pendulum dynamics, linearised
-    # dx_{k+1} = A_k dx_k + B_k df_k + E_k df_{k+1} (`path_pendulums.step_jacobians`), the
-    # force deviations df_j = sum_o G_o[j] d_{j+o} banded (`PathProgram.jacobians`), x_0 fixed
+    # dx_{k+1} = A_k dx_k + B_k df_k + E_k df_{k+1}
+    # (`sloshkit.plan.path.pendulums.step_jacobians`), the force deviations
+    # df_j = sum_o G_o[j] d_{j+o} banded (`PathProgram.jacobians`), x_0 fixed
     period = np.arange(last)
     for m, model in enumerate(program.models):
         lengths, omegas, zetas = mode_arrays(model)

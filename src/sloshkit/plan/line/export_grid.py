@@ -7,7 +7,7 @@ the move is over at the last sample) drive the exact first-order-hold discretisa
 pendulum (Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 3rd ed. (1998)
 §6.3.2): z_{k+1} = Phi z_k + Gamma v_k, theta_k = z_k + g1 v_k. The pendulums run on the slosh
 check grid (each step split into ``Limits.substeps`` sub-steps no longer than the finest
-controller period, 2 ms; `sloshkit.plan.verification.slosh_substeps`), driven by the exact
+controller period, 2 ms; `sloshkit.plan.line.verification.slosh_substeps`), driven by the exact
 velocity of the piecewise-constant-jerk move at the sub-samples (linear in the step's node
 velocity, node acceleration and jerk), so that the limits also hold when the plan is resampled
 for a 2 ms controller. The slosh limits are imposed at exactly the samples the verification
@@ -21,7 +21,7 @@ scaled down when the polygon's corners let it exceed the circle, at most
 travel, ``D*(T)``, is one sparse linear program (states and jerks as variables: Boyd &
 Vandenberghe, *Convex Optimization*, Cambridge (2004) §4.3; solved by HiGHS, Huangfu & Hall,
 Math. Prog. Comput. 10 (2018) 119-142, doi:10.1007/s12532-017-0130-5), and the minimum time
-is the root of D*(T) = D (`sloshkit.plan.optimal`). The move of distance D at that duration is
+is the root of D*(T) = D (`sloshkit.plan.line.optimal`). The move of distance D at that duration is
 the longest move scaled by D / D*.
 
 The smooth variant at a fixed, slightly longer duration minimises the total variation of the
@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.highs import new_highs
-from sloshkit.plan.grid_moves import Limits, Move, Pendulum, measure, steps_for_duration
+from sloshkit.plan.line.grid_moves import Limits, Move, Pendulum, measure, steps_for_duration
 
 FloatArray = NDArray[np.float64]
 

@@ -20,14 +20,14 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path_limits import (
+from sloshkit.plan.path.limits import (
     kinematics,
     machine_stretch,
     machine_violations,
     path_deviation,
 )
-from sloshkit.plan.path_problem import PathProblem
-from sloshkit.plan.path_screen import linear_screen
+from sloshkit.plan.path.problem import PathProblem
+from sloshkit.plan.path.screen import linear_screen
 from sloshkit.results import ResultMixin
 
 FloatArray = NDArray[np.float64]
@@ -121,9 +121,9 @@ def verify(problem: PathProblem, poses: PoseTrajectory, tilted: bool = False) ->
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.retime import family_member
-    >>> from sloshkit.plan.path_problem import sample_path
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.retime import family_member
+    >>> from sloshkit.plan.path.problem import sample_path
     >>> problem = _example_problem()
     >>> poses = sample_path(problem.path, family_member(problem, 10.0, None), 0.01)
     >>> verify(problem, poses).violations[0][:17]
@@ -276,8 +276,8 @@ class PathPlanResult(ResultMixin):
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(1.0, 5.0, 50.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None)
@@ -361,10 +361,10 @@ def verified_candidate(
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_search import stretcher
-    >>> from sloshkit.plan.retime import family_member
-    >>> from sloshkit.plan.path_problem import CartesianLimits, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.search import stretcher
+    >>> from sloshkit.plan.path.retime import family_member
+    >>> from sloshkit.plan.path.problem import CartesianLimits, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
     >>> problem = PathProblem(path, CartesianLimits(2.0, 10.0, 100.0),
@@ -436,8 +436,8 @@ def linear_verifier(problem: PathProblem, poses: PoseTrajectory, tilted: bool) -
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion.laws import s_curve
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, SpatialSloshLimits, sample_path
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, SpatialSloshLimits, sample_path
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
     >>> problem = PathProblem(path, CartesianLimits(2.0, 10.0, 100.0),

@@ -18,8 +18,8 @@ A timing of the family is built in three steps:
 
 The quasi-static slosh height grows with the acceleration the liquid feels (about
 0.94 R |a| / g for three modes), so the cap A is the one parameter that trades duration for
-slosh: `sloshkit.plan.path_search.fastest_capped` searches A until the linear slosh screen passes;
-a uniform stretch in time t -> c t (`sloshkit.plan.path_search.stretch_until`) is the naive
+slosh: `sloshkit.plan.path.search.fastest_capped` searches A until the linear slosh screen passes;
+a uniform stretch in time t -> c t (`sloshkit.plan.path.search.stretch_until`) is the naive
 alternative it is compared with.
 """
 
@@ -35,10 +35,10 @@ from scipy.interpolate import CubicHermiteSpline
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.motion.shaping import Shaper, zv, zvd
-from sloshkit.plan.path import Path
-from sloshkit.plan.path_limits import machine_violations
-from sloshkit.plan.path_problem import PathProblem, sample_path
-from sloshkit.plan.timing import Timing, box_smoothed, fine_grid, shaped_timing
+from sloshkit.plan.path.geometry import Path
+from sloshkit.plan.path.limits import machine_violations
+from sloshkit.plan.path.problem import PathProblem, sample_path
+from sloshkit.plan.path.timing import Timing, box_smoothed, fine_grid, shaped_timing
 
 FloatArray = NDArray[np.float64]
 #: Grid spacing of the speed-profile integration [m].
@@ -75,7 +75,7 @@ def axis_shaped_samples(
     Examples
     --------
     >>> from sloshkit.motion.shaping import zv
-    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
     >>> ramp = Timing.from_samples("ramp", np.linspace(0, 1, 101), np.linspace(0, 0.3, 101))
     >>> poses = axis_shaped_samples(path, ramp, zv(2 * np.pi, 0.0), 0.01)
@@ -137,8 +137,8 @@ def speed_profile(
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> path = path_from_waypoints([[0, 0, 0], [1.0, 0, 0]])
     >>> problem = PathProblem(path, CartesianLimits(0.5, 10.0, 100.0),
     ...                       SpatialSloshLimits(0.01, 0.002), None)
@@ -219,8 +219,8 @@ def capped_timing(problem: PathProblem, acceleration_cap: float) -> Timing:
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [1.0, 0, 0]]),
     ...                       CartesianLimits(0.5, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None)
@@ -256,8 +256,8 @@ def first_mode_shaper(problem: PathProblem) -> Shaper:
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
@@ -309,8 +309,8 @@ def curve_shaper(problem: PathProblem) -> ShaperFactory:
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0], [0.3, 0.3, 0]], blend_radius_m=0.1)
     >>> problem = PathProblem(path, CartesianLimits(2.0, 10.0, 100.0),
@@ -362,8 +362,8 @@ def family_member(
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [1.0, 0, 0]]),
     ...                       CartesianLimits(0.5, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None)

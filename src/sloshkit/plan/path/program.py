@@ -8,12 +8,12 @@ samples (`PathProgram.evaluate`):
 
 - the Cartesian velocity, acceleration and jerk of the reference point and the container's
   angular velocity and acceleration, by finite differences of the samples with the ends held at
-  rest (as `sloshkit.plan.path_limits.kinematics` measures them);
+  rest (as `sloshkit.plan.path.limits.kinematics` measures them);
 - the slosh of every mode n of every model of the robustness band: the damped spherical
   pendulum the verification simulates (`sloshkit.sim.spatial`; Abramson, NASA SP-106 (1966)
   ch. 6; Dodge, SwRI (2000) ch. 3), driven by kappa_n g - a_hinge at its hinge in the
   container's non-spinning frame, from rest in the first pose, integrated by the 3-D
-  simulation's Runge-Kutta kernel along the sampled drive (`sloshkit.plan.path_pendulums`);
+  simulation's Runge-Kutta kernel along the sampled drive (`sloshkit.plan.path.pendulums`);
   the wall height |sum_n e_n tan(deflection_n)| at every sample and the residual
   sum_n e_n |[A_n B_n]|_2 (the semi-major axis of each mode's free oscillation) `HOLD`
   samples after the move, scaled back to its end (as `sloshkit.sim.spatial_response.
@@ -21,10 +21,10 @@ samples (`PathProgram.evaluate`):
   nonlinear=True, cutoff_hz=None)` to the accuracy of the spline differentiation (0.04 % of
   the peak on the test's corner path);
 - with an arm, its joint speeds, from the export's IK along the path
-  (`sloshkit.plan.path_joints.joint_map`).
+  (`sloshkit.plan.path.joints.joint_map`).
 
 `PathProgram.jacobians` differentiates the positions, angular velocities and forces banded, by
-colouring; `sloshkit.plan.path_cone.cone_step` builds one program from them. `rescaled` and
+colouring; `sloshkit.plan.path.cone.cone_step` builds one program from them. `rescaled` and
 `smoothed` carry a timing to another grid.
 """
 
@@ -38,8 +38,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
-from sloshkit.plan.path_joints import JointMap
-from sloshkit.plan.path_pendulums import mode_slope, pendulum_track
+from sloshkit.plan.path.joints import JointMap
+from sloshkit.plan.path.pendulums import mode_slope, pendulum_track
 from sloshkit.sim.metrics import free_oscillation_components
 from sloshkit.sim.spatial_response import ellipse_semi_major
 
@@ -97,7 +97,7 @@ class PathSamples:
         Tilt rotation vector (r_x, r_y) at the samples, (N + 1, 2) [rad].
     period_s : float
         Sample period h [s]: the export's, or a dilated one while the duration is free
-        (`sloshkit.plan.path_optimal.free_time`).
+        (`sloshkit.plan.path.optimal.free_time`).
 
     Examples
     --------
@@ -123,7 +123,7 @@ def _poses_of(
 
     The tilt rotation R_t = exp([r_x, r_y, 0]) acts on the path's orientation R_p(s) about the
     tilt centre c = (0, 0, h_c) of the container frame: q = R_t R_p, P = p(s) + R_p c - q c
-    (the centre stays on the path; `sloshkit.plan.tilt` uses the same convention).
+    (the centre stays on the path; `sloshkit.plan.path.tilt_compensation` uses the same convention).
     """
     base = path.orientation(samples.s_m)
     position = path.position(samples.s_m)
@@ -198,7 +198,7 @@ class _ProgramEvaluation:
     by e_n; ``joint``: the arm's joint speeds over their limits (N, dof; empty without an
     arm); ``unit``, ``rate``: each model's pendulum tracks (models, modes, N + 1, 3), ``drive``
     their drive (models, modes, N + 1, 7: the specific force, then N's lateral angular
-    velocity and its derivative; `sloshkit.plan.path_pendulums`). N counts the rest samples.
+    velocity and its derivative; `sloshkit.plan.path.pendulums`). N counts the rest samples.
     """
 
     velocity: FloatArray
@@ -241,7 +241,7 @@ class PathProgram:
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
     >>> path = path_from_waypoints([[0, 0, 0], [0.1, 0, 0]])
@@ -467,7 +467,7 @@ class ProgramIterate:
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
     >>> path = path_from_waypoints([[0, 0, 0], [0.1, 0, 0]])
@@ -669,8 +669,8 @@ def export_poses(problem: Any, samples: PathSamples) -> Any:
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
     ...     CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.015, 0.002), model)

@@ -1,9 +1,9 @@
 """An arm's joints along a 3-D path, for the path program's joint-speed limits.
 
-The export's IK (`sloshkit.plan.path_result.JointSpeedCheck.joint_positions`, which
+The export's IK (`sloshkit.plan.path.result.JointSpeedCheck.joint_positions`, which
 ``sloshkit export`` uses too) is solved once along the untilted path, every `JOINT_GRID_M` of
 the path parameter, and q(s) is the cubic spline through it (`JointMap`): the programs of
-`sloshkit.plan.path_cone` then limit (q(s_k+1) - q(s_k)) / h for every joint.
+`sloshkit.plan.path.cone` then limit (q(s_k+1) - q(s_k)) / h for every joint.
 """
 
 from __future__ import annotations
@@ -68,7 +68,7 @@ def joint_map(problem: Any, check: Any) -> JointMap | str:
     problem : PathProblem
         The path.
     check : JointSpeedCheck
-        The verifier that solves the arm (`sloshkit.plan.path_result.JointSpeedCheck`).
+        The verifier that solves the arm (`sloshkit.plan.path.result.JointSpeedCheck`).
 
     Returns
     -------
@@ -84,8 +84,8 @@ def joint_map(problem: Any, check: Any) -> JointMap | str:
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
     ...     CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.015, 0.002), model)

@@ -1,29 +1,30 @@
 """The 3-D path planner: methods side by side, each verified, the fastest feasible chosen.
 
-All methods use the timing family of `sloshkit.plan.retime` (acceleration-capped time-optimal
+All methods use the timing family of `sloshkit.plan.path.retime` (acceleration-capped time-optimal
 speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the timing):
 
 - ``retime``: the largest cap whose member passes the linear screen (with and without shaping),
   and the verified ``uniform`` timing, each improved locally by speed-scaling warps
-  (`path_improve.warped_candidates`: pattern search and sequential linear programming);
+  (`sloshkit.plan.path.improve.warped_candidates`: pattern search and sequential linear
+  programming);
 - ``shaped``: per-axis input shaping of the members (each Cartesian axis convolved with the
   ZV/ZVD shaper of the first mode, which cancels its residual for every lateral direction), the
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
   path (shaping the axes cuts corners; the deviation is measured on the export);
-- ``tilt``: tilt compensation (`sloshkit.plan.tilt`) of the members, the largest cap whose
-  tilted export passes the screen and the tilt and angular limits, then improved by the same
-  local searches on the tilted export, seeded also from ``retime``'s timing in ``auto``
-  (`sloshkit.plan.path_tilt`);
+- ``tilt``: tilt compensation (`sloshkit.plan.path.tilt_compensation`) of the members, the
+  largest cap whose tilted export passes the screen and the tilt and angular limits, then
+  improved by the same local searches on the tilted export, seeded also from ``retime``'s
+  timing in ``auto`` (`sloshkit.plan.path.tilt`);
 - ``auto``: all three, the fastest verified;
 - ``optimal``: the minimum-time timing of the untilted path by sequential second-order-cone
   programs on the export grid with the nonlinear model as a defect correction
-  (`sloshkit.plan.path_optimal`): the fastest verified moves, at minutes of compute on long
+  (`sloshkit.plan.path.optimal`): the fastest verified moves, at minutes of compute on long
   paths, so not part of ``auto`` yet.
 
-Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path_result.verify`); when
+Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path.result.verify`); when
 the verified export still exceeds a limit that a slower copy meets (slosh, Cartesian, angular,
 a robot's joint speeds), it is stretched in time by the excess and verified again
-(`sloshkit.plan.path_result.verified_candidate`). An optional reference timing (the pose
+(`sloshkit.plan.path.result.verified_candidate`). An optional reference timing (the pose
 file's own) is slowed uniformly until the limits and the screen pass and reported as the
 ``uniform`` candidate, the naive fix the methods are compared with (never chosen).
 """
@@ -40,11 +41,11 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path_improve import fastest_improved, ladder_affordable
-from sloshkit.plan.path_ladder import TARGET_LADDER, ladder_seeds, method_timing, plan_uniform
-from sloshkit.plan.path_limits import machine_violations, path_deviation
-from sloshkit.plan.path_problem import PathProblem, sample_path
-from sloshkit.plan.path_result import (
+from sloshkit.plan.path.improve import fastest_improved, ladder_affordable
+from sloshkit.plan.path.ladder import TARGET_LADDER, ladder_seeds, method_timing, plan_uniform
+from sloshkit.plan.path.limits import machine_violations, path_deviation
+from sloshkit.plan.path.problem import PathProblem, sample_path
+from sloshkit.plan.path.result import (
     PathCandidate,
     PathPlanResult,
     Verifier,
@@ -52,15 +53,15 @@ from sloshkit.plan.path_result import (
     verified_candidate,
     verify,
 )
-from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import fastest_capped, stretcher
-from sloshkit.plan.path_tilt import improved_tilt, plan_tilt, timing_shapers
-from sloshkit.plan.retime import (
+from sloshkit.plan.path.retime import (
     axis_shaped_samples,
     first_mode_shaper,
 )
-from sloshkit.plan.timing import Timing
-from sloshkit.plan.transcription import transcribed_timing
+from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.search import fastest_capped, stretcher
+from sloshkit.plan.path.tilt import improved_tilt, plan_tilt, timing_shapers
+from sloshkit.plan.path.timing import Timing
+from sloshkit.plan.path.transcription import transcribed_timing
 
 FloatArray = NDArray[np.float64]
 PATH_METHODS: tuple[str, ...] = ("auto", "retime", "shaped", "tilt", "optimal")
@@ -80,7 +81,7 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
     problem : PathProblem
         Path, limits, model.
     verifier : callable
-        Verification of an export (default `sloshkit.plan.path_result.verify`).
+        Verification of an export (default `sloshkit.plan.path.result.verify`).
 
     Returns
     -------
@@ -139,10 +140,10 @@ def plan_retime(
     timings: Sequence[tuple[str, Timing]] = (),
 ) -> PathCandidate:
     """The fastest acceleration cap of the family under the slosh screen (with the first-mode
-    timing shaper, without, and on curved paths with `sloshkit.plan.retime.curve_shaper`),
+    timing shaper, without, and on curved paths with `sloshkit.plan.path.retime.curve_shaper`),
     then, with ``transcription``, the minimum-time transcription warm-started from it;
     verified. The verified family timing and every verified ``seeds`` timing are candidates
-    too, each improved by `sloshkit.plan.path_improve.warped_candidates` (pattern search and
+    too, each improved by `sloshkit.plan.path.improve.warped_candidates` (pattern search and
     SLP on a speed-scaling warp) and verified again; the
     fastest verified one wins, so ``retime`` is never slower than a feasible seed. The
     container stays on the path.
@@ -154,14 +155,14 @@ def plan_retime(
     verifier : callable
         Verification of an export.
     transcription : bool
-        Also try `sloshkit.plan.transcription.transcribed_timing`.
+        Also try `sloshkit.plan.path.transcription.transcribed_timing`.
     warm_starts : sequence of Timing
         Further warm starts for the transcription (e.g. the pose file's slowed timing).
     seeds : sequence of (PathCandidate, Timing)
         Verified candidates of the same path and their timings (e.g. ``uniform``).
     timings : sequence of (str, Timing)
         Other timings of the path (e.g. the ``shaped`` and ``tilt`` members), seeds once
-        slowed until they pass (`sloshkit.plan.path_improve.ladder_seeds`, which also seeds
+        slowed until they pass (`sloshkit.plan.path.improve.ladder_seeds`, which also seeds
         the family and ``seeds`` under the stricter targets of `TARGET_LADDER`).
 
     Returns
@@ -257,7 +258,7 @@ def plan_path(
         Path, Cartesian/angular limits, slosh limits, model, sample period.
     method : str
         ``auto`` (all, the fastest verified), ``retime``, ``shaped``, ``tilt`` or
-        ``optimal`` (`sloshkit.plan.path_optimal`).
+        ``optimal`` (`sloshkit.plan.path.optimal`).
     reference : Timing, optional
         The path's existing timing (e.g. of the pose file it came from): slowed uniformly and
         reported as the ``uniform`` candidate, never chosen.
@@ -267,7 +268,7 @@ def plan_path(
         (problem, poses, tilted) -> Verification (default `verify`: the nonlinear 3-D model;
         `sloshkit.export.path_robot.robot_verifier` adds a robot's joint-speed check).
     transcription : bool
-        Also try the casadi/IPOPT transcription (`sloshkit.plan.transcription`) warm-started
+        Also try the casadi/IPOPT transcription (`sloshkit.plan.path.transcription`) warm-started
         from the family (and the reference) for ``retime``; off by default (see
         docs/planning-3d.md for the measured figures).
     tilt : bool
@@ -312,7 +313,7 @@ def plan_path(
     )
     seeds = [] if uniform is None or not uniform.feasible else [(uniform, warm_starts[0])]
     if method == "optimal":
-        from sloshkit.plan.path_optimal import plan_optimal
+        from sloshkit.plan.path.optimal import plan_optimal
 
         say("optimal: the minimum-time timing by sequential cone programs")
         candidates.append(plan_optimal(problem, verifier, say, tilt=tilt))
@@ -361,8 +362,8 @@ def _example_problem() -> PathProblem:
     from sloshkit.model.geometry import UprightCylinder
     from sloshkit.model.liquids import get_liquid
     from sloshkit.model.modal import equivalent_model
-    from sloshkit.plan.path import path_from_waypoints
-    from sloshkit.plan.path_problem import CartesianLimits, SpatialSloshLimits
+    from sloshkit.plan.path.geometry import path_from_waypoints
+    from sloshkit.plan.path.problem import CartesianLimits, SpatialSloshLimits
 
     model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     return PathProblem(

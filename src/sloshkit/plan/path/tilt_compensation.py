@@ -30,7 +30,7 @@ from scipy.ndimage import gaussian_filter1d
 from scipy.spatial.transform import Rotation
 
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path_problem import GRAVITY, second_difference
+from sloshkit.plan.path.problem import GRAVITY, second_difference
 
 FloatArray = NDArray[np.float64]
 #: Standard deviation of the Gaussian smoothing of the acceleration [s].

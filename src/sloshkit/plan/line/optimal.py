@@ -1,7 +1,7 @@
 """Minimum-time control on the controller's export grid (linear programs), and a smooth variant.
 
 The linear problem is transcribed exactly on the grid the verification simulates (see
-`sloshkit.plan.export_grid`), so the move returned meets the limits at every exported sample
+`sloshkit.plan.line.export_grid`), so the move returned meets the limits at every exported sample
 without tightening and solving again. For a duration T the longest feasible move D*(T) is one
 linear program (one HiGHS model per problem, re-solved from the previous basis with new bounds
 and coefficients); the minimum time is the root of D*(T) = D, found by a safeguarded secant on
@@ -18,7 +18,7 @@ Modes: the angle and residual limits concern the first mode only; higher modes e
 problem only through the wall elevation. Without a wall-elevation limit they are dropped (they
 cannot change any constrained quantity); the verification still simulates every mode.
 
-The large-angle (nonlinear) pendulums are planned by `sloshkit.plan.optimal_nonlinear`.
+The large-angle (nonlinear) pendulums are planned by `sloshkit.plan.line.optimal_nonlinear`.
 """
 
 from __future__ import annotations
@@ -31,9 +31,9 @@ from typing import Any
 from sloshkit.errors import warn_validity
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.profile import Motion, piecewise_constant_jerk
-from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus
-from sloshkit.plan.verification import checked_candidate
-from sloshkit.plan.work_estimate import duration_floor, optimal_refusal
+from sloshkit.plan.line.problem import Candidate, PlanProblem, PlanStatus
+from sloshkit.plan.line.verification import checked_candidate
+from sloshkit.plan.line.work_estimate import duration_floor, optimal_refusal
 
 #: Relative price in time of the smooth variant: its duration is (1 + price) times the minimum.
 #: Measured on the paper's vial (0.5 m, 5 deg, 0.25 deg, 4 ms; benchmarks/bench_plan.py), with
@@ -46,7 +46,7 @@ SMOOTH_PRICE = 0.005
 
 #: Longest move the search may try (export samples). Requests whose shortest possible move is
 #: already too long for the programs are refused earlier
-#: (`sloshkit.plan.work_estimate.optimal_refusal`).
+#: (`sloshkit.plan.line.work_estimate.optimal_refusal`).
 MAX_STEPS = 8000
 
 #: The search stops when the longest move at the feasible end of the bracket exceeds the
@@ -57,7 +57,7 @@ DISTANCE_TOLERANCE = 4e-5
 
 def exact_grid_for(problem: PlanProblem, steps: int, substeps: int | None = None) -> Any:
     """The `ExportGrid` program of ``problem`` with room for ``steps`` steps, its slosh checked
-    on ``substeps`` sub-samples per step (default `sloshkit.plan.verification.slosh_substeps`,
+    on ``substeps`` sub-samples per step (default `sloshkit.plan.line.verification.slosh_substeps`,
     the verification's check grid).
 
     The first mode of every model of the band carries the angle and residual limits; the
@@ -74,22 +74,22 @@ def exact_grid_for(problem: PlanProblem, steps: int, substeps: int | None = None
 
     Returns
     -------
-    sloshkit.plan.export_grid.ExportGrid
+    sloshkit.plan.line.export_grid.ExportGrid
         The program, built once, re-solved for every duration up to ``steps`` periods.
 
     Examples
     --------
     >>> import math
     >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
-    >>> from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+    >>> from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     >>> problem = PlanProblem(0.1, MachineLimits(1.0, 10.0, 200.0),
     ...     SloshLimits(math.radians(5), math.radians(0.5)), model, 4e-3)
     >>> len(exact_grid_for(problem, 200).pendulums)
     1
     """
-    from sloshkit.plan.export_grid import ExportGrid, Limits, Pendulum
-    from sloshkit.plan.verification import slosh_substeps
+    from sloshkit.plan.line.export_grid import ExportGrid, Limits, Pendulum
+    from sloshkit.plan.line.verification import slosh_substeps
     from sloshkit.sim.discretisation import velocity_driven_discretisation
 
     slosh, machine, ts = problem.slosh, problem.machine, problem.sample_period_s
@@ -144,7 +144,7 @@ def plan_optimal(
     warm_start : Motion, optional
         A feasible move (e.g. the shaped S-curve): its duration is the first guess.
     nonlinear : bool
-        Plan with the large-angle pendulums (`sloshkit.plan.optimal_nonlinear`).
+        Plan with the large-angle pendulums (`sloshkit.plan.line.optimal_nonlinear`).
     intervals : int, optional
         Only for ``nonlinear``: its number of shooting intervals.
     smooth : bool
@@ -168,7 +168,7 @@ def plan_optimal(
     --------
     >>> import math
     >>> from sloshkit import UprightCylinder, equivalent_model, get_liquid
-    >>> from sloshkit.plan.problem import MachineLimits, PlanProblem, SloshLimits
+    >>> from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     >>> problem = PlanProblem(0.1, MachineLimits(1.0, 10.0, 200.0),
     ...     SloshLimits(math.radians(5), math.radians(0.5)), model, 4e-3)
@@ -177,7 +177,7 @@ def plan_optimal(
     (True, 0.73)
     """
     if nonlinear:
-        from sloshkit.plan.optimal_nonlinear import plan_optimal_nonlinear
+        from sloshkit.plan.line.optimal_nonlinear import plan_optimal_nonlinear
 
         return plan_optimal_nonlinear(problem, warm_start, True, intervals)
     started = time.perf_counter()
@@ -189,7 +189,7 @@ def plan_optimal(
         return _failed(started, refusal)
     machine = problem.machine
     if warm_start is None:
-        from sloshkit.plan.searches import plan_shaped
+        from sloshkit.plan.line.searches import plan_shaped
 
         warm_start = plan_shaped(problem, ("zv",)).motion
     if warm_start is not None and warm_start.duration_s / ts <= MAX_STEPS:

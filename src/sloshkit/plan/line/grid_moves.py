@@ -1,6 +1,6 @@
 """Moves on the controller's export grid: the problem's numbers, and a move measured again.
 
-`sloshkit.plan.export_grid` plans on the grid; this module holds what it works with and the
+`sloshkit.plan.line.export_grid` plans on the grid; this module holds what it works with and the
 check it never skips: a solution's end state projected exactly onto rest, and the move
 simulated again with the verification's discretisation (Franklin, Powell & Workman, *Digital
 Control of Dynamic Systems*, 3rd ed. (1998) §6.3.2) against every limit.
@@ -70,7 +70,7 @@ class Limits:
     sample_period_s : float
         The export grid's step.
     substeps : int
-        Sub-samples per step at which the slosh is checked (`sloshkit.plan.verification.
+        Sub-samples per step at which the slosh is checked (`sloshkit.plan.line.verification.
         slosh_substeps`): the limits hold on the grid ``sample_period_s / substeps`` too, the
         finest controller period a plan is exported to.
 

@@ -3,16 +3,16 @@
 First the family's cap search (`plan_tilt`): the largest acceleration cap of the timing family
 whose tilted export passes the linear screen and the tilt and angular limits, verified. Then
 (`improved_tilt`) the timing is improved with the local searches of ``retime``
-(`sloshkit.plan.path_improve.warped_candidates`: pattern search and trust-region SLP on a
+(`sloshkit.plan.path.improve.warped_candidates`: pattern search and trust-region SLP on a
 speed-scaling warp, and the SLP polishing against the nonlinear model) run on the TILTED
 export: every screened, linearised and verified pose set is the sampled timing after
-`sloshkit.plan.tilt.tilt_compensated`, with the tilt limit. The seeds are the family's
-verified member and the other timings of the path given (in ``auto`` ``retime``'s result:
+`sloshkit.plan.path.tilt_compensation.tilt_compensated`, with the tilt limit. The seeds are the
+family's verified member and the other timings of the path given (in ``auto`` ``retime``'s result:
 tilting a good timing is a natural seed), each slowed uniformly until its tilted export
 passes the screen and then verified. The improvement runs on its own, smaller budget
 (`TILT_SAMPLE_BUDGET`) and is skipped on long moves, where that budget would buy fewer
-than `sloshkit.plan.path_improve.LADDER_MIN_SCREENS` screens of the move
-(`sloshkit.plan.path_improve.ladder_affordable`); the fastest verified candidate wins, so
+than `sloshkit.plan.path.improve.LADDER_MIN_SCREENS` screens of the move
+(`sloshkit.plan.path.improve.ladder_affordable`); the fastest verified candidate wins, so
 the improved plan is never slower than the family's.
 """
 
@@ -25,16 +25,16 @@ from dataclasses import replace
 
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.shaping import Shaper
-from sloshkit.plan.path_improve import ladder_affordable, warped_candidates
-from sloshkit.plan.path_ladder import method_timing
-from sloshkit.plan.path_limits import machine_stretch, machine_violations
-from sloshkit.plan.path_problem import PathProblem
-from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
-from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
-from sloshkit.plan.retime import ShaperFactory, curve_shaper, first_mode_shaper
-from sloshkit.plan.tilt import tilt_compensated
-from sloshkit.plan.timing import Timing
+from sloshkit.plan.path.improve import ladder_affordable, warped_candidates
+from sloshkit.plan.path.ladder import method_timing
+from sloshkit.plan.path.limits import machine_stretch, machine_violations
+from sloshkit.plan.path.problem import PathProblem
+from sloshkit.plan.path.result import PathCandidate, Verifier, verified_candidate, verify
+from sloshkit.plan.path.retime import ShaperFactory, curve_shaper, first_mode_shaper
+from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.search import fastest_capped, slowed_until, stretcher
+from sloshkit.plan.path.tilt_compensation import tilt_compensated
+from sloshkit.plan.path.timing import Timing
 
 #: Screened samples the searches of `improved_tilt` share (1-2 s of CPU on the measured
 #: series' moves; ``retime``'s budget is 800 000 plus its continuation's).
@@ -43,7 +43,7 @@ TILT_SAMPLE_BUDGET = 200_000
 
 def timing_shapers(problem: PathProblem) -> list[tuple[str, Shaper | ShaperFactory | None]]:
     """The timing shapers the cap searches try: the first-mode ZV (ZVD), none, and on a path
-    that turns the curve shaper (`sloshkit.plan.retime.curve_shaper`).
+    that turns the curve shaper (`sloshkit.plan.path.retime.curve_shaper`).
 
     Parameters
     ----------
@@ -57,7 +57,7 @@ def timing_shapers(problem: PathProblem) -> list[tuple[str, Shaper | ShaperFacto
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
+    >>> from sloshkit.plan.path.planner import _example_problem
     >>> [name for name, _ in timing_shapers(_example_problem())]
     ['zv', 'none']
     """
@@ -72,8 +72,9 @@ def timing_shapers(problem: PathProblem) -> list[tuple[str, Shaper | ShaperFacto
 def tilt_transform(
     problem: PathProblem,
 ) -> tuple[Callable[[PoseTrajectory], PoseTrajectory], float]:
-    """The tilt compensation of the ``tilt`` method (`sloshkit.plan.tilt.tilt_compensated` with
-    the first mode's bob height, ``max_tilt_rad`` and ``tilt_centre_height_m``) and its
+    """The tilt compensation of the ``tilt`` method
+    (`sloshkit.plan.path.tilt_compensation.tilt_compensated` with the first mode's bob height,
+    ``max_tilt_rad`` and ``tilt_centre_height_m``) and its
     smoothing: a fifth of the first mode's period (the tilt's angular acceleration excites the
     liquid; 0.01-0.06 s were compared on a straight move, longer is calmer).
 
@@ -93,7 +94,7 @@ def tilt_transform(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
+    >>> from sloshkit.plan.path.planner import _example_problem
     >>> tilted, smoothing = tilt_transform(_example_problem())
     >>> round(smoothing, 3)
     0.066
@@ -140,8 +141,8 @@ def plan_tilt(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.result import linear_verifier
     >>> problem = _example_problem()
     >>> found = plan_tilt(problem, linear_verifier, improve=False)
     >>> found.feasible, found.verification.peak_tilt_rad > 0.0
@@ -219,9 +220,9 @@ def improved_tilt(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.path_result import linear_verifier
-    >>> from sloshkit.plan.retime import family_member
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.result import linear_verifier
+    >>> from sloshkit.plan.path.retime import family_member
     >>> problem = _example_problem()
     >>> family = plan_tilt(problem, linear_verifier, improve=False)
     >>> slow = family_member(problem, 1.0, None)

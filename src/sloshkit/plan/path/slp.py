@@ -1,11 +1,11 @@
 """Sequential linear programming (SLP) on the speed-scaling warp of a timing, for ``retime``.
 
 The variables are the B-spline coefficients c_k of the warp of a feasible seed timing s(u)
-(`sloshkit.plan.timing.warped_timing`: time runs c(u) times slower at the seed's time u, so
+(`sloshkit.plan.path.timing.warped_timing`: time runs c(u) times slower at the seed's time u, so
 the speed along the path becomes s'(u) / c(u), the path-speed profile b(s) = s'^2 of TOPP
 scaled by 1 / c^2, and c stays C2 so the jerk stays finite). The duration is exactly linear in
 them, T = sum_k w_k c_k with w_k = integral of the k-th B-spline over [0, T_seed]. The slosh
-outputs of the linear screen (`sloshkit.plan.path_screen.screen_outputs`) are linearised
+outputs of the linear screen (`sloshkit.plan.path.screen.screen_outputs`) are linearised
 around the current warp by forward differences: per model of the band, the residual bound
 sum_n e_n |(A_n, B_n)| (the mode amplitudes after the move) and the peak wall height in each of
 ``2 K`` windows of the seed's time. Each step solves the linear program
@@ -18,7 +18,7 @@ halves after a rejected one (Fletcher, *Practical Methods of Optimization*, Wile
 ch. 14; the SLP/trust-region scheme of Byrd, Gould, Nocedal & Waltz, Math. Program. 100
 (2004) 27-48, doi:10.1007/s10107-003-0485-4). Every accepted step is screened and shorter, so
 the result is never slower than the seed. Unlike the coordinate pattern search
-(`sloshkit.plan.path_search.warp_search`), which can only lower one coefficient at a time, a
+(`sloshkit.plan.path.search.warp_search`), which can only lower one coefficient at a time, a
 step may slow one part of the move to speed up another: on turning paths the residual
 constraint binds and the fastest timings trade speed along the path.
 """
@@ -34,9 +34,9 @@ from numpy.typing import NDArray
 
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
-from sloshkit.plan.path_problem import SEARCH_MARGIN, PathProblem
-from sloshkit.plan.path_screen import linear_screen, screen_outputs
-from sloshkit.plan.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
+from sloshkit.plan.path.problem import SEARCH_MARGIN, PathProblem
+from sloshkit.plan.path.screen import linear_screen, screen_outputs
+from sloshkit.plan.path.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
 #: Warp coefficients of the SLP.
@@ -90,7 +90,7 @@ def slp_search(
         Relative margin the LP keeps from each slosh limit.
     reference : callable, optional
         PoseTrajectory -> (peak, residual) slosh heights of a more exact model (the nonlinear 3-D
-        model, `sloshkit.plan.path_result.verify`). Then a step is accepted only when these
+        model, `sloshkit.plan.path.result.verify`). Then a step is accepted only when these
         are within the limits (1 % kept) and ``passes`` holds, and the LP's limits are
         corrected by the gap between this model and the screen at the current timing (defect
         correction: the screen gives the sensitivities, the reference the levels).
@@ -112,8 +112,8 @@ def slp_search(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.path_limits import kinematics
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.limits import kinematics
     >>> problem = _example_problem()
     >>> seed = Timing.from_samples("slow", np.linspace(0, 3, 31),
     ...                            0.3 * np.sin(np.linspace(0, np.pi / 2, 31)) ** 2)

@@ -19,7 +19,7 @@ from sloshkit.motion.profile import Motion
 from sloshkit.motion.sampling import steps_for, steps_to_reach
 from sloshkit.motion.scaling import scaled_velocity_samples, unit_duration_shape
 from sloshkit.motion.shaping import Shaper, make_shaper, shape_motion, zv
-from sloshkit.plan.problem import (
+from sloshkit.plan.line.problem import (
     SEARCH_MARGIN,
     SHAPERS,
     Candidate,
@@ -27,8 +27,8 @@ from sloshkit.plan.problem import (
     PlanProblem,
     PlanStatus,
 )
-from sloshkit.plan.verification import checked_candidate, only_slosh_violations
-from sloshkit.plan.work_estimate import slosh_floor_s, work_limit
+from sloshkit.plan.line.verification import checked_candidate, only_slosh_violations
+from sloshkit.plan.line.work_estimate import slosh_floor_s, work_limit
 from sloshkit.sim.batch import batch_metrics
 
 FloatArray = NDArray[np.float64]
@@ -143,7 +143,7 @@ def plan_paper_law(law: str, problem: PlanProblem, grid: int = 400) -> Candidate
 
     started = time.perf_counter()
     shape = unit_duration_shape(make_law(law, problem.distance_m, duration_s=1.0))
-    # No move is shorter than the slosh bound (`sloshkit.plan.work_estimate.slosh_floor_s`;
+    # No move is shorter than the slosh bound (`sloshkit.plan.line.work_estimate.slosh_floor_s`;
     # 1 % below it, as the angle is checked at the samples only): under tight slosh limits the scan
     # starts there instead of widening from the machine's floor.
     floor = max(_machine_floor(shape, problem.machine), 0.99 * slosh_floor_s(problem))
@@ -272,7 +272,7 @@ def plan_shaped(problem: PlanProblem, shapers: Sequence[str] = SHAPERS) -> Candi
     problem : PlanProblem
         Distance, limits, model and sample period.
     shapers : sequence of str
-        Shapers to try (`sloshkit.plan.problem.SHAPERS`).
+        Shapers to try (`sloshkit.plan.line.problem.SHAPERS`).
 
     Returns
     -------

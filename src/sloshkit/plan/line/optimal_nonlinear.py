@@ -1,7 +1,7 @@
 """Minimum-time control of the large-angle pendulums by direct multiple shooting (casadi/IPOPT).
 
 Used for ``--nonlinear-optimal``; the linear problem is solved on the export grid by
-`sloshkit.plan.optimal`. Jerk as the control, piecewise constant; states position, velocity,
+`sloshkit.plan.line.optimal`. Jerk as the control, piecewise constant; states position, velocity,
 acceleration and every mode's angle and rate, for each frequency of the robustness band, with
 the slosh limits as path constraints and the residual amplitude as a terminal constraint,
 warm-started from the best fast method (Betts, *Practical Methods for Optimal Control*, 2nd ed.,
@@ -21,9 +21,9 @@ from numpy.typing import NDArray
 
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.profile import Motion, piecewise_constant_jerk
-from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus
-from sloshkit.plan.searches import plan_shaped
-from sloshkit.plan.verification import checked_candidate, only_slosh_violations
+from sloshkit.plan.line.problem import Candidate, PlanProblem, PlanStatus
+from sloshkit.plan.line.searches import plan_shaped
+from sloshkit.plan.line.verification import checked_candidate, only_slosh_violations
 from sloshkit.sim.discretisation import linear_mode_response
 from sloshkit.sim.equations import pendulum_angular_acceleration
 from sloshkit.sim.metrics import (

@@ -3,11 +3,12 @@
 The export of every method is a `sloshkit.motion.poses.PoseTrajectory` on the controller's
 grid t = k Ts (`sample_path`), at rest at both ends.
 
-The planner's methods (`sloshkit.plan.retime`, `sloshkit.plan.tilt`) search with a fast linear
-model of the lateral modes along the sampled export (`sloshkit.plan.path_screen`) and check
-the kinematic limits (`sloshkit.plan.path_limits`); nothing is called feasible before the
+The planner's methods (`sloshkit.plan.path.retime`, `sloshkit.plan.path.tilt_compensation`)
+search with a fast linear model of the lateral modes along the sampled export
+(`sloshkit.plan.path.screen`) and check
+the kinematic limits (`sloshkit.plan.path.limits`); nothing is called feasible before the
 export has been simulated with the nonlinear 3-D model of `sloshkit.sim.spatial` for every
-frequency of the robustness band (`sloshkit.plan.path_result.verify`).
+frequency of the robustness band (`sloshkit.plan.path.result.verify`).
 """
 
 from __future__ import annotations
@@ -23,8 +24,8 @@ from sloshkit.errors import require_in_range, require_positive
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
-from sloshkit.plan.path import Path, generalised_arc_length
-from sloshkit.plan.timing import Timing
+from sloshkit.plan.path.geometry import Path, generalised_arc_length
+from sloshkit.plan.path.timing import Timing
 
 FloatArray = NDArray[np.float64]
 #: Gravity in the world frame (z up) [m/s^2], from the model's constant.
@@ -112,7 +113,7 @@ class PathProblem:
     Parameters
     ----------
     path : Path
-        The geometry (`sloshkit.plan.path`).
+        The geometry (`sloshkit.plan.path.geometry`).
     machine : CartesianLimits
         Cartesian and angular limits.
     slosh : SpatialSloshLimits
@@ -131,7 +132,7 @@ class PathProblem:
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
     ...                       None)
@@ -185,7 +186,7 @@ def sample_path(path: Path, timing: Any, sample_period_s: float) -> PoseTrajecto
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
     >>> from sloshkit.motion.laws import s_curve
     >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
     >>> poses = sample_path(path, s_curve(0.5, 1.0, 2.0, 20.0), 4e-3)
@@ -204,8 +205,9 @@ def reference_timing(poses: PoseTrajectory, path: Path) -> Timing:
     """The poses' own timing s(t) along ``path`` (made from them, `path_from_poses`), from
     their first moving sample on (the rest before it dropped).
 
-    s is the generalised arc length of the poses (`sloshkit.plan.path.generalised_arc_length`),
-    scaled to the path's length; samples where it does not grow are dropped, so the timing is
+    s is the generalised arc length of the poses
+    (`sloshkit.plan.path.geometry.generalised_arc_length`), scaled to the path's length;
+    samples where it does not grow are dropped, so the timing is
     strictly increasing.
 
     Parameters
@@ -222,7 +224,7 @@ def reference_timing(poses: PoseTrajectory, path: Path) -> Timing:
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_poses
+    >>> from sloshkit.plan.path.geometry import path_from_poses
     >>> t = np.arange(6) * 0.1
     >>> x = np.array([0.0, 0.0, 0.1, 0.2, 0.3, 0.3])
     >>> poses = PoseTrajectory(t, np.c_[x, 0 * t, 0 * t], np.tile([0, 0, 0, 1.0], (6, 1)))
@@ -240,7 +242,7 @@ def reference_timing(poses: PoseTrajectory, path: Path) -> Timing:
 
 def second_difference(values: FloatArray, step: float) -> FloatArray:
     """Central second difference along axis 0 with the ends held at rest (the first and last
-    rows repeated), as the export's acceleration is measured (`sloshkit.plan.path_limits`).
+    rows repeated), as the export's acceleration is measured (`sloshkit.plan.path.limits`).
 
     Parameters
     ----------

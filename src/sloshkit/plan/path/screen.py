@@ -28,7 +28,7 @@ from sloshkit.motion.quaternions import (
     rotated_z_axis,
     rotation_vector,
 )
-from sloshkit.plan.path_problem import GRAVITY, SEARCH_MARGIN, PathProblem, second_difference
+from sloshkit.plan.path.problem import GRAVITY, SEARCH_MARGIN, PathProblem, second_difference
 
 FloatArray = NDArray[np.float64]
 
@@ -83,8 +83,8 @@ def linear_screen(models: list[Any], poses: PoseTrajectory) -> ScreenResult:
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import (CartesianLimits, PathProblem,
     ...                                         SpatialSloshLimits, sample_path)
     >>> from sloshkit.motion.laws import s_curve
     >>> from sloshkit.model.geometry import UprightCylinder
@@ -130,8 +130,8 @@ def screen_outputs(
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import sample_path
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import sample_path
     >>> from sloshkit.motion.laws import s_curve
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
@@ -202,8 +202,8 @@ def screen_ok(problem: PathProblem, result: ScreenResult, margin: float = SEARCH
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import (CartesianLimits, PathProblem,
     ...                                         SpatialSloshLimits, sample_path)
     >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
     ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),

@@ -22,7 +22,7 @@ from sloshkit.errors import ValidityWarning
 from sloshkit.motion.profile import Motion
 from sloshkit.motion.recorded import from_samples
 from sloshkit.motion.sampling import export_samples
-from sloshkit.plan.problem import Candidate, PlanProblem, PlanStatus, Verification
+from sloshkit.plan.line.problem import Candidate, PlanProblem, PlanStatus, Verification
 from sloshkit.sim.discretisation import linear_response
 from sloshkit.sim.metrics import free_amplitude, wall_elevation, wall_elevation_factors
 from sloshkit.sim.simulate import simulate

@@ -10,8 +10,8 @@ Methods (all verified the same way, see `verify`):
 - ``optimal``: minimum-time control as linear programs (HiGHS), transcribed on the controller's
   export grid (piecewise-constant jerk per sample period, the pendulums' exact discretisation, the
   slosh limits at every exported sample, for each frequency of the robustness band); by default
-  its smooth variant (`sloshkit.plan.optimal.SMOOTH_PRICE` = 0.5 % longer than the minimum time,
-  least total variation of the jerk), with ``smooth=False`` the bang-bang time-optimal move;
+  its smooth variant (`sloshkit.plan.line.optimal.SMOOTH_PRICE` = 0.5 % longer than the minimum
+  time, least total variation of the jerk), with ``smooth=False`` the bang-bang time-optimal move;
   large-angle pendulums (time-optimal only) by multiple shooting (Betts, *Practical Methods for
   Optimal Control*, 2nd ed., SIAM (2010) ch. 4);
 - ``auto``: all of the above, the fastest that passes verification.
@@ -32,10 +32,10 @@ from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.sampling import export_samples
-from sloshkit.plan.optimal import plan_optimal
-from sloshkit.plan.problem import PAPER_LAWS, Candidate, PlanProblem
-from sloshkit.plan.searches import plan_paper_law, plan_shaped
-from sloshkit.plan.work_estimate import check_cost
+from sloshkit.plan.line.optimal import plan_optimal
+from sloshkit.plan.line.problem import PAPER_LAWS, Candidate, PlanProblem
+from sloshkit.plan.line.searches import plan_paper_law, plan_shaped
+from sloshkit.plan.line.work_estimate import check_cost
 from sloshkit.results import ResultMixin
 from sloshkit.sim.discretisation import linear_response
 
@@ -158,7 +158,7 @@ def plan(
 ) -> PlanResult:
     """Run the requested method(s) and return the fastest verified candidate.
 
-    Every candidate is verified from its sampled export (`sloshkit.plan.verification.verify`).
+    Every candidate is verified from its sampled export (`sloshkit.plan.line.verification.verify`).
 
     Parameters
     ----------
@@ -173,7 +173,7 @@ def plan(
     progress : callable, optional
         Called with a short message before each method.
     smooth : bool
-        The optimal method returns its smooth variant (the default: `sloshkit.plan.optimal.
+        The optimal method returns its smooth variant (the default: `sloshkit.plan.line.optimal.
         SMOOTH_PRICE` longer than the minimum time, least total variation of the jerk, no
         chattering); False returns the bang-bang time-optimal move (always so with
         ``nonlinear_optimal``). ``PlanResult.to_dict()["variant"]`` says which.

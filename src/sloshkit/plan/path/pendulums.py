@@ -1,6 +1,6 @@
 """The nonlinear slosh pendulums along a sampled path, and their linearisation along it.
 
-The path program (`sloshkit.plan.path_optimal`) imposes its slosh limits on the model the
+The path program (`sloshkit.plan.path.optimal`) imposes its slosh limits on the model the
 verification simulates: every lateral mode a damped spherical pendulum of length L_n, driven by
 the specific force f at its hinge in the container's non-spinning frame N, integrated by the
 classical Runge-Kutta method on the drive's half-step grid (`sloshkit.sim.spatial`, the

@@ -10,8 +10,8 @@ import numpy as np
 
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.quaternions import conjugate, hamilton_product, rotated_z_axis, rotation_vector
-from sloshkit.plan.path import Path
-from sloshkit.plan.path_problem import PathProblem
+from sloshkit.plan.path.geometry import Path
+from sloshkit.plan.path.problem import PathProblem
 
 
 def kinematics(poses: PoseTrajectory) -> dict[str, float]:
@@ -30,8 +30,8 @@ def kinematics(poses: PoseTrajectory) -> dict[str, float]:
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import (CartesianLimits, PathProblem,
     ...                                         SpatialSloshLimits, sample_path)
     >>> from sloshkit.motion.laws import s_curve
     >>> poses = sample_path(path_from_waypoints([[0, 0, 0], [0.5, 0, 0]]),
@@ -80,8 +80,8 @@ def machine_violations(problem: PathProblem, poses: PoseTrajectory, tilted: bool
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import (CartesianLimits, PathProblem,
     ...                                         SpatialSloshLimits, sample_path)
     >>> from sloshkit.motion.laws import s_curve
     >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
@@ -141,8 +141,8 @@ def machine_stretch(problem: PathProblem, poses: PoseTrajectory) -> float:
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import (CartesianLimits, PathProblem,
     ...                                         SpatialSloshLimits, sample_path)
     >>> from sloshkit.motion.laws import s_curve
     >>> path = path_from_waypoints([[0, 0, 0], [0.5, 0, 0]])
@@ -185,8 +185,8 @@ def path_deviation(path: Path, poses: PoseTrajectory) -> float:
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
-    >>> from sloshkit.plan.path_problem import (CartesianLimits, PathProblem,
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import (CartesianLimits, PathProblem,
     ...                                         SpatialSloshLimits, sample_path)
     >>> path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
     >>> poses = PoseTrajectory(np.arange(2) * 0.1, np.array([[0.1, 0.002, 0], [0.3, 0, 0]]),

@@ -1,11 +1,11 @@
-"""Local improvement of verified ``retime`` timings: the searches of `path_search` and
-`path_slp` run from verified seeds, each result verified again.
+"""Local improvement of verified ``retime`` timings: the searches of `sloshkit.plan.path.search` and
+`sloshkit.plan.path.slp` run from verified seeds, each result verified again.
 
 Two kinds of search are combined (`warped_candidates`):
 
 - **screened chains** (`SEARCH_CHAINS`): the pattern search
-  (`sloshkit.plan.path_search.warp_search`) alone, followed by the SLP
-  (`sloshkit.plan.path_slp.slp_search`), and after it, under the linear screen, from every
+  (`sloshkit.plan.path.search.warp_search`) alone, followed by the SLP
+  (`sloshkit.plan.path.slp.slp_search`), and after it, under the linear screen, from every
   verified seed;
   the result is verified, and when the nonlinear model exceeds a limit the screen passed, the
   screen's limit is tightened and the chain repeated from the seed slowed until it passes the
@@ -18,7 +18,7 @@ Two kinds of search are combined (`warped_candidates`):
 All these searches share one budget of screened samples (`IMPROVE_SAMPLE_BUDGET`, so long
 moves get fewer screens; the order above is the order of priority). Then the
 **continuation**: seeds found under stricter internal targets and the other methods'
-timings of the path (`sloshkit.plan.path_ladder`, which says why: the residual's basins) are
+timings of the path (`sloshkit.plan.path.ladder`, which says why: the residual's basins) are
 polished against the true limits, by successive halving of their own budget
 (`LADDER_SAMPLE_BUDGET`; `ladder_affordable` says when a move is short enough for it). The
 fastest verified candidate wins, so ``retime`` is never slower than its seeds.
@@ -32,12 +32,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path_ladder import targeted
-from sloshkit.plan.path_limits import machine_violations
-from sloshkit.plan.path_problem import SEARCH_MARGIN, PathProblem
-from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
-from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import (
+from sloshkit.plan.path.ladder import targeted
+from sloshkit.plan.path.limits import machine_violations
+from sloshkit.plan.path.problem import SEARCH_MARGIN, PathProblem
+from sloshkit.plan.path.result import PathCandidate, Verifier, verified_candidate, verify
+from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.search import (
     WARP_KNOTS,
     WARP_ROUNDS,
     WARP_SAMPLE_BUDGET,
@@ -46,8 +46,8 @@ from sloshkit.plan.path_search import (
     stretcher,
     warp_search,
 )
-from sloshkit.plan.path_slp import SLP_KNOTS, slp_search
-from sloshkit.plan.timing import Timing
+from sloshkit.plan.path.slp import SLP_KNOTS, slp_search
+from sloshkit.plan.path.timing import Timing
 
 #: The screened search chains `warped_candidates` runs from every verified seed, each search
 #: continued from the previous one's result (``warp8``: the pattern search on 8 coefficients;
@@ -224,7 +224,7 @@ def _screened(
 ) -> list[Seeded]:
     """The verified results of one screened chain from one seed, with the verify-and-tighten
     rounds (module docstring); the last failing improvement slowed uniformly when every round
-    fails (`sloshkit.plan.path_result.verified_candidate`)."""
+    fails (`sloshkit.plan.path.result.verified_candidate`)."""
     models = problem.models()
     candidate, timing = seed
     peak, residual_share = candidate.detail.get("target", (1.0, 1.0))
@@ -326,12 +326,12 @@ def warped_candidates(
     polish : bool
         Also run the SLP with the nonlinear model as its reference.
     ladder : sequence of (PathCandidate, Timing)
-        Further verified seeds (`sloshkit.plan.path_ladder.ladder_seeds`), polished with
+        Further verified seeds (`sloshkit.plan.path.ladder.ladder_seeds`), polished with
         ``polish`` on their own budget (`LADDER_SAMPLE_BUDGET`, and what the searches above
         left).
     transform : callable, optional
         PoseTrajectory -> PoseTrajectory turning a sampled timing into the export (e.g. ``tilt``'s
-        tilt compensation, `sloshkit.plan.path_tilt`): every search screens, and every
+        tilt compensation, `sloshkit.plan.path.tilt`): every search screens, and every
         verification checks, the transformed poses, with the tilt limit when given.
     budget : float, optional
         Screened samples the searches share (default `IMPROVE_SAMPLE_BUDGET`).
@@ -349,10 +349,10 @@ def warped_candidates(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.path_result import linear_verifier
-    >>> from sloshkit.plan.path_search import stretcher
-    >>> from sloshkit.plan.retime import family_member
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.result import linear_verifier
+    >>> from sloshkit.plan.path.search import stretcher
+    >>> from sloshkit.plan.path.retime import family_member
     >>> problem = _example_problem()
     >>> slow = family_member(problem, 0.5, None).stretched(2.0)
     >>> seed = verified_candidate("retime", problem, stretcher(problem, slow), 1.0,
@@ -394,10 +394,10 @@ def fastest_improved(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.path_result import linear_verifier
-    >>> from sloshkit.plan.path_search import stretcher
-    >>> from sloshkit.plan.retime import family_member
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.result import linear_verifier
+    >>> from sloshkit.plan.path.search import stretcher
+    >>> from sloshkit.plan.path.retime import family_member
     >>> problem = _example_problem()
     >>> slow = family_member(problem, 0.5, None).stretched(2.0)
     >>> seed = verified_candidate("retime", problem, stretcher(problem, slow), 1.0,
@@ -445,7 +445,7 @@ def fastest_improved(
 
 
 def ladder_affordable(problem: PathProblem, duration_s: float, budget: float | None = None) -> bool:
-    """Whether the continuation (`sloshkit.plan.path_ladder.ladder_seeds`,
+    """Whether the continuation (`sloshkit.plan.path.ladder.ladder_seeds`,
     `LADDER_SAMPLE_BUDGET`) runs for a move of
     about ``duration_s``: its budget, shrunk like `IMPROVE_SAMPLE_BUDGET` above
     `IMPROVE_LONG_MOVE` samples, must buy `LADDER_MIN_SCREENS` screens of the move.
@@ -465,7 +465,7 @@ def ladder_affordable(problem: PathProblem, duration_s: float, budget: float | N
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
+    >>> from sloshkit.plan.path.planner import _example_problem
     >>> problem = _example_problem()  # a 10 ms sample period
     >>> ladder_affordable(problem, 2.0), ladder_affordable(problem, 60.0)
     (True, False)

@@ -1,5 +1,5 @@
 """The minimum-time timing of a 3-D path on the export grid, by sequential second-order-cone
-programming (`sloshkit.plan.path_program`, the model; `sloshkit.plan.path_cone`, one program).
+programming (`sloshkit.plan.path.program`, the model; `sloshkit.plan.path.cone`, one program).
 
 The minimum time comes from programs whose sample period is a variable too (`_dilated_search`):
 first on a grid four times coarser than the export's (programs a quarter the size; a bracketed
@@ -20,9 +20,9 @@ from typing import Any
 import numpy as np
 
 from sloshkit.model.theory import GRAVITY_M_S2
-from sloshkit.plan.path_cone import PENALTY, PROGRAM_MARGIN, cone_step
-from sloshkit.plan.path_joints import joint_map
-from sloshkit.plan.path_program import (
+from sloshkit.plan.path.cone import PENALTY, PROGRAM_MARGIN, cone_step
+from sloshkit.plan.path.joints import joint_map
+from sloshkit.plan.path.program import (
     PathProgram,
     PathSamples,
     ProgramIterate,
@@ -191,7 +191,7 @@ def free_time(
     >>> from sloshkit.model.geometry import UprightCylinder
     >>> from sloshkit.model.liquids import get_liquid
     >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
     >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
     >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
     >>> program = PathProgram(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]), [model], limits, 0.01)
@@ -319,15 +319,15 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
 
     Rounds of the free-time search (`free_time`): the first from the time-optimal speed
     profile under the quasi-static acceleration that tilts a level surface to the height
-    limit (h = R a / g; `sloshkit.plan.retime.capped_timing`), each next one from the last
+    limit (h = R a / g; `sloshkit.plan.path.retime.capped_timing`), each next one from the last
     one's samples on the export's period with the program's slosh limits moved towards the
     values at which the verification meets its limits (`_next_limit`; at most `TIGHTENINGS`).
     The rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
     limit, when a round one sample shorter failed the verification, or when a round no
     longer shortens the plan; the shortest verified timing is kept. A limit outside the
-    program is met by a uniform stretch (`sloshkit.plan.path_result.verified_candidate`); a
-    verifier that checks an arm's joint speeds (`sloshkit.plan.path_result.JointSpeedCheck`)
-    lends the programs the joints along the path (`sloshkit.plan.path_joints.joint_map`),
+    program is met by a uniform stretch (`sloshkit.plan.path.result.verified_candidate`); a
+    verifier that checks an arm's joint speeds (`sloshkit.plan.path.result.JointSpeedCheck`)
+    lends the programs the joints along the path (`sloshkit.plan.path.joints.joint_map`),
     and they limit the joint speeds themselves.
 
     Parameters
@@ -355,7 +355,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     Examples
     --------
     >>> import sloshkit as sk
-    >>> from sloshkit.plan.path_result import verify
+    >>> from sloshkit.plan.path.result import verify
     >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
     >>> problem = sk.PathProblem(sk.path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
     ...     sk.CartesianLimits(2.0, 10.0, 100.0), sk.SpatialSloshLimits(0.008, 0.001), model,
@@ -369,10 +369,10 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     import time
     from dataclasses import replace
 
-    from sloshkit.plan.path_problem import sample_path
-    from sloshkit.plan.path_result import JointSpeedCheck, PathCandidate, verified_candidate
-    from sloshkit.plan.retime import capped_timing
-    from sloshkit.plan.timing import Timing
+    from sloshkit.plan.path.problem import sample_path
+    from sloshkit.plan.path.result import JointSpeedCheck, PathCandidate, verified_candidate
+    from sloshkit.plan.path.retime import capped_timing
+    from sloshkit.plan.path.timing import Timing
 
     started = time.perf_counter()
     machine, slosh = problem.machine, problem.slosh

@@ -16,7 +16,7 @@ import os
 from dataclasses import dataclass
 
 from sloshkit.errors import InputError
-from sloshkit.plan.problem import PAPER_LAWS, SHAPERS, PlanProblem
+from sloshkit.plan.line.problem import PAPER_LAWS, SHAPERS, PlanProblem
 
 #: Environment variable for the largest planner work (pendulum updates).
 WORK_VARIABLE = "SLOSHKIT_MAX_PLAN_WORK"
@@ -164,7 +164,7 @@ class DurationFloor:
         Examples
         --------
         >>> from sloshkit.model import UprightCylinder, equivalent_model, get_liquid
-        >>> from sloshkit.plan.problem import MachineLimits, SloshLimits
+        >>> from sloshkit.plan.line.problem import MachineLimits, SloshLimits
         >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
         >>> problem = PlanProblem(0.5, MachineLimits(1.5, 20, 500), SloshLimits(1e-3, 1e-4),
         ...                       model)
@@ -214,7 +214,7 @@ def slosh_floor_s(problem: PlanProblem) -> float:
     Examples
     --------
     >>> from sloshkit.model import UprightCylinder, equivalent_model, get_liquid
-    >>> from sloshkit.plan.problem import MachineLimits, SloshLimits
+    >>> from sloshkit.plan.line.problem import MachineLimits, SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     >>> tight = PlanProblem(0.5, MachineLimits(1.5, 20, 500),
     ...                     SloshLimits(math.radians(0.05), math.radians(0.001)), model)
@@ -250,7 +250,7 @@ def duration_floor(problem: PlanProblem) -> DurationFloor:
     Examples
     --------
     >>> from sloshkit.model import UprightCylinder, equivalent_model, get_liquid
-    >>> from sloshkit.plan.problem import MachineLimits, SloshLimits
+    >>> from sloshkit.plan.line.problem import MachineLimits, SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     >>> problem = PlanProblem(0.5, MachineLimits(1.5, 20, 500),
     ...                       SloshLimits(math.radians(0.05), math.radians(0.001)), model)
@@ -271,7 +271,7 @@ def duration_floor(problem: PlanProblem) -> DurationFloor:
 
 
 def estimate_cost(problem: PlanProblem, method: str = "auto") -> PlanCost:
-    """Estimate the work of `sloshkit.plan.planner.plan` for ``problem`` and ``method``.
+    """Estimate the work of `sloshkit.plan.line.planner.plan` for ``problem`` and ``method``.
 
     Parameters
     ----------
@@ -293,7 +293,7 @@ def estimate_cost(problem: PlanProblem, method: str = "auto") -> PlanCost:
     Examples
     --------
     >>> from sloshkit.model import UprightCylinder, equivalent_model, get_liquid
-    >>> from sloshkit.plan.problem import MachineLimits, SloshLimits
+    >>> from sloshkit.plan.line.problem import MachineLimits, SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     >>> problem = PlanProblem(0.5, MachineLimits(1.5, 20, 500), SloshLimits(0.09, 0.004), model)
     >>> estimate_cost(problem).work < DEFAULT_MAX_WORK
@@ -344,7 +344,7 @@ def check_cost(problem: PlanProblem, method: str = "auto") -> PlanCost:
     Examples
     --------
     >>> from sloshkit.model import UprightCylinder, equivalent_model, get_liquid
-    >>> from sloshkit.plan.problem import MachineLimits, SloshLimits
+    >>> from sloshkit.plan.line.problem import MachineLimits, SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     >>> far = PlanProblem(1000, MachineLimits(1.5, 20, 500), SloshLimits(0.09, 0.004), model)
     >>> try:
@@ -398,7 +398,7 @@ def optimal_refusal(problem: PlanProblem, raise_error: bool = False) -> str | No
     Examples
     --------
     >>> from sloshkit.model import UprightCylinder, equivalent_model, get_liquid
-    >>> from sloshkit.plan.problem import MachineLimits, SloshLimits
+    >>> from sloshkit.plan.line.problem import MachineLimits, SloshLimits
     >>> model = equivalent_model(UprightCylinder(0.0205), get_liquid("water-25C"), 0.039)
     >>> tight = PlanProblem(0.5, MachineLimits(1.5, 20, 500),
     ...                     SloshLimits(math.radians(0.05), math.radians(0.001)), model)

@@ -3,14 +3,14 @@
 Casadi/IPOPT (Betts, *Practical Methods for Optimal Control*, 2nd ed., SIAM (2010) ch. 4):
 states s, s', s'' and, for every mode and every frequency of the robustness band, the 2-D
 deflection of the spherical pendulum and its rate (the linear model of
-`sloshkit.plan.path_screen`); control: the path jerk s''', piecewise constant; path-dependent speed,
+`sloshkit.plan.path.screen`); control: the path jerk s''', piecewise constant; path-dependent speed,
 acceleration (tangential and centripetal), jerk and angular-speed limits and the slosh-height
 limit at the nodes, the residual amplitude at the end. The path enters through tables of its
 derivatives on a grid of s (linear interpolants, evaluated at the nodes; the RK4 stages use the
 path quantities interpolated linearly in time between nodes).
 
 The planner warm-starts it from the fastest member of the parametric family of
-`sloshkit.plan.retime` that passes the slosh screen. Measured on the TRD path of the measured
+`sloshkit.plan.path.retime` that passes the slosh screen. Measured on the TRD path of the measured
 series: about 100-190 IPOPT iterations and 5-15 s on this (shared) machine with 60 intervals;
 100-160 intervals did not converge in 200 s (the curvature peak of 29/m of that path makes the
 node constraints nearly non-smooth), so 60 is the default.
@@ -26,11 +26,11 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
 from sloshkit.motion.profile import Motion, piecewise_constant_jerk
-from sloshkit.plan.path import Path
-from sloshkit.plan.path_limits import machine_violations
-from sloshkit.plan.path_problem import GRAVITY, SEARCH_MARGIN, PathProblem, sample_path
-from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.timing import FINE_STEP_S, Timing
+from sloshkit.plan.path.geometry import Path
+from sloshkit.plan.path.limits import machine_violations
+from sloshkit.plan.path.problem import GRAVITY, SEARCH_MARGIN, PathProblem, sample_path
+from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.timing import FINE_STEP_S, Timing
 
 FloatArray = NDArray[np.float64]
 #: Fraction of the Cartesian limits the transcription uses (they hold at its nodes only).
@@ -58,7 +58,7 @@ def path_tables(path: Path, count: int) -> tuple[FloatArray, FloatArray]:
 
     Examples
     --------
-    >>> from sloshkit.plan.path import path_from_waypoints
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
     >>> grid, table = path_tables(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]), 5)
     >>> table.shape, table[10:13, 2].round(6).tolist()  # p' along x
     ((22, 5), [1.0, 0.0, 0.0])
@@ -342,7 +342,7 @@ def transcribed_timing(problem: PathProblem, warm: Any) -> tuple[Timing, str] | 
     The transcription's slosh limits hold at its shooting nodes of an RK4 model with the path
     quantities interpolated between nodes; the sampled export can break them between and at
     the nodes (by 4 % peak and 20 % residual on the measured TRD path). So the export of each
-    solution is screened (`sloshkit.plan.path_screen.linear_screen` on the controller grid, with
+    solution is screened (`sloshkit.plan.path.screen.linear_screen` on the controller grid, with
     the search margin): when a slosh limit is broken, that limit is tightened by the ratio of
     the screened value to the allowed one and the problem is solved again, warm-started from
     the previous solution, at most `TIGHTENING_STEPS` times.

@@ -5,7 +5,7 @@ become jerk-limited ramps; Biagiotti & Melchiorri, *Trajectory Planning for Auto
 and Robots*, Springer (2008) ch. 4); `shaped_timing` convolves it with an input shaper's
 impulses (Singer & Seering, ASME J. Dyn. Syst. Meas. Control 112 (1990) 76-82,
 doi:10.1115/1.2894142). Both change the timing, never the path's geometry. The family built
-from them is in `sloshkit.plan.retime`.
+from them is in `sloshkit.plan.path.retime`.
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ FloatArray = NDArray[np.float64]
 #: Resolution of the fine time grid the composed timings are tabulated on [s].
 FINE_STEP_S = 5e-4
 #: Smallest factor of a timing warp: time may run at most 10x faster than in the seed locally
-#: (shared by the warp searches, `sloshkit.plan.path_search` and `sloshkit.plan.path_slp`).
+#: (shared by the warp searches, `sloshkit.plan.path.search` and `sloshkit.plan.path.slp`).
 WARP_FLOOR = 0.1
 
 

@@ -1,5 +1,5 @@
 """Seeds of ``retime``: timings of the same path the local searches of
-`sloshkit.plan.path_improve` start from, each verified against the true limits.
+`sloshkit.plan.path.improve` start from, each verified against the true limits.
 
 - ``uniform``: the reference timing (e.g. the pose file's own) slowed uniformly until it meets
   the limits (`plan_uniform`; also the naive fix the planner is compared with);
@@ -23,13 +23,13 @@ from dataclasses import replace
 
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.shaping import Shaper
-from sloshkit.plan.path_limits import machine_stretch
-from sloshkit.plan.path_problem import PathProblem
-from sloshkit.plan.path_result import PathCandidate, Verifier, verified_candidate, verify
-from sloshkit.plan.path_screen import linear_screen, screen_ok
-from sloshkit.plan.path_search import fastest_capped, slowed_until, stretcher
-from sloshkit.plan.retime import ShaperFactory, family_member
-from sloshkit.plan.timing import Timing
+from sloshkit.plan.path.limits import machine_stretch
+from sloshkit.plan.path.problem import PathProblem
+from sloshkit.plan.path.result import PathCandidate, Verifier, verified_candidate, verify
+from sloshkit.plan.path.retime import ShaperFactory, family_member
+from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.search import fastest_capped, slowed_until, stretcher
+from sloshkit.plan.path.timing import Timing
 
 #: The ladder of internal targets (fractions of the peak and of the residual limit) under
 #: which `ladder_seeds` finds seeds, every one verified against the true limits: the residual
@@ -61,9 +61,9 @@ def plan_uniform(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.path_result import linear_verifier
-    >>> from sloshkit.plan.retime import capped_timing
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.result import linear_verifier
+    >>> from sloshkit.plan.path.retime import capped_timing
     >>> problem = _example_problem()
     >>> found = plan_uniform(problem, capped_timing(problem, 10.0), linear_verifier)
     >>> found.feasible, found.detail["stretch"] > 1.0
@@ -95,7 +95,7 @@ def targeted(problem: PathProblem, target: tuple[float, float]) -> PathProblem:
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
+    >>> from sloshkit.plan.path.planner import _example_problem
     >>> targeted(_example_problem(), (0.9, 0.25)).slosh.max_residual_height_m
     0.0005
     """
@@ -124,7 +124,7 @@ def ladder_seeds(
     timing of the path, its target) slowed uniformly until it meets the Cartesian and
     angular limits and the screen at its target. Each is verified against the TRUE limits and
     carries ``seed`` and ``target`` in its detail
-    (`sloshkit.plan.path_improve.warped_candidates` polishes it against the true limits).
+    (`sloshkit.plan.path.improve.warped_candidates` polishes it against the true limits).
 
     Parameters
     ----------
@@ -148,8 +148,8 @@ def ladder_seeds(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem
-    >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.result import linear_verifier
     >>> problem = _example_problem()
     >>> seeds = ladder_seeds(problem, linear_verifier, time.perf_counter(), None, [])
     >>> [seed.detail["target"] for seed, _ in seeds]
@@ -211,8 +211,8 @@ def method_timing(
 
     Examples
     --------
-    >>> from sloshkit.plan.path_planner import _example_problem, plan_shaped
-    >>> from sloshkit.plan.path_result import linear_verifier
+    >>> from sloshkit.plan.path.planner import _example_problem, plan_shaped
+    >>> from sloshkit.plan.path.result import linear_verifier
     >>> problem = _example_problem()
     >>> shaped = plan_shaped(problem, linear_verifier)
     >>> name, timing = method_timing(problem, shaped, {})
