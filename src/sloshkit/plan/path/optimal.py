@@ -342,7 +342,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
         Whether the two tilt angles of every sample are variables of the programs (zero at
         both ends; limited to ``problem.max_tilt_rad``, the angular velocity and acceleration
         limits, else pi rad/s and 1000 deg/s^2, about ``problem.tilt_centre_height_m``).
-        With an arm's joint check (`sloshkit.plan.path_result.JointSpeedCheck`) the plan is
+        With an arm's joint check (`sloshkit.plan.path.result.JointSpeedCheck`) the plan is
         upright (``detail["upright"]`` says why): the joints along the path are solved
         upright.
 
