@@ -7,6 +7,8 @@ DEMO_OUT ?= demo-output
 ## (see docs/dependencies.md; `make lock` refreshes it). Empty: the newest releases.
 CONSTRAINTS ?= constraints.txt
 PIP := $(BIN)/python -m pip install -q $(if $(CONSTRAINTS),-c $(CONSTRAINTS))
+## Test processes (pytest-xdist): one per core; TEST_WORKERS=0 runs the suite in this process.
+TEST_WORKERS ?= auto
 LINT_PATHS := src tests $(wildcard benchmarks examples studies validation)
 
 .PHONY: demo test test-latest lock lint typecheck unit docs system-deps clean
@@ -51,7 +53,7 @@ typecheck: $(VENV)/.installed-test
 	$(BIN)/mypy
 
 unit: $(VENV)/.installed-test system-deps
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(TEST_WORKERS)
 
 ## docs: the API reference (Sphinx, warnings are errors), into docs/api/_build.
 docs: $(VENV)/.installed-test
