@@ -27,90 +27,16 @@ from scipy import sparse
 
 from sloshkit.plan.path.pendulums import period_jacobian, slope_jacobian, step_jacobians
 from sloshkit.plan.path.program import HOLD, FloatArray, PathProgram, PathSamples, mode_arrays
+from sloshkit.plan.path.rows import DIFFERENCE_WEIGHTS, ConeRows, tilt_rows, vector_cones
 
 #: Relative margin the programs keep from every limit (the export is then verified exactly).
 PROGRAM_MARGIN = 2e-3
-
-
-def _vector_cones(
-    conic: _ConeRows, r_idx: list[Any], c_idx: list[Any], v_idx: list[Any], scaled: Any, keep: float
-) -> None:
-    """One 4-D cone per row of ``scaled`` (values over their limit, (rows, 3)): the linearised
-    vector within keep + sigma, its entries gathered in the index lists."""
-    rows = scaled.shape[0]
-    b = np.zeros((rows, 4))
-    b[:, 0] = keep
-    b[:, 1:] = scaled
-    conic.add(
-        "soc",
-        np.concatenate(r_idx),
-        np.concatenate(c_idx),
-        np.concatenate(v_idx),
-        b.ravel(),
-        [4] * rows,
-    )
-
-
-#: Finite-difference weights of orders 0..3 (the forward differences of the padded samples).
-_DIFFERENCE_WEIGHTS = {0: (1.0,), 1: (-1.0, 1.0), 2: (1.0, -2.0, 1.0), 3: (-1.0, 3.0, -3.0, 1.0)}
 
 
 #: Weight of the limits' excess sigma against the relative period change while the duration
 #: is free (an exact penalty needs more than the multiplier, about 1/2: the duration scales
 #: about as the square root of the ratio to a limit).
 PENALTY = 10.0
-
-
-class _ConeRows:
-    """Rows b - A x in a cone, gathered by kind: equalities, inequalities, second-order cones."""
-
-    def __init__(self) -> None:
-        self.parts: dict[str, list[tuple[Any, Any, Any, Any]]] = {
-            "zero": [],
-            "nonneg": [],
-            "soc": [],
-        }
-        self.soc_dims: list[int] = []
-
-    def add(self, kind: str, r: Any, c: Any, v: Any, b: Any, dims: list[int] | None = None) -> None:
-        """Rows with local indices r: b_r - sum A_rc x_c in the cone (``dims``: the sizes of
-        consecutive second-order cones)."""
-        self.parts[kind].append(
-            (
-                np.asarray(r, dtype=int),
-                np.asarray(c, dtype=int),
-                np.asarray(v, dtype=float),
-                np.asarray(b, dtype=float),
-            )
-        )
-        if dims is not None:
-            self.soc_dims += dims
-
-    def assemble(self, columns: int) -> tuple[Any, Any, list[Any]]:
-        import clarabel
-
-        rows, cols, vals, rhs, cones = [], [], [], [], []
-        offset = 0
-        for kind in ("zero", "nonneg", "soc"):
-            count = 0
-            for r, c, v, b in self.parts[kind]:
-                rows.append(r + offset + count)
-                cols.append(c)
-                vals.append(v)
-                rhs.append(b)
-                count += b.size
-            if count:
-                if kind == "zero":
-                    cones.append(clarabel.ZeroConeT(count))
-                elif kind == "nonneg":
-                    cones.append(clarabel.NonnegativeConeT(count))
-            offset += count
-        cones += [clarabel.SecondOrderConeT(d) for d in self.soc_dims]
-        matrix = sparse.coo_matrix(
-            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-            shape=(offset, columns),
-        ).tocsc()
-        return matrix, np.concatenate(rhs), cones
 
 
 @dataclass(frozen=True, eq=False)
@@ -234,7 +160,7 @@ def cone_step(
     columns = tilt_base + (2 * (steps - 1) if tilting else 0)
     # the slacks of the wall heights and of the residual: sigma's own column unless dilated
     wall_sigma, residual_sigma = (dilation + 1, dilation + 2) if dilate else (sigma, sigma)
-    conic = _ConeRows()
+    conic = ConeRows()
 
     def d(i: Any) -> Any:
         return np.asarray(i) - 1
@@ -413,7 +339,7 @@ def cone_step(
     ):
         rows = values.shape[0]
         r_idx, c_idx, v_idx = [np.arange(rows) * 4], [np.full(rows, sigma)], [np.full(rows, -1.0)]
-        for j, weight in enumerate(_DIFFERENCE_WEIGHTS[order]):
+        for j, weight in enumerate(DIFFERENCE_WEIGHTS[order]):
             k = np.clip(np.arange(rows) + j - 2, 0, total - 1)
             for block, column_of, has, scale in blocks:
                 moving = has(k)
@@ -428,7 +354,7 @@ def cone_step(
                 r_idx.append(np.arange(rows) * 4 + 1 + c)
                 c_idx.append(np.full(rows, dilation))
                 v_idx.append(order * values[:, c] / limit)
-        _vector_cones(conic, r_idx, c_idx, v_idx, values / limit, keep)
+        vector_cones(conic, r_idx, c_idx, v_idx, values / limit, keep)
     # ------------------------------------------------ angular velocity and acceleration cones
     angular: tuple[tuple[int, FloatArray, float | None], ...] = (
         (1, evaluation.omega, lim.max_angular_velocity_rad_s),
@@ -461,7 +387,7 @@ def cone_step(
                 r_idx.append(np.arange(rows) * 4 + 1 + c)
                 c_idx.append(np.full(rows, dilation))
                 v_idx.append(order * values[:, c] / angular_limit)
-        _vector_cones(conic, r_idx, c_idx, v_idx, values / angular_limit, keep)
+        vector_cones(conic, r_idx, c_idx, v_idx, values / angular_limit, keep)
     # ------------------------------------------------ the arm's joint speeds
     if program.joints is not None:
         # (q(s_{k+1}) - q(s_k)) / (h limit) within keep + sigma on both sides, linear in
@@ -495,7 +421,19 @@ def cone_step(
             )
     # ------------------------------------------------ the tilt, its rate and acceleration
     if tilting:
-        _tilt_rows(conic, samples, lim, tilt_base, tilt_unit, sigma, keep, trust, dilation, dilate)
+        tilt_rows(
+            conic,
+            samples.tilt_rad,
+            samples.period_s,
+            lim,
+            tilt_base,
+            tilt_unit,
+            sigma,
+            keep,
+            trust,
+            dilation,
+            dilate,
+        )
     # ------------------------------------------------ monotone progress and trust region
     s = samples.s_m
     inner = np.arange(1, n - 1)
@@ -550,69 +488,6 @@ def cone_step(
     if tilting:
         new_tilt[1:-1] += tilt_unit * x[tilt_base:].reshape(steps - 1, 2)
     return ConeStep(PathSamples(new_s, new_tilt, new_period), margin, residual)
-
-
-def _tilt_rows(
-    conic: _ConeRows,
-    samples: PathSamples,
-    lim: Any,
-    base: int,
-    scale: float,
-    sigma: int,
-    keep: float,
-    trust: float,
-    dilation: int,
-    dilate: bool,
-) -> None:
-    """The tilt's cones: |r_k|, |r_k+1 - r_k| / h and |r_k+1 - 2 r_k + r_k-1| / h^2 within
-    keep + sigma of their limits (exact: linear in the deviations; a free period scales the
-    differences of order p as h^-p), and its trust region |change| <= trust max_tilt (trust
-    in m/s read as a fraction of the tilt range per program; the tilt's columns from
-    ``base``, the deviations of samples 1..N-1 in units of ``scale``)."""
-    tilt, ts = samples.tilt_rad, samples.period_s
-    last = tilt.shape[0] - 1  # N; r_0 = r_N = 0 and the rest samples hold r_N
-
-    def column(k: Any, c: int) -> Any:
-        return base + (np.asarray(k) - 1) * 2 + c
-
-    for order, limit, first, rows in (
-        (0, lim.max_tilt_rad, 1, last - 1),
-        (1, lim.max_tilt_rate_rad_s, 0, last),
-        (2, lim.max_tilt_acceleration_rad_s2, 0, last + 1),
-    ):
-        row = np.arange(rows)
-        values = np.zeros((rows, 2))
-        r_idx, c_idx, v_idx = [row * 3], [np.full(rows, sigma)], [np.full(rows, -1.0)]
-        # row i of order p differences the samples i + first - (p == 2) ... onwards
-        start = row + first - (1 if order == 2 else 0)
-        for j, weight in enumerate(_DIFFERENCE_WEIGHTS[order]):
-            k = start + j
-            values += weight * tilt[np.clip(k, 0, last)] / ts**order
-            free = (k >= 1) & (k <= last - 1)
-            for c in (0, 1):
-                r_idx.append(row[free] * 3 + 1 + c)
-                c_idx.append(column(k[free], c))
-                v_idx.append(np.full(int(free.sum()), -weight * scale / ts**order / limit))
-        if dilate and order:
-            for c in (0, 1):
-                r_idx.append(row * 3 + 1 + c)
-                c_idx.append(np.full(rows, dilation))
-                v_idx.append(order * values[:, c] / limit)
-        b = np.zeros((rows, 3))
-        b[:, 0] = keep
-        b[:, 1:] = values / limit
-        conic.add(
-            "soc",
-            np.concatenate(r_idx),
-            np.concatenate(c_idx),
-            np.concatenate(v_idx),
-            b.ravel(),
-            [3] * rows,
-        )
-    inner = np.arange(2 * (last - 1))
-    bound = np.full(inner.size, min(trust, 1.0) * lim.max_tilt_rad / scale)
-    conic.add("nonneg", inner, base + inner, np.ones(inner.size), bound)
-    conic.add("nonneg", inner, base + inner, -np.ones(inner.size), bound)
 
 
 __all__ = [
