@@ -19,13 +19,8 @@ from sloshkit.plan.path.geometry import path_from_waypoints
 from sloshkit.plan.path.optimal import free_time
 from sloshkit.plan.path.planner import plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
-from sloshkit.plan.path.program import (
-    PathProgram,
-    PathSamples,
-    ProgramLimits,
-    export_poses,
-    smoothed,
-)
+from sloshkit.plan.path.program import PathProgram, ProgramLimits
+from sloshkit.plan.path.samples import PathSamples, export_poses, smoothed
 from sloshkit.sim.spatial import simulate_spatial
 
 LIMITS = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)

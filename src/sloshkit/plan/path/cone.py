@@ -26,8 +26,9 @@ import numpy as np
 from scipy import sparse
 
 from sloshkit.plan.path.pendulums import period_jacobian, slope_jacobian, step_jacobians
-from sloshkit.plan.path.program import HOLD, FloatArray, PathProgram, PathSamples, mode_arrays
+from sloshkit.plan.path.program import HOLD, FloatArray, PathProgram, mode_arrays
 from sloshkit.plan.path.rows import DIFFERENCE_WEIGHTS, ConeRows, tilt_rows, vector_cones
+from sloshkit.plan.path.samples import PathSamples
 
 #: Relative margin the programs keep from every limit (the export is then verified exactly).
 PROGRAM_MARGIN = 2e-3

@@ -22,15 +22,8 @@ import numpy as np
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.plan.path.cone import PENALTY, PROGRAM_MARGIN, cone_step
 from sloshkit.plan.path.joints import joint_map
-from sloshkit.plan.path.program import (
-    PathProgram,
-    PathSamples,
-    ProgramIterate,
-    ProgramLimits,
-    export_poses,
-    rescaled,
-    smoothed,
-)
+from sloshkit.plan.path.program import PathProgram, ProgramIterate, ProgramLimits
+from sloshkit.plan.path.samples import PathSamples, export_poses, rescaled, smoothed
 
 #: Relative width of the bracket on N at which the search stops (the smallest feasible N is kept).
 SEARCH_TOLERANCE = 2e-3

@@ -3,7 +3,7 @@ verification checks as functions of them, with their derivatives.
 
 The decision variables are the path parameter s_k at every sample t_k = k h of a uniform grid
 (k = 0..N, s_0 = 0, s_N = S: the whole path; on the export's grid the samples are the export,
-`_poses_of`, `export_poses`). Every quantity the verification checks is a function of these
+`sloshkit.plan.path.samples`). Every quantity the verification checks is a function of these
 samples (`PathProgram.evaluate`):
 
 - the Cartesian velocity, acceleration and jerk of the reference point and the container's
@@ -24,8 +24,7 @@ samples (`PathProgram.evaluate`):
   (`sloshkit.plan.path.joints.joint_map`).
 
 `PathProgram.jacobians` differentiates the positions, angular velocities and forces banded, by
-colouring; `sloshkit.plan.path.cone.cone_step` builds one program from them. `rescaled` and
-`smoothed` carry a timing to another grid.
+colouring; `sloshkit.plan.path.cone.cone_step` builds one program from them.
 """
 
 from __future__ import annotations
@@ -40,6 +39,7 @@ from scipy.spatial.transform import Rotation
 
 from sloshkit.plan.path.joints import JointMap
 from sloshkit.plan.path.pendulums import mode_slope, pendulum_track
+from sloshkit.plan.path.samples import PathSamples, sample_poses
 from sloshkit.sim.metrics import free_oscillation_components
 from sloshkit.sim.spatial_response import ellipse_semi_major
 
@@ -83,58 +83,6 @@ class ProgramLimits:
     max_tilt_rad: float = 0.0
     max_tilt_rate_rad_s: float = math.pi
     max_tilt_acceleration_rad_s2: float = math.radians(1000.0)
-
-
-@dataclass(frozen=True, eq=False)
-class PathSamples:
-    """Path parameter [m] and tilt rotation vector [rad] at uniform samples.
-
-    Parameters
-    ----------
-    s_m : numpy.ndarray
-        Path parameter s_k at the samples, (N + 1,) [m], from 0 to the path's length.
-    tilt_rad : numpy.ndarray
-        Tilt rotation vector (r_x, r_y) at the samples, (N + 1, 2) [rad].
-    period_s : float
-        Sample period h [s]: the export's, or a dilated one while the duration is free
-        (`sloshkit.plan.path.optimal.free_time`).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> PathSamples(np.linspace(0.0, 0.1, 11), np.zeros((11, 2)), 0.004).steps
-    10
-    """
-
-    s_m: FloatArray
-    tilt_rad: FloatArray
-    period_s: float
-
-    @property
-    def steps(self) -> int:
-        """N, the number of sample periods."""
-        return int(self.s_m.size - 1)
-
-
-def _poses_of(
-    path: Any, samples: PathSamples, centre_height_m: float
-) -> tuple[FloatArray, Rotation]:
-    """Reference-point positions and container orientations of the samples.
-
-    The tilt rotation R_t = exp([r_x, r_y, 0]) acts on the path's orientation R_p(s) about the
-    tilt centre c = (0, 0, h_c) of the container frame: q = R_t R_p, P = p(s) + R_p c - q c
-    (the centre stays on the path; `sloshkit.plan.path.tilt_compensation` uses the same convention).
-    """
-    base = path.orientation(samples.s_m)
-    position = path.position(samples.s_m)
-    if not np.any(samples.tilt_rad):
-        return position, base
-    rotvec = np.column_stack((samples.tilt_rad, np.zeros(samples.s_m.size)))
-    rotation = Rotation.from_rotvec(rotvec) * base
-    if centre_height_m:
-        centre = np.array([0.0, 0.0, centre_height_m])
-        position = position + base.apply(centre) - rotation.apply(centre)
-    return position, rotation
 
 
 def _with_rest(samples: PathSamples) -> PathSamples:
@@ -279,7 +227,7 @@ class PathProgram:
         omega_n^2 L_n differs from g adds (kappa_n - 1) times the last row).
         """
         ts = samples.period_s
-        position, rotation = _poses_of(self.path, samples, self.centre)
+        position, rotation = sample_poses(self.path, samples, self.centre)
         quaternion = rotation.as_quat()
         padded = _held(position, 2)
         velocity = np.diff(padded, axis=0) / ts
@@ -546,154 +494,10 @@ def _peak_norm(values: FloatArray) -> float:
     return float(np.max(np.linalg.norm(values, axis=-1))) if values.size else 0.0
 
 
-def rescaled(samples: PathSamples, steps: int, period_s: float | None = None) -> PathSamples:
-    """The same timing shape on another number of samples.
-
-    s and the tilt over normalised time by the clamped cubic spline through the samples (C2
-    and at rest at both ends; de Boor, *A Practical Guide to Splines* (1978) ch. IV), s kept
-    monotone on [0, S].
-
-    Parameters
-    ----------
-    samples : PathSamples
-        The timing.
-    steps : int
-        Sample periods of the result.
-    period_s : float, optional
-        Its sample period [s] (default: the samples' own).
-
-    Returns
-    -------
-    PathSamples
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> t = np.arange(11) / 10
-    >>> timing = PathSamples(t**2 * (3 - 2 * t), np.zeros((11, 2)), 0.1)
-    >>> longer = rescaled(timing, 20, 0.05)
-    >>> longer.steps, float(longer.s_m[10]), float(longer.s_m[-1])
-    (20, 0.5, 1.0)
-    """
-    from scipy.interpolate import CubicSpline
-
-    old = samples.s_m.size - 1
-    u_old, u_new = np.arange(old + 1) / old, np.arange(steps + 1) / steps
-    clamped = ((1, 0.0), (1, 0.0))
-    s = CubicSpline(u_old, samples.s_m, bc_type=clamped)(u_new)
-    s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
-    s[-1] = samples.s_m[-1]
-    period = samples.period_s if period_s is None else period_s
-    return PathSamples(s, _tilt_on(samples, steps), period)
-
-
-def _tilt_on(samples: PathSamples, steps: int) -> FloatArray:
-    """The samples' tilt over normalised time on ``steps`` periods: the clamped cubic spline
-    (at rest at both ends), as `rescaled` carries it."""
-    from scipy.interpolate import CubicSpline
-
-    old = samples.s_m.size - 1
-    u_old, u_new = np.arange(old + 1) / old, np.arange(steps + 1) / steps
-    still = ((1, np.zeros(2)), (1, np.zeros(2)))
-    return np.asarray(CubicSpline(u_old, samples.tilt_rad, axis=0, bc_type=still)(u_new))
-
-
-def smoothed(samples: PathSamples, steps: int, period_s: float) -> PathSamples:
-    """A coarse timing on a finer grid, its jerk kept.
-
-    The uniform cubic B-spline whose control points are the samples (each end repeated twice
-    more, so the curve starts and ends at rest), its parameter spread over the same duration.
-    The B-spline's third derivative on each segment is the third difference of its control
-    points, so the finer grid sees no more jerk (in s) than the coarse one (de Boor, *A
-    Practical Guide to Splines* (1978) ch. IX); an interpolating spline amplifies the coarse
-    grid's alternating jerk up to threefold.
-
-    Parameters
-    ----------
-    samples : PathSamples
-        The coarse timing.
-    steps : int
-        Sample periods of the result.
-    period_s : float
-        Its sample period [s].
-
-    Returns
-    -------
-    PathSamples
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> t = np.arange(11) / 10
-    >>> coarse = PathSamples(t**2 * (3 - 2 * t), np.zeros((11, 2)), 0.1)
-    >>> fine = smoothed(coarse, 40, 0.025)
-    >>> fine.steps, float(fine.s_m[0]), float(fine.s_m[-1]), bool(np.all(np.diff(fine.s_m) >= 0))
-    (40, 0.0, 1.0, True)
-    """
-    points = np.concatenate((samples.s_m[:1].repeat(2), samples.s_m, samples.s_m[-1:].repeat(2)))
-    parameter = 1.0 + np.arange(steps + 1) / steps * (points.size - 3)
-    index = np.clip(np.floor(parameter).astype(int), 1, points.size - 3)
-    t = parameter - index
-    weights = (
-        (1.0 - t) ** 3 / 6.0,
-        (3.0 * t**3 - 6.0 * t**2 + 4.0) / 6.0,
-        (-3.0 * t**3 + 3.0 * t**2 + 3.0 * t + 1.0) / 6.0,
-        t**3 / 6.0,
-    )
-    s = sum(w * points[index + j - 1] for j, w in enumerate(weights))
-    s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
-    s[-1] = samples.s_m[-1]
-    tilt = _tilt_on(samples, steps)
-    return PathSamples(s, tilt, period_s)
-
-
-def export_poses(problem: Any, samples: PathSamples) -> Any:
-    """The samples as the export.
-
-    Parameters
-    ----------
-    problem : PathProblem
-        The path, its export period and tilt centre.
-    samples : PathSamples
-        The timing on the export grid.
-
-    Returns
-    -------
-    PoseTrajectory
-        The container's poses at the samples (`sloshkit.motion.poses.PoseTrajectory`, which
-        makes the quaternions sign-continuous).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path.geometry import path_from_waypoints
-    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
-    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
-    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
-    ...     CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.015, 0.002), model)
-    >>> samples = PathSamples(np.linspace(0.0, 0.1, 6), np.zeros((6, 2)), 0.004)
-    >>> poses = export_poses(problem, samples)
-    >>> float(poses.duration_s), poses.position_m[-1].round(3).tolist()
-    (0.02, [0.1, 0.0, 0.0])
-    """
-    from sloshkit.motion.poses import PoseTrajectory
-
-    position, rotation = _poses_of(problem.path, samples, problem.tilt_centre_height_m)
-    time_s = np.arange(samples.s_m.size) * problem.sample_period_s
-    return PoseTrajectory(time_s, position, rotation.as_quat())
-
-
 __all__ = [
     "HOLD",
     "PathProgram",
-    "PathSamples",
     "ProgramIterate",
     "ProgramLimits",
-    "export_poses",
     "mode_arrays",
-    "rescaled",
-    "smoothed",
 ]
