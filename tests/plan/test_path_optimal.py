@@ -16,7 +16,7 @@ from sloshkit.motion.laws import s_curve
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path.cone import PROGRAM_MARGIN, cone_step
 from sloshkit.plan.path.geometry import path_from_waypoints
-from sloshkit.plan.path.optimal import free_time
+from sloshkit.plan.path.minimum_time import free_time
 from sloshkit.plan.path.planner import plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.plan.path.program import PathProgram, ProgramLimits

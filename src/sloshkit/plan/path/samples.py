@@ -28,7 +28,7 @@ class PathSamples:
         Tilt rotation vector (r_x, r_y) at the samples, (N + 1, 2) [rad].
     period_s : float
         Sample period h [s]: the export's, or a dilated one while the duration is free
-        (`sloshkit.plan.path.optimal.free_time`).
+        (`sloshkit.plan.path.minimum_time.free_time`).
 
     Examples
     --------
