@@ -122,27 +122,22 @@ def rescaled(samples: PathSamples, steps: int, period_s: float | None = None) ->
     >>> longer.steps, float(longer.s_m[10]), float(longer.s_m[-1])
     (20, 0.5, 1.0)
     """
-    from scipy.interpolate import CubicSpline
-
-    old = samples.s_m.size - 1
-    u_old, u_new = np.arange(old + 1) / old, np.arange(steps + 1) / steps
-    clamped = ((1, 0.0), (1, 0.0))
-    s = CubicSpline(u_old, samples.s_m, bc_type=clamped)(u_new)
+    s = _on_steps(samples.s_m, steps)
     s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
     s[-1] = samples.s_m[-1]
     period = samples.period_s if period_s is None else period_s
-    return PathSamples(s, _tilt_on(samples, steps), period)
+    return PathSamples(s, _on_steps(samples.tilt_rad, steps), period)
 
 
-def _tilt_on(samples: PathSamples, steps: int) -> FloatArray:
-    """The samples' tilt over normalised time on ``steps`` periods: the clamped cubic spline
-    (at rest at both ends), as `rescaled` carries it."""
+def _on_steps(values: FloatArray, steps: int) -> FloatArray:
+    """``values`` (one row per sample) over normalised time on ``steps`` periods: the cubic
+    spline clamped at rest at both ends (zero first derivative), as `rescaled` carries a timing
+    and a tilt."""
     from scipy.interpolate import CubicSpline
 
-    old = samples.s_m.size - 1
+    old = values.shape[0] - 1
     u_old, u_new = np.arange(old + 1) / old, np.arange(steps + 1) / steps
-    still = ((1, np.zeros(2)), (1, np.zeros(2)))
-    return np.asarray(CubicSpline(u_old, samples.tilt_rad, axis=0, bc_type=still)(u_new))
+    return np.asarray(CubicSpline(u_old, values, axis=0, bc_type="clamped")(u_new))
 
 
 def smoothed(samples: PathSamples, steps: int, period_s: float) -> PathSamples:
@@ -190,7 +185,7 @@ def smoothed(samples: PathSamples, steps: int, period_s: float) -> PathSamples:
     s = sum(w * points[index + j - 1] for j, w in enumerate(weights))
     s = np.clip(np.maximum.accumulate(s), samples.s_m[0], samples.s_m[-1])
     s[-1] = samples.s_m[-1]
-    tilt = _tilt_on(samples, steps)
+    tilt = _on_steps(samples.tilt_rad, steps)
     return PathSamples(s, tilt, period_s)
 
 
