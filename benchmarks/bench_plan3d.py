@@ -30,7 +30,7 @@ of docs/planning-3d.md). The reference optima are cached in ``ocp_reference_cach
 by a hash of the problem, the slosh model and ``ocp_reference.py``; each takes minutes on the
 shared machine, and one missing from the cache is computed).
 
-Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--transcription] [--out table.md]
+Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--out table.md]
 [--docs docs/planning-3d.md] [--tables primary,strict,waypoints,reference] [--robot ur5e|none]
 [--quick] [--cached-only]`` (minutes on a shared 2-core machine; not a timed test; ``--quick``:
 the reference table's first case only, without the robot; ``--cached-only``: an optimum missing
@@ -140,7 +140,6 @@ def series_table(
     model: object,
     manifest: dict[str, dict[str, str]],
     residual_m: float | None,
-    transcription: bool,
     series: tuple[str, ...] = SERIES,
 ) -> list[str]:
     """Rows of one table over the series and the full and half measured limits: the residual
@@ -165,9 +164,7 @@ def series_table(
             )
             problem = PathProblem(path, LIMITS, limits, model)
             started, cpu = time.perf_counter(), time.process_time()
-            result = plan_path(
-                problem, "auto", reference=reference, tilt=True, transcription=transcription
-            )
+            result = plan_path(problem, "auto", reference=reference, tilt=True)
             cpu = time.process_time() - cpu
             found = {c.method: c for c in result.candidates}
 
@@ -380,7 +377,6 @@ def reference_table(
 
 def main() -> None:
     parser = argparse.ArgumentParser()
-    parser.add_argument("--transcription", action="store_true")
     parser.add_argument("--out", type=Path, default=None)
     parser.add_argument("--docs", type=Path, default=None)
     parser.add_argument("--series", nargs="*", default=None, help="path classes (LE, RD, TRD)")
@@ -407,18 +403,18 @@ def main() -> None:
             "Primary: both limits from the measured run (peak `meas_peak_m`, residual the "
             "measured residual) and half of both:",
             "",
-            *series_table(model, manifest, None, arguments.transcription, series),
+            *series_table(model, manifest, None, series),
             "",
         ]
     if "strict" in tables:
         rows += [
             "Stricter: height limit as above, residual limit fixed at 2 mm:",
             "",
-            *series_table(model, manifest, RESIDUAL_M, arguments.transcription, series),
+            *series_table(model, manifest, RESIDUAL_M, series),
             "",
         ]
     if "waypoints" in tables:
-        rows += waypoint_table(model, arguments.transcription)
+        rows += waypoint_table(model)
     if "reference" in tables:
         robot = None if arguments.robot.lower() == "none" else arguments.robot
         rows += ["", *reference_table(model, robot, arguments.quick, arguments.cached_only)]
@@ -439,14 +435,14 @@ def main() -> None:
         arguments.docs.write_text(f"{head}{start}\n{text}\n{end}{tail}")
 
 
-def waypoint_table(model: object, transcription: bool) -> list[str]:
+def waypoint_table(model: object) -> list[str]:
     """The 20-waypoint compute-time case: rows of its table."""
     points = np.array([[0.12 * i, 0.1 * (i % 2), 0.01 * i] for i in range(20)])
     problem = PathProblem(
         path_from_waypoints(points, 0.03), LIMITS, SpatialSloshLimits(0.015, RESIDUAL_M), model
     )
     started, cpu = time.perf_counter(), time.process_time()
-    result = plan_path(problem, "auto", tilt=True, transcription=transcription)
+    result = plan_path(problem, "auto", tilt=True)
     total, cpu = time.perf_counter() - started, time.process_time() - cpu
     rows: list[str] = []
     rows.append(

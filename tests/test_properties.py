@@ -269,7 +269,7 @@ def test_random_short_path_plans_meet_their_limits_when_their_export_is_simulate
         SpatialSloshLimits(0.01, 0.002),
         vial,  # type: ignore[arg-type]
     )
-    result = plan_path(problem, "auto", transcription=False)
+    result = plan_path(problem, "auto")
     assume(result.feasible)
     exported = result.to_csv(tmp_path_factory.mktemp("plan") / "plan.csv")
     trajectory = read_pose_file(exported)

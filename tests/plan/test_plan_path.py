@@ -110,7 +110,7 @@ def test_straight_path_plan_matches_one_dimensional_planner(robot_vial: SloshMod
         SpatialSloshLimits(height, residual_height),
         robot_vial,
     )
-    three_d = plan_path(problem, "retime", verifier=linear_verifier, transcription=False)
+    three_d = plan_path(problem, "retime", verifier=linear_verifier)
     assert one_d.feasible and three_d.feasible
     assert three_d.chosen is not None and one_d.chosen is not None
     assert three_d.chosen.duration_s == pytest.approx(one_d.chosen.duration_s, rel=0.2)
@@ -130,7 +130,7 @@ def test_every_plan_meets_its_limits_when_its_export_is_simulated_again(
         SpatialSloshLimits(0.01, 0.002),
         robot_vial,
     )
-    result = plan_path(problem, "auto", transcription=False)
+    result = plan_path(problem, "auto")
     assert result.feasible
     for candidate in result.candidates:
         assert candidate.feasible, candidate.message

@@ -141,7 +141,7 @@ def test_a_looser_limit_never_gives_a_longer_retime_plan(
         replace(strict, slosh=replace(strict.slosh, max_residual_height_m=0.004)),
         replace(strict, slosh=replace(strict.slosh, max_height_m=0.012 / 0.9)),
     ]
-    plans = [plan_retime(p, verify, transcription=False) for p in (strict, *looser)]
+    plans = [plan_retime(p, verify) for p in (strict, *looser)]
     assert all(plan.feasible for plan in plans)
     for plan in plans[1:]:
         assert plan.duration_s <= plans[0].duration_s + strict.sample_period_s

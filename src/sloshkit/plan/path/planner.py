@@ -61,7 +61,6 @@ from sloshkit.plan.path.screen import linear_screen, screen_ok
 from sloshkit.plan.path.search import fastest_capped, stretcher
 from sloshkit.plan.path.tilt import improved_tilt, plan_tilt, timing_shapers
 from sloshkit.plan.path.timing import Timing
-from sloshkit.plan.path.transcription import transcribed_timing
 
 FloatArray = NDArray[np.float64]
 PATH_METHODS: tuple[str, ...] = ("auto", "retime", "shaped", "tilt", "optimal")
@@ -134,14 +133,11 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
 def plan_retime(
     problem: PathProblem,
     verifier: Verifier = verify,
-    transcription: bool = True,
-    warm_starts: Sequence[Timing] = (),
     seeds: Sequence[tuple[PathCandidate, Timing]] = (),
     timings: Sequence[tuple[str, Timing]] = (),
 ) -> PathCandidate:
     """The fastest acceleration cap of the family under the slosh screen (with the first-mode
     timing shaper, without, and on curved paths with `sloshkit.plan.path.retime.curve_shaper`),
-    then, with ``transcription``, the minimum-time transcription warm-started from it;
     verified. The verified family timing and every verified ``seeds`` timing are candidates
     too, each improved by `sloshkit.plan.path.improve.warped_candidates` (pattern search and
     SLP on a speed-scaling warp) and verified again; the
@@ -154,10 +150,6 @@ def plan_retime(
         Path, limits, model.
     verifier : callable
         Verification of an export.
-    transcription : bool
-        Also try `sloshkit.plan.path.transcription.transcribed_timing`.
-    warm_starts : sequence of Timing
-        Further warm starts for the transcription (e.g. the pose file's slowed timing).
     seeds : sequence of (PathCandidate, Timing)
         Verified candidates of the same path and their timings (e.g. ``uniform``).
     timings : sequence of (str, Timing)
@@ -171,22 +163,20 @@ def plan_retime(
 
     References
     ----------
-    Bobrow et al. (1985), doi:10.1177/027836498500400301; Betts (2010) ch. 4.
+    Bobrow et al. (1985), doi:10.1177/027836498500400301.
 
     Examples
     --------
     >>> problem = _example_problem()
-    >>> plan_retime(problem, linear_verifier, transcription=False).detail["shaper"]
+    >>> plan_retime(problem, linear_verifier).detail["shaper"]
     'zv'
     """
-    return _retime(problem, verifier, transcription, warm_starts, seeds, timings)[0]
+    return _retime(problem, verifier, seeds, timings)[0]
 
 
 def _retime(
     problem: PathProblem,
     verifier: Verifier,
-    transcription: bool,
-    warm_starts: Sequence[Timing],
     seeds: Sequence[tuple[PathCandidate, Timing]],
     timings: Sequence[tuple[str, Timing]],
 ) -> tuple[PathCandidate, Timing | None]:
@@ -212,12 +202,6 @@ def _retime(
     if best is not None:
         duration, cap, timing, shaper_name = best
         detail: dict[str, Any] = {"acceleration_cap_m_s2": cap, "shaper": shaper_name}
-        if transcription:
-            warm = min([timing, *warm_starts], key=lambda timing: timing.duration_s)
-            refined = transcribed_timing(problem, warm)
-            if refined is not None and refined[0].duration_s < duration:
-                timing, status = refined
-                detail = {**detail, "ipopt_status": status}
         family = verified_candidate(
             "retime", problem, stretcher(problem, timing), 1.0, started, verifier, False, detail
         )
@@ -241,7 +225,6 @@ def plan_path(
     reference: Timing | None = None,
     progress: Callable[[str], None] | None = None,
     verifier: Verifier = verify,
-    transcription: bool = False,
     tilt: bool = True,
 ) -> PathPlanResult:
     """Plan a slosh-safe timing (and tilt) of a 3-D path, every candidate verified.
@@ -267,10 +250,6 @@ def plan_path(
     verifier : callable
         (problem, poses, tilted) -> Verification (default `verify`: the nonlinear 3-D model;
         `sloshkit.export.path_robot.robot_verifier` adds a robot's joint-speed check).
-    transcription : bool
-        Also try the casadi/IPOPT transcription (`sloshkit.plan.path.transcription`) warm-started
-        from the family (and the reference) for ``retime``; off by default (see
-        docs/planning-3d.md for the measured figures).
     tilt : bool
         Whether ``auto`` may tilt the container and whether ``optimal`` makes the tilt
         variables of its programs (``method="tilt"`` always tilts).
@@ -304,14 +283,11 @@ def plan_path(
     say = progress or (lambda _: None)
     candidates: list[PathCandidate] = []
     uniform = None if reference is None else plan_uniform(problem, reference, verifier)
-    warm_starts = (
+    seeds = (
         []
-        if uniform is None or uniform.poses is None
-        else [
-            reference.stretched(float(uniform.detail["stretch"]))  # type: ignore[union-attr]
-        ]
+        if uniform is None or not uniform.feasible
+        else [(uniform, reference.stretched(float(uniform.detail["stretch"])))]  # type: ignore[union-attr]
     )
-    seeds = [] if uniform is None or not uniform.feasible else [(uniform, warm_starts[0])]
     if method == "optimal":
         from sloshkit.plan.path.optimal import plan_optimal
 
@@ -328,7 +304,7 @@ def plan_path(
         say("retime: fastest acceleration cap under the slosh limits, then local searches")
         shapers = dict(timing_shapers(problem))
         timings = [method_timing(problem, c, shapers) for c in candidates if c.poses is not None]
-        found, timing = _retime(problem, verifier, transcription, warm_starts, seeds, timings)
+        found, timing = _retime(problem, verifier, seeds, timings)
         candidates.insert(0, found)
         if tilting:
             # The tilt family's timing improved on the tilted export, seeded also from
