@@ -189,17 +189,6 @@ def run_path_plan(
         tilt_centre=tilt_centre,
     )
     verifier = _robot_verifier(export_settings)
-    if method == "optimal" and tilt_compensation and verifier is not None:
-        import warnings
-
-        from sloshkit.errors import ValidityWarning
-
-        warnings.warn(
-            "--tilt-compensation with --robot/--urdf: --method optimal plans the container "
-            "upright (the arm's joints along the path are solved upright)",
-            ValidityWarning,
-            stacklevel=1,
-        )
     with stderr.status("planning the path") as status:
         result = plan_path(
             problem,
@@ -209,6 +198,7 @@ def run_path_plan(
             verifier=verify if verifier is None else verifier,
             tilt=tilt_compensation or method == "tilt",
         )
+    _warn_upright(result)
     if result.feasible:
         if out is not None:
             from sloshkit.cli.plan_files import plan_file_header
@@ -226,6 +216,24 @@ def run_path_plan(
     if not result.feasible:
         messages.error(stderr, f"no method meets the limits ({result.reason()})")
         raise typer.Exit(1)
+
+
+def _warn_upright(result: Any) -> None:
+    """Warn when ``optimal`` was asked to tilt with an arm and planned upright (the arm cannot
+    reach the tilted probes of its joint model: `sloshkit.plan.path.joints.joint_map`)."""
+    import warnings
+
+    from sloshkit.errors import ValidityWarning
+
+    for candidate in result.candidates:
+        reason = (candidate.detail or {}).get("upright")
+        if candidate.method == "optimal" and reason:
+            warnings.warn(
+                f"--tilt-compensation with --robot/--urdf: --method optimal planned the "
+                f"container upright ({reason})",
+                ValidityWarning,
+                stacklevel=1,
+            )
 
 
 def _robot_verifier(settings: Any) -> Any:

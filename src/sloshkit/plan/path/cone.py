@@ -390,10 +390,15 @@ def cone_step(
                 v_idx.append(order * values[:, c] / angular_limit)
         vector_cones(conic, r_idx, c_idx, v_idx, values / angular_limit, keep)
     # ------------------------------------------------ the arm's joint speeds
-    if program.joints is not None:
-        # (q(s_{k+1}) - q(s_k)) / (h limit) within keep + sigma on both sides, linear in
-        # d_k, d_{k+1} through dq/ds; a free period scales it as 1 / h
-        slope = program.joint_spline(samples.s_m, 1)[:n] / (ts * program.joints.limits_rad_s)
+    if program.joint_model is not None:
+        # (q_{k+1} - q_k) / (h limit) within keep + sigma on both sides, q_k = q(s_k, r_k)
+        # (`sloshkit.plan.path.joints.JointModel`) linear in d_k, d_{k+1} through dq/ds and in
+        # the tilts through dq/dr (zero when the arm's map has no tilt data); a free period
+        # scales it as 1 / h
+        _, dq_ds, dq_dr = program.joint_model.at(samples.s_m, samples.tilt_rad)
+        scaled = ts * program.joint_model.joints.limits_rad_s
+        slope = dq_ds[:n] / scaled
+        tilt_slope = dq_dr[:n] / scaled[:, None]
         joint = evaluation.joint[: n - 1]
         dof = joint.shape[1]
         for sign in (1.0, -1.0):
@@ -409,6 +414,14 @@ def cone_step(
                 r_idx.append(rows[ok].ravel())
                 c_idx.append(np.repeat(d(k[ok]), dof))
                 v_idx.append((sign * weight * slope[k[ok]] * unit).ravel())
+                if tilting:  # the tilt of samples 1..N-1 moves the joints too
+                    free = (k >= 1) & (k <= steps - 1)
+                    for c in (0, 1):
+                        r_idx.append(rows[free].ravel())
+                        c_idx.append(np.repeat(tilt_base + (k[free] - 1) * 2 + c, dof))
+                        v_idx.append(
+                            (sign * weight * tilt_slope[k[free], :, c] * tilt_unit).ravel()
+                        )
             if dilate:
                 r_idx.append(rows.ravel())
                 c_idx.append(np.full(rows.size, dilation))

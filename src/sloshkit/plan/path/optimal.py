@@ -65,9 +65,10 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
         Whether the two tilt angles of every sample are variables of the programs (zero at
         both ends; limited to ``problem.max_tilt_rad``, the angular velocity and acceleration
         limits, else pi rad/s and 1000 deg/s^2, about ``problem.tilt_centre_height_m``).
-        With an arm's joint check (`sloshkit.plan.path.result.JointSpeedCheck`) the plan is
-        upright (``detail["upright"]`` says why): the joints along the path are solved
-        upright.
+        With an arm's joint check (`sloshkit.plan.path.result.JointSpeedCheck`) the joints
+        enter the tilted programs by their quadratic model in the tilt
+        (`sloshkit.plan.path.joints.JointModel`); when the arm cannot reach the tilted probes
+        of that model, the plan is upright (``detail["upright"]`` says why).
 
     Returns
     -------
@@ -127,12 +128,13 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     )
     s[-1] = problem.path.length_m
     warm = PathSamples(np.maximum.accumulate(s), np.zeros((s.size, 2)), ts)
-    joints = joint_map(problem, verifier) if isinstance(verifier, JointSpeedCheck) else None
+    arm = isinstance(verifier, JointSpeedCheck)
+    joints = joint_map(problem, verifier, tilt=tilt) if arm else None
     if isinstance(joints, str):
         return PathCandidate("optimal", None, None, time.perf_counter() - started, joints)
-    # the joints along the path are solved upright: a tilt would move them, and the tilted
-    # programs with an arm diverged on the export grid (TRD_2D with the UR5e)
-    upright_for_arm = tilt and joints is not None
+    # the joints' model in the tilt needs the IK of the tilted probes: where the arm cannot
+    # reach them, plan upright
+    upright_for_arm = tilt and joints is not None and joints.tilt_gradient is None
     tilt = tilt and not upright_for_arm
     rounds: list[dict[str, float]] = []
     verified: list[tuple[int, ProgramIterate, bool]] = []
@@ -244,7 +246,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
         "search": searches,
     }
     if upright_for_arm:
-        detail["upright"] = "the arm's joints along the path are solved upright"
+        detail["upright"] = "the arm cannot reach the path tilted by the joint model's probes"
     return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, tilt, detail)
 
 

@@ -20,8 +20,8 @@ samples (`PathProgram.evaluate`):
   SpatialResponse` measures them). On the export this equals `simulate_spatial(...,
   nonlinear=True, cutoff_hz=None)` to the accuracy of the spline differentiation (0.04 % of
   the peak on the test's corner path);
-- with an arm, its joint speeds, from the export's IK along the path
-  (`sloshkit.plan.path.joints.joint_map`).
+- with an arm, its joint speeds, from the export's IK along the path and, when the program
+  tilts, its quadratic model in the tilt (`sloshkit.plan.path.joints.joint_map`).
 
 `PathProgram.jacobians` differentiates the positions, angular velocities and forces banded, by
 colouring; `sloshkit.plan.path.cone.cone_step` builds one program from them.
@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
-from sloshkit.plan.path.joints import JointMap
+from sloshkit.plan.path.joints import JointMap, JointModel
 from sloshkit.plan.path.pendulums import mode_slope, pendulum_track
 from sloshkit.plan.path.samples import PathSamples, sample_poses
 from sloshkit.sim.metrics import free_oscillation_components
@@ -213,7 +213,7 @@ class PathProgram:
     ) -> None:
         self.path, self.models, self.limits = path, models, limits
         self.joints = joints
-        self.joint_spline: Any = None if joints is None else joints.spline()
+        self.joint_model: JointModel | None = None if joints is None else joints.model()
         self.ts, self.tilt, self.centre = sample_period_s, tilt, centre_height_m
         self.modes = models[0].modes
         self.gravity = np.array([0.0, 0.0, -models[0].gravity_m_s2])
@@ -299,7 +299,7 @@ class PathProgram:
         joint = np.empty(0)
         if self.joints is not None:
             # the joints' speeds as differences of the samples, over their limits
-            q = self.joint_spline(samples.s_m)
+            q = self.joint_model.at(samples.s_m, samples.tilt_rad)[0]  # type: ignore[union-attr]
             joint = np.diff(q, axis=0) / (samples.period_s * self.joints.limits_rad_s)
         return _ProgramEvaluation(
             kinematic["velocity"],
