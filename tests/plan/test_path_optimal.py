@@ -318,7 +318,7 @@ def test_the_cli_warns_only_when_optimal_planned_upright_with_an_arm() -> None:
     import warnings
     from types import SimpleNamespace
 
-    from sloshkit.cli.plan_path import _warn_upright
+    from sloshkit.cli.plan_path import warn_if_planned_upright
     from sloshkit.errors import ValidityWarning
 
     reason = "the arm cannot reach the path tilted by the joint model's probes"
@@ -326,8 +326,8 @@ def test_the_cli_warns_only_when_optimal_planned_upright_with_an_arm() -> None:
     tilted = SimpleNamespace(method="optimal", detail={"stretch": 1.0})
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        _warn_upright(SimpleNamespace(candidates=[tilted]))
+        warn_if_planned_upright(SimpleNamespace(candidates=[tilted]))
         assert not caught
-        _warn_upright(SimpleNamespace(candidates=[upright]))
+        warn_if_planned_upright(SimpleNamespace(candidates=[upright]))
     assert [w.category for w in caught] == [ValidityWarning]
     assert reason in str(caught[0].message)

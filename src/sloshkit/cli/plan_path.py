@@ -198,7 +198,7 @@ def run_path_plan(
             verifier=verify if verifier is None else verifier,
             tilt=tilt_compensation or method == "tilt",
         )
-    _warn_upright(result)
+    warn_if_planned_upright(result)
     if result.feasible:
         if out is not None:
             from sloshkit.cli.plan_files import plan_file_header
@@ -218,9 +218,28 @@ def run_path_plan(
         raise typer.Exit(1)
 
 
-def _warn_upright(result: Any) -> None:
-    """Warn when ``optimal`` was asked to tilt with an arm and planned upright (the arm cannot
-    reach the tilted probes of its joint model: `sloshkit.plan.path.joints.joint_map`)."""
+def warn_if_planned_upright(result: Any) -> None:
+    """Warn (`sloshkit.errors.ValidityWarning`: stderr and JSON ``warnings``) when ``optimal``
+    was asked to tilt with an arm and planned upright, the reason its candidate carries (the
+    arm cannot reach the tilted probes of its joint model: `sloshkit.plan.path.joints.
+    joint_map`).
+
+    Parameters
+    ----------
+    result : PathPlanResult
+        The plan; its ``optimal`` candidate's ``detail["upright"]`` holds the reason.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from types import SimpleNamespace
+    >>> tilted = SimpleNamespace(method="optimal", detail={"stretch": 1.0})
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_if_planned_upright(SimpleNamespace(candidates=[tilted]))
+    >>> caught
+    []
+    """
     import warnings
 
     from sloshkit.errors import ValidityWarning
