@@ -125,10 +125,12 @@ def free_time(
 ) -> tuple[ProgramIterate, list[tuple[int, float]]]:
     """The fewest export samples whose timing meets every limit.
 
-    1. On a grid of `COARSE_PERIOD_S` (when ``coarse``; its programs are a quarter the size):
-       the bracketed search over N (`_minimum_time`), then the same N with the period free
-       (`_dilated_search`): the coarse minimum time.
-    2. On the export's period Ts: that timing spread (`smoothed`) over the steps of its
+    1. When ``coarse``, on a grid of `COARSE_PERIOD_S` (its programs a quarter the size), or
+       on the export's period when that is longer than half of it: the bracketed search over
+       N (`_minimum_time`), then the same N with the period free (`_dilated_search`): the
+       coarse minimum time.
+    2. On the export's period Ts (when step 1 ran on a coarser grid or not at all): that
+       timing spread (`smoothed`) over the steps of its
        duration, the period free again (the finer grid sees the higher modes' residual the
        coarse one smooths away).
     3. On the export grid: N, the steps of that duration
@@ -194,14 +196,19 @@ def free_time(
         return found
 
     current = start
-    if factor > 1:
+    if coarse:
+        # the bracket over N first, also when the export's period is the coarse one: the
+        # free-period search from the capped timing itself diverges (a 0.27 m corner at
+        # 10 ms: no plan up to 5.8 s without the bracket)
         coarse_steps = steps_to_reach(duration, factor * ts)
         found, _ = _minimum_time(program, rescaled(start, coarse_steps, factor * ts), log)
         # the coarse grid's own minimum, its period free
-        current = free(found.samples, found.samples.steps, COARSE_ITERATIONS, 0.1).samples
-    # on the export's period; it starts near its optimum: a quarter of the trust regions
-    duration = current.steps * current.period_s
-    found = free(current, steps_to_reach(duration, ts), 8, 0.025)
+        found = free(found.samples, found.samples.steps, COARSE_ITERATIONS, 0.1)
+        current = found.samples
+    if factor > 1 or not coarse:
+        # on the export's period; it starts near its optimum: a quarter of the trust regions
+        duration = current.steps * current.period_s
+        found = free(current, steps_to_reach(duration, ts), 8, 0.025)
     current, duration = found.samples, found.samples.steps * found.samples.period_s
     steps = steps_to_reach(duration, ts)
     history: list[tuple[int, float, ProgramIterate]] = []

@@ -1,0 +1,83 @@
+"""``optimal`` at an export period as coarse as its coarse grid, and monotone in the limits.
+
+On a short corner path (0.15 m, a 90 deg clothoid corner, 0.12 m, turning 90 deg about z) with
+the measured series' vial, at a 10 ms export period: the coarse grid is then the export's own,
+the case where the search once skipped its bracket over N and found no plan up to 5.8 s.
+
+Monotone in the limits (looser limits never give a longer plan; issue #25) is not met yet: the
+planner is a local sequential program, and hypothesis found a pair of limits where the looser
+one's plan is 6 % longer. The property test keeps that pair as its first example and is an
+expected failure until the searches are monotone (strict: it fails when it starts passing).
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from hypothesis import HealthCheck, example, given, settings
+from hypothesis import strategies as st
+
+from sloshkit.model.geometry import UprightCylinder
+from sloshkit.model.liquids import get_liquid
+from sloshkit.model.modal import equivalent_model
+from sloshkit.plan.path.geometry import path_from_waypoints
+from sloshkit.plan.path.optimal import plan_optimal
+from sloshkit.plan.path.planner import plan_path
+from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
+from sloshkit.plan.path.result import verify
+
+MODEL = equivalent_model(
+    UprightCylinder(0.049), get_liquid("water-20C"), 0.08, damping_ratio=0.0066
+)
+PATH = path_from_waypoints(
+    [[0, 0, 0], [0.15, 0, 0], [0.15, 0.12, 0]], yaw_rad=[0.0, 0.0, math.pi / 2]
+)
+PERIOD_S = 0.01
+
+
+def _problem(height_m: float, acceleration_m_s2: float) -> PathProblem:
+    return PathProblem(
+        PATH,
+        CartesianLimits(2.0, acceleration_m_s2, 10.0 * acceleration_m_s2),
+        SpatialSloshLimits(height_m, 0.001),
+        MODEL,
+        sample_period_s=PERIOD_S,
+    )
+
+
+def _duration(height_m: float, acceleration_m_s2: float) -> float:
+    found = plan_optimal(_problem(height_m, acceleration_m_s2), verify)
+    assert found.feasible, found.message
+    return float(found.duration_s)
+
+
+def test_optimal_plans_at_the_coarse_grids_period() -> None:
+    """At 10 ms (8 mm / 1 mm, 10 m/s^2): a verified plan, shorter than ``retime``'s (1.07 s
+    against 1.28 s when measured); before the bracket ran at this period, no plan."""
+    problem = _problem(0.008, 10.0)
+    optimal = plan_optimal(problem, verify)
+    retime = plan_path(problem, "retime").chosen
+    assert optimal.feasible and retime is not None and retime.feasible
+    assert optimal.verification is not None and not optimal.verification.violations
+    assert optimal.duration_s < retime.duration_s
+
+
+@pytest.mark.xfail(strict=True, reason="the local searches are not monotone in the limits yet")
+@settings(max_examples=3, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    height_mm=st.floats(6.0, 12.0),
+    looser_height=st.floats(1.0, 1.4),
+    acceleration=st.sampled_from([5.0, 10.0]),
+    looser_acceleration=st.sampled_from([1.0, 1.5, 2.0]),
+)
+# found by hypothesis: 6 mm at 10 m/s^2 gives 1.20 s, 6.78 mm at 20 m/s^2 gives 1.27 s
+@example(height_mm=6.0, looser_height=1.13, acceleration=10.0, looser_acceleration=2.0)
+def test_looser_limits_never_give_a_longer_optimal_plan(
+    height_mm: float, looser_height: float, acceleration: float, looser_acceleration: float
+) -> None:
+    """Each plan verified with the nonlinear 3-D model; the looser one (wall height and
+    acceleration, with the jerk ten times it) no longer than the tighter."""
+    tight = _duration(height_mm * 1e-3, acceleration)
+    loose = _duration(height_mm * looser_height * 1e-3, acceleration * looser_acceleration)
+    assert loose <= tight + 1e-9
