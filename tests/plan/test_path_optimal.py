@@ -208,22 +208,26 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(
 
 
 def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshModel) -> None:
-    """``optimal`` on a short corner path: verified with the nonlinear 3-D model, within one
-    sample of ``retime``, and the shortest of its verified rounds."""
+    """``optimal`` (upright) on a short corner path at a 10 ms export period: verified with the
+    nonlinear 3-D model, shorter than ``retime`` (measured: 1.07 s against 1.28 s), and the
+    shortest of its verified rounds."""
     path = path_from_waypoints(
         [[0, 0, 0], [0.15, 0, 0], [0.15, 0.12, 0]], yaw_rad=[0.0, 0.0, math.pi / 2]
     )
     problem = PathProblem(
-        path, CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.008, 0.001), robot_vial
+        path,
+        CartesianLimits(2.0, 10.0, 100.0),
+        SpatialSloshLimits(0.008, 0.001),
+        robot_vial,
+        sample_period_s=0.01,
     )
-    optimal = plan_path(problem, "optimal")
+    optimal = plan_path(problem, "optimal", tilt=False)
     retime = plan_path(problem, "retime")
     assert optimal.chosen is not None and retime.chosen is not None
     assert optimal.chosen.method == "optimal" and optimal.feasible
     assert optimal.chosen.verification is not None and not optimal.chosen.verification.violations
-    # the search ends on a bracket one sample wide (SEARCH_TOLERANCE): on this short corner
-    # it may stop a sample above retime's timing (1.080 s against 1.076 s)
-    assert optimal.chosen.duration_s <= retime.chosen.duration_s + problem.sample_period_s + 1e-9
+    assert optimal.chosen.verification.peak_tilt_rad == 0.0
+    assert optimal.chosen.duration_s < retime.chosen.duration_s
     # the plan is the shortest round whose export the verification passed (a round that
     # failed it was searched again with the program's limit moved)
     passed = [

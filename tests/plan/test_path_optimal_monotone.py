@@ -32,18 +32,15 @@ PATH = path_from_waypoints(
 PERIOD_S = 0.01
 
 
-def _problem(height_m: float, acceleration_m_s2: float) -> PathProblem:
-    return PathProblem(
+def _duration(height_m: float, acceleration_m_s2: float) -> float:
+    problem = PathProblem(
         PATH,
         CartesianLimits(2.0, acceleration_m_s2, 10.0 * acceleration_m_s2),
         SpatialSloshLimits(height_m, 0.001),
         MODEL,
         sample_period_s=PERIOD_S,
     )
-
-
-def _duration(height_m: float, acceleration_m_s2: float) -> float:
-    found = plan_optimal(_problem(height_m, acceleration_m_s2), verify)
+    found = plan_optimal(problem, verify)
     assert found.feasible, found.message
     return float(found.duration_s)
 
