@@ -176,12 +176,20 @@ def highs(paths: list[str]) -> None:
                 basis = model.getBasis()
 
 
-def generate(path: str) -> None:
-    """Constraint generation on the condensed program (module docstring)."""
+def generate(path: str, spacing: int = 0) -> None:
+    """Constraint generation on the condensed program (module docstring); with ``spacing``,
+    on the program whose timing deviations are the B-spline of `spline`."""
     _, q, A, b, cones = _load(path)
-    columns = A.shape[1]
     steps = int(np.flatnonzero(q)[0])  # the objective's first column follows the timing's
-    states = np.arange(steps + 1, steps + 1 + 18 * (steps + 5))
+    first = steps + 1
+    if spacing:
+        basis = _spline_basis(steps, spacing)
+        rest = sparse.identity(A.shape[1] - steps, format="csr")
+        substitution = sparse.block_diag((basis, rest), format="csc")
+        A, q = sparse.csr_matrix(A @ substitution), substitution.T @ q
+        first = basis.shape[1] + 1
+    columns = A.shape[1]
+    states = np.arange(first, first + 18 * (steps + 5))
     kept = np.setdiff1d(np.arange(columns), states)
     zero = cones[0][1]
     on_states = A[:, states]
@@ -252,6 +260,74 @@ def generate(path: str) -> None:
     )
 
 
+def _spline_basis(steps: int, spacing: int) -> sparse.csr_matrix:
+    """The cubic B-spline design matrix of the timing's deviations: samples 1..steps (rows)
+    against control points (columns) on uniform knots ``spacing`` samples apart, the samples'
+    range covered."""
+    from scipy.interpolate import BSpline
+
+    count = int(np.ceil((steps - 1) / spacing)) + 3  # control points of a clamped-free cover
+    knots = spacing * (np.arange(count + 4) - 3.0)
+    design = BSpline.design_matrix(np.arange(steps, dtype=float), knots, 3, extrapolate=True)
+    matrix = sparse.csr_matrix(design)
+    return matrix[:, np.flatnonzero(np.asarray(abs(matrix).sum(axis=0)).ravel() > 0)]
+
+
+def _condensed(
+    A: sparse.csr_matrix, b: np.ndarray, cones: list[tuple[str, int]], first: int, steps: int
+) -> tuple[np.ndarray, np.ndarray, list[tuple[str, int]], np.ndarray]:
+    """The program with the pendulum states (columns from ``first``, 18 per sample of a move
+    of ``steps`` and its rest samples) eliminated through its dynamics equalities
+    (`generate`): dense rows in the other columns, their cones, and the kept columns."""
+    states = np.arange(first, first + 18 * (steps + 5))
+    kept = np.setdiff1d(np.arange(A.shape[1]), states)
+    zero = cones[0][1]
+    on_states = A[:, states]
+    dynamics = np.arange(zero)[np.diff(on_states[:zero].indptr) > 0]
+    others = np.setdiff1d(np.arange(A.shape[0]), dynamics)
+    gain = splu(on_states[dynamics].tocsc()).solve(
+        np.column_stack((A[dynamics][:, kept].toarray(), b[dynamics]))
+    )
+    through = on_states[others] @ gain
+    dense = A[others][:, kept].toarray() - through[:, :-1]
+    kinds = [(n, d - dynamics.size if n == "ZeroConeT" else d) for n, d in cones]
+    return dense, b[others] - through[:, -1], [k for k in kinds if k[1] > 0], kept
+
+
+def spline(path: str, spacings: list[int]) -> None:
+    """The timing's deviations d (the program's first columns, samples 1..N) as a cubic
+    B-spline of control points ``spacing`` samples apart, d = B c: the program in c, with the
+    pendulum states as variables (sparse) and eliminated (condensed), against the program
+    itself. Prints the solve time, iterations and objective (the predicted margin) of each."""
+    _, q, A, b, cones = _load(path)
+    steps = int(np.flatnonzero(q)[0])
+    reference, elapsed = _clarabel(A, b, q, cones)
+    best = float(q @ np.asarray(reference.x))
+    print(
+        f"{path}: {A.shape[0]} rows x {A.shape[1]} columns, {steps} timing columns; "
+        f"Clarabel {elapsed:.2f} s, {reference.iterations} iterations, objective {best:.6g}",
+        flush=True,
+    )
+    for spacing in spacings:
+        basis = _spline_basis(steps, spacing)
+        rest = sparse.identity(A.shape[1] - steps, format="csr")
+        substitution = sparse.block_diag((basis, rest), format="csc")
+        reduced = sparse.csr_matrix(A @ substitution)
+        q_reduced = substitution.T @ q
+        result, elapsed = _clarabel(reduced, b, q_reduced, cones)
+        objective = float(q_reduced @ np.asarray(result.x))
+        dense, rhs, kinds, kept = _condensed(reduced, b, cones, basis.shape[1] + 1, steps)
+        folded, folded_time = _clarabel(sparse.csr_matrix(dense), rhs, q_reduced[kept], kinds)
+        print(
+            f"  every {spacing} samples ({basis.shape[1]} control points): sparse "
+            f"{reduced.shape[0]} x {reduced.shape[1]}, {elapsed:.2f} s, {result.iterations} "
+            f"iterations, objective {objective:.6g} ({result.status}); condensed "
+            f"{dense.shape[0]} x {dense.shape[1]}, {folded_time:.2f} s, {folded.iterations} "
+            f"iterations, objective {float(q_reduced[kept] @ np.asarray(folded.x)):.6g}",
+            flush=True,
+        )
+
+
 if __name__ == "__main__":
     command, rest = sys.argv[1], sys.argv[2:]
     if command == "capture":
@@ -259,6 +335,8 @@ if __name__ == "__main__":
     elif command == "highs":
         highs(rest)
     elif command == "generate":
-        generate(rest[0])
+        generate(rest[0], int(rest[1]) if rest[1:] else 0)
+    elif command == "spline":
+        spline(rest[0], [int(k) for k in rest[1:]] or [2, 4, 8])
     else:
         sys.exit(f"unknown command {command!r}: capture, highs or generate")
