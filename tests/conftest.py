@@ -20,6 +20,14 @@ settings.register_profile("ci", derandomize=True, print_blob=True)
 if os.environ.get("CI"):
     settings.load_profile("ci")
 
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The tests marked ``slow`` (each half a minute or more) first: pytest-xdist's workers
+    take tests in collection order, and a long one collected last keeps one worker running
+    alone at the end."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+
+
 SEED_RADIUS_M = 0.0205  # De Simone et al. (2024) Table 3
 SEED_FILL_HEIGHT_M = 0.039
 

@@ -58,6 +58,7 @@ def test_every_document_has_examples_and_names_only_shipped_files():
                     assert (ROOT / path).is_file(), f"{name}: {path} is not shipped"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", DOCUMENTS)
 def test_shell_examples_run_as_written(name, tmp_path):
     shutil.copytree(ROOT / "examples", tmp_path / "examples")

@@ -242,6 +242,7 @@ def test_linear_and_nonlinear_3d_models_agree_for_small_motions(
     assert abs(nonlinear.peak_slosh_height_m - peak) <= 0.03 * peak + 1e-7
 
 
+@pytest.mark.slow
 @settings(max_examples=3, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     first=st.floats(0.08, 0.25),

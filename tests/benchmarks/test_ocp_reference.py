@@ -65,6 +65,7 @@ def test_a_straight_path_takes_the_one_dimensional_optimum(distance_m: float) ->
     assert reference.peak_height_m == pytest.approx(HEIGHT_M, rel=1e-3)  # the slosh binds
 
 
+@pytest.mark.slow
 def test_the_nonlinear_reference_agrees_with_the_verification() -> None:
     """The nonlinear reference's optimum, exported on the 4 ms grid and simulated by the
     planner's verification model (`simulate_spatial(nonlinear=True)`, exact differentiation),

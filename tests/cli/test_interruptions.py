@@ -3,6 +3,7 @@ traceback (no SystemError out of the numba kernel), and no partial output or sta
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import os
 import signal
@@ -341,3 +342,32 @@ def test_a_signal_while_the_command_is_imported_is_one_line(signum, code, tmp_pa
     assert result.stderr == f"error: interrupted (exit {code}); no partial output was written\n"
     assert result.stdout == ""
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("writer", ["all_or_nothing", "staged_folder"])
+def test_a_signal_a_library_swallowed_still_leaves_no_output(tmp_path: Path, writer: str) -> None:
+    """A library that catches the interruption and carries on (``except BaseException``) must
+    not let the command keep its outputs: the CLI's writers check for a received signal before
+    keeping anything (``before_keeping=signals.check``), and a file that existed is restored."""
+    from sloshkit.cli import signals
+    from sloshkit.io.outputs import all_or_nothing, staged_folder
+
+    kept = tmp_path / "kept.csv"
+    kept.write_text("the user's\n")
+    folder = tmp_path / "out"
+    with signals.installed(), pytest.raises(signals.Interrupted) as stop:
+        if writer == "all_or_nothing":
+            block = all_or_nothing(kept, tmp_path / "new.csv", before_keeping=signals.check)
+        else:
+            block = staged_folder(folder, signals.check)
+        with block as staging:
+            target = staging if writer == "staged_folder" else tmp_path
+            (target / "new.csv").write_text("complete\n")
+            kept.write_text("replaced\n")
+            # what a library that swallows every exception does
+            with contextlib.suppress(BaseException):
+                os.kill(os.getpid(), signal.SIGTERM)
+    assert stop.value.exit_code == 143
+    assert not (tmp_path / "new.csv").exists() and not folder.exists()
+    if writer == "all_or_nothing":
+        assert kept.read_text() == "the user's\n"

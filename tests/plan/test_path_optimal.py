@@ -207,6 +207,7 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(
     assert best.samples.steps * ts == pytest.approx(grid, abs=ts + 1e-12)
 
 
+@pytest.mark.slow
 def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshModel) -> None:
     """``optimal`` (upright) on a short corner path at a 10 ms export period: verified with the
     nonlinear 3-D model, shorter than ``retime`` (measured: 1.07 s against 1.28 s), and the
@@ -238,6 +239,7 @@ def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshMode
     assert optimal.chosen.duration_s == pytest.approx(min(passed))
 
 
+@pytest.mark.slow
 def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshModel) -> None:
     """A 90 deg yaw along a 50 mm move: without the arm the minimum-time plan needs the UR5e's
     wrist_3 beyond its 3.14 rad/s. With the robot-aware verifier the programs limit the joint

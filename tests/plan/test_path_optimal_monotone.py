@@ -45,6 +45,7 @@ def _duration(height_m: float, acceleration_m_s2: float) -> float:
     return float(found.duration_s)
 
 
+@pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="the local searches are not monotone in the limits yet")
 @settings(max_examples=3, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(

@@ -121,6 +121,7 @@ def test_straight_path_plan_matches_one_dimensional_planner(robot_vial: SloshMod
     )
 
 
+@pytest.mark.slow
 def test_every_plan_meets_its_limits_when_its_export_is_simulated_again(
     robot_vial: SloshModel, tmp_path: Path
 ) -> None:
@@ -242,6 +243,7 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
     assert both.returncode == 2 and "exactly one of --path" in both.stderr
 
 
+@pytest.mark.slow
 def test_optimal_with_tilt_compensation_tilts_and_is_faster(tmp_path: Path) -> None:
     """``--method optimal --tilt-compensation``: the tilt is a variable of the programs, so the
     verified plan tilts (within ``--max-tilt``), is zero at both ends and is shorter than the

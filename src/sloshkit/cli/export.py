@@ -15,7 +15,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from sloshkit.cli import messages
+from sloshkit.cli import messages, signals
 from sloshkit.cli.app import app, stderr, stdout
 
 # The option group (``plan --export`` imports it from here too).
@@ -101,7 +101,7 @@ def run_export(
         raise InputError("format", fmt, "must be one of " + ", ".join(FORMATS))
     existed = out.exists()
     try:
-        with stderr.status(f"exporting {fmt}"), all_or_nothing(out):
+        with stderr.status(f"exporting {fmt}"), all_or_nothing(out, before_keeping=signals.check):
             result = export_plan(
                 plan,
                 fmt,

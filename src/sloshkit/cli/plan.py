@@ -228,7 +228,7 @@ def plan_command(
     # The trajectory, its figure and its export are kept together or not at all (a signal or a
     # failed round trip after the CSV was written must not leave the CSV behind).
     try:
-        with all_or_nothing(out, plot, _export_target(out, export)):
+        with all_or_nothing(out, plot, _export_target(out, export), before_keeping=signals.check):
             if result.feasible:
                 if out is not None:
                     from sloshkit.cli.plan_files import plan_file_header

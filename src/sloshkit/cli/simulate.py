@@ -9,7 +9,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from sloshkit.cli import display
+from sloshkit.cli import display, signals
 from sloshkit.cli.app import app, stdout
 from sloshkit.cli.moves import (
     SIMULATION_OPTIONS,
@@ -82,7 +82,8 @@ def simulate_command(
             sample_period_explicit=simulation["sample_period"]
             != SIMULATION_OPTIONS["sample_period"][1],
         )
-        with all_or_nothing(csv, plot):  # a failing figure leaves no CSV behind
+        # a failing figure leaves no CSV behind, nor does a signal a library swallowed
+        with all_or_nothing(csv, plot, before_keeping=signals.check):
             report_poses(response_3d, messages, csv=csv, plot=plot, json_output=json_output)
         return
     if tool_offset is not None:
@@ -90,7 +91,8 @@ def simulate_command(
     motion = request.law(law)
     response = simulate_with_options(motion, slosh_model, **simulation)
     model_kind = simulation["model_kind"]
-    with all_or_nothing(csv, plot):  # a failing figure leaves no CSV behind
+    # a failing figure leaves no CSV behind, nor does a signal a library swallowed
+    with all_or_nothing(csv, plot, before_keeping=signals.check):
         if csv is not None:
             response.to_csv(csv)
         if plot is not None:
@@ -151,7 +153,7 @@ def compare_command(
     ]
     payload = {"distance_m": request.distance_m, "model": model_kind, "laws": rows}
     if out is not None:
-        with staged_folder(out) as staging:
+        with staged_folder(out, signals.check) as staging:
             write_rows_csv(staging / "compare.csv", rows)
             write_json(staging / "compare.json", payload)
             plot_law_comparison(motions, staging / "fig7_laws.png")

@@ -179,7 +179,7 @@ def sweep_command(
         )
     summary = result.summary()
     if out is not None:
-        with staged_folder(out) as staging:
+        with staged_folder(out, signals.check) as staging:
             result.to_csv(staging / "sweep.csv")
             maps = result.plot_maps(staging)
         summary["csv"] = str(out / "sweep.csv")

@@ -17,7 +17,7 @@ import contextvars
 import os
 import shutil
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from sloshkit.errors import InputError
@@ -308,13 +308,19 @@ def check_folder(path: Path | str | None, parameter: str, overwrite: bool = Fals
 
 
 @contextlib.contextmanager
-def staged_folder(target: Path | str) -> Iterator[Path]:
+def staged_folder(
+    target: Path | str, before_keeping: Callable[[], None] | None = None
+) -> Iterator[Path]:
     """Write a folder's outputs to a staging folder; move them into ``target`` on success.
 
     Parameters
     ----------
     target : Path or str
         The output folder (created if missing).
+    before_keeping : callable, optional
+        Called when the block has ended, before anything moves; an exception it raises (the
+        CLI's `sloshkit.cli.signals.check`: a signal that library code caught and swallowed
+        inside the block) leaves ``target`` untouched.
 
     Yields
     ------
@@ -337,6 +343,8 @@ def staged_folder(target: Path | str) -> Iterator[Path]:
     )
     try:
         yield staging
+        if before_keeping is not None:
+            before_keeping()
         folder.mkdir(exist_ok=True)
         (staging / MARKER).write_text("written by sloshkit; this folder may be rewritten\n")
         for entry in sorted(staging.rglob("*")):
@@ -381,7 +389,9 @@ def _keep_mode(existing: Path, replacement: Path) -> None:
 
 
 @contextlib.contextmanager
-def all_or_nothing(*paths: Path | str | None) -> Iterator[None]:
+def all_or_nothing(
+    *paths: Path | str | None, before_keeping: Callable[[], None] | None = None
+) -> Iterator[None]:
     """Keep the files a command writes only if the whole command succeeds.
 
     A command that writes several files (a CSV, then a figure; an exported program, then its
@@ -393,6 +403,10 @@ def all_or_nothing(*paths: Path | str | None) -> Iterator[None]:
     ----------
     *paths : Path, str or None
         The output files of the command (None is skipped).
+    before_keeping : callable, optional
+        Called when the block has ended, still inside it: an exception it raises removes or
+        restores the files as any other (the CLI passes `sloshkit.cli.signals.check`, so a
+        signal that library code caught and swallowed inside the block still leaves no file).
 
     Yields
     ------
@@ -424,6 +438,8 @@ def all_or_nothing(*paths: Path | str | None) -> Iterator[None]:
                 shutil.copy2(target, name)
                 backups[target] = Path(name)
         yield
+        if before_keeping is not None:
+            before_keeping()
     except BaseException:
         for target, backup in backups.items():
             with contextlib.suppress(OSError):
