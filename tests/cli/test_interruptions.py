@@ -371,3 +371,27 @@ def test_a_signal_a_library_swallowed_still_leaves_no_output(tmp_path: Path, wri
     assert not (tmp_path / "new.csv").exists() and not folder.exists()
     if writer == "all_or_nothing":
         assert kept.read_text() == "the user's\n"
+
+
+def test_a_signal_while_the_report_page_is_written_leaves_no_report(tmp_path: Path) -> None:
+    """The report moves into its folder only after ``before_keeping`` (the CLI's
+    `signals.check`): a signal recorded while the page was written (the report command runs
+    inside `signals.deferred`) leaves no folder instead of a complete report and exit 130."""
+    from sloshkit.cli import signals
+    from sloshkit.io.scenario import parse_scenario
+    from sloshkit.report.build import build_report
+
+    scenario = parse_scenario(
+        {"name": "vial", "analyses": ["model"], "container": {"radius": "20.5mm"},
+         "fill": {"height": "39mm"}, "move": {"distance": "0.2m", "duration": "1s"}}
+    )  # fmt: skip
+    out = tmp_path / "report"
+
+    def interrupted_meanwhile() -> None:
+        os.kill(os.getpid(), signal.SIGINT)  # recorded, not raised: deferred
+        signals.check()
+
+    with signals.installed(), pytest.raises(signals.Interrupted) as stop, signals.deferred():
+        build_report(scenario, out, command="test", before_keeping=interrupted_meanwhile)
+    assert stop.value.exit_code == 130
+    assert not out.exists() and list(tmp_path.iterdir()) == []

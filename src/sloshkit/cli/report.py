@@ -50,6 +50,7 @@ def _run_report(
             progress=progress,
             cfd_calibration=cfd_calibration,
             command="sloshkit " + " ".join(sys.argv[1:]),
+            before_keeping=signals.check,
         )
     mark_folder(out)
     noted = json.loads((out / "warnings.json").read_text(encoding="utf-8"))

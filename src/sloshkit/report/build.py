@@ -73,6 +73,7 @@ def build_report(
     progress: Progress | None = None,
     cfd_calibration: Any | None = None,
     command: str = "",
+    before_keeping: Callable[[], None] | None = None,
 ) -> Path:
     """Run the scenario's analyses and write ``out_dir/report.html`` with figures and tables.
 
@@ -88,6 +89,10 @@ def build_report(
         A calibration from a CFD run, used instead of the scenario's data.
     command : str
         The command line recorded in the report (default: ``sys.argv``).
+    before_keeping : callable, optional
+        Called when the report is complete in its staging folder, before anything moves into
+        ``out_dir``; an exception it raises (the CLI's `sloshkit.cli.signals.check`: an
+        interruption recorded while the page was written) leaves ``out_dir`` untouched.
 
     Returns
     -------
@@ -139,6 +144,8 @@ def build_report(
         )
         intro = render("intro.html.j2", description=scenario.description)
         say("writing the report")
-        return writer.finish(target, scenario.name, intro, summary_html(writer, scenario))
+        return writer.finish(
+            target, scenario.name, intro, summary_html(writer, scenario), before_keeping
+        )
     finally:
         shutil.rmtree(staging, ignore_errors=True)

@@ -13,7 +13,7 @@ import os
 import platform
 import re
 import warnings
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from importlib import metadata
 from pathlib import Path
@@ -205,9 +205,10 @@ class ReportWriter:
         title: str,
         intro: markupsafe.Markup,
         summary: markupsafe.Markup | None = None,
+        before_keeping: Callable[[], None] | None = None,
     ) -> Path:
         """Write report.html (summary and table of contents first) and move everything into
-        ``out_dir`` (report.html last)."""
+        ``out_dir`` (report.html last); ``before_keeping`` is called before the first move."""
         page = render(
             "page.html.j2",
             title=title,
@@ -222,6 +223,8 @@ class ReportWriter:
             [{"section": section, "message": message} for section, message in self.warnings],
         )
         (self.staging / "report.html").write_text(page, encoding="utf-8")
+        if before_keeping is not None:
+            before_keeping()
         out_dir.mkdir(parents=True, exist_ok=True)
         for path in sorted(self.staging.rglob("*")):
             if path.is_file() and path.name != "report.html":
