@@ -4,7 +4,8 @@ Usage (from the repository root, in the project's venv)::
 
     python studies/path-planner-compute/captured_programs.py capture OUT_DIR -- PLAN_ARGS...
     python studies/path-planner-compute/captured_programs.py highs PROGRAM.pkl [PROGRAM.pkl ...]
-    python studies/path-planner-compute/captured_programs.py generate PROGRAM.pkl
+    python studies/path-planner-compute/captured_programs.py generate PROGRAM.pkl [SPACING]
+    python studies/path-planner-compute/captured_programs.py spline PROGRAM.pkl [SPACING ...]
 
 ``capture`` runs ``sloshkit plan PLAN_ARGS`` with Clarabel wrapped, and pickles every program
 of the export's period (more than 5,000 columns) that it solves. ``highs`` solves each program
@@ -13,8 +14,10 @@ cold; with the first also by HiGHS's interior point), each cone replaced by an o
 16 half-planes for a two-vector and 32 for a three-vector. ``generate`` condenses the pendulum
 states out (the dynamics equalities are block-triangular in them) and solves with only the
 state-dependent cones that are within 30 % of binding at the linearisation point, adding the
-violated ones until none is. Each prints its solve times against Clarabel's on the same
-program. The figures are in this folder's README.
+violated ones until none is (with SPACING, on the program of ``spline``). ``spline`` writes the
+timing's deviations as a cubic B-spline of control points SPACING samples apart (2, 4 and 8 by
+default) and solves that program sparse and condensed. Each prints its solve times against
+Clarabel's on the same program. The figures are in this folder's README.
 """
 
 from __future__ import annotations
@@ -183,31 +186,14 @@ def generate(path: str, spacing: int = 0) -> None:
     steps = int(np.flatnonzero(q)[0])  # the objective's first column follows the timing's
     first = steps + 1
     if spacing:
-        basis = _spline_basis(steps, spacing)
-        rest = sparse.identity(A.shape[1] - steps, format="csr")
-        substitution = sparse.block_diag((basis, rest), format="csc")
-        A, q = sparse.csr_matrix(A @ substitution), substitution.T @ q
-        first = basis.shape[1] + 1
-    columns = A.shape[1]
-    states = np.arange(first, first + 18 * (steps + 5))
-    kept = np.setdiff1d(np.arange(columns), states)
-    zero = cones[0][1]
-    on_states = A[:, states]
-    dynamics = np.arange(zero)[np.diff(on_states[:zero].indptr) > 0]
-    others = np.setdiff1d(np.arange(A.shape[0]), dynamics)
+        A, q, first = _on_spline(A, q, steps, spacing)
     started = time.perf_counter()
-    gain = splu(on_states[dynamics].tocsc()).solve(
-        np.column_stack((A[dynamics][:, kept].toarray(), b[dynamics]))
-    )
-    through = on_states[others] @ gain
-    dense = A[others][:, kept].toarray() - through[:, :-1]
-    rhs = b[others] - through[:, -1]
+    dense, rhs, kinds, kept = _condensed(A, b, cones, first, steps)
     dense[np.abs(dense) < 1e-12 * np.abs(dense).max()] = 0.0
     built = time.perf_counter() - started
     units: list[tuple[str, int, int]] = []
     row = 0
-    for name, dim in cones:
-        dim = dim - dynamics.size if name == "ZeroConeT" else dim
+    for name, dim in kinds:
         if name == "NonnegativeConeT":
             units += [(name, row + j, 1) for j in range(dim)]
         else:
@@ -273,12 +259,23 @@ def _spline_basis(steps: int, spacing: int) -> sparse.csr_matrix:
     return matrix[:, np.flatnonzero(np.asarray(abs(matrix).sum(axis=0)).ravel() > 0)]
 
 
+def _on_spline(
+    A: sparse.csr_matrix, q: np.ndarray, steps: int, spacing: int
+) -> tuple[sparse.csr_matrix, np.ndarray, int]:
+    """The program with its timing deviations d = B c (`_spline_basis`): its matrix and
+    objective in c and the other columns, and the first state column."""
+    basis = _spline_basis(steps, spacing)
+    rest = sparse.identity(A.shape[1] - steps, format="csr")
+    substitution = sparse.block_diag((basis, rest), format="csc")
+    return sparse.csr_matrix(A @ substitution), substitution.T @ q, basis.shape[1] + 1
+
+
 def _condensed(
     A: sparse.csr_matrix, b: np.ndarray, cones: list[tuple[str, int]], first: int, steps: int
 ) -> tuple[np.ndarray, np.ndarray, list[tuple[str, int]], np.ndarray]:
     """The program with the pendulum states (columns from ``first``, 18 per sample of a move
-    of ``steps`` and its rest samples) eliminated through its dynamics equalities
-    (`generate`): dense rows in the other columns, their cones, and the kept columns."""
+    of ``steps`` and its rest samples) eliminated through its dynamics equalities (they are
+    block-triangular in them): dense rows in the other columns, their cones, the kept columns."""
     states = np.arange(first, first + 18 * (steps + 5))
     kept = np.setdiff1d(np.arange(A.shape[1]), states)
     zero = cones[0][1]
@@ -309,17 +306,13 @@ def spline(path: str, spacings: list[int]) -> None:
         flush=True,
     )
     for spacing in spacings:
-        basis = _spline_basis(steps, spacing)
-        rest = sparse.identity(A.shape[1] - steps, format="csr")
-        substitution = sparse.block_diag((basis, rest), format="csc")
-        reduced = sparse.csr_matrix(A @ substitution)
-        q_reduced = substitution.T @ q
+        reduced, q_reduced, first = _on_spline(A, q, steps, spacing)
         result, elapsed = _clarabel(reduced, b, q_reduced, cones)
         objective = float(q_reduced @ np.asarray(result.x))
-        dense, rhs, kinds, kept = _condensed(reduced, b, cones, basis.shape[1] + 1, steps)
+        dense, rhs, kinds, kept = _condensed(reduced, b, cones, first, steps)
         folded, folded_time = _clarabel(sparse.csr_matrix(dense), rhs, q_reduced[kept], kinds)
         print(
-            f"  every {spacing} samples ({basis.shape[1]} control points): sparse "
+            f"  every {spacing} samples ({first - 1} control points): sparse "
             f"{reduced.shape[0]} x {reduced.shape[1]}, {elapsed:.2f} s, {result.iterations} "
             f"iterations, objective {objective:.6g} ({result.status}); condensed "
             f"{dense.shape[0]} x {dense.shape[1]}, {folded_time:.2f} s, {folded.iterations} "
@@ -339,4 +332,4 @@ if __name__ == "__main__":
     elif command == "spline":
         spline(rest[0], [int(k) for k in rest[1:]] or [2, 4, 8])
     else:
-        sys.exit(f"unknown command {command!r}: capture, highs or generate")
+        sys.exit(f"unknown command {command!r}: capture, highs, generate or spline")
