@@ -41,6 +41,7 @@ from sloshkit.model.theory import (
     bessel_roots,
     bob_offset_from_cg,
     bond_number,
+    checked_correlation_damping,
     damping_ratio_correlation,
     natural_frequency,
     pendulum_length,
@@ -172,19 +173,7 @@ def equivalent_model(
             radius, height, liquid.kinematic_viscosity_m2_s, damping_law, gravity
         )
         provenance["damping_ratio"] = f"correlation: {damping_law} (mode 1, used for all modes)"
-        if not zeta < 0.99:
-            raise InputError(
-                "viscosity",
-                f"{liquid.viscosity_pa_s:.6g} Pa s",
-                f"gives a correlation damping ratio {zeta:.3g} >= 0.99: the liquid does not "
-                "oscillate (overdamped)",
-                "give --damping-ratio from a measurement",
-            )
-        if zeta > 0.1:
-            warn_validity(
-                f"correlation damping ratio {zeta:.3g} > 0.1: viscous boundary layers are no "
-                "longer thin, the correlation is extrapolated; calibrate from data"
-            )
+        checked_correlation_damping(zeta, liquid.viscosity_pa_s)
     else:
         zeta = require_in_range("damping_ratio", damping_ratio, 0.0, 0.99)
         provenance["damping_ratio"] = "user"

@@ -22,6 +22,7 @@ from sloshkit.model.theory import (
     DampingLaw,
     bessel_roots,
     bond_number,
+    checked_correlation_damping,
     damping_ratio_correlation,
     surface_tension_factor,
     warn_capillary,
@@ -184,19 +185,7 @@ def profile_equivalent_model(
                 f"the {damping_law} correlation of that cylinder (equivalent depth "
                 f"{depth * 1e3:.3g} mm) is an estimate only; calibrate from data"
             )
-        if not zeta < 0.99:
-            raise InputError(
-                "viscosity",
-                f"{liquid.viscosity_pa_s:.6g} Pa s",
-                f"gives a correlation damping ratio {zeta:.3g} >= 0.99: the liquid does not "
-                "oscillate (overdamped)",
-                "give --damping-ratio from a measurement",
-            )
-        if zeta > 0.1:
-            warn_validity(
-                f"correlation damping ratio {zeta:.3g} > 0.1: viscous boundary layers are no "
-                "longer thin, the correlation is extrapolated; calibrate from data"
-            )
+        checked_correlation_damping(zeta, liquid.viscosity_pa_s)
     else:
         zeta = require_in_range("damping_ratio", damping_ratio, 0.0, 0.99)
         provenance["damping_ratio"] = "user"

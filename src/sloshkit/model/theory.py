@@ -381,6 +381,57 @@ def damping_ratio_correlation(
     return prefactor * math.sqrt(ga) * bracket
 
 
+def checked_correlation_damping(zeta: float, viscosity_pa_s: float) -> float:
+    """A damping ratio from `damping_ratio_correlation`, checked the same way for every model.
+
+    The correlations assume thin viscous boundary layers (Case & Parkinson, J. Fluid Mech. 2
+    (1957) 172-184; Ibrahim (2005) §2.8), which holds for zeta well below 0.1: above it the
+    correlation is extrapolated (a validity warning), and from 0.99 the liquid does not
+    oscillate at all, an input error naming the viscosity.
+
+    Parameters
+    ----------
+    zeta : float
+        The correlation's first-mode damping ratio [-].
+    viscosity_pa_s : float
+        The liquid's dynamic viscosity [Pa s], for the error message.
+
+    Returns
+    -------
+    float
+        ``zeta``.
+
+    Raises
+    ------
+    InputError
+        When ``zeta`` >= 0.99 (overdamped).
+
+    Examples
+    --------
+    >>> checked_correlation_damping(0.0092, 1.0e-3)
+    0.0092
+    >>> try:
+    ...     checked_correlation_damping(1.2, 50.0)
+    ... except InputError as error:
+    ...     print(str(error).split(":")[0])
+    viscosity = '50 Pa s' is invalid
+    """
+    if not zeta < 0.99:
+        raise InputError(
+            "viscosity",
+            f"{viscosity_pa_s:.6g} Pa s",
+            f"gives a correlation damping ratio {zeta:.3g} >= 0.99: the liquid does not "
+            "oscillate (overdamped)",
+            "give --damping-ratio from a measurement",
+        )
+    if zeta > 0.1:
+        warn_validity(
+            f"correlation damping ratio {zeta:.3g} > 0.1: viscous boundary layers are no "
+            "longer thin, the correlation is extrapolated; calibrate from data"
+        )
+    return zeta
+
+
 def warn_capillary(
     bond: float, raise_percent: float, matters: bool, applied: bool, surface_tension: bool | None
 ) -> None:
