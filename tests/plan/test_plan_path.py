@@ -233,6 +233,9 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
     failed = run_entry_point(*common, "--max-slosh-height", "0.0001mm")
     assert failed.returncode == 1
     assert "no method meets the limits" in failed.stderr
+    # the method names the limit that binds it at its slowest try (issue 25)
+    assert "peak slosh height" in failed.stderr
+    assert "against its 0.0001 mm limit" in failed.stderr
     both = run_entry_point(
         *common,
         "--max-slosh-height",
@@ -419,3 +422,29 @@ def test_warp_search_keeps_the_screen_and_shortens_a_slow_seed(robot_vial: Slosh
     assert fast.duration_s < 0.95 * seed.duration_s
     assert passes(sample_path(path, fast, problem.sample_period_s))
     assert np.isclose(float(fast.position(fast.duration_s)), 0.3)
+
+
+@pytest.mark.parametrize(
+    ("limits", "named"),
+    [
+        (SpatialSloshLimits(1e-7, 0.002), "peak slosh height"),
+        (SpatialSloshLimits(0.015, 1e-9), "residual slosh height"),
+    ],
+)
+def test_an_impossible_request_names_the_limit_that_binds_each_method(
+    robot_vial: SloshModel, limits: SpatialSloshLimits, named: str
+) -> None:
+    """Issue 25: an infeasible request fails with the binding limit named, for each method:
+    the limit that the slowest member it tried exceeds most, with its value and the limit."""
+    path = path_from_waypoints([[0, 0, 0], [0.15, 0, 0], [0.15, 0.1, 0]], blend_radius_m=0.03)
+    problem = PathProblem(
+        path, CartesianLimits(2.0, 10.0, 100.0), limits, robot_vial, sample_period_s=0.01
+    )
+    result = plan_path(problem, method="auto", tilt=True, verifier=linear_verifier)
+    assert not result.feasible
+    messages = {candidate.method: candidate.message for candidate in result.candidates}
+    assert {"retime", "shaped", "tilt"} <= set(messages)
+    for method in ("retime", "shaped", "tilt"):
+        message = messages[method]
+        assert "at the lowest cap" in message or "at that cap" in message, message
+        assert named in message and "against its" in message, message

@@ -58,7 +58,12 @@ from sloshkit.plan.path.retime import (
     first_mode_shaper,
 )
 from sloshkit.plan.path.screen import linear_screen, screen_ok
-from sloshkit.plan.path.search import fastest_capped, stretcher
+from sloshkit.plan.path.search import (
+    LOWEST_CAP_FRACTION,
+    fastest_capped,
+    lowest_cap_failure,
+    stretcher,
+)
 from sloshkit.plan.path.tilt import improved_tilt, plan_tilt, timing_shapers
 from sloshkit.plan.path.timing import Timing
 
@@ -112,7 +117,9 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
 
     found = fastest_capped(problem, passes, None, sampler=sampler)
     if found is None:
-        return _failed("shaped", started, "no per-axis shaped timing meets the limits")
+        failure = lowest_cap_failure(problem, sampler, deviation=True)
+        message = f"no per-axis shaped timing meets the limits: at the lowest cap, {failure}"
+        return _failed("shaped", started, message)
     cap, member = found
 
     def poses_for(factor: float) -> PoseTrajectory:
@@ -197,7 +204,10 @@ def _retime(
             best = (duration, cap, member, name)
     pool = [(replace(c, detail={**c.detail, "seed": c.method}), t) for c, t in seeds if c.feasible]
     if best is None and not pool:
-        message = "no acceleration cap down to 0.1 % of amax meets the slosh limits"
+        message = (
+            f"no acceleration cap down to {100 * LOWEST_CAP_FRACTION:g} % of amax meets the slosh "
+            f"limits: at that cap, {lowest_cap_failure(problem)}"
+        )
         return _failed("retime", started, message), None
     if best is not None:
         duration, cap, timing, shaper_name = best

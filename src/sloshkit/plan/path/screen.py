@@ -218,3 +218,40 @@ def screen_ok(problem: PathProblem, result: ScreenResult, margin: float = SEARCH
     if slosh.max_surface_angle_rad is not None:
         ok &= result.peak_angle_rad <= slosh.max_surface_angle_rad * keep
     return bool(ok)
+
+
+def binding_slosh(problem: PathProblem, result: ScreenResult) -> str:
+    """The slosh limit that the screen comes closest to or exceeds most (the largest ratio to
+    its limit), with its value and the limit, as failure messages name it.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        The limits.
+    result : ScreenResult
+        The screen of an export.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
+    ...                       None)
+    >>> binding_slosh(problem, ScreenResult(0.004, 0.003, 0.0))
+    'residual slosh height 3 mm against its 2 mm limit'
+    """
+    slosh = problem.slosh
+    ratios = [
+        ("peak slosh height", result.peak_height_m, slosh.max_height_m, 1e3, "mm"),
+        ("residual slosh height", result.residual_height_m, slosh.max_residual_height_m, 1e3, "mm"),
+    ]
+    if slosh.max_surface_angle_rad is not None:
+        angle = (result.peak_angle_rad, slosh.max_surface_angle_rad)
+        ratios.append(("peak surface angle", *angle, 180.0 / math.pi, "deg"))
+    name, value, limit, scale, unit = max(ratios, key=lambda r: r[1] / r[2])
+    return f"{name} {value * scale:.3g} {unit} against its {limit * scale:.3g} {unit} limit"

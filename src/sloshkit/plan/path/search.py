@@ -23,9 +23,10 @@ from numpy.typing import NDArray
 from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.motion.shaping import Shaper
+from sloshkit.plan.path.limits import machine_violations, path_deviation
 from sloshkit.plan.path.problem import PathProblem, sample_path
 from sloshkit.plan.path.retime import ShaperFactory, family_member
-from sloshkit.plan.path.screen import linear_screen, screen_ok
+from sloshkit.plan.path.screen import binding_slosh, linear_screen, screen_ok
 from sloshkit.plan.path.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
 
 FloatArray = NDArray[np.float64]
@@ -156,11 +157,15 @@ def slowed_until(
     return None if factor is None else (factor, poses_for(factor))
 
 
+#: Smallest acceleration cap the cap search tries, as a fraction of amax.
+LOWEST_CAP_FRACTION = 1e-3
+
+
 def fastest_capped(
     problem: PathProblem,
     passes: Callable[[PoseTrajectory], bool],
     shaper: Shaper | ShaperFactory | None,
-    low_fraction: float = 1e-3,
+    low_fraction: float = LOWEST_CAP_FRACTION,
     sampler: Callable[[Timing], PoseTrajectory] | None = None,
 ) -> tuple[float, Timing] | None:
     """The largest acceleration cap A between ``low_fraction`` amax and amax whose family
@@ -223,6 +228,67 @@ def fastest_capped(
     if scanned is None or (bisected is not None and bisected[0] > scanned[0]):
         return bisected
     return scanned
+
+
+def lowest_cap_failure(
+    problem: PathProblem,
+    sampler: Callable[[Timing], PoseTrajectory] | None = None,
+    tilted: bool = False,
+    deviation: bool = False,
+) -> str:
+    """What the slowest member that `fastest_capped` tries (cap `LOWEST_CAP_FRACTION` amax, no
+    shaper) breaks, for the message of a method that found no cap: the first Cartesian or
+    angular limit it breaks, else (with ``deviation``) the path deviation when it exceeds
+    ``problem.max_path_deviation_m``, else the slosh limit its linear screen comes closest to
+    or exceeds most (`sloshkit.plan.path.screen.binding_slosh`).
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path and limits.
+    sampler : callable, optional
+        Timing -> PoseTrajectory, the method's export (default `sample_path`).
+    tilted : bool
+        Whether the export tilts the container (the tilt's limits apply).
+    deviation : bool
+        Whether the export may leave the path (per-axis shaping) by at most
+        ``problem.max_path_deviation_m``.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.problem import CartesianLimits, SpatialSloshLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
+    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(1e-7, 0.002),
+    ...                       model, sample_period_s=0.01)
+    >>> lowest_cap_failure(problem).split(" against ")[0].startswith("peak slosh height")
+    True
+    """
+    member = family_member(
+        problem, LOWEST_CAP_FRACTION * problem.machine.max_acceleration_m_s2, None
+    )
+    if sampler is not None:
+        poses = sampler(member)
+    else:
+        poses = sample_path(problem.path, member, problem.sample_period_s)
+    broken = machine_violations(problem, poses, tilted)
+    if broken:
+        return broken[0]
+    off = path_deviation(problem.path, poses) if deviation else 0.0
+    if off > problem.max_path_deviation_m:
+        return (
+            f"path deviation {off * 1e3:.3g} mm against its "
+            f"{problem.max_path_deviation_m * 1e3:.3g} mm limit"
+        )
+    return binding_slosh(problem, linear_screen(problem.models(), poses))
 
 
 def _refine(

@@ -28,11 +28,11 @@ from sloshkit.motion.shaping import Shaper
 from sloshkit.plan.path.improve import ladder_affordable, warped_candidates
 from sloshkit.plan.path.ladder import method_timing
 from sloshkit.plan.path.limits import machine_stretch, machine_violations
-from sloshkit.plan.path.problem import PathProblem
+from sloshkit.plan.path.problem import PathProblem, sample_path
 from sloshkit.plan.path.result import PathCandidate, Verifier, verified_candidate, verify
 from sloshkit.plan.path.retime import ShaperFactory, curve_shaper, first_mode_shaper
 from sloshkit.plan.path.screen import linear_screen, screen_ok
-from sloshkit.plan.path.search import fastest_capped, slowed_until, stretcher
+from sloshkit.plan.path.search import fastest_capped, lowest_cap_failure, slowed_until, stretcher
 from sloshkit.plan.path.tilt_compensation import tilt_compensated
 from sloshkit.plan.path.timing import Timing
 
@@ -171,7 +171,12 @@ def plan_tilt(
         if best is None or duration < best[0]:
             best = (duration, cap, plain, name)
     if best is None:
-        message = "no tilted timing meets the limits"
+        failure = lowest_cap_failure(
+            problem,
+            lambda member: tilted(sample_path(problem.path, member, problem.sample_period_s)),
+            True,
+        )
+        message = f"no tilted timing meets the limits: at the lowest cap, {failure}"
         family = PathCandidate("tilt", None, None, time.perf_counter() - started, message)
     else:
         _, cap, plain, shaper_name = best
