@@ -3,10 +3,15 @@
 The arm's chain is read from a URDF between a base link and a tip link and handed to ikpy
 (P. Manceron, *IKPy*, https://github.com/Phylliade/ikpy), whose forward kinematics multiplies
 the URDF joint transforms and whose inverse kinematics is a bounded least-squares fit of the
-tip frame (scipy ``least_squares``). sloshkit adds what a trajectory needs on top of one IK
-call: each sample is seeded with the previous solution (continuity), and the joint path is
-checked for reach, joint position limits, jumps, joint velocity limits (URDF ``<limit
-velocity=...>``) and singularities (the condition number of the geometric Jacobian).
+tip frame (scipy ``least_squares``). The product of the link transforms is evaluated by a
+compiled loop (`CompiledChain`: numba, the same transforms as ikpy's ``URDFLink``, checked
+against ikpy's own forward kinematics in the tests), because ikpy's per-link Python matrices
+were most of an exported trajectory's IK time. sloshkit adds what a trajectory needs on top
+of one IK call (`sloshkit.export.ik`): each sample is seeded with the previous solution
+(continuity) and solved by Gauss-Newton, ikpy's least squares where that does not converge
+near the seed, and the joint path is checked for reach, joint position limits, jumps, joint
+velocity limits (URDF ``<limit velocity=...>``) and singularities (the condition number of
+the geometric Jacobian).
 
 Built-in arms live in ``sloshkit/export/robots`` (see the README there for their sources).
 """
@@ -118,7 +123,8 @@ class Arm:
 
         References
         ----------
-        ikpy ``Chain.forward_kinematics`` (product of the URDF joint transforms).
+        The product of the URDF joint transforms (`sloshkit.export.chain.CompiledChain`, the
+        transforms of ikpy's ``Chain.forward_kinematics``).
 
         Examples
         --------
@@ -127,7 +133,10 @@ class Arm:
         array([-0.8172, -0.2329,  0.0628])
         """
         joints = np.atleast_2d(np.asarray(joints_rad, dtype=float))
-        return np.stack([self.chain.forward_kinematics(self._full(row)) for row in joints])
+        full = np.zeros((joints.shape[0], len(self.chain.links)))
+        full[:, self._active] = joints
+        tips: FloatArray = self.chain.tip_frames(full)
+        return tips
 
     def jacobian(self, joints_rad: FloatArray) -> FloatArray:
         """Geometric Jacobian (6, dof) of the tip in the base frame: rows vx, vy, vz [m/rad],
@@ -155,23 +164,10 @@ class Arm:
         return self.jacobian_and_tip(joints_rad)[0]
 
     def jacobian_and_tip(self, joints_rad: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """The geometric Jacobian (`jacobian`) and the tip frame (4x4), from one forward pass."""
-        frames = self.chain.forward_kinematics(
-            self._full(np.asarray(joints_rad, dtype=float)), full_kinematics=True
-        )
-        tip = frames[-1][:3, 3]
-        columns = []
-        for index in np.flatnonzero(self._active):
-            link = self.chain.links[index]
-            rotation = frames[index][:3, :3]
-            origin = frames[index][:3, 3]
-            if link.joint_type == "prismatic":
-                axis = rotation @ np.asarray(link.translation, dtype=float)
-                columns.append(np.concatenate([axis, np.zeros(3)]))
-            else:
-                axis = rotation @ np.asarray(link.rotation, dtype=float)
-                columns.append(np.concatenate([np.cross(axis, tip - origin), axis]))
-        return np.column_stack(columns), np.asarray(frames[-1], dtype=float)
+        """The geometric Jacobian (`jacobian`) and the tip frame (4x4), from one compiled forward
+        pass (`sloshkit.export.chain.CompiledChain.jacobian_and_tip`)."""
+        jacobian, tip = self.chain.jacobian_and_tip(self._full(np.asarray(joints_rad, float)))
+        return jacobian, tip
 
 
 def robot_names() -> tuple[str, ...]:
@@ -242,9 +238,9 @@ def load_arm(
 
 
 def _arm_from_urdf(path: Path, base_link: str, tip_link: str, home_rad: FloatArray | None) -> Arm:
-    from ikpy.chain import Chain
     from ikpy.link import OriginLink, URDFLink
 
+    from sloshkit.export.chain import CompiledChain
     from sloshkit.export.urdf import read_urdf
 
     tree = read_urdf(path)  # validated before any use (sloshkit.export.urdf)
@@ -268,7 +264,7 @@ def _arm_from_urdf(path: Path, base_link: str, tip_link: str, home_rad: FloatArr
     mask = [False] + [joint.movable for joint in joints]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        chain = Chain([OriginLink(), *links], active_links_mask=mask, name=tree.name)
+        chain = CompiledChain([OriginLink(), *links], active_links_mask=mask, name=tree.name)
     low = np.asarray([joint.lower for joint in movable])
     high = np.asarray([joint.upper for joint in movable])
     if home_rad is None:
