@@ -4,10 +4,10 @@ Each sample's IK starts from the previous sample's solution, extrapolated linear
 before, so the arm stays on one branch: Gauss-Newton on ikpy's residual of the tip frame (the
 analytic Jacobian of the residual, the compiled chain of `sloshkit.export.chain`), kept when
 it converges inside the joint limits and within `MAX_JOINT_STEP_RAD` of that seed, else
-ikpy's bounded least squares (scipy ``least_squares``) from the same seed; the first sample starts from the arm's home
-configuration (and, if that misses, from `FIRST_SAMPLE_SEEDS` around it). The joint path is
-then checked, in this order, and the first failure raises `InputError` naming the sample
-(index and time) and the joint:
+ikpy's bounded least squares (scipy ``least_squares``) from the same seed; the first sample
+starts from the arm's home configuration (and, if that misses, from `FIRST_SAMPLE_SEEDS`
+around it). The joint path is then checked, in this order, and the first failure raises
+`InputError` naming the sample (index and time) and the joint:
 
 1. reach: the IK tip frame must match the target within `REACH_TOLERANCE_M` and
    `REACH_TOLERANCE_RAD` (a joint stuck on a position limit is named as the cause);

@@ -11,9 +11,8 @@ speed change (sequential convex programming: Mao, Szmuk & Acikmese, IEEE CDC (20
 doi:10.1109/CDC.2016.7798816; Nocedal & Wright, *Numerical Optimization*, 2nd ed. (2006) §18).
 With the period free, h (1 + epsilon) (free final time by time dilation: Szmuk & Acikmese,
 AIAA GNC (2018), doi:10.2514/6.2018-0617), it minimises epsilon plus an exact penalty of the
-limits still exceeded. Solved by Clarabel (Goulart & Chen, arXiv:2405.12762 (2024)); polyhedral
-(LP) facets of the 3-D norms let the iterates break the jerk limit in directions no facet
-covered, so the norms are cones.
+limits still exceeded. Solved by Clarabel (`sloshkit.plan.path.rows.ConeRows.solve`); polyhedral
+facets of the 3-D norms let the iterates break the jerk limit where no facet covered: cones.
 """
 
 from __future__ import annotations
@@ -23,7 +22,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy import sparse
 
 from sloshkit.plan.path.pendulums import period_jacobian, slope_jacobian, step_jacobians
 from sloshkit.plan.path.program import HOLD, FloatArray, PathProgram, mode_arrays
@@ -65,39 +63,6 @@ class ConeStep:
     samples: PathSamples
     sigma: float
     residual: float
-
-
-#: Clarabel's static regularisation of the KKT system for a second try when the first solve,
-#: at Clarabel's default (1e-8), ends in ``NumericalError``: measured on the tilted programs
-#: with an arm's joint rows (50 mm turn with the UR5e), which failed at 1e-8 on the export's
-#: period and all solve at 1e-6.
-RETRY_REGULARIZATION = 1e-6
-
-
-def _solved(
-    program: PathProgram, quadratic: Any, objective: Any, matrix: Any, rhs: Any, cones: Any
-) -> Any:
-    """Clarabel's solution of the program, or None when it is neither solved nor almost
-    solved; a ``NumericalError`` is solved once more with `RETRY_REGULARIZATION`. Each solve
-    counts in ``program.programs``."""
-    import clarabel
-
-    for regularization in (None, RETRY_REGULARIZATION):
-        program.programs += 1
-        settings = clarabel.DefaultSettings()
-        settings.verbose = False
-        # The linearisation is re-evaluated exactly after each solve: 1e-6 is ample.
-        settings.tol_gap_abs = settings.tol_gap_rel = 1e-6
-        settings.tol_feas = 1e-7
-        if regularization is not None:
-            settings.static_regularization_constant = regularization
-        result = clarabel.DefaultSolver(quadratic, objective, matrix, rhs, cones, settings).solve()
-        status = str(result.status)
-        if status in ("Solved", "AlmostSolved"):
-            return result
-        if status != "NumericalError":
-            return None
-    return None
 
 
 def cone_step(
@@ -508,8 +473,8 @@ def cone_step(
         conic.add("nonneg", [0, 1], [dilation, dilation], [1.0, -1.0], [dilation_trust] * 2)
         objective[slacks] = PENALTY
         objective[dilation] = 1.0
-    matrix, rhs, cones = conic.assemble(columns)
-    result = _solved(program, sparse.csc_matrix((columns, columns)), objective, matrix, rhs, cones)
+    result, solves = conic.solve(objective)
+    program.programs += solves
     if result is None:
         return None
     x = np.asarray(result.x)
