@@ -1,10 +1,9 @@
 """Joint paths: inverse kinematics of a sampled tip path, checked sample by sample.
 
 Each sample's IK starts from the previous sample's solution, extrapolated linearly from the two
-before, so the arm stays on one branch: Gauss-Newton on ikpy's residual of the tip frame (the
-analytic Jacobian of the residual, the compiled chain of `sloshkit.export.chain`), kept when
-it converges inside the joint limits and within `MAX_JOINT_STEP_RAD` of that seed, else
-ikpy's bounded least squares (scipy ``least_squares``) from the same seed; the first sample
+before, so the arm stays on one branch (`sloshkit.export.kinematics.solve_frame`:
+Gauss-Newton on the compiled chain, kept when it converges inside the joint limits and within
+`MAX_JOINT_STEP_RAD` of that seed, else ikpy's bounded least squares); the first sample
 starts from the arm's home configuration (and, if that misses, from `FIRST_SAMPLE_SEEDS`
 around it). The joint path is then checked, in this order, and the first failure raises
 `InputError` naming the sample (index and time) and the joint:
@@ -38,6 +37,7 @@ from sloshkit.export.kinematics import (
     REACH_TOLERANCE_M,
     REACH_TOLERANCE_RAD,
     Arm,
+    solve_frame,
 )
 from sloshkit.results import ResultMixin
 
@@ -318,92 +318,10 @@ def _solve_and_measure(
     arm: Arm, target: FloatArray, seed: FloatArray
 ) -> tuple[FloatArray, float, float]:
     """IK from ``seed``, and how far the solution's tip is from the target [m, rad]."""
-    joints = _solve_one(arm, target, seed)
+    joints = solve_frame(arm, target, seed)
     reached = arm.forward(joints[None])[0]
     distance = float(np.linalg.norm(reached[:3, 3] - target[:3, 3]))
     return joints, distance, float(rotation_angle_rad(reached, target))
-
-
-#: Gauss-Newton iterations of `_newton_solution` before ikpy's bounded least squares
-#: takes over.
-NEWTON_ITERATIONS = 8
-#: A Gauss-Newton solution is kept when its last step moved no joint more than this [rad].
-NEWTON_STEP_RAD = 1e-12
-
-
-def _solve_one(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
-    """IK of one tip frame from ``seed``: Gauss-Newton on ikpy's residual when it converges
-    inside the joint limits and within `MAX_JOINT_STEP_RAD` of the seed (the seed is the
-    previous sample's solution, extrapolated: the usual case), else ikpy's bounded least
-    squares (``Chain.inverse_kinematics_frame``, scipy ``least_squares``)."""
-    newton = _newton_solution(arm, target, seed)
-    if newton is not None:
-        return newton
-    full = np.zeros(len(arm.chain.links))
-    active = np.asarray(arm.chain.active_links_mask, dtype=bool)
-    full[active] = seed
-    result = arm.chain.inverse_kinematics_frame(
-        target,
-        initial_position=full,
-        orientation_mode="all",
-        tol=1e-15,
-        optimizer_kwargs={"jac": lambda x: _residual_jacobian(arm, x)},
-    )
-    solution: FloatArray = np.asarray(result, dtype=float)[active]
-    return solution
-
-
-def _newton_solution(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray | None:
-    """The root of ikpy's "all"-orientation residual [p - p*; vec(R - R*)] near ``seed`` by
-    Gauss-Newton (Nocedal & Wright, *Numerical Optimization*, 2nd ed., Springer 2006, §10.3:
-    the least-squares step of the residual's Jacobian, `_residual_jacobian`), or None when it
-    does not converge in `NEWTON_ITERATIONS`, leaves the joint limits or moves a joint more
-    than `MAX_JOINT_STEP_RAD` from the seed (a branch the continuity check would refuse)."""
-    joints = np.asarray(seed, dtype=float).copy()
-    for _ in range(NEWTON_ITERATIONS):
-        rows = _residual_and_jacobian(arm, joints, target)
-        step = np.linalg.lstsq(rows[:, 1:], -rows[:, 0], rcond=None)[0]
-        joints += step
-        if not np.all(np.isfinite(joints)):
-            return None
-        if float(np.max(np.abs(step))) <= NEWTON_STEP_RAD:
-            inside = np.all(joints >= arm.lower_rad) and np.all(joints <= arm.upper_rad)
-            near = float(np.max(np.abs(joints - seed))) <= MAX_JOINT_STEP_RAD
-            return joints if inside and near else None
-    return None
-
-
-def _residual_and_jacobian(arm: Arm, joints_rad: FloatArray, target: FloatArray) -> FloatArray:
-    """ikpy's residual (12,) as the first column and its Jacobian (`_residual_jacobian`) as the
-    others, (12, 1 + dof)."""
-    jacobian, tip = arm.jacobian_and_tip(joints_rad)
-    rows = np.empty((12, 1 + jacobian.shape[1]))
-    rows[:3, 0] = tip[:3, 3] - target[:3, 3]
-    rows[3:, 0] = (tip[:3, :3] - target[:3, :3]).ravel()
-    rows[:, 1:] = _rows_of(jacobian, tip[:3, :3])
-    return rows
-
-
-def _residual_jacobian(arm: Arm, joints_rad: FloatArray) -> FloatArray:
-    """Jacobian of ikpy's "all"-orientation residual [p - p*; vec(R - R*)] (12, dof): rows
-    of the geometric Jacobian for p, and dR/dq_i = [a_i]x R for a revolute joint with world
-    axis a_i (Siciliano et al. 2009, §3.1), replacing ikpy's finite differences."""
-    jacobian, tip = arm.jacobian_and_tip(joints_rad)
-    return _rows_of(jacobian, tip[:3, :3])
-
-
-def _rows_of(jacobian: FloatArray, rotation: FloatArray) -> FloatArray:
-    """The residual's Jacobian from the geometric one: d vec(R)/dq_c = vec(w_c x R), the
-    cross product with each column of R (row-major vec, as ikpy's ``ravel``)."""
-    rows = np.empty((12, jacobian.shape[1]))
-    rows[:3] = jacobian[:3]
-    wx, wy, wz = jacobian[3], jacobian[4], jacobian[5]
-    for col in range(3):
-        vx, vy, vz = rotation[0, col], rotation[1, col], rotation[2, col]
-        rows[3 + col] = wy * vz - wz * vy
-        rows[6 + col] = wz * vx - wx * vz
-        rows[9 + col] = wx * vy - wy * vx
-    return rows
 
 
 def _where(times: FloatArray, index: int) -> str:

@@ -6,12 +6,12 @@ the URDF joint transforms and whose inverse kinematics is a bounded least-square
 tip frame (scipy ``least_squares``). The product of the link transforms is evaluated by a
 compiled loop (`CompiledChain`: numba, the same transforms as ikpy's ``URDFLink``, checked
 against ikpy's own forward kinematics in the tests), because ikpy's per-link Python matrices
-were most of an exported trajectory's IK time. sloshkit adds what a trajectory needs on top
-of one IK call (`sloshkit.export.ik`): each sample is seeded with the previous solution
-(continuity) and solved by Gauss-Newton, ikpy's least squares where that does not converge
-near the seed, and the joint path is checked for reach, joint position limits, jumps, joint
-velocity limits (URDF ``<limit velocity=...>``) and singularities (the condition number of
-the geometric Jacobian).
+were most of an exported trajectory's IK time. One tip frame's IK (`solve_frame`) is
+Gauss-Newton from the seed, ikpy's least squares where that does not converge near it;
+`sloshkit.export.ik` adds what a trajectory needs: each sample seeded with the previous
+solution (continuity), and the joint path checked for reach, joint position limits, jumps,
+joint velocity limits (URDF ``<limit velocity=...>``) and singularities (the condition number
+of the geometric Jacobian).
 
 Built-in arms live in ``sloshkit/export/robots`` (see the README there for their sources).
 """
@@ -168,6 +168,119 @@ class Arm:
         pass (`sloshkit.export.chain.CompiledChain.jacobian_and_tip`)."""
         jacobian, tip = self.chain.jacobian_and_tip(self._full(np.asarray(joints_rad, float)))
         return jacobian, tip
+
+
+#: Gauss-Newton iterations of `solve_frame` before ikpy's bounded least squares
+#: takes over.
+NEWTON_ITERATIONS = 8
+#: A Gauss-Newton solution is kept when its last step moved no joint more than this [rad].
+NEWTON_STEP_RAD = 1e-12
+
+
+def solve_frame(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
+    """Joint positions that put the arm's tip on ``target``, found from ``seed``.
+
+    Gauss-Newton on ikpy's residual when it converges inside the joint limits and within
+    `MAX_JOINT_STEP_RAD` of the seed (in a trajectory the seed is the previous sample's
+    solution, extrapolated: the usual case), else ikpy's bounded least squares
+    (``Chain.inverse_kinematics_frame``, scipy ``least_squares``). The caller checks how close
+    the result's tip is (`sloshkit.export.ik.solve_joint_path`).
+
+    Parameters
+    ----------
+    arm : Arm
+        The arm.
+    target : numpy.ndarray
+        The tip frame (4, 4) in the base frame.
+    seed : numpy.ndarray
+        Joint positions to start from (dof,) [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        Joint positions (dof,) [rad].
+
+    References
+    ----------
+    J. Nocedal, S. J. Wright, *Numerical Optimization*, 2nd ed., Springer (2006), §10.3
+    (Gauss-Newton); ikpy ``Chain.inverse_kinematics_frame``.
+
+    Examples
+    --------
+    >>> arm = load_arm("ur5e")
+    >>> goal = arm.home_rad + 0.1
+    >>> found = solve_frame(arm, arm.forward(goal[None])[0], arm.home_rad)
+    >>> bool(np.allclose(found, goal, atol=1e-9))
+    True
+    """
+    newton = _newton_solution(arm, target, seed)
+    if newton is not None:
+        return newton
+    full = np.zeros(len(arm.chain.links))
+    active = np.asarray(arm.chain.active_links_mask, dtype=bool)
+    full[active] = seed
+    result = arm.chain.inverse_kinematics_frame(
+        target,
+        initial_position=full,
+        orientation_mode="all",
+        tol=1e-15,
+        optimizer_kwargs={"jac": lambda x: _residual_jacobian(arm, x)},
+    )
+    solution: FloatArray = np.asarray(result, dtype=float)[active]
+    return solution
+
+
+def _newton_solution(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray | None:
+    """The root of ikpy's "all"-orientation residual [p - p*; vec(R - R*)] near ``seed`` by
+    Gauss-Newton (Nocedal & Wright, *Numerical Optimization*, 2nd ed., Springer 2006, §10.3:
+    the least-squares step of the residual's Jacobian, `_residual_jacobian`), or None when it
+    does not converge in `NEWTON_ITERATIONS`, leaves the joint limits or moves a joint more
+    than `MAX_JOINT_STEP_RAD` from the seed (a branch the continuity check would refuse)."""
+    joints = np.asarray(seed, dtype=float).copy()
+    for _ in range(NEWTON_ITERATIONS):
+        rows = _residual_and_jacobian(arm, joints, target)
+        step = np.linalg.lstsq(rows[:, 1:], -rows[:, 0], rcond=None)[0]
+        joints += step
+        if not np.all(np.isfinite(joints)):
+            return None
+        if float(np.max(np.abs(step))) <= NEWTON_STEP_RAD:
+            inside = np.all(joints >= arm.lower_rad) and np.all(joints <= arm.upper_rad)
+            near = float(np.max(np.abs(joints - seed))) <= MAX_JOINT_STEP_RAD
+            return joints if inside and near else None
+    return None
+
+
+def _residual_and_jacobian(arm: Arm, joints_rad: FloatArray, target: FloatArray) -> FloatArray:
+    """ikpy's residual (12,) as the first column and its Jacobian (`_residual_jacobian`) as the
+    others, (12, 1 + dof)."""
+    jacobian, tip = arm.jacobian_and_tip(joints_rad)
+    rows = np.empty((12, 1 + jacobian.shape[1]))
+    rows[:3, 0] = tip[:3, 3] - target[:3, 3]
+    rows[3:, 0] = (tip[:3, :3] - target[:3, :3]).ravel()
+    rows[:, 1:] = _rows_of(jacobian, tip[:3, :3])
+    return rows
+
+
+def _residual_jacobian(arm: Arm, joints_rad: FloatArray) -> FloatArray:
+    """Jacobian of ikpy's "all"-orientation residual [p - p*; vec(R - R*)] (12, dof): rows
+    of the geometric Jacobian for p, and dR/dq_i = [a_i]x R for a revolute joint with world
+    axis a_i (Siciliano et al. 2009, §3.1), replacing ikpy's finite differences."""
+    jacobian, tip = arm.jacobian_and_tip(joints_rad)
+    return _rows_of(jacobian, tip[:3, :3])
+
+
+def _rows_of(jacobian: FloatArray, rotation: FloatArray) -> FloatArray:
+    """The residual's Jacobian from the geometric one: d vec(R)/dq_c = vec(w_c x R), the
+    cross product with each column of R (row-major vec, as ikpy's ``ravel``)."""
+    rows = np.empty((12, jacobian.shape[1]))
+    rows[:3] = jacobian[:3]
+    wx, wy, wz = jacobian[3], jacobian[4], jacobian[5]
+    for col in range(3):
+        vx, vy, vz = rotation[0, col], rotation[1, col], rotation[2, col]
+        rows[3 + col] = wy * vz - wz * vy
+        rows[6 + col] = wz * vx - wx * vz
+        rows[9 + col] = wx * vy - wy * vx
+    return rows
 
 
 def robot_names() -> tuple[str, ...]:
