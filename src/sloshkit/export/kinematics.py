@@ -234,8 +234,10 @@ def _newton_solution(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArr
     """The root of ikpy's "all"-orientation residual [p - p*; vec(R - R*)] near ``seed`` by
     Gauss-Newton (Nocedal & Wright, *Numerical Optimization*, 2nd ed., Springer 2006, §10.3:
     the least-squares step of the residual's Jacobian, `_residual_jacobian`), or None when it
-    does not converge in `NEWTON_ITERATIONS`, leaves the joint limits or moves a joint more
-    than `MAX_JOINT_STEP_RAD` from the seed (a branch the continuity check would refuse)."""
+    does not converge in `NEWTON_ITERATIONS`, stops short of the frame (a stationary point
+    with a residual above `REACH_TOLERANCE_M`: ikpy's bounded search may still reach it),
+    leaves the joint limits or moves a joint more than `MAX_JOINT_STEP_RAD` from the seed (a
+    branch the continuity check would refuse)."""
     joints = np.asarray(seed, dtype=float).copy()
     for _ in range(NEWTON_ITERATIONS):
         rows = _residual_and_jacobian(arm, joints, target)
@@ -244,9 +246,10 @@ def _newton_solution(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArr
         if not np.all(np.isfinite(joints)):
             return None
         if float(np.max(np.abs(step))) <= NEWTON_STEP_RAD:
+            reached = float(np.max(np.abs(rows[:, 0]))) <= REACH_TOLERANCE_M
             inside = np.all(joints >= arm.lower_rad) and np.all(joints <= arm.upper_rad)
             near = float(np.max(np.abs(joints - seed))) <= MAX_JOINT_STEP_RAD
-            return joints if inside and near else None
+            return joints if reached and inside and near else None
     return None
 
 
