@@ -129,7 +129,6 @@ def cone_step(
     >>> bool(abs(program.iterate(free.samples).excess - (1 - PROGRAM_MARGIN + free.sigma)) < 0.01)
     True
     """
-
     lim, ts = program.limits, samples.period_s
     dilate = dilation_trust is not None
     n = samples.s_m.size
@@ -473,8 +472,8 @@ def cone_step(
         conic.add("nonneg", [0, 1], [dilation, dilation], [1.0, -1.0], [dilation_trust] * 2)
         objective[slacks] = PENALTY
         objective[dilation] = 1.0
-    result, solves = conic.solve(objective)
-    program.programs += solves
+    result = conic.solve(objective)
+    program.programs += 1
     if result is None:
         return None
     x = np.asarray(result.x)

@@ -12,12 +12,6 @@ from typing import Any
 import numpy as np
 from scipy import sparse
 
-#: Clarabel's static regularisation of the KKT system for a second try when the first solve,
-#: at Clarabel's default (1e-8), ends in ``NumericalError``: measured on the tilted programs
-#: with an arm's joint rows (50 mm turn with the UR5e), which failed at 1e-8 on the export's
-#: period and all solve at 1e-6.
-RETRY_REGULARIZATION = 1e-6
-
 #: Forward-difference weights of orders 0..3 (the finite differences of the padded samples:
 #: a difference of order p over p + 1 consecutive samples, divided by h^p).
 DIFFERENCE_WEIGHTS = {0: (1.0,), 1: (-1.0, 1.0), 2: (1.0, -2.0, 1.0), 3: (-1.0, 3.0, -3.0, 1.0)}
@@ -86,10 +80,9 @@ class ConeRows:
         ).tocsc()
         return matrix, np.concatenate(rhs), cones
 
-    def solve(self, objective: Any) -> tuple[Any, int]:
+    def solve(self, objective: Any) -> Any:
         """Minimise objective . x over the rows (Clarabel, gap tolerances 1e-6, feasibility
-        1e-7: the linearisation is re-evaluated exactly after each solve). A solve that ends
-        in ``NumericalError`` is repeated once with `RETRY_REGULARIZATION`.
+        1e-7: the linearisation is re-evaluated exactly after each solve).
 
         Parameters
         ----------
@@ -98,37 +91,28 @@ class ConeRows:
 
         Returns
         -------
-        tuple
-            Clarabel's solution (None unless solved or almost solved) and the solves it took.
+        clarabel.DefaultSolution or None
+            The solution, None unless Clarabel solved or almost solved the program (the
+            searches then shrink their trust region).
 
         Examples
         --------
         >>> rows = ConeRows()
         >>> rows.add("nonneg", [0, 1], [0, 0], [-1.0, 1.0], [-1.0, 3.0])  # 1 <= x0 <= 3
-        >>> result, solves = rows.solve(np.array([1.0]))
-        >>> round(result.x[0], 6), solves
-        (1.0, 1)
+        >>> round(rows.solve(np.array([1.0])).x[0], 6)
+        1.0
         """
         import clarabel
 
         columns = len(objective)
         matrix, rhs, cones = self.assemble(columns)
+        settings = clarabel.DefaultSettings()
+        settings.verbose = False
+        settings.tol_gap_abs = settings.tol_gap_rel = 1e-6
+        settings.tol_feas = 1e-7
         quadratic = sparse.csc_matrix((columns, columns))
-        for solves, regularization in enumerate((None, RETRY_REGULARIZATION), start=1):
-            settings = clarabel.DefaultSettings()
-            settings.verbose = False
-            settings.tol_gap_abs = settings.tol_gap_rel = 1e-6
-            settings.tol_feas = 1e-7
-            if regularization is not None:
-                settings.static_regularization_constant = regularization
-            solver = clarabel.DefaultSolver(quadratic, objective, matrix, rhs, cones, settings)
-            result = solver.solve()
-            status = str(result.status)
-            if status in ("Solved", "AlmostSolved"):
-                return result, solves
-            if status != "NumericalError":
-                return None, solves
-        return None, solves
+        result = clarabel.DefaultSolver(quadratic, objective, matrix, rhs, cones, settings).solve()
+        return result if str(result.status) in ("Solved", "AlmostSolved") else None
 
 
 def vector_cones(
@@ -267,4 +251,4 @@ def tilt_rows(
     conic.add("nonneg", inner, base + inner, -np.ones(inner.size), bound)
 
 
-__all__ = ["DIFFERENCE_WEIGHTS", "RETRY_REGULARIZATION", "ConeRows", "tilt_rows", "vector_cones"]
+__all__ = ["DIFFERENCE_WEIGHTS", "ConeRows", "tilt_rows", "vector_cones"]
