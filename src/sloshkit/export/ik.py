@@ -1,12 +1,11 @@
 """Joint paths: inverse kinematics of a sampled tip path, checked sample by sample.
 
-Each sample's IK starts from the previous sample's solution, extrapolated linearly from the two
-before, so the arm stays on one branch (`sloshkit.export.kinematics.solve_frame`:
-Gauss-Newton on the compiled chain, kept when it converges inside the joint limits and within
-`MAX_JOINT_STEP_RAD` of that seed, else ikpy's bounded least squares); the first sample
-starts from the arm's home configuration (and, if that misses, from `FIRST_SAMPLE_SEEDS`
-around it). The joint path is then checked, in this order, and the first failure raises
-`InputError` naming the sample (index and time) and the joint:
+Each sample's IK (ikpy, bounded least squares on the tip frame, with the analytic Jacobian of
+its residual) starts from the previous sample's solution, extrapolated linearly from the two
+before, so the arm stays on one branch; the first sample starts from the arm's home
+configuration (and, if that misses, from `FIRST_SAMPLE_SEEDS` around it). The joint path is
+then checked, in this order, and the first failure raises `InputError` naming the sample
+(index and time) and the joint:
 
 1. reach: the IK tip frame must match the target within `REACH_TOLERANCE_M` and
    `REACH_TOLERANCE_RAD` (a joint stuck on a position limit is named as the cause);
@@ -37,7 +36,6 @@ from sloshkit.export.kinematics import (
     REACH_TOLERANCE_M,
     REACH_TOLERANCE_RAD,
     Arm,
-    solve_frame,
 )
 from sloshkit.results import ResultMixin
 
@@ -318,10 +316,40 @@ def _solve_and_measure(
     arm: Arm, target: FloatArray, seed: FloatArray
 ) -> tuple[FloatArray, float, float]:
     """IK from ``seed``, and how far the solution's tip is from the target [m, rad]."""
-    joints = solve_frame(arm, target, seed)
+    joints = _solve_one(arm, target, seed)
     reached = arm.forward(joints[None])[0]
     distance = float(np.linalg.norm(reached[:3, 3] - target[:3, 3]))
     return joints, distance, float(rotation_angle_rad(reached, target))
+
+
+def _solve_one(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
+    full = np.zeros(len(arm.chain.links))
+    active = np.asarray(arm.chain.active_links_mask, dtype=bool)
+    full[active] = seed
+    result = arm.chain.inverse_kinematics_frame(
+        target,
+        initial_position=full,
+        orientation_mode="all",
+        tol=1e-15,
+        optimizer_kwargs={"jac": lambda x: _residual_jacobian(arm, x)},
+    )
+    solution: FloatArray = np.asarray(result, dtype=float)[active]
+    return solution
+
+
+def _residual_jacobian(arm: Arm, joints_rad: FloatArray) -> FloatArray:
+    """Jacobian of ikpy's "all"-orientation residual [p - p*; vec(R - R*)] (12, dof): rows
+    of the geometric Jacobian for p, and dR/dq_i = [a_i]x R for a revolute joint with world
+    axis a_i (Siciliano et al. 2009, §3.1), replacing ikpy's finite differences."""
+    jacobian, tip = arm.jacobian_and_tip(joints_rad)
+    rotation = tip[:3, :3]
+    rows = np.empty((12, jacobian.shape[1]))
+    rows[:3] = jacobian[:3]
+    for column in range(jacobian.shape[1]):
+        wx, wy, wz = jacobian[3:, column]
+        skew = np.array([[0.0, -wz, wy], [wz, 0.0, -wx], [-wy, wx, 0.0]])
+        rows[3:, column] = (skew @ rotation).ravel()
+    return rows
 
 
 def _where(times: FloatArray, index: int) -> str:

@@ -3,15 +3,10 @@
 The arm's chain is read from a URDF between a base link and a tip link and handed to ikpy
 (P. Manceron, *IKPy*, https://github.com/Phylliade/ikpy), whose forward kinematics multiplies
 the URDF joint transforms and whose inverse kinematics is a bounded least-squares fit of the
-tip frame (scipy ``least_squares``). The product of the link transforms is evaluated by a
-compiled loop (`CompiledChain`: numba, the same transforms as ikpy's ``URDFLink``, checked
-against ikpy's own forward kinematics in the tests), because ikpy's per-link Python matrices
-were most of an exported trajectory's IK time. One tip frame's IK (`solve_frame`) is
-Gauss-Newton from the seed, ikpy's least squares where that does not converge near it;
-`sloshkit.export.ik` adds what a trajectory needs: each sample seeded with the previous
-solution (continuity), and the joint path checked for reach, joint position limits, jumps,
-joint velocity limits (URDF ``<limit velocity=...>``) and singularities (the condition number
-of the geometric Jacobian).
+tip frame (scipy ``least_squares``). sloshkit adds what a trajectory needs on top of one IK
+call: each sample is seeded with the previous solution (continuity), and the joint path is
+checked for reach, joint position limits, jumps, joint velocity limits (URDF ``<limit
+velocity=...>``) and singularities (the condition number of the geometric Jacobian).
 
 Built-in arms live in ``sloshkit/export/robots`` (see the README there for their sources).
 """
@@ -123,8 +118,7 @@ class Arm:
 
         References
         ----------
-        The product of the URDF joint transforms (`sloshkit.export.chain.CompiledChain`, the
-        transforms of ikpy's ``Chain.forward_kinematics``).
+        ikpy ``Chain.forward_kinematics`` (product of the URDF joint transforms).
 
         Examples
         --------
@@ -133,10 +127,7 @@ class Arm:
         array([-0.8172, -0.2329,  0.0628])
         """
         joints = np.atleast_2d(np.asarray(joints_rad, dtype=float))
-        full = np.zeros((joints.shape[0], len(self.chain.links)))
-        full[:, self._active] = joints
-        tips: FloatArray = self.chain.tip_frames(full)
-        return tips
+        return np.stack([self.chain.forward_kinematics(self._full(row)) for row in joints])
 
     def jacobian(self, joints_rad: FloatArray) -> FloatArray:
         """Geometric Jacobian (6, dof) of the tip in the base frame: rows vx, vy, vz [m/rad],
@@ -164,126 +155,23 @@ class Arm:
         return self.jacobian_and_tip(joints_rad)[0]
 
     def jacobian_and_tip(self, joints_rad: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """The geometric Jacobian (`jacobian`) and the tip frame (4x4), from one compiled forward
-        pass (`sloshkit.export.chain.CompiledChain.jacobian_and_tip`)."""
-        jacobian, tip = self.chain.jacobian_and_tip(self._full(np.asarray(joints_rad, float)))
-        return jacobian, tip
-
-
-#: Gauss-Newton iterations of `solve_frame` before ikpy's bounded least squares
-#: takes over.
-NEWTON_ITERATIONS = 8
-#: A Gauss-Newton solution is kept when its last step moved no joint more than this [rad].
-NEWTON_STEP_RAD = 1e-12
-
-
-def solve_frame(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray:
-    """Joint positions that put the arm's tip on ``target``, found from ``seed``.
-
-    Gauss-Newton on ikpy's residual when it converges inside the joint limits and within
-    `MAX_JOINT_STEP_RAD` of the seed (in a trajectory the seed is the previous sample's
-    solution, extrapolated: the usual case), else ikpy's bounded least squares
-    (``Chain.inverse_kinematics_frame``, scipy ``least_squares``). The caller checks how close
-    the result's tip is (`sloshkit.export.ik.solve_joint_path`).
-
-    Parameters
-    ----------
-    arm : Arm
-        The arm.
-    target : numpy.ndarray
-        The tip frame (4, 4) in the base frame.
-    seed : numpy.ndarray
-        Joint positions to start from (dof,) [rad].
-
-    Returns
-    -------
-    numpy.ndarray
-        Joint positions (dof,) [rad].
-
-    References
-    ----------
-    J. Nocedal, S. J. Wright, *Numerical Optimization*, 2nd ed., Springer (2006), §10.3
-    (Gauss-Newton); ikpy ``Chain.inverse_kinematics_frame``.
-
-    Examples
-    --------
-    >>> arm = load_arm("ur5e")
-    >>> goal = arm.home_rad + 0.1
-    >>> found = solve_frame(arm, arm.forward(goal[None])[0], arm.home_rad)
-    >>> bool(np.allclose(found, goal, atol=1e-9))
-    True
-    """
-    newton = _newton_solution(arm, target, seed)
-    if newton is not None:
-        return newton
-    full = np.zeros(len(arm.chain.links))
-    active = np.asarray(arm.chain.active_links_mask, dtype=bool)
-    full[active] = seed
-    result = arm.chain.inverse_kinematics_frame(
-        target,
-        initial_position=full,
-        orientation_mode="all",
-        tol=1e-15,
-        optimizer_kwargs={"jac": lambda x: _residual_jacobian(arm, x)},
-    )
-    solution: FloatArray = np.asarray(result, dtype=float)[active]
-    return solution
-
-
-def _newton_solution(arm: Arm, target: FloatArray, seed: FloatArray) -> FloatArray | None:
-    """The root of ikpy's "all"-orientation residual [p - p*; vec(R - R*)] near ``seed`` by
-    Gauss-Newton (Nocedal & Wright, *Numerical Optimization*, 2nd ed., Springer 2006, §10.3:
-    the least-squares step of the residual's Jacobian, `_residual_jacobian`), or None when it
-    does not converge in `NEWTON_ITERATIONS`, stops short of the frame (a stationary point
-    with a residual above `REACH_TOLERANCE_M`: ikpy's bounded search may still reach it),
-    leaves the joint limits or moves a joint more than `MAX_JOINT_STEP_RAD` from the seed (a
-    branch the continuity check would refuse)."""
-    joints = np.asarray(seed, dtype=float).copy()
-    for _ in range(NEWTON_ITERATIONS):
-        rows = _residual_and_jacobian(arm, joints, target)
-        step = np.linalg.lstsq(rows[:, 1:], -rows[:, 0], rcond=None)[0]
-        joints += step
-        if not np.all(np.isfinite(joints)):
-            return None
-        if float(np.max(np.abs(step))) <= NEWTON_STEP_RAD:
-            reached = float(np.max(np.abs(rows[:, 0]))) <= REACH_TOLERANCE_M
-            inside = np.all(joints >= arm.lower_rad) and np.all(joints <= arm.upper_rad)
-            near = float(np.max(np.abs(joints - seed))) <= MAX_JOINT_STEP_RAD
-            return joints if reached and inside and near else None
-    return None
-
-
-def _residual_and_jacobian(arm: Arm, joints_rad: FloatArray, target: FloatArray) -> FloatArray:
-    """ikpy's residual (12,) as the first column and its Jacobian (`_residual_jacobian`) as the
-    others, (12, 1 + dof)."""
-    jacobian, tip = arm.jacobian_and_tip(joints_rad)
-    rows = np.empty((12, 1 + jacobian.shape[1]))
-    rows[:3, 0] = tip[:3, 3] - target[:3, 3]
-    rows[3:, 0] = (tip[:3, :3] - target[:3, :3]).ravel()
-    rows[:, 1:] = _rows_of(jacobian, tip[:3, :3])
-    return rows
-
-
-def _residual_jacobian(arm: Arm, joints_rad: FloatArray) -> FloatArray:
-    """Jacobian of ikpy's "all"-orientation residual [p - p*; vec(R - R*)] (12, dof): rows
-    of the geometric Jacobian for p, and dR/dq_i = [a_i]x R for a revolute joint with world
-    axis a_i (Siciliano et al. 2009, §3.1), replacing ikpy's finite differences."""
-    jacobian, tip = arm.jacobian_and_tip(joints_rad)
-    return _rows_of(jacobian, tip[:3, :3])
-
-
-def _rows_of(jacobian: FloatArray, rotation: FloatArray) -> FloatArray:
-    """The residual's Jacobian from the geometric one: d vec(R)/dq_c = vec(w_c x R), the
-    cross product with each column of R (row-major vec, as ikpy's ``ravel``)."""
-    rows = np.empty((12, jacobian.shape[1]))
-    rows[:3] = jacobian[:3]
-    wx, wy, wz = jacobian[3], jacobian[4], jacobian[5]
-    for col in range(3):
-        vx, vy, vz = rotation[0, col], rotation[1, col], rotation[2, col]
-        rows[3 + col] = wy * vz - wz * vy
-        rows[6 + col] = wz * vx - wx * vz
-        rows[9 + col] = wx * vy - wy * vx
-    return rows
+        """The geometric Jacobian (`jacobian`) and the tip frame (4x4), from one forward pass."""
+        frames = self.chain.forward_kinematics(
+            self._full(np.asarray(joints_rad, dtype=float)), full_kinematics=True
+        )
+        tip = frames[-1][:3, 3]
+        columns = []
+        for index in np.flatnonzero(self._active):
+            link = self.chain.links[index]
+            rotation = frames[index][:3, :3]
+            origin = frames[index][:3, 3]
+            if link.joint_type == "prismatic":
+                axis = rotation @ np.asarray(link.translation, dtype=float)
+                columns.append(np.concatenate([axis, np.zeros(3)]))
+            else:
+                axis = rotation @ np.asarray(link.rotation, dtype=float)
+                columns.append(np.concatenate([np.cross(axis, tip - origin), axis]))
+        return np.column_stack(columns), np.asarray(frames[-1], dtype=float)
 
 
 def robot_names() -> tuple[str, ...]:
@@ -354,9 +242,9 @@ def load_arm(
 
 
 def _arm_from_urdf(path: Path, base_link: str, tip_link: str, home_rad: FloatArray | None) -> Arm:
+    from ikpy.chain import Chain
     from ikpy.link import OriginLink, URDFLink
 
-    from sloshkit.export.chain import CompiledChain
     from sloshkit.export.urdf import read_urdf
 
     tree = read_urdf(path)  # validated before any use (sloshkit.export.urdf)
@@ -380,7 +268,7 @@ def _arm_from_urdf(path: Path, base_link: str, tip_link: str, home_rad: FloatArr
     mask = [False] + [joint.movable for joint in joints]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        chain = CompiledChain([OriginLink(), *links], active_links_mask=mask, name=tree.name)
+        chain = Chain([OriginLink(), *links], active_links_mask=mask, name=tree.name)
     low = np.asarray([joint.lower for joint in movable])
     high = np.asarray([joint.upper for joint in movable])
     if home_rad is None:
