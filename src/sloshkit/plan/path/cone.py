@@ -12,7 +12,7 @@ doi:10.1109/CDC.2016.7798816; Nocedal & Wright, *Numerical Optimization*, 2nd ed
 With the period free, h (1 + epsilon) (free final time by time dilation: Szmuk & Acikmese,
 AIAA GNC (2018), doi:10.2514/6.2018-0617), it minimises epsilon plus an exact penalty of the
 limits still exceeded. Solved by Clarabel (`sloshkit.plan.path.rows.ConeRows.solve`); polyhedral
-facets of the 3-D norms let the iterates break the jerk limit where no facet covered: cones.
+facets of the 3-D norms let iterates break the jerk limit between facets, so norms stay cones.
 """
 
 from __future__ import annotations
