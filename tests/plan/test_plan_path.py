@@ -448,3 +448,34 @@ def test_an_impossible_request_names_the_limit_that_binds_each_method(
         message = messages[method]
         assert "at the lowest cap" in message or "at that cap" in message, message
         assert named in message and "against its" in message, message
+
+
+@pytest.mark.slow
+def test_auto_adds_optimal_on_a_short_move_only(
+    robot_vial: SloshModel, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``auto`` runs ``optimal`` when the fastest other plan is short (at most
+    AUTO_OPTIMAL_MAX_SAMPLES samples), and the chosen plan is then no slower than any other
+    verified candidate; with the bound below the move's samples it does not run it."""
+    from sloshkit.plan.path import planner
+
+    problem = PathProblem(
+        path_from_waypoints([[0, 0, 0], [0.15, 0, 0.05]]),
+        CartesianLimits(2.0, 10.0, 100.0),
+        SpatialSloshLimits(0.01, 0.002),
+        robot_vial,
+        sample_period_s=0.01,
+    )
+    result = plan_path(problem, "auto", tilt=False)
+    methods = [c.method for c in result.candidates]
+    assert methods.count("optimal") == 1
+    feasible = [c for c in result.candidates if c.feasible]
+    assert result.chosen is not None and result.chosen.feasible
+    assert result.chosen.duration_s == min(c.duration_s for c in feasible)
+    # on this move optimal gives 0.64 s, retime 0.75 s and shaped 0.96 s
+    assert result.chosen.method == "optimal"
+    others = min(c.duration_s for c in feasible if c.method != "optimal")
+    assert others / problem.sample_period_s <= planner.AUTO_OPTIMAL_MAX_SAMPLES
+    monkeypatch.setattr(planner, "AUTO_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
+    without = plan_path(problem, "auto", tilt=False)
+    assert "optimal" not in [c.method for c in without.candidates]

@@ -54,7 +54,8 @@ def plan_command(
         typer.Option(
             "--method",
             help="auto, paper, trapezoidal, cubic, quintic, septic, fast, shaped, optimal; "
-            "with a path: auto, retime, shaped, tilt, optimal.",
+            "with a path: auto (also optimal on moves of at most 300 samples), retime, shaped, "
+            "tilt, optimal.",
         ),
     ] = "auto",
     robust: Annotated[

@@ -19,7 +19,7 @@ speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the tim
 - ``optimal``: the minimum-time timing of the untilted path by sequential second-order-cone
   programs on the export grid with the nonlinear model as a defect correction
   (`sloshkit.plan.path.optimal`): the fastest verified moves, at minutes of compute on long
-  paths, so not part of ``auto`` yet.
+  paths, so ``auto`` runs it only on short moves (`AUTO_OPTIMAL_MAX_SAMPLES`).
 
 Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path.result.verify`); when
 the verified export still exceeds a limit that a slower copy meets (slosh, Cartesian, angular,
@@ -229,6 +229,22 @@ def _retime(
     return replace(chosen, method="retime", compute_time_s=time.perf_counter() - started), timing
 
 
+#: ``auto`` also runs ``optimal`` when the fastest verified plan of the other methods has at
+#: most this many export samples (1.2 s at 4 ms). Its compute grows with the samples: about
+#: 11 s upright and 17 s tilted for the benchmark's 0.77 s pick-and-place (193 samples),
+#: 75-120 s for the 2.1 s TRD_2D move (523 samples), minutes beyond.
+AUTO_OPTIMAL_MAX_SAMPLES = 300
+
+
+def _optimal_affordable(problem: PathProblem, feasible: Sequence[PathCandidate]) -> bool:
+    """Whether ``auto`` runs ``optimal`` too: a verified plan exists and the fastest one has at
+    most `AUTO_OPTIMAL_MAX_SAMPLES` samples (``optimal``'s programs grow with the samples)."""
+    if not feasible:
+        return False
+    fastest = min(c.duration_s for c in feasible)
+    return fastest / problem.sample_period_s <= AUTO_OPTIMAL_MAX_SAMPLES
+
+
 def plan_path(
     problem: PathProblem,
     method: str = "auto",
@@ -250,8 +266,9 @@ def plan_path(
     problem : PathProblem
         Path, Cartesian/angular limits, slosh limits, model, sample period.
     method : str
-        ``auto`` (all, the fastest verified), ``retime``, ``shaped``, ``tilt`` or
-        ``optimal`` (`sloshkit.plan.path.optimal`).
+        ``auto`` (``retime``, ``shaped``, ``tilt`` with ``tilt``, and ``optimal`` when the
+        fastest of them has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples; the fastest verified),
+        ``retime``, ``shaped``, ``tilt`` or ``optimal`` (`sloshkit.plan.path.optimal`).
     reference : Timing, optional
         The path's existing timing (e.g. of the pose file it came from): slowed uniformly and
         reported as the ``uniform`` candidate, never chosen.
@@ -323,6 +340,12 @@ def plan_path(
             retimed = [] if timing is None or not found.feasible else [timing]
             candidates[-1] = improved_tilt(problem, candidates[-1], retimed, verifier)
     feasible = [c for c in candidates if c.feasible]
+    if method == "auto" and _optimal_affordable(problem, feasible):
+        from sloshkit.plan.path.optimal import plan_optimal
+
+        say("optimal: the minimum-time timing by sequential cone programs (a short move)")
+        candidates.append(plan_optimal(problem, verifier, say, tilt=tilt))
+        feasible = [c for c in candidates if c.feasible]
     pool = feasible or [c for c in candidates if c.poses is not None]
     chosen = min(pool, key=lambda c: c.duration_s) if pool else None
     if uniform is not None:
@@ -331,6 +354,7 @@ def plan_path(
 
 
 __all__ = [
+    "AUTO_OPTIMAL_MAX_SAMPLES",
     "PATH_METHODS",
     "PathCandidate",
     "PathPlanResult",
