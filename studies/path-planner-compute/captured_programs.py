@@ -6,6 +6,7 @@ Usage (from the repository root, in the project's venv)::
     python studies/path-planner-compute/captured_programs.py highs PROGRAM.pkl [PROGRAM.pkl ...]
     python studies/path-planner-compute/captured_programs.py generate PROGRAM.pkl [SPACING]
     python studies/path-planner-compute/captured_programs.py spline PROGRAM.pkl [SPACING ...]
+    python studies/path-planner-compute/captured_programs.py scs PROGRAM.pkl [PROGRAM.pkl ...]
 
 ``capture`` runs ``sloshkit plan PLAN_ARGS`` with Clarabel wrapped, and pickles every program
 of the export's period (more than 5,000 columns) that it solves. ``highs`` solves each program
@@ -16,7 +17,8 @@ states out (the dynamics equalities are block-triangular in them) and solves wit
 state-dependent cones that are within 30 % of binding at the linearisation point, adding the
 violated ones until none is (with SPACING, on the program of ``spline``). ``spline`` writes the
 timing's deviations as a cubic B-spline of control points SPACING samples apart (2, 4 and 8 by
-default) and solves that program sparse and condensed. Each prints its solve times against
+default) and solves that program sparse and condensed. ``scs`` solves each program with SCS,
+warm-started from the previous one (session 17). Each prints its solve times against
 Clarabel's on the same program. The figures are in this folder's README.
 """
 
@@ -321,6 +323,56 @@ def spline(path: str, spacings: list[int]) -> None:
         )
 
 
+def first_order(paths: list[str]) -> None:
+    """Each program by SCS (``pip install scs``; not a dependency of sloshkit) at 1e-4 and
+    1e-5, warm-started from the previous program's solution, against Clarabel's defaults."""
+    import clarabel
+    import scs
+
+    previous: tuple[Any, Any, Any] | None = None
+    for path in paths:
+        _, q, A, b, cones = _load(path)
+        settings = clarabel.DefaultSettings()
+        settings.verbose = False
+        objects = [getattr(clarabel, name)(dim) for name, dim in cones]
+        zero = sparse.csc_matrix((A.shape[1], A.shape[1]))
+        started = time.perf_counter()
+        exact = clarabel.DefaultSolver(zero, q, sparse.csc_matrix(A), b, objects, settings).solve()
+        clarabel_s = time.perf_counter() - started
+        # SCS wants the rows ordered zero, nonnegative, second-order cones
+        rows: dict[str, list[np.ndarray]] = {k: [] for k in _SCS_ORDER}
+        start = 0
+        for name, dim in cones:
+            rows[name].append(np.arange(start, start + dim))
+            start += dim
+        order = np.concatenate([np.concatenate(rows[k]) for k in _SCS_ORDER if rows[k]])
+        data = {"A": sparse.csc_matrix(A[order]), "b": np.asarray(b)[order], "c": np.asarray(q)}
+        cone = {
+            "z": sum(d for n, d in cones if n == "ZeroConeT"),
+            "l": sum(d for n, d in cones if n == "NonnegativeConeT"),
+            "q": [d for n, d in cones if n == "SecondOrderConeT"],
+        }
+        for eps in (1e-4, 1e-5):
+            started = time.perf_counter()
+            solver = scs.SCS(data, cone, eps_abs=eps, eps_rel=eps, verbose=False, max_iters=20000)
+            warm = previous is not None and previous[0].shape == (A.shape[1],)
+            out = (
+                solver.solve(warm_start=True, x=previous[0], y=previous[1], s=previous[2])
+                if warm and previous is not None
+                else solver.solve()
+            )
+            print(
+                f"{Path(path).name} SCS {eps:g}: {time.perf_counter() - started:.2f} s, "
+                f"{out['info']['iter']} iterations, objective {out['info']['pobj']:.5e}; "
+                f"Clarabel {clarabel_s:.2f} s, {exact.iterations}, {exact.obj_val:.5e}",
+                flush=True,
+            )
+        previous = (out["x"], out["y"], out["s"])
+
+
+_SCS_ORDER = ("ZeroConeT", "NonnegativeConeT", "SecondOrderConeT")
+
+
 if __name__ == "__main__":
     command, rest = sys.argv[1], sys.argv[2:]
     if command == "capture":
@@ -331,5 +383,7 @@ if __name__ == "__main__":
         generate(rest[0], int(rest[1]) if rest[1:] else 0)
     elif command == "spline":
         spline(rest[0], [int(k) for k in rest[1:]] or [2, 4, 8])
+    elif command == "scs":
+        first_order(rest)
     else:
-        sys.exit(f"unknown command {command!r}: capture, highs, generate or spline")
+        sys.exit(f"unknown command {command!r}: capture, highs, generate, spline or scs")
