@@ -10,6 +10,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
 from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import s_curve
@@ -20,7 +21,7 @@ from sloshkit.plan.path.minimum_time import free_time
 from sloshkit.plan.path.planner import plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
-from sloshkit.plan.path.samples import PathSamples, export_poses, smoothed
+from sloshkit.plan.path.samples import PathSamples, export_poses, samples_from_poses, smoothed
 from sloshkit.sim.spatial import simulate_spatial
 
 LIMITS = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)
@@ -200,11 +201,19 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(
         sample_period_s=period_s,
     )
     program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
-    best, _ = free_time(program, _samples(problem, 0.55))
+    found = free_time(program, _samples(problem, 0.55))
+    assert found is not None
+    best = found[0]
     ts = problem.sample_period_s
     grid = steps_to_reach(one_d.chosen.duration_s, ts) * ts
     assert best.feasible
     assert best.samples.steps * ts == pytest.approx(grid, abs=ts + 1e-12)
+    if period_s == 10e-3:
+        # a bound below the coarse minimum ends the search after the coarse grid
+        lines: list[str] = []
+        bound = 0.9 * one_d.chosen.duration_s
+        assert free_time(program, _samples(problem, 0.55), lines.append, longest_s=bound) is None
+        assert "longer than" in lines[-1]
 
 
 @pytest.mark.slow
@@ -343,3 +352,65 @@ def test_the_cli_warns_only_when_optimal_planned_upright_with_an_arm() -> None:
         warn_if_planned_upright(SimpleNamespace(candidates=[upright]))
     assert [w.category for w in caught] == [ValidityWarning]
     assert reason in str(caught[0].message)
+
+
+def test_samples_from_poses_reads_back_a_tilted_export_of_a_turning_path(
+    robot_vial: SloshModel,
+) -> None:
+    """The inverse of `export_poses` on the corner path (it turns 90 deg about z), tilted
+    about a centre 50 mm up: the same path parameter and tilt at every sample; poses off the
+    path, turned about the container's axis or on another period are refused."""
+    problem = replace(_corner_problem(robot_vial), tilt_centre_height_m=0.05)
+    start = _samples(problem, 0.5)
+    phase = np.linspace(0.0, 1.0, start.s_m.size)
+    tilt = 0.2 * np.column_stack((np.sin(np.pi * phase) ** 2, np.sin(2 * np.pi * phase)))
+    samples = PathSamples(start.s_m, tilt, start.period_s)
+    poses = export_poses(problem, samples)
+    read = samples_from_poses(problem, poses)
+    assert read.period_s == problem.sample_period_s
+    np.testing.assert_allclose(read.s_m, samples.s_m, atol=1e-8)
+    np.testing.assert_allclose(read.tilt_rad, tilt, atol=1e-8)
+    shifted = replace(poses, position_m=poses.position_m + np.array([0.0, 0.0, 0.002]))
+    with pytest.raises(ValueError, match="mm from the path"):
+        samples_from_poses(problem, shifted)
+    turn = Rotation.from_rotvec([0.0, 0.0, 0.05]) * Rotation.from_quat(poses.quaternion_xyzw)
+    offset = [0.0, 0.0, problem.tilt_centre_height_m]
+    # the centre kept on the path, the container turned about its axis
+    turned = replace(
+        poses,
+        position_m=poses.position_m
+        + Rotation.from_quat(poses.quaternion_xyzw).apply(offset)
+        - turn.apply(offset),
+        quaternion_xyzw=turn.as_quat(),
+    )
+    with pytest.raises(ValueError, match="about the container's axis"):
+        samples_from_poses(problem, turned)
+    with pytest.raises(ValueError, match="export period"):
+        samples_from_poses(problem, replace(poses, time_s=2.0 * poses.time_s))
+
+
+@pytest.mark.slow
+def test_optimal_with_tilt_starts_its_tilted_search_from_tilts_plan(
+    robot_vial: SloshModel,
+) -> None:
+    """``plan_path(..., "optimal", tilt=True)`` runs ``tilt`` first and starts the tilted
+    programs' coarse search from its verified plan too; the plan returned is verified and
+    tilts, and ``detail["seeds_s"]`` names the start's duration."""
+    problem = PathProblem(
+        path_from_waypoints([[0, 0, 0], [0.12, 0, 0]]),
+        CartesianLimits(2.0, 10.0, 100.0),
+        SpatialSloshLimits(0.008, 0.001),
+        robot_vial,
+        sample_period_s=0.01,
+        max_tilt_rad=math.radians(20.0),
+    )
+    lines: list[str] = []
+    found = plan_path(problem, "optimal", tilt=True, progress=lines.append)
+    tilt = plan_path(problem, "tilt")
+    assert [c.method for c in found.candidates] == ["optimal"]
+    assert found.chosen is not None and found.feasible and tilt.chosen is not None
+    assert found.chosen.verification is not None
+    assert found.chosen.verification.peak_tilt_rad > 0.0
+    assert found.chosen.detail["seeds_s"] == [pytest.approx(tilt.chosen.duration_s)]
+    assert any("tilt's plan first" in line for line in lines)
+    assert sum("free period" in line for line in lines) >= 2

@@ -10,6 +10,7 @@ spread by a cubic B-spline, then on the export grid itself (`free_time`).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 from sloshkit.plan.path.cone import PENALTY, PROGRAM_MARGIN, cone_step
@@ -120,15 +121,28 @@ COARSE_ITERATIONS = 60
 EXPORT_TRIES = 4
 
 
+def _length(iterate: ProgramIterate) -> float:
+    """The duration of an iterate's samples [s]."""
+    return iterate.samples.steps * iterate.samples.period_s
+
+
 def free_time(
-    program: PathProgram, start: PathSamples, log: Any = None, coarse: bool = True
-) -> tuple[ProgramIterate, list[tuple[int, float]]]:
+    program: PathProgram,
+    start: PathSamples,
+    log: Any = None,
+    coarse: bool = True,
+    seeds: Sequence[PathSamples] = (),
+    longest_s: float = math.inf,
+) -> tuple[ProgramIterate, list[tuple[int, float]]] | None:
     """The fewest export samples whose timing meets every limit.
 
     1. When ``coarse``, on a grid of `COARSE_PERIOD_S` (its programs a quarter the size), or
        on the export's period when that is longer than half of it: the bracketed search over
        N (`_minimum_time`), then the same N with the period free (`_dilated_search`): the
-       coarse minimum time.
+       coarse minimum time. Each of ``seeds`` (verified plans of other methods) gives one more
+       coarse minimum, its period free from the seed's own duration, and the shortest
+       feasible one goes on (the searches are local: on RD_2D, tilted, the capped timing's
+       ends at 5.5 s and ``tilt``'s plan's at 2.8 s).
     2. On the export's period Ts (when step 1 ran on a coarser grid or not at all): that
        timing spread (`smoothed`) over the steps of its
        duration, the period free again (the finer grid sees the higher modes' residual the
@@ -148,11 +162,18 @@ def free_time(
         Receives one line per search.
     coarse : bool
         Whether to start on the coarse grid (False: ``start`` is already near the optimum).
+    seeds : sequence of PathSamples
+        More starts of the coarse grid's search, on the export grid, each meeting the limits
+        (used only when ``coarse``).
+    longest_s : float
+        A coarse minimum that meets the limits and is longer than this [s] ends the search
+        (None is returned): the finer grids would not bring it below a plan already found.
 
     Returns
     -------
-    tuple
-        The feasible iterate (`ProgramIterate`) and the (N, r) pairs tried on the export grid.
+    tuple or None
+        The feasible iterate (`ProgramIterate`) and the (N, r) pairs tried on the export grid;
+        None when the coarse minimum is longer than ``longest_s``.
 
     Raises
     ------
@@ -204,7 +225,18 @@ def free_time(
         found, _ = _minimum_time(program, rescaled(start, coarse_steps, factor * ts), log)
         # the coarse grid's own minimum, its period free
         found = free(found.samples, found.samples.steps, COARSE_ITERATIONS, 0.1)
+        for seed in seeds:
+            # a verified plan needs no bracket: its period free from its own duration
+            other = free(seed, steps_to_reach(seed.steps * ts, factor * ts), COARSE_ITERATIONS, 0.1)
+            if other.feasible and (not found.feasible or _length(other) < _length(found)):
+                found = other
+                if log:
+                    log(f"the search from a {seed.steps * ts:.3f} s plan goes on")
         current = found.samples
+        if found.feasible and _length(found) > longest_s:
+            if log:
+                log(f"coarse minimum {_length(found):.4f} s: longer than {longest_s:.4f} s")
+            return None
     if factor > 1 or not coarse:
         # on the export's period; it starts near its optimum: a quarter of the trust regions
         duration = current.steps * current.period_s
