@@ -1,31 +1,31 @@
-"""The minimum-time timing of a 3-D path, verified: rounds of the free-time search of the
-path program (`sloshkit.plan.path.minimum_time.free_time`; `sloshkit.plan.path.program`, the
-model; `sloshkit.plan.path.cone`, one program), each exported and re-simulated.
+"""The minimum-time timing of a 3-D path, verified: rounds of the minimum-time search of the
+spline transcription (`sloshkit.plan.path.minimum_time.shortest`;
+`sloshkit.plan.path.transcription`, the variables and one program;
+`sloshkit.plan.path.program`, the model), each exported and re-simulated.
 
 The programs model what the verification simulates without its smoothing filter; the
 verification, which also simulates the export through that filter, can still exceed a slosh
 limit by a percent or two. The program's limit is then moved by regula falsi (`_next_limit`)
-and the search restarts from the last samples on the export's period (`plan_optimal`).
+and the search restarts from the last splines (`plan_optimal`).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
 from sloshkit.model.theory import GRAVITY_M_S2
-from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path.joints import joint_map
-from sloshkit.plan.path.minimum_time import free_time
-from sloshkit.plan.path.program import PathProgram, ProgramIterate, ProgramLimits
-from sloshkit.plan.path.samples import PathSamples, export_poses, rescaled, samples_from_poses
+from sloshkit.plan.path.minimum_time import knot_count, shortest
+from sloshkit.plan.path.program import PathProgram, ProgramLimits
+from sloshkit.plan.path.samples import export_poses
+from sloshkit.plan.path.transcription import SplineTiming, SplineTranscription, fit_timing
 
 #: Searches of `plan_optimal`, each with the program's slosh limits moved towards the values
 #: at which the verification meets its limits (`_next_limit`), at most.
-TIGHTENINGS = 5
+TIGHTENINGS = 4
 #: A verified plan whose peak or residual is within this fraction of its limit ends them.
 LIMIT_TOLERANCE = 0.02
 #: The tilt's rate and acceleration limits where the angular ones are lifted [rad/s, rad/s^2]
@@ -35,39 +35,59 @@ TILT_ACCELERATION_RAD_S2 = math.radians(1000.0)
 #: Where the program's slosh limits aim, as a fraction of the limits: the first round starts
 #: there and `_next_limit` moves them towards the verification meeting it.
 LIMIT_AIM = 1.0 - 0.5 * LIMIT_TOLERANCE
-#: The second search (upright, after the tilted one) ends after its coarse grid when that
-#: minimum is longer than the first search's verified plan by more than this fraction: the
-#: finer grids moved the coarse minimum by -0.8 % to +2.8 % on the benchmark's cases.
-PRUNE = 0.03
 
 
-def plan_optimal(
-    problem: Any,
-    verifier: Any,
-    log: Any = None,
-    tilt: bool = False,
-    seeds: Sequence[PoseTrajectory] = (),
-) -> Any:
+def capped_start(problem: Any, shaped: bool = False) -> SplineTiming:
+    """A first timing: the time-optimal speed profile under the quasi-static acceleration
+    that tilts a level surface to the height limit (h = R a / g;
+    `sloshkit.plan.path.retime.capped_timing`), as splines on the export grid. ``shaped``:
+    box-filtered for the jerk limit and shaped on the first mode for the turning of the path
+    (`sloshkit.plan.path.retime.family_member` with `curve_shaper`), a residual that stays
+    small when the timing is stretched.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
+    >>> problem = sk.PathProblem(sk.path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
+    ...     sk.CartesianLimits(2.0, 10.0, 100.0), sk.SpatialSloshLimits(0.008, 0.001), model)
+    >>> start = capped_start(problem)
+    >>> start.steps, float(start.coefficients_m[-1])
+    (115, 0.1)
+    """
+    from sloshkit.plan.path.retime import capped_timing, curve_shaper, family_member
+
+    machine, slosh = problem.machine, problem.slosh
+    cap = min(
+        machine.max_acceleration_m_s2,
+        GRAVITY_M_S2 * slosh.max_height_m / float(problem.model.radius_m),
+    )
+    first = (
+        family_member(problem, cap, curve_shaper(problem))
+        if shaped
+        else capped_timing(problem, cap)
+    )
+    duration = first.duration_s
+    tau = np.linspace(0.0, 1.0, 8 * knot_count(duration) + 1)
+    s = np.clip(first.position(tau * duration), 0.0, problem.path.length_m)
+    s[-1] = problem.path.length_m
+    steps = max(8, math.ceil(duration / problem.sample_period_s))
+    return fit_timing(tau, s, knot_count(duration), steps)
+
+
+def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = False) -> Any:
     """The minimum-time timing (and, with ``tilt``, the tilt) of the path, verified.
 
-    Rounds of the free-time search (`free_time`): the first from the time-optimal speed
-    profile under the quasi-static acceleration that tilts a level surface to the height
-    limit (h = R a / g; `sloshkit.plan.path.retime.capped_timing`), each next one from the last
-    one's samples on the export's period with the program's slosh limits moved towards the
-    values at which the verification meets its limits (`_next_limit`; at most `TIGHTENINGS`).
-    The rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
-    limit, when a round one sample shorter failed the verification, or when a round no
-    longer shortens the plan; the shortest verified timing is kept. A limit outside the
-    program is met by a uniform stretch (`sloshkit.plan.path.result.verified_candidate`); a
-    verifier that checks an arm's joint speeds (`sloshkit.plan.path.result.JointSpeedCheck`)
-    lends the programs the joints along the path (`sloshkit.plan.path.joints.joint_map`),
-    and they limit the joint speeds themselves. With ``tilt`` the rounds run twice, tilted
-    and then upright, each from the capped timing, and the shorter verified plan is kept
-    (the SCP is local: either search can end in a local optimum the other avoids).
-    The verified plans of other methods in ``seeds`` start the first round's coarse search
-    too (`free_time`'s ``seeds``; read back as samples by
-    `sloshkit.plan.path.samples.samples_from_poses`): a tilted one the tilted search, an
-    upright one the upright search.
+    Rounds of the minimum-time search (`shortest`): the first from `capped_start`, each next
+    one from the last one's splines with the program's slosh limits moved towards the values
+    at which the verification meets its limits (`_next_limit`; at most `TIGHTENINGS`). The
+    rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
+    limit, or when a round no longer shortens the plan; the shortest verified timing is
+    kept. A limit outside the program is met by a uniform stretch
+    (`sloshkit.plan.path.result.verified_candidate`); a verifier that checks an arm's joint
+    speeds (`sloshkit.plan.path.result.JointSpeedCheck`) lends the programs the joints along
+    the path (`sloshkit.plan.path.joints.joint_map`), and they limit the joint speeds
+    themselves.
 
     Parameters
     ----------
@@ -76,24 +96,20 @@ def plan_optimal(
     verifier : callable
         (problem, poses, tilted) -> Verification.
     log : callable, optional
-        Receives one line per solved duration.
-    seeds : sequence of PoseTrajectory
-        Verified exports of the path (``tilt``'s and ``retime``'s plans in
-        `sloshkit.plan.path.planner.plan_path`); one that is not on the path is skipped.
+        Receives one line per duration searched and per verification.
     tilt : bool
-        Whether the two tilt angles of every sample are variables of the programs (zero at
-        both ends; limited to ``problem.max_tilt_rad``, the angular velocity and acceleration
+        Whether the two tilt angles are variables of the programs (splines zero at both
+        ends; limited to ``problem.max_tilt_rad``, the angular velocity and acceleration
         limits, else pi rad/s and 1000 deg/s^2, about ``problem.tilt_centre_height_m``).
-        With an arm's joint check (`sloshkit.plan.path.result.JointSpeedCheck`) the joints
-        enter the tilted programs by their quadratic model in the tilt
-        (`sloshkit.plan.path.joints.JointModel`); when the arm cannot reach the tilted probes
-        of that model, the plan is upright (``detail["upright"]`` says why).
+        With an arm's joint check the joints enter the tilted programs by their quadratic
+        model in the tilt (`sloshkit.plan.path.joints.JointModel`); when the arm cannot reach
+        the tilted probes of that model, the plan is upright (``detail["upright"]`` says why).
 
     Returns
     -------
     PathCandidate
-        Method ``optimal``; ``detail`` has the first search's duration, the programs solved,
-        each round's limits, verified slosh and whether it tilted, and the search.
+        Method ``optimal``; ``detail`` has the programs solved, each round's limits, verified
+        slosh and durations tried.
 
     Examples
     --------
@@ -112,24 +128,18 @@ def plan_optimal(
     import time
     from dataclasses import replace
 
-    from sloshkit.plan.path.problem import sample_path
     from sloshkit.plan.path.result import JointSpeedCheck, PathCandidate, verified_candidate
-    from sloshkit.plan.path.retime import capped_timing
-    from sloshkit.plan.path.timing import Timing
 
     started = time.perf_counter()
     machine, slosh = problem.machine, problem.slosh
-    # the program's slosh limits start where `_next_limit` aims: the verification's filtered
-    # simulation exceeds the program's model by a percent or so
-    aim = LIMIT_AIM
     limits = ProgramLimits(
         machine.max_velocity_m_s,
         machine.max_acceleration_m_s2,
         machine.max_jerk_m_s3,
         machine.max_angular_velocity_rad_s,
         machine.max_angular_acceleration_rad_s2,
-        aim * slosh.max_height_m,
-        aim * slosh.max_residual_height_m,
+        LIMIT_AIM * slosh.max_height_m,
+        LIMIT_AIM * slosh.max_residual_height_m,
         max_tilt_rad=problem.max_tilt_rad,
         max_tilt_rate_rad_s=machine.max_angular_velocity_rad_s or TILT_RATE_RAD_S,
         max_tilt_acceleration_rad_s2=(
@@ -138,15 +148,6 @@ def plan_optimal(
     )
     tilt = tilt and problem.max_tilt_rad > 0.0
     ts = problem.sample_period_s
-    radius = float(problem.model.radius_m)
-    cap = min(machine.max_acceleration_m_s2, GRAVITY_M_S2 * slosh.max_height_m / radius)
-    first = capped_timing(problem, cap)
-    grid = sample_path(problem.path, first, ts)
-    s = np.clip(
-        first.position(np.minimum(grid.time_s, first.duration_s)), 0.0, problem.path.length_m
-    )
-    s[-1] = problem.path.length_m
-    warm = PathSamples(np.maximum.accumulate(s), np.zeros((s.size, 2)), ts)
     arm = isinstance(verifier, JointSpeedCheck)
     joints = joint_map(problem, verifier, tilt=tilt) if arm else None
     if isinstance(joints, str):
@@ -155,137 +156,115 @@ def plan_optimal(
     # reach them, plan upright
     upright_for_arm = tilt and joints is not None and joints.tilt_gradient is None
     tilt = tilt and not upright_for_arm
-    starts: dict[bool, list[PathSamples]] = {True: [], False: []}
-    for seed in seeds:
-        try:
-            read = samples_from_poses(problem, seed)
-        except ValueError as error:
-            if log:
-                log(f"seed skipped: {error}")
-            continue
-        starts[bool(np.any(np.abs(read.tilt_rad) > 1e-9))].append(read)
+    timing: SplineTiming | None = None
     rounds: list[dict[str, float]] = []
-    pruned: list[float] = []
-    verified: list[tuple[int, ProgramIterate, bool]] = []
-    searches: list[tuple[int, float]] = []
+    verified: list[SplineTiming] = []
+    durations: list[tuple[int, float]] = []
     programs = 0
     failure = ""
-    first_limits, start = limits, warm
-    # with tilt, a tilted search and an upright one, each from the capped timing, and the
-    # shorter plan: each can end in a local optimum the other avoids (RD_2D: 5.544 s tilted,
-    # 4.428 s upright; the tilted search from the upright plan reached 0.724 s on
-    # pick-and-place, 0.644 s from the capped timing)
-    for tilted in (True, False) if tilt else (False,):
-        limits, warm = first_limits, start
-        for _ in range(TIGHTENINGS):
-            program = PathProgram(
-                problem.path,
-                problem.models(),
-                limits,
-                ts,
-                tilt=tilted,
-                centre_height_m=problem.tilt_centre_height_m,
-                joints=joints,
+    for _ in range(TIGHTENINGS):
+        program = PathProgram(
+            problem.path,
+            problem.models(),
+            limits,
+            ts,
+            tilt=tilt,
+            centre_height_m=problem.tilt_centre_height_m,
+            joints=joints,
+        )
+        transcription = SplineTranscription(program)
+        try:
+            if timing is None:
+                timing, trials = _first_search(problem, transcription, log)
+            else:
+                timing, _, trials = shortest(transcription, timing, log)
+        except RuntimeError as error:
+            failure = str(error)
+            programs += transcription.programs
+            break
+        programs += transcription.programs
+        durations += [(trial.steps, trial.excess) for trial in trials]
+        samples = timing.samples(ts)
+        check = verifier(problem, export_poses(problem, samples), tilt)
+        rounds.append(
+            {
+                "duration_s": timing.steps * ts,
+                "height_limit_m": limits.max_height_m,
+                "residual_limit_m": limits.max_residual_height_m,
+                "verified_peak_m": check.peak_height_m,
+                "verified_residual_m": check.residual_height_m,
+            }
+        )
+        if log:
+            log(
+                f"verified: peak {check.peak_height_m * 1e3:.3g} mm, residual "
+                f"{check.residual_height_m * 1e3:.3g} mm"
             )
-            try:
-                # a later round starts from the last one's samples, already near its optimum
-                coarse = not any(r["tilted"] == float(tilted) for r in rounds)
-                more = starts[tilted] if coarse else []
-                # the second search goes on only while it can still beat the first's plan
-                longest = (1.0 + PRUNE) * min((v[0] * ts for v in verified), default=math.inf)
-                found = free_time(program, warm, log, coarse, more, longest if coarse else math.inf)
-            except RuntimeError as error:
-                failure = str(error)
+        if (
+            check.peak_height_m <= slosh.max_height_m
+            and check.residual_height_m <= slosh.max_residual_height_m
+        ):
+            verified.append(timing)
+            closest = max(
+                check.peak_height_m / slosh.max_height_m,
+                check.residual_height_m / slosh.max_residual_height_m,
+            )
+            # done when the binding slosh limit is met within the tolerance, or when moving
+            # the program's limits towards the limit no longer shortens the plan
+            if closest >= 1.0 - LIMIT_TOLERANCE or (
+                len(verified) >= 2 and verified[-1].steps >= verified[-2].steps
+            ):
                 break
-            if found is None:
-                pruned.append(float(tilted))
-                break
-            best, search = found
-            warm = best.samples
-            searches += search
-            programs += program.programs
-            check = verifier(problem, export_poses(problem, best.samples), tilted)
-            rounds.append(
-                {
-                    "duration_s": best.samples.steps * ts,
-                    "height_limit_m": limits.max_height_m,
-                    "residual_limit_m": limits.max_residual_height_m,
-                    "verified_peak_m": check.peak_height_m,
-                    "verified_residual_m": check.residual_height_m,
-                    "tilted": float(tilted),
-                }
-            )
-            if log:
-                log(
-                    f"verified: peak {check.peak_height_m * 1e3:.3g} mm, residual "
-                    f"{check.residual_height_m * 1e3:.3g} mm"
-                )
-            feasible = (
-                check.peak_height_m <= slosh.max_height_m
-                and check.residual_height_m <= slosh.max_residual_height_m
-            )
-            if feasible:
-                verified.append((best.samples.steps, best, tilted))
-                mine = [v for v in verified if v[2] == tilted]
-                closest = max(
-                    check.peak_height_m / slosh.max_height_m,
-                    check.residual_height_m / slosh.max_residual_height_m,
-                )
-                # done when the binding slosh limit is met within the tolerance, when a round one
-                # sample shorter failed the verification, or when moving the program's limits
-                # towards the limit no longer shortens the plan
-                shorter_failed = any(
-                    r["duration_s"] < rounds[-1]["duration_s"] - 0.5 * ts
-                    and r["duration_s"] >= rounds[-1]["duration_s"] - 1.5 * ts
-                    for r in rounds[:-1]
-                    if r["tilted"] == float(tilted)
-                )
-                if (
-                    closest >= 1.0 - LIMIT_TOLERANCE
-                    or shorter_failed
-                    or (len(mine) >= 2 and mine[-1][0] >= mine[-2][0])
-                ):
-                    break
-            limits = replace(
-                limits,
-                max_height_m=_next_limit(
-                    [r for r in rounds if r["tilted"] == float(tilted)],
-                    "height_limit_m",
-                    "verified_peak_m",
-                    slosh.max_height_m,
-                ),
-                max_residual_height_m=_next_limit(
-                    [r for r in rounds if r["tilted"] == float(tilted)],
-                    "residual_limit_m",
-                    "verified_residual_m",
-                    slosh.max_residual_height_m,
-                ),
-            )
+        limits = replace(
+            limits,
+            max_height_m=_next_limit(
+                rounds, "height_limit_m", "verified_peak_m", slosh.max_height_m
+            ),
+            max_residual_height_m=_next_limit(
+                rounds, "residual_limit_m", "verified_residual_m", slosh.max_residual_height_m
+            ),
+        )
     if not verified:
         message = failure or "the verification's slosh exceeds the limits after every tightening"
         return PathCandidate("optimal", None, None, time.perf_counter() - started, message)
-    _, corrected, tilt = min(verified, key=lambda entry: (entry[0], not entry[2]))
-    samples = corrected.samples
-    timing = Timing.from_samples("optimal", np.arange(samples.s_m.size) * ts, samples.s_m)
+    best = min(verified, key=lambda found: found.steps)
 
     def poses_for(factor: float) -> Any:
-        if factor == 1.0:
-            return export_poses(problem, samples)
-        if tilt:  # the timing and the tilt together, over the stretched duration
-            return export_poses(problem, rescaled(samples, math.ceil(samples.steps * factor)))
-        return sample_path(problem.path, timing.stretched(factor), ts)
+        stretched = best if factor == 1.0 else best.on_steps(math.ceil(best.steps * factor))
+        return export_poses(problem, stretched.samples(ts))
 
     detail: dict[str, Any] = {
-        "first_search_s": rounds[0]["duration_s"],
         "programs": programs,
         "rounds": rounds,
-        "search": searches,
-        "seeds_s": [seed.duration_s for seed in seeds],
-        "pruned": pruned,
+        "durations": durations,
+        "knots": best.count,
     }
     if upright_for_arm:
         detail["upright"] = "the arm cannot reach the path tilted by the joint model's probes"
     return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, tilt, detail)
+
+
+#: Durations the first search from the unshaped capped timing tries before the search
+#: starts again from the shaped one, stretched until it meets the limits.
+FIRST_DURATIONS = 4
+
+
+def _first_search(problem: Any, transcription: SplineTranscription, log: Any) -> Any:
+    """The first round's search: from the unshaped capped timing at its own duration (near
+    the optimum on most paths), and when `FIRST_DURATIONS` durations did not meet the limits
+    from the shaped one stretched until it meets them (LE_3D: the unshaped start's programs
+    did not bring its residual under the limit)."""
+    try:
+        timing, _, trials = shortest(
+            transcription, capped_start(problem), log, give_up=FIRST_DURATIONS
+        )
+    except RuntimeError:
+        if log:
+            log("optimal: again from the shaped start, stretched until it meets the limits")
+        timing, _, trials = shortest(
+            transcription, capped_start(problem, shaped=True), log, stretch=True
+        )
+    return timing, trials
 
 
 def _next_limit(
@@ -309,9 +288,9 @@ def _next_limit(
 __all__ = [
     "LIMIT_AIM",
     "LIMIT_TOLERANCE",
-    "PRUNE",
     "TIGHTENINGS",
     "TILT_ACCELERATION_RAD_S2",
     "TILT_RATE_RAD_S",
+    "capped_start",
     "plan_optimal",
 ]

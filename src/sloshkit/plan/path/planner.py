@@ -321,15 +321,8 @@ def plan_path(
     if method == "optimal":
         from sloshkit.plan.path.optimal import plan_optimal
 
-        starts: list[PoseTrajectory] = []
-        if tilt and problem.max_tilt_rad > 0.0:
-            # the tilted programs' search is local: tilt's plan is a start near a better
-            # optimum than the capped timing on long paths (RD_2D: 2.86 s against 4.43 s)
-            say("optimal: tilt's plan first, a start of the tilted programs")
-            tilted = plan_tilt(problem, verifier, improve=True)
-            starts = [tilted.poses] if tilted.feasible and tilted.poses is not None else []
         say("optimal: the minimum-time timing by sequential cone programs")
-        candidates.append(plan_optimal(problem, verifier, say, tilt=tilt, seeds=starts))
+        candidates.append(plan_optimal(problem, verifier, say, tilt=tilt))
     if method in ("auto", "shaped"):
         say("shaped: per-axis input shaping")
         candidates.append(plan_shaped(problem, verifier))

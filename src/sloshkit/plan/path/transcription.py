@@ -1,0 +1,696 @@
+"""The path program's transcription: the timing (and tilt) as cubic B-splines of normalised
+time sampled on the export grid, and one second-order-cone program linearised around them.
+
+**Variables.** The path parameter is s(t) = sum_i c_i B_i(t / T), a clamped cubic B-spline
+of ``count`` coefficients on uniform knots over the move's duration T = N Ts (N export
+samples of period Ts; de Boor, *A Practical Guide to Splines* (1978) ch. IX). Its jerk is
+piecewise constant between knots. The first three coefficients are 0 and the last three the
+path's length S, so the move starts and ends at rest with zero acceleration; coefficients in
+increasing order make s(t) monotone (the B-spline's variation diminishing property, de Boor
+ch. XI). With the tilt free, r_x(t) and r_y(t) are two more B-splines of the same basis,
+zero with their rate and acceleration at both ends. The samples are the spline at the export
+instants k Ts, so what the program constrains is exactly what the export contains.
+
+**Model.** Everything the verification checks is a function of the samples
+(`sloshkit.plan.path.program.PathProgram.evaluate`: finite-difference kinematics, the
+nonlinear spherical pendulums of every mode and band model, the wall height at every sample,
+the residual's semi-major axes, an arm's joint speeds). `SplineTranscription.step`
+linearises it around the current splines: the samples' derivatives with respect to the
+coefficients are the basis itself; the forces' derivatives come banded from
+`PathProgram.jacobians`; the pendulums are the time-varying linear system of one period
+along the current track (`sloshkit.plan.path.pendulums.step_jacobians`). Their states are
+condensed into the coefficients within segments of `SEGMENT_SAMPLES` samples and carried
+from segment to segment by the state at each segment's start (a variable, tied by equality
+rows): a wall-height row then depends on its segment's start state and on the few
+coefficients acting inside the segment, so the program stays sparse on long moves (multiple
+shooting in condensed blocks: Bock & Plitt, IFAC Proc. 17 (1984) 1603-1608; Kirches et al.,
+Optim. Methods Softw. 27 (2012) 2, condensing).
+
+**Program.** At a fixed N it minimises sigma, the largest ratio of a limited quantity to its
+limit (every norm an exact second-order cone: the wall height, Cartesian and angular
+velocity, acceleration and jerk, tilt and its rate and acceleration; the residual's
+semi-major axis of a 2 x 2 matrix as half the sum of two norms, Horn & Johnson, *Matrix
+Analysis*, 2nd ed. (2013) §7.3), within a box trust region on the coefficients (sequential
+convex programming: Mao, Szmuk & Acikmese, IEEE CDC (2016), doi:10.1109/CDC.2016.7798816).
+Rows that cannot bind are left out and added when the solution violates them (constraint
+generation). Clarabel solves it (Goulart & Chen, arXiv:2405.12762 (2024)).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import sparse
+from scipy.interpolate import BSpline
+
+from sloshkit.plan.path.pendulums import slope_jacobian, step_jacobians
+from sloshkit.plan.path.program import HOLD, PathProgram, ProgramIterate, mode_arrays
+from sloshkit.plan.path.samples import PathSamples
+
+FloatArray = NDArray[np.float64]
+
+#: Samples per condensed segment of the pendulum states (about 0.4 s at 4 ms: a wall row then
+#: depends on about 20 coefficients and one segment's start states).
+SEGMENT_SAMPLES = 100
+#: A row is in the first program when it is a local peak above this fraction of its limit
+#: (the rest enter when a solution breaks them).
+ACTIVE_FRACTION = 0.6
+#: Constraint-generation rounds per program, at most.
+GENERATION_ROUNDS = 6
+#: Relative margin the programs keep from every limit (the export is verified exactly).
+PROGRAM_MARGIN = 1e-3
+
+
+@dataclass(frozen=True, eq=False)
+class SplineTiming:
+    """The timing (and tilt) as clamped cubic B-splines of normalised time, on N samples.
+
+    Parameters
+    ----------
+    coefficients_m : numpy.ndarray
+        The path parameter's coefficients c_0..c_{K-1} [m]: 0, 0, 0, ..., S, S, S.
+    tilt_rad : numpy.ndarray
+        The tilt's coefficients (K, 2) [rad]: zero in the first and last three rows.
+    steps : int
+        N, the export sample periods of the move.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> timing = SplineTiming(np.array([0, 0, 0, 0.5, 1, 1, 1.0]), np.zeros((7, 2)), 50)
+    >>> timing.count, round(float(timing.path_parameter(np.array([0.5]))[0]), 3)
+    (7, 0.5)
+    """
+
+    coefficients_m: FloatArray
+    tilt_rad: FloatArray
+    steps: int
+
+    @property
+    def count(self) -> int:
+        """K, the number of coefficients of each spline."""
+        return int(self.coefficients_m.size)
+
+    def basis(self, tau: FloatArray, derivative: int = 0) -> FloatArray:
+        """The B-spline basis (its ``derivative``-th derivative in tau) at ``tau``, (len, K)."""
+        return spline_basis(self.count, tau, derivative)
+
+    def path_parameter(self, tau: FloatArray) -> FloatArray:
+        """s at normalised times ``tau`` in [0, 1] [m]."""
+        return np.asarray(self.basis(tau) @ self.coefficients_m, dtype=float)
+
+    def samples(self, period_s: float) -> PathSamples:
+        """The export samples: s and the tilt at k Ts, k = 0..N (s monotone, on [0, S])."""
+        tau = np.arange(self.steps + 1) / self.steps
+        basis = self.basis(tau)
+        length = float(self.coefficients_m[-1])
+        s = np.clip(np.maximum.accumulate(basis @ self.coefficients_m), 0.0, length)
+        s[-1] = length
+        tilt = basis @ self.tilt_rad
+        tilt[0] = tilt[-1] = 0.0
+        return PathSamples(s, tilt, period_s)
+
+    def on_steps(self, steps: int) -> SplineTiming:
+        """The same splines over another number of samples (a uniform time scaling)."""
+        return SplineTiming(self.coefficients_m, self.tilt_rad, steps)
+
+
+def spline_basis(count: int, tau: FloatArray, derivative: int = 0) -> FloatArray:
+    """The clamped cubic B-spline basis of ``count`` functions on uniform knots over [0, 1]
+    (de Boor (1978) ch. IX), or its ``derivative``-th derivative, at ``tau``: (len, count).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> basis = spline_basis(6, np.linspace(0.0, 1.0, 5))
+    >>> bool(np.allclose(basis.sum(axis=1), 1.0))  # a partition of unity
+    True
+    """
+    knots = np.concatenate(([0.0] * 3, np.linspace(0.0, 1.0, count - 2), [1.0] * 3))
+    spline = BSpline(knots, np.eye(count), 3, extrapolate=False)
+    if derivative:
+        spline = spline.derivative(derivative)
+    values = spline(np.clip(np.asarray(tau, dtype=float), 0.0, 1.0))
+    return np.nan_to_num(np.asarray(values, dtype=float))
+
+
+def fit_timing(
+    tau: FloatArray, s_m: FloatArray, count: int, steps: int, tilt_rad: FloatArray | None = None
+) -> SplineTiming:
+    """The splines of ``count`` coefficients nearest (least squares) to samples of s (and
+    the tilt) at normalised times ``tau``, at rest at both ends, s's coefficients monotone.
+
+    Parameters
+    ----------
+    tau : numpy.ndarray
+        Normalised times in [0, 1] of the samples.
+    s_m : numpy.ndarray
+        The path parameter there [m]; the last is the path's length.
+    count : int
+        K (at least 7).
+    steps : int
+        N of the result.
+    tilt_rad : numpy.ndarray, optional
+        The tilt there (len, 2) [rad].
+
+    Returns
+    -------
+    SplineTiming
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> tau = np.linspace(0.0, 1.0, 201)
+    >>> timing = fit_timing(tau, tau**3 * (10 - 15 * tau + 6 * tau**2), 12, 100)
+    >>> bool(np.max(np.abs(timing.path_parameter(tau) - tau**3 * (10 - 15 * tau + 6 * tau**2)))
+    ...      < 1e-3)
+    True
+    """
+    basis = spline_basis(count, tau)
+    free = slice(3, count - 3)
+    length = float(s_m[-1])
+    fixed = np.zeros(count)
+    fixed[-3:] = length
+    solution = np.linalg.lstsq(basis[:, free], s_m - basis @ fixed, rcond=None)[0]
+    coefficients = fixed.copy()
+    coefficients[free] = solution
+    coefficients = np.clip(np.maximum.accumulate(coefficients), 0.0, length)
+    tilt = np.zeros((count, 2))
+    if tilt_rad is not None and np.any(tilt_rad):
+        tilt[free] = np.linalg.lstsq(basis[:, free], tilt_rad, rcond=None)[0]
+    return SplineTiming(coefficients, tilt, steps)
+
+
+@dataclass(frozen=True, eq=False)
+class _Rows:
+    """Vector rows |values + Dz z + Dx x_seg| / limit <= keep + sigma: ``values`` (rows, d),
+    ``dz`` (rows, d, nz) the derivative in the spline variables, ``dx`` (rows, d, w) in the
+    start states of the row's segment (columns ``first`` + 0..w-1; ``first`` < 0: none),
+    ``limit`` and the slack's column."""
+
+    values: FloatArray
+    dz: FloatArray
+    limit: float
+    dx: FloatArray | None = None
+    first: NDArray[np.int64] | None = None
+
+    def predicted(self, x: FloatArray, nz: int) -> FloatArray:
+        """The rows' linearised norms over the limit at the solution ``x``."""
+        vector = self.values + self.dz @ x[:nz]
+        if self.dx is not None and self.first is not None:
+            has = self.first >= 0
+            columns = self.first[has, None] + np.arange(self.dx.shape[2])[None]
+            vector[has] += np.einsum("rdw,rw->rd", self.dx[has], x[columns])
+        return np.asarray(np.linalg.norm(vector, axis=1) / self.limit)
+
+    def initial(self, keep: float) -> NDArray[np.bool_]:
+        """The rows of the first program: local peaks above `ACTIVE_FRACTION` and their
+        neighbours."""
+        norms = np.linalg.norm(self.values, axis=1) / self.limit
+        peak = np.zeros(norms.size, dtype=bool)
+        peak[1:-1] = (norms[1:-1] >= norms[:-2]) & (norms[1:-1] >= norms[2:])
+        peak |= norms >= 0.97 * keep
+        peak &= norms >= ACTIVE_FRACTION * keep
+        return np.asarray(peak | np.roll(peak, 1) | np.roll(peak, -1))
+
+
+class _Cones:
+    """Rows b - A x in Clarabel's cones, gathered as COO triplets."""
+
+    def __init__(self) -> None:
+        self.parts: dict[str, list[tuple[Any, Any, Any, Any]]] = {"zero": [], "nonneg": []}
+        self.soc: list[tuple[Any, Any, Any, Any]] = []
+        self.soc_dims: list[int] = []
+
+    def add(self, kind: str, r: Any, c: Any, v: Any, b: Any) -> None:
+        """Rows (local indices r) of ``kind`` "zero" or "nonneg"."""
+        self.parts[kind].append(
+            (np.asarray(r, int), np.asarray(c, int), np.asarray(v, float), np.asarray(b, float))
+        )
+
+    def add_soc(self, r: Any, c: Any, v: Any, b: Any, dims: list[int]) -> None:
+        """Consecutive second-order cones of sizes ``dims``."""
+        self.soc.append(
+            (np.asarray(r, int), np.asarray(c, int), np.asarray(v, float), np.asarray(b, float))
+        )
+        self.soc_dims += dims
+
+    def vector_rows(self, rows: _Rows, use: NDArray[np.bool_], slack: int, keep: float) -> None:
+        """The cones of the selected rows: (keep + sigma, (values + D x) / limit)."""
+        index = np.flatnonzero(use)
+        if not index.size:
+            return
+        d = rows.values.shape[1]
+        width = d + 1
+        base = np.arange(index.size) * width
+        r = [base]
+        c = [np.full(index.size, slack)]
+        v = [-np.ones(index.size)]
+        dz = rows.dz[index] / rows.limit
+        local, comp, col = np.nonzero(dz)
+        r.append(base[local] + 1 + comp)
+        c.append(col)
+        v.append(-dz[local, comp, col])
+        if rows.dx is not None and rows.first is not None:
+            dx = rows.dx[index] / rows.limit
+            first = rows.first[index]
+            local, comp, col = np.nonzero(dx * (first >= 0)[:, None, None])
+            r.append(base[local] + 1 + comp)
+            c.append(first[local] + col)
+            v.append(-dx[local, comp, col])
+        b = np.zeros((index.size, width))
+        b[:, 0] = keep
+        b[:, 1:] = rows.values[index] / rows.limit
+        self.add_soc(
+            np.concatenate(r), np.concatenate(c), np.concatenate(v), b.ravel(), [width] * index.size
+        )
+
+    def solve(self, objective: FloatArray, extra: list[_Cones] = ()) -> FloatArray | None:  # type: ignore[assignment]
+        """Minimise objective . x (Clarabel); None unless solved."""
+        import clarabel
+
+        columns = objective.size
+        rows, cols, vals, rhs, cones = [], [], [], [], []
+        offset = 0
+        for kind in ("zero", "nonneg"):
+            count = 0
+            for part in [self, *extra]:
+                for r, c, v, b in part.parts[kind]:
+                    rows.append(r + offset + count)
+                    cols.append(c)
+                    vals.append(v)
+                    rhs.append(b)
+                    count += b.size
+            if count:
+                cones.append(
+                    clarabel.ZeroConeT(count) if kind == "zero" else clarabel.NonnegativeConeT(count)
+                )
+            offset += count
+        for part in [self, *extra]:
+            for r, c, v, b in part.soc:
+                rows.append(r + offset)
+                cols.append(c)
+                vals.append(v)
+                rhs.append(b)
+                offset += b.size
+            cones += [clarabel.SecondOrderConeT(d) for d in part.soc_dims]
+        matrix = sparse.coo_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(offset, columns),
+        ).tocsc()
+        settings = clarabel.DefaultSettings()
+        settings.verbose = False
+        settings.tol_gap_abs = settings.tol_gap_rel = 1e-6
+        settings.tol_feas = 1e-7
+        quadratic = sparse.csc_matrix((columns, columns))
+        solver = clarabel.DefaultSolver(
+            quadratic, objective, matrix, np.concatenate(rhs), cones, settings
+        )
+        result = solver.solve()
+        if str(result.status) not in ("Solved", "AlmostSolved"):
+            return None
+        return np.asarray(result.x)
+
+
+def _differences(values: FloatArray, order: int, period_s: float) -> FloatArray:
+    """Forward differences of order ``order`` of ``values`` held two samples at rest before
+    and after (as `PathProgram.forces` measures the kinematics), divided by h^order."""
+    padded = np.concatenate((values[:1], values[:1], values, values[-1:], values[-1:]))
+    for _ in range(order):
+        padded = np.diff(padded, axis=0) / period_s
+    return padded
+
+
+@dataclass(frozen=True, eq=False)
+class StepResult:
+    """A program's new splines and the largest ratio to a limit it predicts.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> timing = SplineTiming(np.array([0, 0, 0, 1, 1, 1.0]), np.zeros((6, 2)), 10)
+    >>> StepResult(timing, 0.9).predicted
+    0.9
+    """
+
+    timing: SplineTiming
+    predicted: float
+    size: float = 0.0
+
+
+class SplineTranscription:
+    """The path program's variables as splines (module docstring).
+
+    Parameters
+    ----------
+    program : PathProgram
+        The model (limits, band, tilt, arm).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.program import ProgramLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
+    >>> program = PathProgram(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]), [model], limits,
+    ...                       0.01)
+    >>> tau = np.linspace(0.0, 1.0, 101)
+    >>> timing = fit_timing(tau, 0.1 * tau**3 * (10 - 15 * tau + 6 * tau**2), 12, 45)
+    >>> transcription = SplineTranscription(program)
+    >>> current = transcription.iterate(timing)
+    >>> step = transcription.step(timing, current, 0.02)
+    >>> bool(transcription.iterate(step.timing).excess < current.excess)
+    True
+    """
+
+    def __init__(self, program: PathProgram) -> None:
+        self.program = program
+        self.length = float(program.path.length_m)
+        self.programs = 0
+
+    def iterate(self, timing: SplineTiming) -> ProgramIterate:
+        """The export samples of ``timing`` with their exact evaluation."""
+        return self.program.iterate(timing.samples(self.program.ts))
+
+    # ------------------------------------------------------------------ one program
+    def step(
+        self, timing: SplineTiming, current: ProgramIterate, trust: float
+    ) -> StepResult | None:
+        """One program around ``timing`` (module docstring): the splines that minimise the
+        largest linearised ratio to a limit with every coefficient of s within trust S of
+        its value (the tilt's within 2.5 trust rad). None when the solver failed."""
+        program, lim = self.program, self.program.limits
+        ts, steps, count = program.ts, timing.steps, timing.count
+        tilting = program.tilt
+        free = count - 6
+        nz = free * (3 if tilting else 1)
+        tau = np.arange(steps + 1) / steps
+        basis = timing.basis(tau)[:, 3 : count - 3]
+        samples, ev = current.samples, current.evaluation
+        n = steps + 1 + HOLD
+        bands = program.jacobians(samples)
+        # each sample's deviation in each variable block, (n, nz)
+        blocks = []
+        for block in range(3 if tilting else 1):
+            dz = np.zeros((n, nz))
+            dz[: steps + 1, block * free : (block + 1) * free] = basis
+            blocks.append((bands[block], dz))
+        keep = 1.0 - PROGRAM_MARGIN
+        modes, models = len(program.modes), len(program.models)
+        rows: list[_Rows] = []
+        position = sum(band.position[:, :, None] * dz[:, None, :] for band, dz in blocks)
+        for order, values, limit in (
+            (1, ev.velocity, lim.max_velocity_m_s),
+            (2, ev.acceleration, lim.max_acceleration_m_s2),
+            (3, ev.jerk, lim.max_jerk_m_s3),
+        ):
+            rows.append(_Rows(values, _differences(position, order, ts), limit))
+        self._angular_rows(rows, ev, blocks, n, nz)
+        if tilting:
+            tilt = np.zeros((n, 2))
+            tilt[: steps + 1] = samples.tilt_rad
+            dtilt = np.stack([blocks[1][1], blocks[2][1]], axis=1)
+            for order, limit in (
+                (0, lim.max_tilt_rad),
+                (1, lim.max_tilt_rate_rad_s),
+                (2, lim.max_tilt_acceleration_rad_s2),
+            ):
+                rows.append(
+                    _Rows(
+                        _differences(tilt, order, ts) if order else tilt,
+                        _differences(dtilt, order, ts) if order else dtilt,
+                        limit,
+                    )
+                )
+        if program.joint_model is not None:
+            rows.append(self._joint_rows(samples, ev, blocks, steps, nz))
+        # ----------------------------------------------- pendulums, condensed per segment
+        starts = list(range(SEGMENT_SAMPLES, n - 1, SEGMENT_SAMPLES))
+        segments = len(starts)
+        state_base = nz
+        state_width = 6 * modes
+        slack = state_base + models * segments * state_width
+        residual_base = slack + 1
+        columns = residual_base + 2 * modes * models
+        cones = _Cones()
+        for m, model in enumerate(program.models):
+            lengths, omegas, zetas = mode_arrays(model)
+            a_k, b_k, e_k = step_jacobians(
+                ev.unit[m], ev.rate[m], ev.drive[m], lengths, omegas, zetas, ts
+            )
+            kappa = omegas**2 * lengths / model.gravity_m_s2
+            drive = np.zeros((modes, n, 7, nz))
+            for band, dz in blocks:
+                for offset in (-1, 0, 1):
+                    moved = np.zeros((n, nz))
+                    k = np.arange(n)
+                    ok = (k + offset >= 0) & (k + offset < n)
+                    moved[ok] = dz[k[ok] + offset]
+                    gain = (
+                        band.force[offset + 1][:modes]
+                        + (kappa - 1.0)[:, None, None] * band.force[offset + 1][-1][None]
+                    )
+                    drive[:, :, :3] += gain[..., None] * moved[None, :, None, :]
+                    drive[:, :, 3:] += band.rates[offset + 1][None, :, :, None] * moved[
+                        None, :, None, :
+                    ]
+            inputs = np.einsum("qkaw,qkwz->qkaz", b_k, drive[:, :-1]) + np.einsum(
+                "qkaw,qkwz->qkaz", e_k, drive[:, 1:]
+            )
+            phi, psi, segment = _propagate(a_k, inputs, starts)
+            model_base = state_base + m * segments * state_width
+
+            def first_column(seg: NDArray[np.int64], base: int = model_base) -> Any:
+                return np.where(seg > 0, base + (seg - 1) * state_width, -1)
+
+            # the segments' start states: x_i = Phi x_{i-1} + Psi z at each start
+            for i, start in enumerate(starts, start=1):
+                for q in range(modes):
+                    row = np.arange(6)
+                    own = model_base + (i - 1) * state_width + 6 * q
+                    r_list = [row]
+                    c_list = [own + row]
+                    v_list = [np.ones(6)]
+                    rr, cc = np.nonzero(psi[q, start])
+                    r_list.append(rr)
+                    c_list.append(cc)
+                    v_list.append(-psi[q, start][rr, cc])
+                    if i > 1:
+                        previous = model_base + (i - 2) * state_width + 6 * q
+                        rr, cc = np.nonzero(phi[q, start])
+                        r_list.append(rr)
+                        c_list.append(previous + cc)
+                        v_list.append(-phi[q, start][rr, cc])
+                    cones.add(
+                        "zero",
+                        np.concatenate(r_list),
+                        np.concatenate(c_list),
+                        np.concatenate(v_list),
+                        np.zeros(6),
+                    )
+            # the wall height: sum_n e_n J_n (Phi_n x_seg,n + Psi_n z)[:3]
+            wall_z = np.zeros((n, 2, nz))
+            wall_x = np.zeros((n, 2, state_width))
+            for q, mode in enumerate(model.modes):
+                slope = mode.wall_elevation_factor_m * slope_jacobian(ev.unit[m, q])
+                wall_z += np.einsum("kac,kcz->kaz", slope, psi[q, :, :3])
+                wall_x[:, :, 6 * q : 6 * q + 6] = np.einsum("kac,kcw->kaw", slope, phi[q, :, :3])
+            rows.append(
+                _Rows(ev.wall[m], wall_z, lim.max_height_m, wall_x, first_column(segment))
+            )
+            # the residual: per mode |e_n [A_n B_n]|_2 as half the sum of two norms
+            last = n - 1
+            end_column = first_column(segment[last : last + 1])[0]
+            for q, mode in enumerate(model.modes):
+                damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
+                sig = mode.damping_ratio * mode.omega_rad_s
+                back = math.exp(sig * HOLD * ts)
+                e = back * mode.wall_elevation_factor_m / lim.max_residual_height_m
+                # the lateral deviations (u_x, u_y, u'_x, u'_y) at the end over z and x_seg
+                state_z = psi[q, last]
+                state_x = np.zeros((6, state_width))
+                state_x[:, 6 * q : 6 * q + 6] = phi[q, last]
+                combos = []
+                for source in (state_z, state_x):
+                    a_x, a_y = e * source[0], e * source[1]
+                    b_x = e * (source[3] + sig * source[0]) / damped
+                    b_y = e * (source[4] + sig * source[1]) / damped
+                    combos.append((a_x + b_y, a_y - b_x, a_x - b_y, b_x + a_y))
+                av, cv, bv, dv = ev.amplitude[m, q] / lim.max_residual_height_m
+                currents = (av + dv, cv - bv, av - dv, bv + cv)
+                for cone in range(2):
+                    r_list = [np.array([0])]
+                    c_list = [np.array([residual_base + 2 * (m * modes + q) + cone])]
+                    v_list = [np.array([-1.0])]
+                    for row in (1, 2):
+                        index = 2 * cone + row - 1
+                        through_z = combos[0][index]
+                        nonzero = np.flatnonzero(through_z)
+                        r_list.append(np.full(nonzero.size, row))
+                        c_list.append(nonzero)
+                        v_list.append(-through_z[nonzero])
+                        if end_column >= 0:
+                            through_x = combos[1][index]
+                            nonzero = np.flatnonzero(through_x)
+                            r_list.append(np.full(nonzero.size, row))
+                            c_list.append(end_column + nonzero)
+                            v_list.append(-through_x[nonzero])
+                    cones.add_soc(
+                        np.concatenate(r_list),
+                        np.concatenate(c_list),
+                        np.concatenate(v_list),
+                        [0.0, currents[2 * cone], currents[2 * cone + 1]],
+                        [3],
+                    )
+            # sum of the modes' semi-major axes within keep + sigma
+            cones.add(
+                "nonneg",
+                np.zeros(2 * modes + 1, dtype=int),
+                np.concatenate(
+                    (residual_base + 2 * m * modes + np.arange(2 * modes), [slack])
+                ),
+                np.concatenate((np.full(2 * modes, 0.5), [-1.0])),
+                [keep],
+            )
+        # ----------------------------------------------- monotone s, trust region, sigma
+        coefficients = timing.coefficients_m
+        difference = np.arange(free - 1)
+        cones.add(
+            "nonneg",
+            np.repeat(difference, 2),
+            np.column_stack((difference + 1, difference)).ravel(),
+            np.tile([-1.0, 1.0], free - 1),
+            np.diff(coefficients[3 : count - 3]),
+        )
+        cones.add("nonneg", [0], [0], [-1.0], [coefficients[3]])  # c_3 >= c_2 = 0
+        cones.add("nonneg", [0], [free - 1], [1.0], [self.length - coefficients[count - 4]])
+        box = np.full(nz, trust * self.length)
+        if tilting:
+            box[free:] = 2.5 * trust
+        variables = np.arange(nz)
+        cones.add("nonneg", variables, variables, np.ones(nz), box)
+        cones.add("nonneg", variables, variables, -np.ones(nz), box)
+        cones.add("nonneg", [0], [slack], [-1.0], [1.0])  # sigma >= -1
+        objective = np.zeros(columns)
+        objective[slack] = 1.0
+        selected = [block.initial(keep) for block in rows]
+        x = None
+        for _ in range(GENERATION_ROUNDS):
+            chosen = _Cones()
+            for block, use in zip(rows, selected, strict=True):
+                chosen.vector_rows(block, use, slack, keep)
+            x = cones.solve(objective, [chosen])
+            self.programs += 1
+            if x is None:
+                return None
+            added = 0
+            for block, use in zip(rows, selected, strict=True):
+                over = (block.predicted(x, nz) > keep + x[slack] + 1e-6) & ~use
+                added += int(over.sum())
+                use |= over | np.roll(over, 1) | np.roll(over, -1)
+            if not added:
+                break
+        assert x is not None
+        self._debug = (rows, x, nz, free, residual_base, slack)
+        new_s = coefficients.copy()
+        new_s[3 : count - 3] = np.clip(new_s[3 : count - 3] + x[:free], 0.0, self.length)
+        new_s = np.maximum.accumulate(new_s)
+        new_tilt = timing.tilt_rad.copy()
+        if tilting:
+            new_tilt[3 : count - 3, 0] += x[free : 2 * free]
+            new_tilt[3 : count - 3, 1] += x[2 * free : 3 * free]
+        size = float(np.max(np.abs(x[:free]))) / self.length if free else 0.0
+        if tilting:
+            size = max(size, float(np.max(np.abs(x[free:nz]))) / 2.5)
+        return StepResult(SplineTiming(new_s, new_tilt, steps), keep + float(x[slack]), size)
+
+    def _angular_rows(self, rows: list[_Rows], ev: Any, blocks: list[Any], n: int, nz: int) -> None:
+        """The container's angular velocity and acceleration (when limited): omega_i from the
+        samples i - 1 and i (`PathProgram.jacobians`' bands), alpha its difference."""
+        lim, ts = self.program.limits, self.program.ts
+        if lim.max_angular_velocity_rad_s is None and lim.max_angular_acceleration_rad_s2 is None:
+            return
+        domega = np.zeros((n + 1, 3, nz))
+        for band, dz in blocks:
+            index = np.arange(1, n)
+            domega[index] += band.omega[1][index][:, :, None] * dz[index][:, None, :]
+            domega[index] += band.omega[0][index][:, :, None] * dz[index - 1][:, None, :]
+        if lim.max_angular_velocity_rad_s is not None:
+            rows.append(_Rows(ev.omega, domega, lim.max_angular_velocity_rad_s))
+        if lim.max_angular_acceleration_rad_s2 is not None:
+            rows.append(
+                _Rows(ev.alpha, np.diff(domega, axis=0) / ts, lim.max_angular_acceleration_rad_s2)
+            )
+
+    def _joint_rows(
+        self, samples: PathSamples, ev: Any, blocks: list[Any], steps: int, nz: int
+    ) -> _Rows:
+        """Each joint's speed (q_k+1 - q_k) / (h limit) within 1 (a one-dimensional cone per
+        joint and period), q linear in the samples' deviations through dq/ds and dq/dr."""
+        model = self.program.joint_model
+        assert model is not None
+        _, dq_ds, dq_dr = model.at(samples.s_m, samples.tilt_rad)
+        scaled = self.program.ts * model.joints.limits_rad_s
+        dq = dq_ds[:, :, None] * blocks[0][1][: steps + 1, None, :]
+        if len(blocks) > 1:
+            for c in (0, 1):
+                dq = dq + dq_dr[:, :, c, None] * blocks[1 + c][1][: steps + 1, None, :]
+        derivative = np.diff(dq, axis=0) / scaled[None, :, None]
+        values = ev.joint[:steps]
+        dof = values.shape[1]
+        return _Rows(
+            values.reshape(-1, 1), derivative.reshape(steps * dof, 1, nz), 1.0
+        )
+
+
+def _propagate(
+    a_k: FloatArray, inputs: FloatArray, starts: list[int]
+) -> tuple[FloatArray, FloatArray, NDArray[np.int64]]:
+    """The pendulum states' deviations dx_k = Phi_k x_seg + Psi_k z within segments starting
+    at ``starts`` (segment 0 starts at rest: no state variable), from dx_{k+1} = A_k dx_k +
+    inputs_k z. Returns Phi (modes, n, 6, 6), Psi (modes, n, 6, nz) and each sample's
+    segment (a segment's start sample still belongs to the one before it)."""
+    modes, periods = a_k.shape[0], a_k.shape[1]
+    n = periods + 1
+    nz = inputs.shape[-1]
+    phi = np.zeros((modes, n, 6, 6))
+    psi = np.zeros((modes, n, 6, nz))
+    segment = np.zeros(n, dtype=np.int64)
+    identity = np.broadcast_to(np.eye(6), (modes, 6, 6))
+    current_phi = np.array(identity)
+    current_psi = np.zeros((modes, 6, nz))
+    phi[:, 0] = identity
+    boundaries = set(starts)
+    index = 0
+    for k in range(periods):
+        if k in boundaries:
+            index += 1
+            current_phi = np.array(identity)
+            current_psi = np.zeros((modes, 6, nz))
+        current_phi = np.matmul(a_k[:, k], current_phi)
+        current_psi = np.matmul(a_k[:, k], current_psi) + inputs[:, k]
+        phi[:, k + 1] = current_phi
+        psi[:, k + 1] = current_psi
+        segment[k + 1] = index
+    return phi, psi, segment
+
+
+__all__ = [
+    "ACTIVE_FRACTION",
+    "GENERATION_ROUNDS",
+    "PROGRAM_MARGIN",
+    "SEGMENT_SAMPLES",
+    "SplineTiming",
+    "SplineTranscription",
+    "StepResult",
+    "fit_timing",
+    "spline_basis",
+]
