@@ -115,14 +115,15 @@ def at_duration(
     iterations: int = ITERATIONS,
     trust: float = 0.02,
     log: Callable[[str], Any] | None = None,
-) -> tuple[SplineTiming, ProgramIterate, int]:
+) -> tuple[SplineTiming, ProgramIterate, int, float]:
     """The splines of ``timing``'s N whose largest ratio to a limit is least: cone programs
     in a trust region (kept when the exact largest ratio falls by at least a tenth of the
     predicted fall; the region then doubles when the prediction was good, up to 0.2 S, else
     shrinks to 0.4 of the step's size). Stops when a kept step was predicted to gain less than
     0.2 %, or after ``iterations`` programs.
 
-    Returns the best splines, their exact iterate and the programs solved.
+    Returns the best splines, their exact iterate, the programs solved and the last trust
+    region (the next duration starts from four times it).
     """
     current = transcription.iterate(timing)
     programs = 0
@@ -149,10 +150,12 @@ def at_duration(
             if predicted < 2e-3:
                 break
         else:
-            trust *= 0.4
+            # a step that made things worse than it promised to improve them was far outside
+            # the linearisation's reach
+            trust *= 0.15 if -actual > predicted else 0.4
             if trust < 1e-5:
                 break
-    return timing, current, programs
+    return timing, current, programs, trust
 
 
 #: Uniform stretches of the start tried by `stretched_start`: 1.03^k, k = 0..STRETCHES - 1.
@@ -255,13 +258,15 @@ def shortest(
         best = (timing, iterate) if iterate.feasible else None
     lowest_unmet = 0
     steps = timing.steps
+    trust = 0.02
     for tried in range(MAX_DURATIONS):
         if best is None and tried >= give_up:
             break
         ts = transcription.program.ts
         base = best[0] if best is not None else timing
         warm = respaced(base.on_steps(steps), knot_count(steps * ts))
-        timing, current, programs = at_duration(transcription, warm, log=log)
+        timing, current, programs, trust = at_duration(transcription, warm, trust=trust, log=log)
+        trust = min(max(4.0 * trust, 1e-3), 0.02)
         binding = max(current.ratios, key=current.ratios.__getitem__)
         trial = Trial(steps, current.excess, binding, programs)
         trials.append(trial)

@@ -39,6 +39,7 @@ generation). Clarabel solves it (Goulart & Chen, arXiv:2405.12762 (2024)).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -269,8 +270,12 @@ class _Cones:
             np.concatenate(r), np.concatenate(c), np.concatenate(v), b.ravel(), [width] * index.size
         )
 
-    def solve(self, objective: FloatArray, extra: list[_Cones] = ()) -> FloatArray | None:  # type: ignore[assignment]
-        """Minimise objective . x (Clarabel); None unless solved."""
+    def solve(
+        self, objective: FloatArray, extra: Sequence[_Cones] = (), scale: FloatArray | None = None
+    ) -> FloatArray | None:
+        """Minimise objective . x over these rows and ``extra``'s (Clarabel, gap tolerances
+        1e-6, feasibility 1e-7), the columns solved in units of ``scale`` (x = scale y, so
+        that every variable is of order one); None unless solved."""
         import clarabel
 
         columns = objective.size
@@ -286,9 +291,8 @@ class _Cones:
                     rhs.append(b)
                     count += b.size
             if count:
-                cones.append(
-                    clarabel.ZeroConeT(count) if kind == "zero" else clarabel.NonnegativeConeT(count)
-                )
+                cone = clarabel.ZeroConeT if kind == "zero" else clarabel.NonnegativeConeT
+                cones.append(cone(count))
             offset += count
         for part in [self, *extra]:
             for r, c, v, b in part.soc:
@@ -302,6 +306,9 @@ class _Cones:
             (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
             shape=(offset, columns),
         ).tocsc()
+        if scale is not None:
+            matrix = (matrix @ sparse.diags(scale)).tocsc()
+            objective = objective * scale
         settings = clarabel.DefaultSettings()
         settings.verbose = False
         settings.tol_gap_abs = settings.tol_gap_rel = 1e-6
@@ -312,8 +319,12 @@ class _Cones:
         )
         result = solver.solve()
         if str(result.status) not in ("Solved", "AlmostSolved"):
+            import os
+            if os.environ.get("SK_DEBUG"):
+                print("clarabel", result.status, result.iterations, matrix.shape)
             return None
-        return np.asarray(result.x)
+        solution = np.asarray(result.x)
+        return solution * scale if scale is not None else solution
 
 
 def _differences(values: FloatArray, order: int, period_s: float) -> FloatArray:
@@ -432,6 +443,11 @@ class SplineTranscription:
                 )
         if program.joint_model is not None:
             rows.append(self._joint_rows(samples, ev, blocks, steps, nz))
+        # the trust region, and the columns' units: the box for the splines, the states' reach
+        # within it for the segments' start states
+        box = np.full(nz, trust * self.length)
+        if tilting:
+            box[free:] = 2.5 * trust
         # ----------------------------------------------- pendulums, condensed per segment
         starts = list(range(SEGMENT_SAMPLES, n - 1, SEGMENT_SAMPLES))
         segments = len(starts)
@@ -440,11 +456,16 @@ class SplineTranscription:
         slack = state_base + models * segments * state_width
         residual_base = slack + 1
         columns = residual_base + 2 * modes * models
+        scale = np.ones(columns)
+        scale[:nz] = box
         cones = _Cones()
         for m, model in enumerate(program.models):
             lengths, omegas, zetas = mode_arrays(model)
+            # the frame's lateral turning rates (Euler, centrifugal and Coriolis terms) enter
+            # only when the container tilts, or may
+            width = 7 if tilting or np.any(ev.drive[m][..., 3:]) else 3
             a_k, b_k, e_k = step_jacobians(
-                ev.unit[m], ev.rate[m], ev.drive[m], lengths, omegas, zetas, ts
+                ev.unit[m], ev.rate[m], ev.drive[m][..., :width], lengths, omegas, zetas, ts
             )
             kappa = omegas**2 * lengths / model.gravity_m_s2
             drive = np.zeros((modes, n, 7, nz))
@@ -459,11 +480,11 @@ class SplineTranscription:
                         + (kappa - 1.0)[:, None, None] * band.force[offset + 1][-1][None]
                     )
                     drive[:, :, :3] += gain[..., None] * moved[None, :, None, :]
-                    drive[:, :, 3:] += band.rates[offset + 1][None, :, :, None] * moved[
-                        None, :, None, :
-                    ]
-            inputs = np.einsum("qkaw,qkwz->qkaz", b_k, drive[:, :-1]) + np.einsum(
-                "qkaw,qkwz->qkaz", e_k, drive[:, 1:]
+                    drive[:, :, 3:] += (
+                        band.rates[offset + 1][None, :, :, None] * moved[None, :, None, :]
+                    )
+            inputs = np.einsum("qkaw,qkwz->qkaz", b_k, drive[:, :-1, :width]) + np.einsum(
+                "qkaw,qkwz->qkaz", e_k, drive[:, 1:, :width]
             )
             phi, psi, segment = _propagate(a_k, inputs, starts)
             model_base = state_base + m * segments * state_width
@@ -476,6 +497,11 @@ class SplineTranscription:
                 for q in range(modes):
                     row = np.arange(6)
                     own = model_base + (i - 1) * state_width + 6 * q
+                    reach = np.abs(psi[q, start]) @ box
+                    if i > 1:
+                        before = scale[own - state_width : own - state_width + 6]
+                        reach = reach + np.abs(phi[q, start]) @ before
+                    scale[own : own + 6] = np.maximum(reach, 1e-12)
                     r_list = [row]
                     c_list = [own + row]
                     v_list = [np.ones(6)]
@@ -503,9 +529,7 @@ class SplineTranscription:
                 slope = mode.wall_elevation_factor_m * slope_jacobian(ev.unit[m, q])
                 wall_z += np.einsum("kac,kcz->kaz", slope, psi[q, :, :3])
                 wall_x[:, :, 6 * q : 6 * q + 6] = np.einsum("kac,kcw->kaw", slope, phi[q, :, :3])
-            rows.append(
-                _Rows(ev.wall[m], wall_z, lim.max_height_m, wall_x, first_column(segment))
-            )
+            rows.append(_Rows(ev.wall[m], wall_z, lim.max_height_m, wall_x, first_column(segment)))
             # the residual: per mode |e_n [A_n B_n]|_2 as half the sum of two norms
             last = n - 1
             end_column = first_column(segment[last : last + 1])[0]
@@ -554,9 +578,7 @@ class SplineTranscription:
             cones.add(
                 "nonneg",
                 np.zeros(2 * modes + 1, dtype=int),
-                np.concatenate(
-                    (residual_base + 2 * m * modes + np.arange(2 * modes), [slack])
-                ),
+                np.concatenate((residual_base + 2 * m * modes + np.arange(2 * modes), [slack])),
                 np.concatenate((np.full(2 * modes, 0.5), [-1.0])),
                 [keep],
             )
@@ -572,9 +594,6 @@ class SplineTranscription:
         )
         cones.add("nonneg", [0], [0], [-1.0], [coefficients[3]])  # c_3 >= c_2 = 0
         cones.add("nonneg", [0], [free - 1], [1.0], [self.length - coefficients[count - 4]])
-        box = np.full(nz, trust * self.length)
-        if tilting:
-            box[free:] = 2.5 * trust
         variables = np.arange(nz)
         cones.add("nonneg", variables, variables, np.ones(nz), box)
         cones.add("nonneg", variables, variables, -np.ones(nz), box)
@@ -587,7 +606,7 @@ class SplineTranscription:
             chosen = _Cones()
             for block, use in zip(rows, selected, strict=True):
                 chosen.vector_rows(block, use, slack, keep)
-            x = cones.solve(objective, [chosen])
+            x = cones.solve(objective, [chosen], scale)
             self.programs += 1
             if x is None:
                 return None
@@ -646,9 +665,7 @@ class SplineTranscription:
         derivative = np.diff(dq, axis=0) / scaled[None, :, None]
         values = ev.joint[:steps]
         dof = values.shape[1]
-        return _Rows(
-            values.reshape(-1, 1), derivative.reshape(steps * dof, 1, nz), 1.0
-        )
+        return _Rows(values.reshape(-1, 1), derivative.reshape(steps * dof, 1, nz), 1.0)
 
 
 def _propagate(
