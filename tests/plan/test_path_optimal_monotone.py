@@ -1,10 +1,11 @@
 """Monotone in the limits: looser limits never give ``optimal`` a longer plan (issue #25).
 
 On a short corner path (0.15 m, a 90 deg clothoid corner, 0.12 m, turning 90 deg about z) with
-the measured series' vial, at a 10 ms export period. Not met yet: the planner is a local
-sequential program, and hypothesis found a pair of limits where the looser one's plan is 6 %
-longer. The property test keeps that pair as its first example and is an
-expected failure until the searches are monotone (strict: it fails when it starts passing).
+the measured series' vial, at a 10 ms export period. The planner is a local sequential
+program, so this is checked, not guaranteed: hypothesis found a pair of limits where the looser
+one's plan was 6 % longer with the cone programs that the spline transcription replaced
+(1.20 s at 6 mm and 10 m/s^2, 1.27 s at 6.78 mm and 20 m/s^2); the test keeps that pair as
+its first example. Derandomised, so that CI runs the same examples every time.
 """
 
 from __future__ import annotations
@@ -46,8 +47,9 @@ def _duration(height_m: float, acceleration_m_s2: float) -> float:
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="the local searches are not monotone in the limits yet")
-@settings(max_examples=3, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(
+    max_examples=3, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+)
 @given(
     height_mm=st.floats(6.0, 12.0),
     looser_height=st.floats(1.0, 1.4),
