@@ -303,11 +303,19 @@ def _run_method(problem: PathProblem, method: str, verifier: Any) -> tuple[str, 
 
 
 def reference_table(
-    model: object, robot: str | None, quick: bool, cached_only: bool = False
+    model: object,
+    robot: str | None,
+    quick: bool,
+    cached_only: bool = False,
+    methods: tuple[str, ...] = REFERENCE_METHODS,
+    names: tuple[str, ...] = (),
 ) -> list[str]:
     """Rows of the reference table (module docstring); with ``cached_only`` an optimum not in
-    the cache is shown as such instead of computed."""
+    the cache is shown as such instead of computed; ``methods`` and ``names`` (cases) select
+    the columns and rows (default: all)."""
     cases = reference_cases(model)[:1] if quick else reference_cases(model)
+    if names:
+        cases = [(name, problem) for name, problem in cases if name in names]
     robots = [None] if quick or robot is None else [None, robot]
     rows = [
         "Against the independent optimum (`benchmarks/ocp_reference.py`) of the same problem "
@@ -321,11 +329,10 @@ def reference_table(
         "| case | robot | optimum upright | optimum tilted | optimum compute "
         "| nonlinear optimum upright | nonlinear optimum tilted | nonlinear optimum compute | "
         + " | ".join(
-            f"{m} | {m} / optimum | {m} / nonlinear optimum | {m} compute"
-            for m in REFERENCE_METHODS
+            f"{m} | {m} / optimum | {m} / nonlinear optimum | {m} compute" for m in methods
         )
         + " |",
-        "|---|---|---|---|---|---|---|---|" + "---|---|---|---|" * len(REFERENCE_METHODS),
+        "|---|---|---|---|---|---|---|---|" + "---|---|---|---|" * len(methods),
     ]
     for name, problem in cases:
         compute = not cached_only
@@ -354,7 +361,7 @@ def reference_table(
         for arm in robots:
             verifier = _robot(arm)
             cells = []
-            for method in REFERENCE_METHODS:
+            for method in methods:
                 shown, duration, wall = _run_method(problem, method, verifier)
                 tilting = method in ("tilt", "optimal tilted")
                 bases = (tilted, exact_tilted) if tilting else (upright, exact)
@@ -383,6 +390,14 @@ def main() -> None:
     parser.add_argument("--tables", default="primary,strict,waypoints,reference")
     parser.add_argument("--robot", default="ur5e", help="arm of the reference table, or none")
     parser.add_argument("--quick", action="store_true", help="one case of the reference table")
+    parser.add_argument(
+        "--methods",
+        default=",".join(REFERENCE_METHODS),
+        help="methods of the reference table, comma-separated",
+    )
+    parser.add_argument(
+        "--cases", default="", help="cases of the reference table, comma-separated (default all)"
+    )
     parser.add_argument(
         "--cached-only", action="store_true", help="reference optima from the cache only"
     )
@@ -417,7 +432,17 @@ def main() -> None:
         rows += waypoint_table(model)
     if "reference" in tables:
         robot = None if arguments.robot.lower() == "none" else arguments.robot
-        rows += ["", *reference_table(model, robot, arguments.quick, arguments.cached_only)]
+        rows += [
+            "",
+            *reference_table(
+                model,
+                robot,
+                arguments.quick,
+                arguments.cached_only,
+                tuple(arguments.methods.split(",")),
+                tuple(name for name in arguments.cases.split(",") if name),
+            ),
+        ]
     load = os.getloadavg()[0]
     rows.append("")
     rows.append(f"(load average {load:.1f} on {os.cpu_count()} cores when the run ended)")
