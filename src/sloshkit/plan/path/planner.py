@@ -15,14 +15,12 @@ speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the tim
   largest cap whose tilted export passes the screen and the tilt and angular limits, then
   improved by the same local searches on the tilted export, seeded also from ``retime``'s
   timing in ``auto`` (`sloshkit.plan.path.tilt`);
-- ``auto``: all three (and ``optimal`` on short moves), the fastest verified;
+- ``auto``: all three (and ``optimal`` on short and medium moves), the fastest verified;
 - ``optimal``: the minimum-time timing (and, with ``tilt``, the tilt) of the path by
-  sequential second-order-cone programs on the export grid with the nonlinear model as a
-  defect correction
-  (`sloshkit.plan.path.optimal`): the fastest verified moves, at minutes of compute on long
-  paths, so ``auto`` runs it only on short moves (`AUTO_OPTIMAL_MAX_SAMPLES`); with the tilt
-  (``method="optimal"``, ``tilt``) ``tilt``'s verified plan is one more start of its tilted
-  search.
+  sequential second-order-cone programs of a spline transcription on the export grid
+  (`sloshkit.plan.path.optimal`): the fastest verified moves, at a minute or more of compute
+  on long paths, so ``auto`` runs it only on short and medium moves
+  (`AUTO_OPTIMAL_MAX_SAMPLES`); with ``tilt`` the tilt angles are variables of its programs.
 
 Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path.result.verify`); when
 the verified export still exceeds a limit that a slower copy meets (slosh, Cartesian, angular,
@@ -233,10 +231,10 @@ def _retime(
 
 
 #: ``auto`` also runs ``optimal`` when the fastest verified plan of the other methods has at
-#: most this many export samples (1.2 s at 4 ms). Its compute grows with the samples: about
-#: 11 s upright and 17 s tilted for the benchmark's 0.77 s pick-and-place (193 samples),
-#: 75-120 s for the 2.1 s TRD_2D move (523 samples), minutes beyond.
-AUTO_OPTIMAL_MAX_SAMPLES = 300
+#: most this many export samples (2.8 s at 4 ms). Its compute grows with the samples: about
+#: 2 s upright and 3 s tilted for the benchmark's 0.78 s pick-and-place (196 samples), 10 s
+#: and 45 s for the 2.1 s TRD_2D move (521 samples), a minute or more beyond 1,000.
+AUTO_OPTIMAL_MAX_SAMPLES = 700
 
 
 def _optimal_affordable(problem: PathProblem, feasible: Sequence[PathCandidate]) -> bool:

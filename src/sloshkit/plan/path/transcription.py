@@ -64,6 +64,9 @@ ACTIVE_FRACTION = 0.6
 GENERATION_ROUNDS = 6
 #: Relative margin the programs keep from every limit (the export is verified exactly).
 PROGRAM_MARGIN = 1e-3
+#: Clarabel's gap tolerances (its feasibility tolerance a tenth of them): a program's
+#: solution is a trust-region step, re-evaluated exactly before it is kept.
+SOLVER_GAP = 1e-6
 
 
 @dataclass(frozen=True, eq=False)
@@ -273,8 +276,8 @@ class _Cones:
     def solve(
         self, objective: FloatArray, extra: Sequence[_Cones] = (), scale: FloatArray | None = None
     ) -> FloatArray | None:
-        """Minimise objective . x over these rows and ``extra``'s (Clarabel, gap tolerances
-        1e-6, feasibility 1e-7), the columns solved in units of ``scale`` (x = scale y, so
+        """Minimise objective . x over these rows and ``extra``'s (Clarabel, `SOLVER_GAP`),
+        the columns solved in units of ``scale`` (x = scale y, so
         that every variable is of order one); None unless solved."""
         import clarabel
 
@@ -311,8 +314,8 @@ class _Cones:
             objective = objective * scale
         settings = clarabel.DefaultSettings()
         settings.verbose = False
-        settings.tol_gap_abs = settings.tol_gap_rel = 1e-6
-        settings.tol_feas = 1e-7
+        settings.tol_gap_abs = settings.tol_gap_rel = SOLVER_GAP
+        settings.tol_feas = 0.1 * SOLVER_GAP
         quadratic = sparse.csc_matrix((columns, columns))
         solver = clarabel.DefaultSolver(
             quadratic, objective, matrix, np.concatenate(rhs), cones, settings
