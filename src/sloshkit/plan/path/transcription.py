@@ -139,7 +139,8 @@ def spline_basis(count: int, tau: FloatArray, derivative: int = 0) -> FloatArray
     if derivative:
         spline = spline.derivative(derivative)
     values = spline(np.clip(np.asarray(tau, dtype=float), 0.0, 1.0))
-    return np.nan_to_num(np.asarray(values, dtype=float))
+    basis: FloatArray = np.nan_to_num(np.asarray(values, dtype=float))
+    return basis
 
 
 def fit_timing(
@@ -322,9 +323,6 @@ class _Cones:
         )
         result = solver.solve()
         if str(result.status) not in ("Solved", "AlmostSolved"):
-            import os
-            if os.environ.get("SK_DEBUG"):
-                print("clarabel", result.status, result.iterations, matrix.shape)
             return None
         solution = np.asarray(result.x)
         return solution * scale if scale is not None else solution
@@ -420,7 +418,9 @@ class SplineTranscription:
         keep = 1.0 - PROGRAM_MARGIN
         modes, models = len(program.modes), len(program.models)
         rows: list[_Rows] = []
-        position = sum(band.position[:, :, None] * dz[:, None, :] for band, dz in blocks)
+        position = np.zeros((n, 3, nz))
+        for band, dz in blocks:
+            position += band.position[:, :, None] * dz[:, None, :]
         for order, values, limit in (
             (1, ev.velocity, lim.max_velocity_m_s),
             (2, ev.acceleration, lim.max_acceleration_m_s2),
@@ -557,17 +557,17 @@ class SplineTranscription:
                     r_list = [np.array([0])]
                     c_list = [np.array([residual_base + 2 * (m * modes + q) + cone])]
                     v_list = [np.array([-1.0])]
-                    for row in (1, 2):
-                        index = 2 * cone + row - 1
+                    for component in (1, 2):
+                        index = 2 * cone + component - 1
                         through_z = combos[0][index]
                         nonzero = np.flatnonzero(through_z)
-                        r_list.append(np.full(nonzero.size, row))
+                        r_list.append(np.full(nonzero.size, component))
                         c_list.append(nonzero)
                         v_list.append(-through_z[nonzero])
                         if end_column >= 0:
                             through_x = combos[1][index]
                             nonzero = np.flatnonzero(through_x)
-                            r_list.append(np.full(nonzero.size, row))
+                            r_list.append(np.full(nonzero.size, component))
                             c_list.append(end_column + nonzero)
                             v_list.append(-through_x[nonzero])
                     cones.add_soc(
@@ -603,25 +603,24 @@ class SplineTranscription:
         cones.add("nonneg", [0], [slack], [-1.0], [1.0])  # sigma >= -1
         objective = np.zeros(columns)
         objective[slack] = 1.0
-        selected = [block.initial(keep) for block in rows]
+        selected = [group.initial(keep) for group in rows]
         x = None
         for _ in range(GENERATION_ROUNDS):
             chosen = _Cones()
-            for block, use in zip(rows, selected, strict=True):
-                chosen.vector_rows(block, use, slack, keep)
+            for group, use in zip(rows, selected, strict=True):
+                chosen.vector_rows(group, use, slack, keep)
             x = cones.solve(objective, [chosen], scale)
             self.programs += 1
             if x is None:
                 return None
             added = 0
-            for block, use in zip(rows, selected, strict=True):
-                over = (block.predicted(x, nz) > keep + x[slack] + 1e-6) & ~use
+            for group, use in zip(rows, selected, strict=True):
+                over = (group.predicted(x, nz) > keep + x[slack] + 1e-6) & ~use
                 added += int(over.sum())
                 use |= over | np.roll(over, 1) | np.roll(over, -1)
             if not added:
                 break
         assert x is not None
-        self._debug = (rows, x, nz, free, residual_base, slack)
         new_s = coefficients.copy()
         new_s[3 : count - 3] = np.clip(new_s[3 : count - 3] + x[:free], 0.0, self.length)
         new_s = np.maximum.accumulate(new_s)
