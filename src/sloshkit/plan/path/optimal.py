@@ -53,7 +53,7 @@ def capped_start(problem: Any, shaped: bool = False) -> SplineTiming:
     ...     sk.CartesianLimits(2.0, 10.0, 100.0), sk.SpatialSloshLimits(0.008, 0.001), model)
     >>> start = capped_start(problem)
     >>> start.steps, float(start.coefficients_m[-1])
-    (115, 0.1)
+    (125, 0.1)
     """
     from sloshkit.plan.path.retime import capped_timing, curve_shaper, family_member
 
