@@ -355,7 +355,9 @@ class PathProgram:
         Every quantity at sample k depends on the samples k-1..k+1 only (positions on k, the
         angular velocity on k-1 and k, the forces on k-1..k+1 through the second difference),
         so perturbing every third sample at once separates the bands (Curtis, Powell & Reid,
-        IMA J. Appl. Math. 13 (1974) 117-119); central differences. The spin about the axis is
+        IMA J. Appl. Math. 13 (1974) 117-119); one-sided differences from the samples' own
+        evaluation (backward at the path's end; the programs re-evaluate every step exactly,
+        so the O(step) error, about 1e-7 relative, is immaterial). The spin about the axis is
         recomputed: a sample's change moves only its own spin when the axis keeps its direction
         (the increments telescope; holding it fixed rotated N by the yaw change instead).
         """
@@ -363,6 +365,7 @@ class PathProgram:
         n = samples.s_m.size
         columns: list[int | None] = [None] + ([0, 1] if self.tilt else [])
         bands = []
+        base_force, base_kinematic = self.forces(samples)
         for column in columns:
             step = 1e-7 * max(self.path.length_m, 1.0) if column is None else 1e-7
             force = np.zeros((3, len(self.modes) + 1, n, 3))
@@ -371,8 +374,8 @@ class PathProgram:
             omega = np.zeros((2, n + 1, 3))
             for colour in range(3):
                 chosen = np.arange(colour, n, 3)
-                plus, minus, width = _perturbed(samples, chosen, column, step, self.path.length_m)
-                (fp, kp), (fm, km) = self.forces(plus), self.forces(minus)
+                moved, width = _perturbed(samples, chosen, column, step, self.path.length_m)
+                (fp, kp), (fm, km) = self.forces(moved), (base_force, base_kinematic)
                 dforce = fp - fm
                 drates = kp["tilt_rates"] - km["tilt_rates"]
                 position[chosen] = (kp["position"] - km["position"])[chosen] / width[chosen, None]
@@ -462,23 +465,20 @@ class _ProgramBands:
 
 def _perturbed(
     samples: PathSamples, chosen: Any, column: int | None, step: float, length_m: float
-) -> tuple[PathSamples, PathSamples, FloatArray]:
-    """The samples with the ``chosen`` ones moved by +- ``step`` in s (kept on [0, S]: one-sided
-    at the ends, where the path is clipped) or in a tilt angle, and each sample's width of the
-    difference (plus - minus; 1 where not perturbed)."""
-    s_plus, s_minus = samples.s_m.copy(), samples.s_m.copy()
-    tilt_plus, tilt_minus = samples.tilt_rad.copy(), samples.tilt_rad.copy()
+) -> tuple[PathSamples, FloatArray]:
+    """The samples with the ``chosen`` ones moved by ``step`` in s (backwards where that would
+    leave [0, S]) or in a tilt angle, and each sample's signed move (1 where not moved)."""
+    s_moved = samples.s_m.copy()
+    tilt_moved = samples.tilt_rad.copy()
     width = np.ones(samples.s_m.size)
     if column is None:
-        s_plus[chosen] = np.minimum(s_plus[chosen] + step, length_m)
-        s_minus[chosen] = np.maximum(s_minus[chosen] - step, 0.0)
-        width[chosen] = s_plus[chosen] - s_minus[chosen]
+        forward = s_moved[chosen] + step <= length_m
+        s_moved[chosen] = np.where(forward, s_moved[chosen] + step, s_moved[chosen] - step)
+        width[chosen] = s_moved[chosen] - samples.s_m[chosen]
     else:
-        tilt_plus[chosen, column] += step
-        tilt_minus[chosen, column] -= step
-        width[chosen] = 2.0 * step
-    period = samples.period_s
-    return PathSamples(s_plus, tilt_plus, period), PathSamples(s_minus, tilt_minus, period), width
+        tilt_moved[chosen, column] += step
+        width[chosen] = step
+    return PathSamples(s_moved, tilt_moved, samples.period_s), width
 
 
 def _residual_height(amplitude: FloatArray) -> float:
