@@ -3,11 +3,13 @@
 At a fixed number N of export samples, sequential cone programs of the spline transcription
 (`sloshkit.plan.path.transcription.SplineTranscription.step`) minimise the largest ratio
 r(N) of a limited quantity to its limit, from the best timing found so far scaled to N
-(`at_duration`). N itself is found by a safeguarded Newton iteration on r(N) = 1: a ratio
-scales with the duration as T^-p, p the order of the binding quantity (1 for a speed, 2 for
-an acceleration or a slosh height, 3 for a jerk), so N r^(1/p) is the next guess, kept
-strictly inside the bracket of the smallest N that met every limit and the largest that did
-not, else its midpoint (bisection). It ends when the bracket is one sample (or `TOLERANCE`
+(`at_duration`). N itself is found by a safeguarded secant iteration on ln r(N) = 0 in
+ln N: a ratio scales with the duration as T^-p, so N r^(1/p) is the next guess, p the secant
+slope through the last two durations when they are close (near the optimum the slosh ratios
+fall as T^-3.3 on pick-and-place), else the order of the binding quantity (1 for a speed, 2
+for an acceleration or a slosh height, 3 for a jerk); the guess is kept strictly inside the
+bracket of the smallest N that met every limit and the largest that did not, else its
+midpoint (bisection). It ends when the bracket is one sample (or `TOLERANCE`
 of N) wide (`shortest`).
 """
 
@@ -199,6 +201,26 @@ def stretched_start(
     return best
 
 
+def _exponent(trials: list[Trial], default: float) -> float:
+    """p in ratio ~ N^-p: the secant through the last two durations' largest ratios when they
+    are close (within 5 % of N) and ordered as that law says, within [1, 6]; else
+    ``default``, the binding quantity's own order.
+
+    Examples
+    --------
+    >>> trials = [Trial(199, 0.934, "peak slosh", 4), Trial(192, 1.053, "peak slosh", 4)]
+    >>> round(_exponent(trials, 2.0), 2)
+    3.34
+    """
+    if len(trials) >= 2:
+        first, second = trials[-2], trials[-1]
+        if first.steps != second.steps and abs(first.steps - second.steps) <= 0.05 * first.steps:
+            slope = -math.log(second.excess / first.excess) / math.log(second.steps / first.steps)
+            if slope > 0.0:
+                return min(max(slope, 1.0), 6.0)
+    return default
+
+
 def shortest(
     transcription: SplineTranscription,
     start: SplineTiming,
@@ -282,7 +304,7 @@ def shortest(
             1, math.floor(TOLERANCE * highest_met)
         ):
             break
-        exponent = EXPONENTS.get(binding, 2.0)
+        exponent = _exponent(trials, EXPONENTS.get(binding, 2.0))
         ratio = min(max(current.excess, 0.6), 1.6)
         guess = round(steps * ratio ** (1.0 / exponent))
         if guess == steps:
