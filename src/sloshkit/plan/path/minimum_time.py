@@ -210,7 +210,7 @@ def _exponent(trials: list[Trial], default: float) -> float:
     --------
     >>> trials = [Trial(199, 0.934, "peak slosh", 4), Trial(192, 1.053, "peak slosh", 4)]
     >>> round(_exponent(trials, 2.0), 2)
-    3.34
+    3.35
     """
     if len(trials) >= 2:
         first, second = trials[-2], trials[-1]
