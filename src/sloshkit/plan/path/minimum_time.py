@@ -56,8 +56,18 @@ EXPONENTS = {
 
 @dataclass(frozen=True, eq=False)
 class Trial:
-    """One duration of the search: N, the best largest ratio found there, the binding
-    quantity, and the programs it took.
+    """One duration of the search.
+
+    Parameters
+    ----------
+    steps : int
+        N, the export sample periods.
+    excess : float
+        The least largest ratio to a limit found at N.
+    binding : str
+        The quantity of that ratio.
+    programs : int
+        The programs solved at N.
 
     Examples
     --------
@@ -77,8 +87,17 @@ class Trial:
 
 
 def knot_count(duration_s: float) -> int:
-    """The number of spline coefficients for a move of ``duration_s``: knots every
-    `KNOT_SPACING_S`, at least 8 coefficients.
+    """The number of spline coefficients for a move: knots every `KNOT_SPACING_S`.
+
+    Parameters
+    ----------
+    duration_s : float
+        The move's duration [s].
+
+    Returns
+    -------
+    int
+        K, at least 8.
 
     Examples
     --------
@@ -89,7 +108,20 @@ def knot_count(duration_s: float) -> int:
 
 
 def respaced(timing: SplineTiming, count: int) -> SplineTiming:
-    """``timing`` refitted with ``count`` coefficients (least squares on 8 points a knot).
+    """A timing refitted with another number of coefficients (least squares on 8 points a
+    knot).
+
+    Parameters
+    ----------
+    timing : SplineTiming
+        The timing (and tilt).
+    count : int
+        K of the result.
+
+    Returns
+    -------
+    SplineTiming
+        ``timing`` itself when it has ``count`` coefficients.
 
     Examples
     --------
@@ -124,8 +156,43 @@ def at_duration(
     shrinks to 0.4 of the step's size). Stops when a kept step was predicted to gain less than
     0.2 %, or after ``iterations`` programs.
 
-    Returns the best splines, their exact iterate, the programs solved and the last trust
-    region (the next duration starts from four times it).
+    Parameters
+    ----------
+    transcription : SplineTranscription
+        The program.
+    timing : SplineTiming
+        The start, on the N to solve.
+    iterations : int
+        Programs at most.
+    trust : float
+        The first trust region, a fraction of the path's length per coefficient.
+    log : callable, optional
+        Receives one line per program.
+
+    Returns
+    -------
+    tuple
+        The best splines, their exact iterate (`ProgramIterate`), the programs solved and the
+        last trust region (the next duration starts from four times it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sloshkit.model.geometry import UprightCylinder
+    >>> from sloshkit.model.liquids import get_liquid
+    >>> from sloshkit.model.modal import equivalent_model
+    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> from sloshkit.plan.path.program import PathProgram, ProgramLimits
+    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
+    >>> program = PathProgram(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]), [model], limits,
+    ...                       0.01)
+    >>> tau = np.linspace(0.0, 1.0, 101)
+    >>> start = fit_timing(tau, 0.1 * tau**3 * (10 - 15 * tau + 6 * tau**2), 10, 45)
+    >>> transcription = SplineTranscription(program)
+    >>> timing, best, programs, trust = at_duration(transcription, start)
+    >>> bool(best.excess < transcription.iterate(start).excess), timing.steps
+    (True, 45)
     """
     current = transcription.iterate(timing)
     programs = 0
@@ -167,9 +234,21 @@ STRETCHES = 48
 def stretched_start(
     transcription: SplineTranscription, timing: SplineTiming
 ) -> tuple[SplineTiming, ProgramIterate]:
-    """The shortest uniform stretch 1.03^k of ``timing`` whose samples meet every limit (exact
+    """The shortest uniform stretch 1.03^k of a timing whose samples meet every limit (exact
     evaluations only, no program), else the stretch closest to meeting them: the search over
     N then starts from a duration that meets the limits.
+
+    Parameters
+    ----------
+    transcription : SplineTranscription
+        The program (its exact evaluation).
+    timing : SplineTiming
+        The timing to stretch.
+
+    Returns
+    -------
+    tuple
+        The stretched splines and their exact iterate.
 
     Examples
     --------

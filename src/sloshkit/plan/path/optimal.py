@@ -45,6 +45,18 @@ def capped_start(problem: Any, shaped: bool = False) -> SplineTiming:
     (`sloshkit.plan.path.retime.family_member` with `curve_shaper`), a residual that stays
     small when the timing is stretched.
 
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model and export period.
+    shaped : bool
+        Whether to filter and shape the profile.
+
+    Returns
+    -------
+    SplineTiming
+        On the export grid, upright.
+
     Examples
     --------
     >>> import sloshkit as sk

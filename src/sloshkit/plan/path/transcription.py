@@ -124,8 +124,21 @@ class SplineTiming:
 
 
 def spline_basis(count: int, tau: FloatArray, derivative: int = 0) -> FloatArray:
-    """The clamped cubic B-spline basis of ``count`` functions on uniform knots over [0, 1]
-    (de Boor (1978) ch. IX), or its ``derivative``-th derivative, at ``tau``: (len, count).
+    """The clamped cubic B-spline basis on uniform knots over [0, 1] (de Boor (1978) ch. IX).
+
+    Parameters
+    ----------
+    count : int
+        The number of basis functions K (at least 4).
+    tau : numpy.ndarray
+        Normalised times in [0, 1].
+    derivative : int
+        The order of the derivative in tau (0: the basis itself).
+
+    Returns
+    -------
+    numpy.ndarray
+        (len(tau), K).
 
     Examples
     --------
@@ -339,7 +352,17 @@ def _differences(values: FloatArray, order: int, period_s: float) -> FloatArray:
 
 @dataclass(frozen=True, eq=False)
 class StepResult:
-    """A program's new splines and the largest ratio to a limit it predicts.
+    """A program's result.
+
+    Parameters
+    ----------
+    timing : SplineTiming
+        The new splines.
+    predicted : float
+        The largest ratio to a limit the linearised program predicts for them.
+    size : float
+        The step's largest coefficient change over the trust region's unit (S for the path
+        parameter, 2.5 rad for the tilt).
 
     Examples
     --------
