@@ -25,13 +25,16 @@ from sloshkit.plan.path.transcription import SplineTiming, SplineTranscription, 
 
 #: Searches of `plan_optimal`, each with the program's slosh limits moved towards the values
 #: at which the verification meets its limits (`_next_limit`), at most.
-TIGHTENINGS = 4
+TIGHTENINGS = 5
 #: A verified plan whose peak or residual is within this fraction of its limit ends them.
 LIMIT_TOLERANCE = 0.02
 #: The tilt's rate and acceleration limits where the angular ones are lifted [rad/s, rad/s^2]
 #: (as `benchmarks/ocp_reference.py`'s tilted problem).
 TILT_RATE_RAD_S = math.pi
 TILT_ACCELERATION_RAD_S2 = math.radians(1000.0)
+#: The least relative distance of two rounds' program limits for `_next_limit` to
+#: interpolate between them.
+BRACKET = 0.01
 #: Where the program's slosh limits aim, as a fraction of the limits: the first round starts
 #: there and `_next_limit` moves them towards the verification meeting it.
 LIMIT_AIM = 1.0 - 0.5 * LIMIT_TOLERANCE
@@ -95,7 +98,9 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     at which the verification meets its limits (`_next_limit`; at most `TIGHTENINGS`). The
     rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
     limit, or when a round no longer shortens the plan; the shortest verified timing is
-    kept. A limit outside the program is met by a uniform stretch
+    kept (the 25 Hz smoothing the verification also simulates moves the slosh by several
+    percent at a 10 ms period, so a round can miss the limits its program met). A limit
+    outside the program is met by a uniform stretch
     (`sloshkit.plan.path.result.verified_candidate`); a verifier that checks an arm's joint
     speeds (`sloshkit.plan.path.result.JointSpeedCheck`) lends the programs the joints along
     the path (`sloshkit.plan.path.joints.joint_map`), and they limit the joint speeds
@@ -171,6 +176,8 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     timing: SplineTiming | None = None
     rounds: list[dict[str, float]] = []
     verified: list[SplineTiming] = []
+    # every round's splines with its verified excess over the slosh limits
+    searched: list[tuple[float, SplineTiming]] = []
     durations: list[tuple[int, float]] = []
     programs = 0
     failure = ""
@@ -212,10 +219,12 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
                 f"verified: peak {check.peak_height_m * 1e3:.3g} mm, residual "
                 f"{check.residual_height_m * 1e3:.3g} mm"
             )
-        if (
-            check.peak_height_m <= slosh.max_height_m
-            and check.residual_height_m <= slosh.max_residual_height_m
-        ):
+        excess = max(
+            check.peak_height_m / slosh.max_height_m,
+            check.residual_height_m / slosh.max_residual_height_m,
+        )
+        searched.append((excess, timing))
+        if excess <= 1.0:
             verified.append(timing)
             closest = max(
                 check.peak_height_m / slosh.max_height_m,
@@ -237,7 +246,13 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
             ),
         )
     if not verified:
-        message = failure or "the verification's slosh exceeds the limits after every tightening"
+        # a uniform stretch does not rescue these: the residual turns with the duration
+        message = failure or (
+            "the verification's slosh exceeds the limits after every tightening (closest: "
+            f"{min(entry[0] for entry in searched):.3f} times the limit)"
+            if searched
+            else "no search ran"
+        )
         return PathCandidate("optimal", None, None, time.perf_counter() - started, message)
     best = min(verified, key=lambda found: found.steps)
 
@@ -283,21 +298,31 @@ def _next_limit(
     rounds: list[dict[str, float]], program_key: str, verified_key: str, limit: float
 ) -> float:
     """The program's next limit: the verification's value is an increasing function v(p) of
-    the program's limit p (v = p for a linear verification); regula falsi for v(p) = limit
-    (slightly below) on the rounds that bracket it, else p limit / v (at most the limit)."""
+    the program's limit p (v = p for a linear verification), up to the few percent by which
+    each round's local plan differs; regula falsi for v(p) = limit (slightly below) on the
+    rounds that bracket it when their program limits are `BRACKET` apart (closer, the
+    difference is the plans' scatter, not v's slope), else p limit / v (at most the limit).
+
+    Examples
+    --------
+    >>> rounds = [{"p": 0.99, "v": 0.9895}, {"p": 0.9904, "v": 1.063}]
+    >>> round(_next_limit(rounds, "p", "v", 1.0), 4)  # scatter: scaled, not interpolated
+    0.9224
+    """
     aim = LIMIT_AIM * limit
     points = sorted((r[program_key], r[verified_key]) for r in rounds)
     below = [p for p in points if p[1] <= aim]
     above = [p for p in points if p[1] > aim]
     if below and above:
         (p1, v1), (p2, v2) = below[-1], above[0]
-        if v2 > v1 and p2 > p1:  # rounds at one program limit bracket nothing
+        if v2 > v1 and p2 > (1.0 + BRACKET) * p1:
             return p1 + (aim - v1) * (p2 - p1) / (v2 - v1)
     p, v = rounds[-1][program_key], rounds[-1][verified_key]
     return min(limit, p * aim / max(v, 1e-12))
 
 
 __all__ = [
+    "BRACKET",
     "LIMIT_AIM",
     "LIMIT_TOLERANCE",
     "TIGHTENINGS",
