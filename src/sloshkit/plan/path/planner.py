@@ -15,12 +15,12 @@ speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the tim
   largest cap whose tilted export passes the screen and the tilt and angular limits, then
   improved by the same local searches on the tilted export, seeded also from ``retime``'s
   timing in ``auto`` (`sloshkit.plan.path.tilt`);
-- ``auto``: all three (and ``optimal`` on short and medium moves), the fastest verified;
+- ``auto``: all three (and ``optimal`` on short moves), the fastest verified;
 - ``optimal``: the minimum-time timing (and, with ``tilt``, the tilt) of the path by
   sequential second-order-cone programs of a spline transcription on the export grid
   (`sloshkit.plan.path.optimal`): the fastest verified moves, at a minute or more of compute
-  on long paths, so ``auto`` runs it only on short and medium moves
-  (`AUTO_OPTIMAL_MAX_SAMPLES`); with ``tilt`` the tilt angles are variables of its programs.
+  on long paths, so ``auto`` runs it only on short moves (`AUTO_OPTIMAL_MAX_SAMPLES`); with
+  ``tilt`` the tilt angles are variables of its programs.
 
 Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path.result.verify`); when
 the verified export still exceeds a limit that a slower copy meets (slosh, Cartesian, angular,
@@ -231,10 +231,11 @@ def _retime(
 
 
 #: ``auto`` also runs ``optimal`` when the fastest verified plan of the other methods has at
-#: most this many export samples (2.8 s at 4 ms). Its compute grows with the samples: about
-#: 2 s upright and 3 s tilted for the benchmark's 0.78 s pick-and-place (196 samples), 10 s
-#: and 45 s for the 2.1 s TRD_2D move (521 samples), a minute or more beyond 1,000.
-AUTO_OPTIMAL_MAX_SAMPLES = 700
+#: most this many export samples (1.2 s at 4 ms). Its compute grows with the samples: about
+#: 3 s upright and 2 s tilted for the benchmark's 0.78 s pick-and-place (196 samples), 12 s
+#: and 75 s for the 2.1 s TRD_2D move (521 samples), and 250 s tilted on TRD_2D under the
+#: default angular limits (2.336 s, where `retime` gives 2.264 s in 11 s).
+AUTO_OPTIMAL_MAX_SAMPLES = 300
 
 
 def _optimal_affordable(problem: PathProblem, feasible: Sequence[PathCandidate]) -> bool:
