@@ -22,7 +22,8 @@ from sloshkit.plan.path.planner import plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.samples import PathSamples, export_poses
-from sloshkit.plan.path.transcription import SplineTiming, SplineTranscription, fit_timing
+from sloshkit.plan.path.splines import SplineTiming, fit_timing
+from sloshkit.plan.path.transcription import SplineTranscription
 from sloshkit.sim.spatial import simulate_spatial
 
 LIMITS = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)

@@ -13,11 +13,12 @@
 - `sloshkit.plan.path.tilt_compensation`: the container's axis along the apparent gravity.
 - `sloshkit.plan.path.tilt`: the ``tilt`` method (tilt compensation and re-timing).
 - `sloshkit.plan.path.optimal`, `sloshkit.plan.path.minimum_time`,
-  `sloshkit.plan.path.transcription`, `sloshkit.plan.path.program`,
-  `sloshkit.plan.path.samples`, `sloshkit.plan.path.joints`, `sloshkit.plan.path.pendulums`:
-  the ``optimal`` method (sequential second-order-cone programs on a spline transcription):
-  its verified plan, its search over the duration, the splines and one program, its model,
-  its samples, the arm's joints and the pendulums along the path.
+  `sloshkit.plan.path.splines`, `sloshkit.plan.path.transcription`,
+  `sloshkit.plan.path.program`, `sloshkit.plan.path.samples`, `sloshkit.plan.path.joints`,
+  `sloshkit.plan.path.pendulums`: the ``optimal`` method (sequential second-order-cone
+  programs on a spline transcription): its verified plan, its search over the duration, the
+  splines, one program, its model, its samples, the arm's joints and the pendulums along the
+  path.
 
 It never imports the 1-D planner (`sloshkit.plan.line`; an import-linter contract).
 """

@@ -23,11 +23,8 @@ from typing import Any
 import numpy as np
 
 from sloshkit.plan.path.program import ProgramIterate
-from sloshkit.plan.path.transcription import (
-    SplineTiming,
-    SplineTranscription,
-    fit_timing,
-)
+from sloshkit.plan.path.splines import SplineTiming, fit_timing
+from sloshkit.plan.path.transcription import SplineTranscription
 
 #: Spline knots per second of move: one every 25 ms (1/8 of the period of a 40 rad/s mode;
 #: a 40 ms spacing lengthened TRD_2D's minimum by 1.3 %, see studies/path-planner-methods).

@@ -21,7 +21,8 @@ from sloshkit.plan.path.joints import joint_map
 from sloshkit.plan.path.minimum_time import knot_count, shortest
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.samples import export_poses
-from sloshkit.plan.path.transcription import SplineTiming, SplineTranscription, fit_timing
+from sloshkit.plan.path.splines import SplineTiming, fit_timing
+from sloshkit.plan.path.transcription import SplineTranscription
 
 #: Searches of `plan_optimal`, each with the program's slosh limits moved towards the values
 #: at which the verification meets its limits (`_next_limit`), at most.
