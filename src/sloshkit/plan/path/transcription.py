@@ -34,20 +34,19 @@ semi-major axis of a 2 x 2 matrix as half the sum of two norms, Horn & Johnson, 
 Analysis*, 2nd ed. (2013) §7.3), within a box trust region on the coefficients (sequential
 convex programming: Mao, Szmuk & Acikmese, IEEE CDC (2016), doi:10.1109/CDC.2016.7798816).
 Rows that cannot bind are left out and added when the solution violates them (constraint
-generation). Clarabel solves it (Goulart & Chen, arXiv:2405.12762 (2024)).
+generation). The cones and the solver call are `sloshkit.plan.path.conic`'s.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import sparse
 
+from sloshkit.plan.path.conic import ConicProgram, NormRows
 from sloshkit.plan.path.pendulums import slope_jacobian, step_jacobians
 from sloshkit.plan.path.program import HOLD, PathProgram, ProgramIterate, mode_arrays
 from sloshkit.plan.path.samples import PathSamples
@@ -58,154 +57,10 @@ FloatArray = NDArray[np.float64]
 #: Samples per condensed segment of the pendulum states (about 0.4 s at 4 ms: a wall row then
 #: depends on about 20 coefficients and one segment's start states).
 SEGMENT_SAMPLES = 100
-#: A row is in the first program when it is a local peak above this fraction of its limit
-#: (the rest enter when a solution breaks them).
-ACTIVE_FRACTION = 0.6
 #: Constraint-generation rounds per program, at most.
 GENERATION_ROUNDS = 6
 #: Relative margin the programs keep from every limit (the export is verified exactly).
 PROGRAM_MARGIN = 1e-3
-#: Clarabel's gap tolerances (its feasibility tolerance a tenth of them): a program's
-#: solution is a trust-region step, re-evaluated exactly before it is kept.
-SOLVER_GAP = 1e-6
-
-
-@dataclass(frozen=True, eq=False)
-class _Rows:
-    """Vector rows |values + Dz z + Dx x_seg| / limit <= keep + sigma: ``values`` (rows, d),
-    ``dz`` (rows, d, nz) the derivative in the spline variables, ``dx`` (rows, d, w) in the
-    start states of the row's segment (columns ``first`` + 0..w-1; ``first`` < 0: none),
-    ``limit`` and the slack's column."""
-
-    values: FloatArray
-    dz: FloatArray
-    limit: float
-    dx: FloatArray | None = None
-    first: NDArray[np.int64] | None = None
-
-    def predicted(self, x: FloatArray, nz: int) -> FloatArray:
-        """The rows' linearised norms over the limit at the solution ``x``."""
-        vector = self.values + self.dz @ x[:nz]
-        if self.dx is not None and self.first is not None:
-            has = self.first >= 0
-            columns = self.first[has, None] + np.arange(self.dx.shape[2])[None]
-            vector[has] += np.einsum("rdw,rw->rd", self.dx[has], x[columns])
-        return np.asarray(np.linalg.norm(vector, axis=1) / self.limit)
-
-    def initial(self, keep: float) -> NDArray[np.bool_]:
-        """The rows of the first program: local peaks above `ACTIVE_FRACTION` and their
-        neighbours."""
-        norms = np.linalg.norm(self.values, axis=1) / self.limit
-        peak = np.zeros(norms.size, dtype=bool)
-        peak[1:-1] = (norms[1:-1] >= norms[:-2]) & (norms[1:-1] >= norms[2:])
-        peak |= norms >= 0.97 * keep
-        peak &= norms >= ACTIVE_FRACTION * keep
-        return np.asarray(peak | np.roll(peak, 1) | np.roll(peak, -1))
-
-
-class _Cones:
-    """Rows b - A x in Clarabel's cones, gathered as COO triplets."""
-
-    def __init__(self) -> None:
-        self.parts: dict[str, list[tuple[Any, Any, Any, Any]]] = {"zero": [], "nonneg": []}
-        self.soc: list[tuple[Any, Any, Any, Any]] = []
-        self.soc_dims: list[int] = []
-
-    def add(self, kind: str, r: Any, c: Any, v: Any, b: Any) -> None:
-        """Rows (local indices r) of ``kind`` "zero" or "nonneg"."""
-        self.parts[kind].append(
-            (np.asarray(r, int), np.asarray(c, int), np.asarray(v, float), np.asarray(b, float))
-        )
-
-    def add_soc(self, r: Any, c: Any, v: Any, b: Any, dims: list[int]) -> None:
-        """Consecutive second-order cones of sizes ``dims``."""
-        self.soc.append(
-            (np.asarray(r, int), np.asarray(c, int), np.asarray(v, float), np.asarray(b, float))
-        )
-        self.soc_dims += dims
-
-    def vector_rows(self, rows: _Rows, use: NDArray[np.bool_], slack: int, keep: float) -> None:
-        """The cones of the selected rows: (keep + sigma, (values + D x) / limit)."""
-        index = np.flatnonzero(use)
-        if not index.size:
-            return
-        d = rows.values.shape[1]
-        width = d + 1
-        base = np.arange(index.size) * width
-        r = [base]
-        c = [np.full(index.size, slack)]
-        v = [-np.ones(index.size)]
-        dz = rows.dz[index] / rows.limit
-        local, comp, col = np.nonzero(dz)
-        r.append(base[local] + 1 + comp)
-        c.append(col)
-        v.append(-dz[local, comp, col])
-        if rows.dx is not None and rows.first is not None:
-            dx = rows.dx[index] / rows.limit
-            first = rows.first[index]
-            local, comp, col = np.nonzero(dx * (first >= 0)[:, None, None])
-            r.append(base[local] + 1 + comp)
-            c.append(first[local] + col)
-            v.append(-dx[local, comp, col])
-        b = np.zeros((index.size, width))
-        b[:, 0] = keep
-        b[:, 1:] = rows.values[index] / rows.limit
-        self.add_soc(
-            np.concatenate(r), np.concatenate(c), np.concatenate(v), b.ravel(), [width] * index.size
-        )
-
-    def solve(
-        self, objective: FloatArray, extra: Sequence[_Cones] = (), scale: FloatArray | None = None
-    ) -> FloatArray | None:
-        """Minimise objective . x over these rows and ``extra``'s (Clarabel, `SOLVER_GAP`),
-        the columns solved in units of ``scale`` (x = scale y, so
-        that every variable is of order one); None unless solved."""
-        import clarabel
-
-        columns = objective.size
-        rows, cols, vals, rhs, cones = [], [], [], [], []
-        offset = 0
-        for kind in ("zero", "nonneg"):
-            count = 0
-            for part in [self, *extra]:
-                for r, c, v, b in part.parts[kind]:
-                    rows.append(r + offset + count)
-                    cols.append(c)
-                    vals.append(v)
-                    rhs.append(b)
-                    count += b.size
-            if count:
-                cone = clarabel.ZeroConeT if kind == "zero" else clarabel.NonnegativeConeT
-                cones.append(cone(count))
-            offset += count
-        for part in [self, *extra]:
-            for r, c, v, b in part.soc:
-                rows.append(r + offset)
-                cols.append(c)
-                vals.append(v)
-                rhs.append(b)
-                offset += b.size
-            cones += [clarabel.SecondOrderConeT(d) for d in part.soc_dims]
-        matrix = sparse.coo_matrix(
-            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-            shape=(offset, columns),
-        ).tocsc()
-        if scale is not None:
-            matrix = (matrix @ sparse.diags(scale)).tocsc()
-            objective = objective * scale
-        settings = clarabel.DefaultSettings()
-        settings.verbose = False
-        settings.tol_gap_abs = settings.tol_gap_rel = SOLVER_GAP
-        settings.tol_feas = 0.1 * SOLVER_GAP
-        quadratic = sparse.csc_matrix((columns, columns))
-        solver = clarabel.DefaultSolver(
-            quadratic, objective, matrix, np.concatenate(rhs), cones, settings
-        )
-        result = solver.solve()
-        if str(result.status) not in ("Solved", "AlmostSolved"):
-            return None
-        solution = np.asarray(result.x)
-        return solution * scale if scale is not None else solution
 
 
 def _differences(values: FloatArray, order: int, period_s: float) -> FloatArray:
@@ -308,7 +163,7 @@ class SplineTranscription:
             blocks.append((bands[block], dz))
         keep = 1.0 - PROGRAM_MARGIN
         modes, models = len(program.modes), len(program.models)
-        rows: list[_Rows] = []
+        rows: list[NormRows] = []
         position = np.zeros((n, 3, nz))
         for band, dz in blocks:
             position += band.position[:, :, None] * dz[:, None, :]
@@ -317,7 +172,7 @@ class SplineTranscription:
             (2, ev.acceleration, lim.max_acceleration_m_s2),
             (3, ev.jerk, lim.max_jerk_m_s3),
         ):
-            rows.append(_Rows(values, _differences(position, order, ts), limit))
+            rows.append(NormRows(values, _differences(position, order, ts), limit))
         self._angular_rows(rows, ev, blocks, n, nz)
         if tilting:
             tilt = np.zeros((n, 2))
@@ -329,7 +184,7 @@ class SplineTranscription:
                 (2, lim.max_tilt_acceleration_rad_s2),
             ):
                 rows.append(
-                    _Rows(
+                    NormRows(
                         _differences(tilt, order, ts) if order else tilt,
                         _differences(dtilt, order, ts) if order else dtilt,
                         limit,
@@ -352,7 +207,7 @@ class SplineTranscription:
         columns = residual_base + 2 * modes * models
         scale = np.ones(columns)
         scale[:nz] = box
-        cones = _Cones()
+        cones = ConicProgram()
         for m, model in enumerate(program.models):
             lengths, omegas, zetas = mode_arrays(model)
             # the frame's lateral turning rates (Euler, centrifugal and Coriolis terms) enter
@@ -423,7 +278,9 @@ class SplineTranscription:
                 slope = mode.wall_elevation_factor_m * slope_jacobian(ev.unit[m, q])
                 wall_z += np.einsum("kac,kcz->kaz", slope, psi[q, :, :3])
                 wall_x[:, :, 6 * q : 6 * q + 6] = np.einsum("kac,kcw->kaw", slope, phi[q, :, :3])
-            rows.append(_Rows(ev.wall[m], wall_z, lim.max_height_m, wall_x, first_column(segment)))
+            rows.append(
+                NormRows(ev.wall[m], wall_z, lim.max_height_m, wall_x, first_column(segment))
+            )
             # the residual: per mode |e_n [A_n B_n]|_2 as half the sum of two norms
             last = n - 1
             end_column = first_column(segment[last : last + 1])[0]
@@ -497,9 +354,9 @@ class SplineTranscription:
         selected = [group.initial(keep) for group in rows]
         x = None
         for _ in range(GENERATION_ROUNDS):
-            chosen = _Cones()
+            chosen = ConicProgram()
             for group, use in zip(rows, selected, strict=True):
-                chosen.vector_rows(group, use, slack, keep)
+                chosen.add_rows(group, use, slack, keep)
             x = cones.solve(objective, [chosen], scale)
             self.programs += 1
             if x is None:
@@ -524,7 +381,9 @@ class SplineTranscription:
             size = max(size, float(np.max(np.abs(x[free:nz]))) / 2.5)
         return StepResult(SplineTiming(new_s, new_tilt, steps), keep + float(x[slack]), size)
 
-    def _angular_rows(self, rows: list[_Rows], ev: Any, blocks: list[Any], n: int, nz: int) -> None:
+    def _angular_rows(
+        self, rows: list[NormRows], ev: Any, blocks: list[Any], n: int, nz: int
+    ) -> None:
         """The container's angular velocity and acceleration (when limited): omega_i from the
         samples i - 1 and i (`PathProgram.jacobians`' bands), alpha its difference."""
         lim, ts = self.program.limits, self.program.ts
@@ -536,15 +395,17 @@ class SplineTranscription:
             domega[index] += band.omega[1][index][:, :, None] * dz[index][:, None, :]
             domega[index] += band.omega[0][index][:, :, None] * dz[index - 1][:, None, :]
         if lim.max_angular_velocity_rad_s is not None:
-            rows.append(_Rows(ev.omega, domega, lim.max_angular_velocity_rad_s))
+            rows.append(NormRows(ev.omega, domega, lim.max_angular_velocity_rad_s))
         if lim.max_angular_acceleration_rad_s2 is not None:
             rows.append(
-                _Rows(ev.alpha, np.diff(domega, axis=0) / ts, lim.max_angular_acceleration_rad_s2)
+                NormRows(
+                    ev.alpha, np.diff(domega, axis=0) / ts, lim.max_angular_acceleration_rad_s2
+                )
             )
 
     def _joint_rows(
         self, samples: PathSamples, ev: Any, blocks: list[Any], steps: int, nz: int
-    ) -> _Rows:
+    ) -> NormRows:
         """Each joint's speed (q_k+1 - q_k) / (h limit) within 1 (a one-dimensional cone per
         joint and period), q linear in the samples' deviations through dq/ds and dq/dr."""
         model = self.program.joint_model
@@ -558,7 +419,7 @@ class SplineTranscription:
         derivative = np.diff(dq, axis=0) / scaled[None, :, None]
         values = ev.joint[:steps]
         dof = values.shape[1]
-        return _Rows(values.reshape(-1, 1), derivative.reshape(steps * dof, 1, nz), 1.0)
+        return NormRows(values.reshape(-1, 1), derivative.reshape(steps * dof, 1, nz), 1.0)
 
 
 def _propagate(
@@ -594,11 +455,9 @@ def _propagate(
 
 
 __all__ = [
-    "ACTIVE_FRACTION",
     "GENERATION_ROUNDS",
     "PROGRAM_MARGIN",
     "SEGMENT_SAMPLES",
-    "SOLVER_GAP",
     "SplineTranscription",
     "StepResult",
 ]
