@@ -8,9 +8,12 @@ ln N: a ratio scales with the duration as T^-p, so N r^(1/p) is the next guess, 
 slope through the last two durations when they are close (near the optimum the slosh ratios
 fall as T^-3.3 on pick-and-place), else the order of the binding quantity (1 for a speed, 2
 for an acceleration or a slosh height, 3 for a jerk); the guess is kept strictly inside the
-bracket of the smallest N that met every limit and the largest that did not, else its
-midpoint (bisection). It ends when the bracket is one sample (or `TOLERANCE`
-of N) wide (`shortest`). Each duration's programs stop as soon as they decide it: at the
+bracket of the smallest N that met every limit and the largest shorter one that did not,
+else its midpoint (bisection). It ends when the bracket is one sample (or `TOLERANCE` of N) wide
+(`shortest`), unless the best splines scaled to the missed N would have met the limits with
+a margin and that N started from other splines: it is then tried once more from the best
+ones (a sample's change of N turns the residual's phases, and programs from a far start can
+lose their way). Each duration's programs stop as soon as they decide it: at the
 first splines that meet every limit, or when the programs' predicted least ratio stalls
 above them (`at_duration`'s ``decide``); the search needs no more, and on the benchmark
 cases this halved the programs.
@@ -387,7 +390,9 @@ def shortest(
     if stretch:
         timing, iterate = stretched_start(transcription, start)
         best = (timing, iterate) if iterate.feasible else None
-    lowest_unmet = 0
+    # the durations that did not meet the limits, each with the N of the splines it started
+    # from
+    unmet: dict[int, int] = {}
     steps = timing.steps
     trust = 0.02
     for tried in range(MAX_DURATIONS):
@@ -409,11 +414,24 @@ def shortest(
             if best is None or steps < best[0].steps:
                 best = (timing, current)
         else:
-            lowest_unmet = max(lowest_unmet, steps)
+            unmet[steps] = base.steps
         highest_met = best[0].steps if best is not None else None
+        # a duration longer than one that met the limits did too: its programs lost their way
+        lowest_unmet = max((n for n in unmet if highest_met is None or n < highest_met), default=0)
         if highest_met is not None and highest_met - lowest_unmet <= max(
             1, math.floor(TOLERANCE * highest_met)
         ):
+            assert best is not None
+            if (
+                lowest_unmet
+                and unmet[lowest_unmet] != highest_met
+                and best[1].excess * (highest_met / lowest_unmet) ** 2 < 1.0 - UNMET_MARGIN
+            ):
+                # the best splines scaled to the unmet N would nearly meet the limits: that N
+                # is tried again from them before the search ends
+                steps = lowest_unmet
+                del unmet[steps]
+                continue
             break
         exponent = _exponent(trials, EXPONENTS.get(binding, 2.0))
         ratio = min(max(trial.excess, 0.6), 1.6)
@@ -424,6 +442,8 @@ def shortest(
         if not lowest_unmet < guess < upper:
             guess = (lowest_unmet + upper) // 2 if upper < math.inf else int(1.25 * steps) + 1
         steps = int(guess)
+    if best is None and not trials:
+        raise RuntimeError("no duration was tried")
     if best is None:
         raise RuntimeError(
             f"no duration up to {max(t.steps for t in trials) * transcription.program.ts:.3f} s "
