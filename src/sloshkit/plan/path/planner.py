@@ -232,9 +232,9 @@ def _retime(
 
 #: ``auto`` also runs ``optimal`` when the fastest verified plan of the other methods has at
 #: most this many export samples (1.2 s at 4 ms). Its compute grows with the samples: about
-#: 3 s upright and 2 s tilted for the benchmark's 0.78 s pick-and-place (196 samples), 12 s
-#: and 75 s for the 2.1 s TRD_2D move (521 samples), and 250 s tilted on TRD_2D under the
-#: default angular limits (2.336 s, where `retime` gives 2.264 s in 11 s).
+#: 1 s upright and tilted for the benchmark's 0.78 s pick-and-place (196 samples), 6 s and
+#: 36 s for the 2.1 s TRD_2D move (522 samples), and 70 s tilted on TRD_2D under the default
+#: angular limits (1.940 s, where `retime` gives 2.264 s in 11 s).
 AUTO_OPTIMAL_MAX_SAMPLES = 300
 
 
