@@ -19,7 +19,8 @@ speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the tim
 - ``optimal``: the minimum-time timing (and, with ``tilt``, the tilt) of the path by
   sequential second-order-cone programs of a spline transcription on the export grid
   (`sloshkit.plan.path.optimal`): the fastest verified moves, at a minute or more of compute
-  on long paths, so ``auto`` runs it only on short moves (`AUTO_OPTIMAL_MAX_SAMPLES`); with
+  on long paths, so ``auto`` runs it only on short moves (`AUTO_OPTIMAL_MAX_SAMPLES`,
+  `AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES`); with
   ``tilt`` the tilt angles are variables of its programs.
 
 Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path.result.verify`); when
@@ -47,6 +48,7 @@ from sloshkit.plan.path.ladder import TARGET_LADDER, ladder_seeds, method_timing
 from sloshkit.plan.path.limits import machine_violations, path_deviation
 from sloshkit.plan.path.problem import PathProblem, sample_path
 from sloshkit.plan.path.result import (
+    JointSpeedCheck,
     PathCandidate,
     PathPlanResult,
     Verifier,
@@ -236,15 +238,24 @@ def _retime(
 #: 36 s for the 2.1 s TRD_2D move (522 samples), and 70 s tilted on TRD_2D under the default
 #: angular limits (1.940 s, where `retime` gives 2.264 s in 11 s).
 AUTO_OPTIMAL_MAX_SAMPLES = 300
+#: The same bound for an upright plan without an arm (2.4 s at 4 ms): upright, ``optimal``
+#: took 5.6 s for the 2.09 s TRD_2D move, where `retime` took 20 s for 2.54 s (benchmark in
+#: docs/planning-3d.md); with an arm it took 173 s.
+AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES = 600
 
 
-def _optimal_affordable(problem: PathProblem, feasible: Sequence[PathCandidate]) -> bool:
+def _optimal_affordable(
+    problem: PathProblem, feasible: Sequence[PathCandidate], tilt: bool, arm: bool
+) -> bool:
     """Whether ``auto`` runs ``optimal`` too: a verified plan exists and the fastest one has at
-    most `AUTO_OPTIMAL_MAX_SAMPLES` samples (``optimal``'s programs grow with the samples)."""
+    most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES` upright without
+    an arm; ``optimal``'s programs grow with the samples, and the tilt's and the joints' make
+    them dearer)."""
     if not feasible:
         return False
     fastest = min(c.duration_s for c in feasible)
-    return fastest / problem.sample_period_s <= AUTO_OPTIMAL_MAX_SAMPLES
+    bound = AUTO_OPTIMAL_MAX_SAMPLES if tilt or arm else AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES
+    return fastest / problem.sample_period_s <= bound
 
 
 def plan_path(
@@ -269,7 +280,8 @@ def plan_path(
         Path, Cartesian/angular limits, slosh limits, model, sample period.
     method : str
         ``auto`` (``retime``, ``shaped``, ``tilt`` with ``tilt``, and ``optimal`` when the
-        fastest of them has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples; the fastest verified),
+        fastest of them has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples, upright without an
+        arm `AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES`; the fastest verified),
         ``retime``, ``shaped``, ``tilt`` or ``optimal`` (`sloshkit.plan.path.optimal`).
     reference : Timing, optional
         The path's existing timing (e.g. of the pose file it came from): slowed uniformly and
@@ -342,7 +354,9 @@ def plan_path(
             retimed = [] if timing is None or not found.feasible else [timing]
             candidates[-1] = improved_tilt(problem, candidates[-1], retimed, verifier)
     feasible = [c for c in candidates if c.feasible]
-    if method == "auto" and _optimal_affordable(problem, feasible):
+    arm = isinstance(verifier, JointSpeedCheck)
+    tilting = tilt and problem.max_tilt_rad > 0.0
+    if method == "auto" and _optimal_affordable(problem, feasible, tilting, arm):
         from sloshkit.plan.path.optimal import plan_optimal
 
         say("optimal: the minimum-time timing by sequential cone programs (a short move)")
@@ -360,6 +374,7 @@ def plan_path(
 
 __all__ = [
     "AUTO_OPTIMAL_MAX_SAMPLES",
+    "AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES",
     "PATH_METHODS",
     "PathCandidate",
     "PathPlanResult",
