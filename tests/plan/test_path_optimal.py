@@ -16,7 +16,7 @@ from sloshkit.model.modal import SloshModel
 from sloshkit.motion.laws import s_curve
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path.geometry import path_from_waypoints
-from sloshkit.plan.path.minimum_time import knot_count, shortest
+from sloshkit.plan.path.minimum_time import at_duration, knot_count, shortest
 from sloshkit.plan.path.optimal import capped_start
 from sloshkit.plan.path.planner import plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
@@ -128,6 +128,26 @@ def test_a_program_predicts_the_exact_ratios_of_its_splines(
     if tilt:
         assert np.all(samples.tilt_rad[[0, -1]] == 0.0) and np.abs(samples.tilt_rad).max() > 1e-4
         assert np.linalg.norm(samples.tilt_rad, axis=1).max() <= limits.max_tilt_rad * 1.001
+
+
+def test_a_decided_duration_stops_at_its_verdict(robot_vial: SloshModel) -> None:
+    """With ``decide`` the programs at an N stop at the first splines that meet every limit
+    (fewer programs than minimising the ratio there, and the ratio returned is theirs), and
+    at an N far too short they return a ratio above 1 without meeting the limits."""
+    problem = _corner_problem(robot_vial)
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    transcription = SplineTranscription(program)
+    slow = _spline_start(problem, 0.2)
+    assert not transcription.iterate(slow).feasible
+    minimised = at_duration(transcription, slow)
+    timing, iterate, programs, _, ratio = at_duration(transcription, slow, decide=True)
+    assert iterate.feasible and minimised[1].feasible
+    # here one program meets the limits, where minimising takes eight
+    assert programs < minimised[2] and ratio == iterate.excess <= 1.0
+    assert timing.steps == slow.steps
+    short = slow.on_steps(slow.steps // 3)
+    _, iterate, _, _, ratio = at_duration(transcription, short, decide=True)
+    assert not iterate.feasible and ratio > 1.0
 
 
 def test_segments_condense_the_same_program(
