@@ -94,8 +94,9 @@ def capped_start(problem: Any, shaped: bool = False) -> SplineTiming:
 def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = False) -> Any:
     """The minimum-time timing (and, with ``tilt``, the tilt) of the path, verified.
 
-    Rounds of the minimum-time search (`shortest`): the first from `capped_start`, each next
-    one from the last one's splines with the program's slosh limits moved towards the values
+    Rounds of the minimum-time search (`shortest`): the first from `capped_start` (with
+    ``tilt``, the upright minimum first, and the tilted search from it: a plan with zero tilt
+    is a tilted plan too), each next one from the last one's splines with the program's slosh limits moved towards the values
     at which the verification meets its limits (`_next_limit`; at most `TIGHTENINGS`). The
     rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
     limit, or when a round no longer shortens the plan; the shortest verified timing is
@@ -194,7 +195,24 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
         )
         transcription = SplineTranscription(program)
         try:
-            if timing is None:
+            if timing is None and tilt:
+                # the tilted search starts from the upright minimum (tilt zero is a tilted
+                # plan too), so that it can only shorten it
+                upright = SplineTranscription(
+                    PathProgram(
+                        problem.path,
+                        problem.models(),
+                        limits,
+                        ts,
+                        centre_height_m=problem.tilt_centre_height_m,
+                        joints=joints,
+                    )
+                )
+                timing, trials = _first_search(problem, upright, log)
+                programs += upright.programs
+                timing, _, more = shortest(transcription, timing, log)
+                trials = [*trials, *more]
+            elif timing is None:
                 timing, trials = _first_search(problem, transcription, log)
             else:
                 timing, _, trials = shortest(transcription, timing, log)
