@@ -96,8 +96,9 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
 
     Rounds of the minimum-time search (`shortest`): the first from `capped_start` (with
     ``tilt``, the upright minimum first, and the tilted search from it: a plan with zero tilt
-    is a tilted plan too), each next one from the last one's splines with the program's slosh limits moved towards the values
-    at which the verification meets its limits (`_next_limit`; at most `TIGHTENINGS`). The
+    is a tilted plan too), each next one from the last one's splines with the program's slosh
+    limits moved towards the values at which the verification meets its limits
+    (`_next_limit`; at most `TIGHTENINGS`). The
     rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
     limit, or when a round no longer shortens the plan; the shortest verified timing is
     kept (the 25 Hz smoothing the verification also simulates moves the slosh by several
