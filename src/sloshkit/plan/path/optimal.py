@@ -184,31 +184,27 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     durations: list[tuple[int, float]] = []
     programs = 0
     failure = ""
-    for _ in range(TIGHTENINGS):
-        program = PathProgram(
-            problem.path,
-            problem.models(),
-            limits,
-            ts,
-            tilt=tilt,
-            centre_height_m=problem.tilt_centre_height_m,
-            joints=joints,
+
+    def transcribed(tilted: bool) -> SplineTranscription:
+        return SplineTranscription(
+            PathProgram(
+                problem.path,
+                problem.models(),
+                limits,
+                ts,
+                tilt=tilted,
+                centre_height_m=problem.tilt_centre_height_m,
+                joints=joints,
+            )
         )
-        transcription = SplineTranscription(program)
+
+    for _ in range(TIGHTENINGS):
+        transcription = transcribed(tilt)
         try:
             if timing is None and tilt:
                 # the tilted search starts from the upright minimum (tilt zero is a tilted
-                # plan too), so that it can only shorten it
-                upright = SplineTranscription(
-                    PathProgram(
-                        problem.path,
-                        problem.models(),
-                        limits,
-                        ts,
-                        centre_height_m=problem.tilt_centre_height_m,
-                        joints=joints,
-                    )
-                )
+                # plan too), so that it starts at a duration that meets the limits
+                upright = transcribed(False)
                 timing, trials = _first_search(problem, upright, log)
                 programs += upright.programs
                 timing, _, more = shortest(transcription, timing, log)
