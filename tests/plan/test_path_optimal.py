@@ -283,6 +283,16 @@ def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshM
     assert tilted.verification is not None and tilted.verification.peak_tilt_rad > 0.02
     assert joint_speed_ratio(arm, mounting, tilted.poses)[0] <= 1.0
     assert tilted.duration_s < 0.95 * armed.duration_s
+    # the tilted rounds start from the upright ones' shortest verified plan, and the shorter
+    # of the two is returned: a tilted plan is never longer than the upright one
+    rounds = tilted.detail["rounds"]
+    assert tilted.detail["tilted"] and not rounds[0]["tilted"] and rounds[-1]["tilted"]
+    upright = [
+        r["duration_s"]
+        for r in rounds
+        if not r["tilted"] and r["verified_peak_m"] <= 0.015 and r["verified_residual_m"] <= 0.002
+    ]
+    assert tilted.duration_s <= min(upright)
 
 
 def test_the_joint_map_has_no_tilt_model_where_the_arm_cannot_tilt(robot_vial: SloshModel) -> None:

@@ -94,20 +94,21 @@ def capped_start(problem: Any, shaped: bool = False) -> SplineTiming:
 def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = False) -> Any:
     """The minimum-time timing (and, with ``tilt``, the tilt) of the path, verified.
 
-    Rounds of the minimum-time search (`shortest`): the first from `capped_start` (with
-    ``tilt``, the upright minimum first, and the tilted search from it: a plan with zero tilt
-    is a tilted plan too), each next one from the last one's splines with the program's slosh
+    Rounds of the minimum-time search (`shortest`; `_search_rounds`): the first from
+    `capped_start`, each next one from the last one's splines with the program's slosh
     limits moved towards the values at which the verification meets its limits
-    (`_next_limit`; at most `TIGHTENINGS`). The
-    rounds end when the verified plan's binding slosh is within `LIMIT_TOLERANCE` of its
-    limit, or when a round no longer shortens the plan; the shortest verified timing is
-    kept (the 25 Hz smoothing the verification also simulates moves the slosh by several
-    percent at a 10 ms period, so a round can miss the limits its program met). A limit
-    outside the program is met by a uniform stretch
-    (`sloshkit.plan.path.result.verified_candidate`); a verifier that checks an arm's joint
-    speeds (`sloshkit.plan.path.result.JointSpeedCheck`) lends the programs the joints along
-    the path (`sloshkit.plan.path.joints.joint_map`), and they limit the joint speeds
-    themselves.
+    (`_next_limit`; at most `TIGHTENINGS`). The rounds end when the verified plan's binding
+    slosh is within `LIMIT_TOLERANCE` of its limit, or when a round no longer shortens the
+    plan; the shortest verified timing is kept (the 25 Hz smoothing the verification also
+    simulates moves the slosh by several percent at a 10 ms period, so a round can miss the
+    limits its program met). With ``tilt`` the upright rounds run first and the tilted ones
+    start from their shortest verified plan (a plan with zero tilt is a tilted plan too), so
+    that a tilted plan is never longer than the upright one: the shorter verified plan of
+    the two is returned (``detail["tilted"]`` says which). A limit outside the program is
+    met by a uniform stretch (`sloshkit.plan.path.result.verified_candidate`); a verifier
+    that checks an arm's joint speeds (`sloshkit.plan.path.result.JointSpeedCheck`) lends
+    the programs the joints along the path (`sloshkit.plan.path.joints.joint_map`), and they
+    limit the joint speeds themselves.
 
     Parameters
     ----------
@@ -129,7 +130,7 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     -------
     PathCandidate
         Method ``optimal``; ``detail`` has the programs solved, each round's limits, verified
-        slosh and durations tried.
+        slosh, durations tried and whether it was tilted.
 
     Examples
     --------
@@ -146,28 +147,11 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     (True, True)
     """
     import time
-    from dataclasses import replace
 
     from sloshkit.plan.path.result import JointSpeedCheck, PathCandidate, verified_candidate
 
     started = time.perf_counter()
-    machine, slosh = problem.machine, problem.slosh
-    limits = ProgramLimits(
-        machine.max_velocity_m_s,
-        machine.max_acceleration_m_s2,
-        machine.max_jerk_m_s3,
-        machine.max_angular_velocity_rad_s,
-        machine.max_angular_acceleration_rad_s2,
-        LIMIT_AIM * slosh.max_height_m,
-        LIMIT_AIM * slosh.max_residual_height_m,
-        max_tilt_rad=problem.max_tilt_rad,
-        max_tilt_rate_rad_s=machine.max_angular_velocity_rad_s or TILT_RATE_RAD_S,
-        max_tilt_acceleration_rad_s2=(
-            machine.max_angular_acceleration_rad_s2 or TILT_ACCELERATION_RAD_S2
-        ),
-    )
     tilt = tilt and problem.max_tilt_rad > 0.0
-    ts = problem.sample_period_s
     arm = isinstance(verifier, JointSpeedCheck)
     joints = joint_map(problem, verifier, tilt=tilt) if arm else None
     if isinstance(joints, str):
@@ -176,115 +160,148 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     # reach them, plan upright
     upright_for_arm = tilt and joints is not None and joints.tilt_gradient is None
     tilt = tilt and not upright_for_arm
-    timing: SplineTiming | None = None
-    rounds: list[dict[str, float]] = []
-    verified: list[SplineTiming] = []
-    # every round's splines with its verified excess over the slosh limits
-    searched: list[tuple[float, SplineTiming]] = []
-    durations: list[tuple[int, float]] = []
-    programs = 0
-    failure = ""
-
-    def transcribed(tilted: bool) -> SplineTranscription:
-        return SplineTranscription(
-            PathProgram(
-                problem.path,
-                problem.models(),
-                limits,
-                ts,
-                tilt=tilted,
-                centre_height_m=problem.tilt_centre_height_m,
-                joints=joints,
-            )
-        )
-
-    for _ in range(TIGHTENINGS):
-        transcription = transcribed(tilt)
-        try:
-            if timing is None and tilt:
-                # the tilted search starts from the upright minimum (tilt zero is a tilted
-                # plan too), so that it starts at a duration that meets the limits
-                upright = transcribed(False)
-                timing, trials = _first_search(problem, upright, log)
-                programs += upright.programs
-                timing, _, more = shortest(transcription, timing, log)
-                trials = [*trials, *more]
-            elif timing is None:
-                timing, trials = _first_search(problem, transcription, log)
-            else:
-                timing, _, trials = shortest(transcription, timing, log)
-        except RuntimeError as error:
-            failure = str(error)
-            programs += transcription.programs
-            break
-        programs += transcription.programs
-        durations += [(trial.steps, trial.excess) for trial in trials]
-        samples = timing.samples(ts)
-        check = verifier(problem, export_poses(problem, samples), tilt)
-        rounds.append(
-            {
-                "duration_s": timing.steps * ts,
-                "height_limit_m": limits.max_height_m,
-                "residual_limit_m": limits.max_residual_height_m,
-                "verified_peak_m": check.peak_height_m,
-                "verified_residual_m": check.residual_height_m,
-            }
-        )
-        if log:
-            log(
-                f"verified: peak {check.peak_height_m * 1e3:.3g} mm, residual "
-                f"{check.residual_height_m * 1e3:.3g} mm"
-            )
-        excess = max(
-            check.peak_height_m / slosh.max_height_m,
-            check.residual_height_m / slosh.max_residual_height_m,
-        )
-        searched.append((excess, timing))
-        if excess <= 1.0:
-            verified.append(timing)
-            closest = max(
-                check.peak_height_m / slosh.max_height_m,
-                check.residual_height_m / slosh.max_residual_height_m,
-            )
-            # done when the binding slosh limit is met within the tolerance, or when moving
-            # the program's limits towards the limit no longer shortens the plan
-            if closest >= 1.0 - LIMIT_TOLERANCE or (
-                len(verified) >= 2 and verified[-1].steps >= verified[-2].steps
-            ):
-                break
-        limits = replace(
-            limits,
-            max_height_m=_next_limit(
-                rounds, "height_limit_m", "verified_peak_m", slosh.max_height_m
-            ),
-            max_residual_height_m=_next_limit(
-                rounds, "residual_limit_m", "verified_residual_m", slosh.max_residual_height_m
-            ),
-        )
-    if not verified:
+    search = _Rounds(problem, verifier, joints, log)
+    search.run(False, None)
+    if tilt:
+        upright = min(search.verified, key=lambda found: found.steps, default=None)
+        search.run(True, upright or search.last)
+    if not search.verified:
         # a uniform stretch does not rescue these: the residual turns with the duration
-        message = failure or (
+        message = search.failure or (
             "the verification's slosh exceeds the limits after every tightening (closest: "
-            f"{min(entry[0] for entry in searched):.3f} times the limit)"
-            if searched
+            f"{min(search.excesses):.3f} times the limit)"
+            if search.excesses
             else "no search ran"
         )
         return PathCandidate("optimal", None, None, time.perf_counter() - started, message)
-    best = min(verified, key=lambda found: found.steps)
+    # the earlier (upright) plan wins a tie
+    best = min(search.verified, key=lambda found: found.steps)
+    tilted = bool(np.any(best.tilt_rad))
+    ts = problem.sample_period_s
 
     def poses_for(factor: float) -> Any:
         stretched = best if factor == 1.0 else best.on_steps(math.ceil(best.steps * factor))
         return export_poses(problem, stretched.samples(ts))
 
     detail: dict[str, Any] = {
-        "programs": programs,
-        "rounds": rounds,
-        "durations": durations,
+        "programs": search.programs,
+        "rounds": search.rounds,
+        "durations": search.durations,
         "knots": best.count,
+        "tilted": tilted,
     }
     if upright_for_arm:
         detail["upright"] = "the arm cannot reach the path tilted by the joint model's probes"
-    return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, tilt, detail)
+    return verified_candidate("optimal", problem, poses_for, 1.0, started, verifier, tilted, detail)
+
+
+class _Rounds:
+    """The rounds of `plan_optimal`: each a minimum-time search at the program's slosh
+    limits, verified, the limits moved by `_next_limit` for the next; the record of all
+    rounds (upright, then tilted) and their verified timings."""
+
+    def __init__(self, problem: Any, verifier: Any, joints: Any, log: Any) -> None:
+        self.problem, self.verifier, self.joints, self.log = problem, verifier, joints, log
+        self.rounds: list[dict[str, Any]] = []
+        self.verified: list[SplineTiming] = []
+        self.excesses: list[float] = []
+        self.durations: list[tuple[int, float]] = []
+        self.programs = 0
+        self.failure = ""
+        self.last: SplineTiming | None = None
+
+    def limits(self) -> ProgramLimits:
+        """The programs' limits of a first round: the slosh limits at `LIMIT_AIM`."""
+        machine, slosh = self.problem.machine, self.problem.slosh
+        return ProgramLimits(
+            machine.max_velocity_m_s,
+            machine.max_acceleration_m_s2,
+            machine.max_jerk_m_s3,
+            machine.max_angular_velocity_rad_s,
+            machine.max_angular_acceleration_rad_s2,
+            LIMIT_AIM * slosh.max_height_m,
+            LIMIT_AIM * slosh.max_residual_height_m,
+            max_tilt_rad=self.problem.max_tilt_rad,
+            max_tilt_rate_rad_s=machine.max_angular_velocity_rad_s or TILT_RATE_RAD_S,
+            max_tilt_acceleration_rad_s2=(
+                machine.max_angular_acceleration_rad_s2 or TILT_ACCELERATION_RAD_S2
+            ),
+        )
+
+    def run(self, tilt: bool, start: SplineTiming | None) -> None:
+        """Rounds with the tilt free or not, from ``start`` (None: `_first_search`)."""
+        from dataclasses import replace
+
+        problem, log = self.problem, self.log
+        slosh, ts = problem.slosh, problem.sample_period_s
+        limits = self.limits()
+        timing = start
+        rounds: list[dict[str, Any]] = []
+        verified: list[SplineTiming] = []
+        for _ in range(TIGHTENINGS):
+            transcription = SplineTranscription(
+                PathProgram(
+                    problem.path,
+                    problem.models(),
+                    limits,
+                    ts,
+                    tilt=tilt,
+                    centre_height_m=problem.tilt_centre_height_m,
+                    joints=self.joints,
+                )
+            )
+            try:
+                if timing is None:
+                    timing, trials = _first_search(problem, transcription, log)
+                else:
+                    timing, _, trials = shortest(transcription, timing, log)
+            except RuntimeError as error:
+                self.failure = str(error)
+                self.programs += transcription.programs
+                break
+            self.programs += transcription.programs
+            self.durations += [(trial.steps, trial.excess) for trial in trials]
+            self.last = timing
+            check = self.verifier(problem, export_poses(problem, timing.samples(ts)), tilt)
+            rounds.append(
+                {
+                    "duration_s": timing.steps * ts,
+                    "tilted": tilt,
+                    "height_limit_m": limits.max_height_m,
+                    "residual_limit_m": limits.max_residual_height_m,
+                    "verified_peak_m": check.peak_height_m,
+                    "verified_residual_m": check.residual_height_m,
+                }
+            )
+            if log:
+                log(
+                    f"verified: peak {check.peak_height_m * 1e3:.3g} mm, residual "
+                    f"{check.residual_height_m * 1e3:.3g} mm"
+                )
+            excess = max(
+                check.peak_height_m / slosh.max_height_m,
+                check.residual_height_m / slosh.max_residual_height_m,
+            )
+            self.excesses.append(excess)
+            if excess <= 1.0:
+                verified.append(timing)
+                # done when the binding slosh limit is met within the tolerance, or when
+                # moving the program's limits towards the limit no longer shortens the plan
+                if excess >= 1.0 - LIMIT_TOLERANCE or (
+                    len(verified) >= 2 and verified[-1].steps >= verified[-2].steps
+                ):
+                    break
+            limits = replace(
+                limits,
+                max_height_m=_next_limit(
+                    rounds, "height_limit_m", "verified_peak_m", slosh.max_height_m
+                ),
+                max_residual_height_m=_next_limit(
+                    rounds, "residual_limit_m", "verified_residual_m", slosh.max_residual_height_m
+                ),
+            )
+        self.rounds += rounds
+        self.verified += verified
 
 
 #: Durations the first search from the unshaped capped timing tries before the search
