@@ -17,7 +17,7 @@ import typer
 
 from sloshkit.files import json_safe
 from sloshkit.io.command_requests import cylinder_model_or_file_request, model_or_file_request
-from sloshkit.io.requests import DEFAULT_RADIUS
+from sloshkit.io.model_options import DEFAULT_RADIUS
 from sloshkit.model.catalogue import catalogue_names
 from sloshkit.model.liquids import LIQUIDS
 from sloshkit.model.modal import SloshModel

@@ -15,7 +15,7 @@ from typing import Any
 
 from sloshkit.cli.options import MODEL_OPTIONS
 from sloshkit.errors import InputError, warn_validity
-from sloshkit.io.requests import options_model_request
+from sloshkit.io.model_options import options_model_request
 from sloshkit.model.modal import SloshModel
 
 #: The slosh-limit options of ``export`` (overriding the plan file's limits).

@@ -32,8 +32,9 @@ from sloshkit.cli.options import (
 )
 from sloshkit.errors import ValidityWarning
 from sloshkit.io.command_requests import MoveRequest, sweep_grid_request
+from sloshkit.io.model_options import vessel_request
 from sloshkit.io.outputs import check_folder, staged_folder
-from sloshkit.io.requests import damping_law_request, liquid_request, vessel_request
+from sloshkit.io.requests import damping_law_request, liquid_request
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import model_family
 from sloshkit.sweep import describe_rate, run_sweep

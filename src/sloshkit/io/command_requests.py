@@ -15,13 +15,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
+from sloshkit.io.model_options import check_bare_length, options_model_request
 from sloshkit.io.models import read_model_file
-from sloshkit.io.requests import (
-    angular_rate_request,
-    check_bare_length,
-    fraction_request,
-    options_model_request,
-)
+from sloshkit.io.requests import angular_rate_request, fraction_request
 from sloshkit.io.units import parse_quantity, parse_range
 from sloshkit.model.modal import SloshModel
 
