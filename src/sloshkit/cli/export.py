@@ -26,8 +26,8 @@ from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
 from sloshkit.export.settings import ExportSettings
 from sloshkit.io.checks import naming
-from sloshkit.io.command_requests import slosh_limits_request
 from sloshkit.io.outputs import all_or_nothing, check_file
+from sloshkit.io.plan_requests import slosh_limits_request
 from sloshkit.io.units import parse_quantity
 from sloshkit.model.modal import SloshModel
 

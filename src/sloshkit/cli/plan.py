@@ -26,8 +26,8 @@ from sloshkit.cli.options import Json, print_json, with_model_options
 from sloshkit.cli.sweep import MaxAngle, MaxResidual
 from sloshkit.errors import InputError
 from sloshkit.export.settings import ExportSettings
-from sloshkit.io.command_requests import line_plan_request
 from sloshkit.io.outputs import all_or_nothing, check_file
+from sloshkit.io.plan_requests import line_plan_request
 from sloshkit.io.requests import fraction_request
 from sloshkit.model.modal import SloshModel
 from sloshkit.plan.line.planner import plan

@@ -4,7 +4,7 @@ Called by `sloshkit.cli.plan.plan_command` when a path is given; the 1-D ``plan 
 is unchanged.
 
 The options become a `sloshkit.plan.path.problem.PathProblem` in
-`sloshkit.io.command_requests.path_problem_request` (angular limits default to 180 deg/s and
+`sloshkit.io.plan_requests.path_problem_request` (angular limits default to 180 deg/s and
 1000 deg/s^2 there; ``none`` lifts a limit), a pose file's own timing the reference candidate
 in `sloshkit.plan.path.problem.reference_timing`. With ``--robot`` (or ``--urdf``) every
 candidate is also solved for the arm's joints as ``sloshkit export`` solves them, with the
@@ -30,7 +30,7 @@ from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.options import print_json
 from sloshkit.errors import InputError
 from sloshkit.io.checks import naming
-from sloshkit.io.command_requests import path_problem_request
+from sloshkit.io.plan_requests import path_problem_request
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.io.waypoints import read_waypoints, require_path_work
@@ -87,7 +87,7 @@ def run_path_plan(
         ``--vmax``, ``--amax``, ``--jmax`` (required).
     max_angular_velocity, max_angular_acceleration : str or None
         ``--max-angular-velocity``, ``--max-angular-acceleration`` (None: the defaults
-        `sloshkit.io.command_requests.DEFAULT_ANGULAR_VELOCITY` and
+        `sloshkit.io.plan_requests.DEFAULT_ANGULAR_VELOCITY` and
         ``DEFAULT_ANGULAR_ACCELERATION``; ``none``: no limit).
     tilt_compensation : bool
         ``--tilt-compensation``: ``auto`` and ``optimal`` may tilt.
