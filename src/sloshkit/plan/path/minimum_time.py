@@ -339,6 +339,7 @@ def shortest(
     log: Callable[[str], Any] | None = None,
     stretch: bool = False,
     give_up: int = MAX_DURATIONS,
+    minimise_first: bool = False,
 ) -> tuple[SplineTiming, ProgramIterate, list[Trial]]:
     """The fewest samples whose splines meet every limit (module docstring), from ``start``.
 
@@ -355,6 +356,11 @@ def shortest(
         (`stretched_start`) instead of ``start``'s own duration.
     give_up : int
         The search fails when none of its first ``give_up`` durations met the limits.
+    minimise_first : bool
+        Whether the first duration's programs minimise its largest ratio instead of only
+        deciding it: a start that met the limits of another program (the upright plan, for
+        a tilted one) has a ratio of about 1, which says nothing of the slack the new
+        freedom gives, and the secant's first step is that ratio's.
 
     Returns
     -------
@@ -402,7 +408,7 @@ def shortest(
         base = best[0] if best is not None else timing
         warm = respaced(base.on_steps(steps), knot_count(steps * ts))
         timing, current, programs, trust, estimate = at_duration(
-            transcription, warm, trust=trust, log=log, decide=True
+            transcription, warm, trust=trust, log=log, decide=not (minimise_first and not tried)
         )
         trust = min(max(4.0 * trust, 1e-3), 0.02)
         binding = max(current.ratios, key=current.ratios.__getitem__)

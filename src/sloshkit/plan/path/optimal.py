@@ -254,7 +254,13 @@ class _Rounds:
                 if timing is None:
                     timing, trials = _first_search(problem, transcription, log)
                 else:
-                    timing, _, trials = shortest(transcription, timing, log)
+                    # the first tilted round minimises the ratio at the upright plan's
+                    # duration: its slack, not the upright plan's ratio of about 1, sets the
+                    # first step of the search
+                    first_tilted = tilt and not rounds
+                    timing, _, trials = shortest(
+                        transcription, timing, log, minimise_first=first_tilted
+                    )
             except RuntimeError as error:
                 self.failure = str(error)
                 self.programs += transcription.programs
