@@ -455,7 +455,7 @@ def test_auto_adds_optimal_on_a_short_move_only(
     robot_vial: SloshModel, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """``auto`` runs ``optimal`` when the fastest other plan is short (at most
-    AUTO_OPTIMAL_MAX_SAMPLES samples, upright without an arm AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES),
+    AUTO_OPTIMAL_MAX_SAMPLES samples, with an arm AUTO_ARM_OPTIMAL_MAX_SAMPLES),
     and the chosen plan is then no slower than any other verified candidate; with the bound
     below the move's samples it does not run it."""
     from sloshkit.plan.path import planner
@@ -477,9 +477,9 @@ def test_auto_adds_optimal_on_a_short_move_only(
     assert result.chosen.method == "optimal"
     others = min(c.duration_s for c in feasible if c.method != "optimal")
     assert others / problem.sample_period_s <= planner.AUTO_OPTIMAL_MAX_SAMPLES
-    # upright without an arm the larger bound applies: the smaller one alone keeps optimal
-    monkeypatch.setattr(planner, "AUTO_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
+    # without an arm the arm's bound does not apply
+    monkeypatch.setattr(planner, "AUTO_ARM_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
     assert "optimal" in [c.method for c in plan_path(problem, "auto", tilt=False).candidates]
-    monkeypatch.setattr(planner, "AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
+    monkeypatch.setattr(planner, "AUTO_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
     without = plan_path(problem, "auto", tilt=False)
     assert "optimal" not in [c.method for c in without.candidates]

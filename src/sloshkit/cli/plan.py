@@ -54,8 +54,8 @@ def plan_command(
         typer.Option(
             "--method",
             help="auto, paper, trapezoidal, cubic, quintic, septic, fast, shaped, optimal; "
-            "with a path: auto (also optimal on moves of at most 300 samples, upright without "
-            "--robot 600), retime, shaped, "
+            "with a path: auto (also optimal on moves of at most 600 samples, with --robot "
+            "300), retime, shaped, "
             "tilt, optimal.",
         ),
     ] = "auto",

@@ -20,7 +20,7 @@ speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the tim
   sequential second-order-cone programs of a spline transcription on the export grid
   (`sloshkit.plan.path.optimal`): the fastest verified moves, at a minute or more of compute
   on long paths, so ``auto`` runs it only on short moves (`AUTO_OPTIMAL_MAX_SAMPLES`,
-  `AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES`); with
+  `AUTO_ARM_OPTIMAL_MAX_SAMPLES`); with
   ``tilt`` the tilt angles are variables of its programs.
 
 Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path.result.verify`); when
@@ -233,28 +233,29 @@ def _retime(
 
 
 #: ``auto`` also runs ``optimal`` when the fastest verified plan of the other methods has at
-#: most this many export samples (1.2 s at 4 ms). Its compute grows with the samples: about
-#: 1 s upright and tilted for the benchmark's 0.78 s pick-and-place (196 samples), 6 s and
-#: 36 s for the 2.1 s TRD_2D move (522 samples), and 70 s tilted on TRD_2D under the default
-#: angular limits (1.940 s, where `retime` gives 2.264 s in 11 s).
-AUTO_OPTIMAL_MAX_SAMPLES = 300
-#: The same bound for an upright plan without an arm (2.4 s at 4 ms): upright, ``optimal``
-#: took 5.6 s for the 2.09 s TRD_2D move, where `retime` took 20 s for 2.54 s (benchmark in
-#: docs/planning-3d.md); with an arm it took 173 s.
-AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES = 600
+#: most this many export samples (2.4 s at 4 ms) and no arm is checked. Its compute grows with
+#: the samples: upright about 1.5 s for the benchmark's 0.78 s pick-and-place (196 samples)
+#: and 6 s for the 2.09 s TRD_2D move (522 samples), where `retime` took 20 s for 2.54 s;
+#: tilted 3 s and 60 s (0.664 s and 1.464 s, where `tilt` gives 1.08 s and 1.88 s), and 70 s
+#: tilted on TRD_2D under the default angular limits (1.940 s, where `retime` gives 2.264 s
+#: in 11 s). A move is planned once and run many times, so a minute for a 20 % shorter cycle
+#: is worth it.
+AUTO_OPTIMAL_MAX_SAMPLES = 600
+#: The same bound with an arm's joint speeds checked (1.2 s at 4 ms): the joint rows and the
+#: IK of the verified exports make ``optimal`` dearer (6 s upright and 12 s tilted for the
+#: pick-and-place with the UR5e, 173 s and 226 s for TRD_2D).
+AUTO_ARM_OPTIMAL_MAX_SAMPLES = 300
 
 
-def _optimal_affordable(
-    problem: PathProblem, feasible: Sequence[PathCandidate], tilt: bool, arm: bool
-) -> bool:
+def _optimal_affordable(problem: PathProblem, feasible: Sequence[PathCandidate], arm: bool) -> bool:
     """Whether ``auto`` runs ``optimal`` too: a verified plan exists and the fastest one has at
-    most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES` upright without
-    an arm; ``optimal``'s programs grow with the samples, and the tilt's and the joints' make
-    them dearer)."""
+    most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_ARM_OPTIMAL_MAX_SAMPLES` with an arm;
+    ``optimal``'s programs grow with the samples, and the joints' rows and IK make them
+    dearer)."""
     if not feasible:
         return False
     fastest = min(c.duration_s for c in feasible)
-    bound = AUTO_OPTIMAL_MAX_SAMPLES if tilt or arm else AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES
+    bound = AUTO_ARM_OPTIMAL_MAX_SAMPLES if arm else AUTO_OPTIMAL_MAX_SAMPLES
     return fastest / problem.sample_period_s <= bound
 
 
@@ -280,8 +281,8 @@ def plan_path(
         Path, Cartesian/angular limits, slosh limits, model, sample period.
     method : str
         ``auto`` (``retime``, ``shaped``, ``tilt`` with ``tilt``, and ``optimal`` when the
-        fastest of them has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples, upright without an
-        arm `AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES`; the fastest verified),
+        fastest of them has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples, with an arm
+        `AUTO_ARM_OPTIMAL_MAX_SAMPLES`; the fastest verified),
         ``retime``, ``shaped``, ``tilt`` or ``optimal`` (`sloshkit.plan.path.optimal`).
     reference : Timing, optional
         The path's existing timing (e.g. of the pose file it came from): slowed uniformly and
@@ -355,8 +356,7 @@ def plan_path(
             candidates[-1] = improved_tilt(problem, candidates[-1], retimed, verifier)
     feasible = [c for c in candidates if c.feasible]
     arm = isinstance(verifier, JointSpeedCheck)
-    tilting = tilt and problem.max_tilt_rad > 0.0
-    if method == "auto" and _optimal_affordable(problem, feasible, tilting, arm):
+    if method == "auto" and _optimal_affordable(problem, feasible, arm):
         from sloshkit.plan.path.optimal import plan_optimal
 
         say("optimal: the minimum-time timing by sequential cone programs (a short move)")
@@ -373,8 +373,8 @@ def plan_path(
 
 
 __all__ = [
+    "AUTO_ARM_OPTIMAL_MAX_SAMPLES",
     "AUTO_OPTIMAL_MAX_SAMPLES",
-    "AUTO_UPRIGHT_OPTIMAL_MAX_SAMPLES",
     "PATH_METHODS",
     "PathCandidate",
     "PathPlanResult",
