@@ -426,7 +426,7 @@ class ProgramIterate:
     >>> t = np.arange(61) / 60  # a quintic rest-to-rest timing of 0.6 s
     >>> samples = PathSamples(0.1 * t**3 * (10 - 15 * t + 6 * t**2), np.zeros((61, 2)), 0.01)
     >>> iterate = program.iterate(samples)
-    >>> round(iterate.reach, 3), iterate.ratios["velocity"] < 1.0
+    >>> round(float(iterate.samples.s_m[-1]), 3), iterate.ratios["velocity"] < 1.0
     (0.1, True)
     """
 
@@ -443,11 +443,6 @@ class ProgramIterate:
     def feasible(self) -> bool:
         """Every limit met (to 1e-9)."""
         return self.excess <= 1.0 + 1e-9
-
-    @property
-    def reach(self) -> float:
-        """s_N [m]."""
-        return float(self.samples.s_m[-1])
 
 
 @dataclass(frozen=True, eq=False)
