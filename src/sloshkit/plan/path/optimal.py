@@ -94,7 +94,7 @@ def capped_start(problem: Any, shaped: bool = False) -> SplineTiming:
 def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = False) -> Any:
     """The minimum-time timing (and, with ``tilt``, the tilt) of the path, verified.
 
-    Rounds of the minimum-time search (`shortest`; `_search_rounds`): the first from
+    Rounds of the minimum-time search (`shortest`; `_Rounds`): the first from
     `capped_start`, each next one from the last one's splines with the program's slosh
     limits moved towards the values at which the verification meets its limits
     (`_next_limit`; at most `TIGHTENINGS`). The rounds end when the verified plan's binding
