@@ -30,7 +30,7 @@ from sloshkit.cli.app import stderr, stdout
 from sloshkit.cli.options import print_json
 from sloshkit.errors import InputError
 from sloshkit.io.checks import naming
-from sloshkit.io.plan_requests import path_problem_request
+from sloshkit.io.plan_requests import path_problem_request, require_options
 from sloshkit.io.poses import read_pose_file
 from sloshkit.io.units import parse_quantity
 from sloshkit.io.waypoints import read_waypoints, require_path_work
@@ -128,19 +128,15 @@ def run_path_plan(
     """
     if (path_file is None) == (poses_file is None):
         raise InputError("path", "both or none", "give exactly one of --path, --path-from-poses")
-    missing = [
-        name
-        for name, value in (
+    require_options(
+        [
             ("--vmax", vmax),
             ("--amax", amax),
             ("--jmax", jmax),
             ("--max-slosh-height", max_slosh_height),
             ("--max-residual-height", max_residual_height),
-        )
-        if value is None
-    ]
-    if missing:
-        raise InputError("plan", "incomplete", "needs " + ", ".join(missing))
+        ]
+    )
     if method not in PATH_METHODS:
         raise InputError("method", method, "with a path: " + ", ".join(PATH_METHODS))
     reference: Timing | None = None

@@ -29,6 +29,31 @@ if typing.TYPE_CHECKING:
     from sloshkit.plan.path.problem import PathProblem
 
 
+def require_options(options: typing.Sequence[tuple[str, object]]) -> None:
+    """Fail with one error naming every option a plan needs that was not given.
+
+    Parameters
+    ----------
+    options : sequence of (str, object)
+        Each option's name on the command line and its value (None: not given).
+
+    Raises
+    ------
+    InputError
+        ``plan = 'incomplete'``, naming the missing options.
+
+    Examples
+    --------
+    >>> require_options([("--vmax", "1m/s"), ("--amax", None), ("--jmax", None)])
+    Traceback (most recent call last):
+    ...
+    sloshkit.errors.InputError: plan = 'incomplete' is invalid: needs --amax, --jmax
+    """
+    missing = [name for name, value in options if value is None]
+    if missing:
+        raise InputError("plan", "incomplete", "needs " + ", ".join(missing))
+
+
 def slosh_limits_request(max_angle: str | None, max_residual: str | None) -> SloshLimits | None:
     """`SloshLimits` from the two options, None when neither is given.
 
@@ -112,19 +137,15 @@ def line_plan_request(
     """
     from sloshkit.plan.line.problem import MachineLimits, PlanProblem, SloshLimits
 
-    missing = [
-        name
-        for name, value in (
+    require_options(
+        [
             ("--vmax", vmax),
             ("--amax", amax),
             ("--jmax", jmax),
             ("--max-angle", max_angle),
             ("--max-residual", max_residual),
-        )
-        if value is None
-    ]
-    if missing:
-        raise InputError("plan", "incomplete", "needs " + ", ".join(missing))
+        ]
+    )
     band = fraction_request(robust, "robust")
     return PlanProblem(
         distance_m=parse_quantity(distance, "length", "distance"),
