@@ -31,14 +31,19 @@ by a hash of the problem, the slosh model and ``ocp_reference.py``; each takes m
 shared machine, and one missing from the cache is computed).
 
 Run: ``PYTHONPATH=src python benchmarks/bench_plan3d.py [--out table.md]
-[--docs docs/planning-3d.md] [--tables primary,strict,waypoints,reference] [--robot ur5e|none]
-[--quick] [--cached-only]`` (minutes on a shared 2-core machine; not a timed test; ``--quick``:
-the reference table's first case only, without the robot; ``--cached-only``: an optimum missing
-from the cache is shown as "not cached" instead of computed). With
-``--docs`` the tables replace the text between the ``<!-- bench_plan3d:start -->`` and
-``<!-- bench_plan3d:end -->`` markers of that file (the reference table alone, ``--tables
-reference``, between ``<!-- bench_plan3d-reference:start -->`` and its end marker), so the docs
-carry no hand-typed figures.
+[--docs docs/planning-3d.md] [--tables primary,strict,waypoints,reference,limits]
+[--robot ur5e|none] [--quick] [--cached-only]`` (minutes on a shared 2-core machine; not a
+timed test; ``--quick``: the reference table's first case only, without the robot;
+``--cached-only``: an optimum missing from the cache is shown as "not cached" instead of
+computed). With ``--docs`` the tables replace the text between the
+``<!-- bench_plan3d:start -->`` and ``<!-- bench_plan3d:end -->`` markers of that file (the
+reference table alone, ``--tables reference``, between
+``<!-- bench_plan3d-reference:start -->`` and its end marker; the limits table alone between
+``<!-- bench_plan3d-limits:start -->`` and its end), so the docs carry no hand-typed figures.
+
+``limits`` (not run by default): monotone in the limits (issue #25's target), each method
+(``--methods``, default ``retime,optimal``) on the reference cases (``--cases``, default TRD_2D
+and pick-and-place) with the height limit 1, 1.01 and 1.02 times 15 mm (`limits_table`).
 """
 
 from __future__ import annotations
@@ -382,6 +387,62 @@ def reference_table(
     return rows
 
 
+#: The height limit's factors of the limits table: each looser than the one before.
+LOOSER_FACTORS = (1.0, 1.01, 1.02)
+
+
+def limits_table(
+    model: object,
+    methods: tuple[str, ...] = ("retime", "optimal"),
+    names: tuple[str, ...] = ("TRD_2D", "pick-and-place"),
+    factors: tuple[float, ...] = LOOSER_FACTORS,
+) -> list[str]:
+    """Monotone in the limits (issue #25's target) on the reference cases: each method's
+    verified duration with the height limit multiplied by each of ``factors`` (the residual
+    limit kept), and the largest lengthening of a plan by a looser limit."""
+    from dataclasses import replace
+
+    cases = [(name, problem) for name, problem in reference_cases(model) if name in names]
+    rows = [
+        "Monotone in the limits: the reference cases' height limit (15 mm) times "
+        + ", ".join(f"{f:g}" for f in factors)
+        + " (looser each time; residual 2 mm); each plan verified; a looser limit that gives a "
+        "longer plan breaks monotonicity by the lengthening shown (wall time per plan):",
+        "",
+        "| case | method | "
+        + " | ".join(f"{f:g} × height" for f in factors)
+        + " | looser never longer |",
+        "|---|---|" + "---|" * len(factors) + "---|",
+    ]
+    for name, problem in cases:
+        for method in methods:
+            cells, durations = [], []
+            for factor in factors:
+                slosh = replace(problem.slosh, max_height_m=problem.slosh.max_height_m * factor)
+                shown, duration, wall = _run_method(replace(problem, slosh=slosh), method, None)
+                cells.append(f"{shown} ({wall:.1f} s)")
+                durations.append(duration)
+            lengthening = max(
+                (
+                    later / earlier - 1.0
+                    for i, earlier in enumerate(durations)
+                    for later in durations[i + 1 :]
+                    if not (math.isnan(earlier) or math.isnan(later))
+                ),
+                default=math.nan,
+            )
+            verdict = (
+                "-"
+                if math.isnan(lengthening)
+                else "yes"
+                if lengthening <= 0.0
+                else f"no (+{100 * lengthening:.1f} %)"
+            )
+            rows.append(f"| {name} | {method} | " + " | ".join(cells) + f" | {verdict} |")
+            print(rows[-1], flush=True)
+    return rows
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--out", type=Path, default=None)
@@ -392,8 +453,9 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="one case of the reference table")
     parser.add_argument(
         "--methods",
-        default=",".join(REFERENCE_METHODS),
-        help="methods of the reference table, comma-separated",
+        default="",
+        help="methods of the reference (default all) or limits table (default retime,optimal), "
+        "comma-separated",
     )
     parser.add_argument(
         "--cases", default="", help="cases of the reference table, comma-separated (default all)"
@@ -439,8 +501,18 @@ def main() -> None:
                 robot,
                 arguments.quick,
                 arguments.cached_only,
-                tuple(arguments.methods.split(",")),
+                tuple(arguments.methods.split(",")) if arguments.methods else REFERENCE_METHODS,
                 tuple(name for name in arguments.cases.split(",") if name),
+            ),
+        ]
+    if "limits" in tables:
+        rows += [
+            "",
+            *limits_table(
+                model,
+                tuple(arguments.methods.split(",")) if arguments.methods else ("retime", "optimal"),
+                tuple(name for name in arguments.cases.split(",") if name)
+                or ("TRD_2D", "pick-and-place"),
             ),
         ]
     load = os.getloadavg()[0]
@@ -453,7 +525,9 @@ def main() -> None:
     if arguments.docs is not None:
         document = arguments.docs.read_text()
         # the reference table alone has its own place in the docs
-        marker = "bench_plan3d-reference" if tables == ["reference"] else "bench_plan3d"
+        marker = (
+            f"bench_plan3d-{tables[0]}" if tables in (["reference"], ["limits"]) else "bench_plan3d"
+        )
         start, end = f"<!-- {marker}:start -->", f"<!-- {marker}:end -->"
         head, _, rest = document.partition(start)
         _, _, tail = rest.partition(end)
