@@ -389,12 +389,15 @@ def reference_table(
 
 #: The height limit's factors of the limits table: each looser than the one before.
 LOOSER_FACTORS = (1.0, 1.01, 1.02)
+#: The limits table's methods and cases unless ``--methods`` and ``--cases`` say otherwise.
+LIMITS_METHODS = ("retime", "optimal")
+LIMITS_CASES = ("TRD_2D", "pick-and-place")
 
 
 def limits_table(
     model: object,
-    methods: tuple[str, ...] = ("retime", "optimal"),
-    names: tuple[str, ...] = ("TRD_2D", "pick-and-place"),
+    methods: tuple[str, ...] = LIMITS_METHODS,
+    names: tuple[str, ...] = LIMITS_CASES,
     factors: tuple[float, ...] = LOOSER_FACTORS,
 ) -> list[str]:
     """Monotone in the limits (issue #25's target) on the reference cases: each method's
@@ -403,11 +406,14 @@ def limits_table(
     from dataclasses import replace
 
     cases = [(name, problem) for name, problem in reference_cases(model) if name in names]
+    slosh = cases[0][1].slosh if cases else SpatialSloshLimits(0.015, RESIDUAL_M)
     rows = [
-        "Monotone in the limits: the reference cases' height limit (15 mm) times "
+        f"Monotone in the limits: the reference cases' height limit "
+        f"({slosh.max_height_m * 1e3:g} mm) times "
         + ", ".join(f"{f:g}" for f in factors)
-        + " (looser each time; residual 2 mm); each plan verified; a looser limit that gives a "
-        "longer plan breaks monotonicity by the lengthening shown (wall time per plan):",
+        + f" (looser each time; residual {slosh.max_residual_height_m * 1e3:g} mm); each plan "
+        "verified; a looser limit that gives a longer plan breaks monotonicity by the "
+        "lengthening shown (wall time per plan):",
         "",
         "| case | method | "
         + " | ".join(f"{f:g} × height" for f in factors)
@@ -418,8 +424,8 @@ def limits_table(
         for method in methods:
             cells, durations = [], []
             for factor in factors:
-                slosh = replace(problem.slosh, max_height_m=problem.slosh.max_height_m * factor)
-                shown, duration, wall = _run_method(replace(problem, slosh=slosh), method, None)
+                looser = replace(problem.slosh, max_height_m=problem.slosh.max_height_m * factor)
+                shown, duration, wall = _run_method(replace(problem, slosh=looser), method, None)
                 cells.append(f"{shown} ({wall:.1f} s)")
                 durations.append(duration)
             lengthening = max(
@@ -458,7 +464,10 @@ def main() -> None:
         "comma-separated",
     )
     parser.add_argument(
-        "--cases", default="", help="cases of the reference table, comma-separated (default all)"
+        "--cases",
+        default="",
+        help="cases of the reference (default all) or limits table (default TRD_2D, "
+        "pick-and-place), comma-separated",
     )
     parser.add_argument(
         "--cached-only", action="store_true", help="reference optima from the cache only"
@@ -510,9 +519,8 @@ def main() -> None:
             "",
             *limits_table(
                 model,
-                tuple(arguments.methods.split(",")) if arguments.methods else ("retime", "optimal"),
-                tuple(name for name in arguments.cases.split(",") if name)
-                or ("TRD_2D", "pick-and-place"),
+                tuple(arguments.methods.split(",")) if arguments.methods else LIMITS_METHODS,
+                tuple(name for name in arguments.cases.split(",") if name) or LIMITS_CASES,
             ),
         ]
     load = os.getloadavg()[0]
@@ -524,7 +532,7 @@ def main() -> None:
         arguments.out.write_text(text + "\n")
     if arguments.docs is not None:
         document = arguments.docs.read_text()
-        # the reference table alone has its own place in the docs
+        # the reference or the limits table alone has its own place in the docs
         marker = (
             f"bench_plan3d-{tables[0]}" if tables in (["reference"], ["limits"]) else "bench_plan3d"
         )
