@@ -56,6 +56,7 @@ import math
 import os
 import time
 import warnings
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -403,8 +404,6 @@ def limits_table(
     """Monotone in the limits (issue #25's target) on the reference cases: each method's
     verified duration with the height limit multiplied by each of ``factors`` (the residual
     limit kept), and the largest lengthening of a plan by a looser limit."""
-    from dataclasses import replace
-
     cases = [(name, problem) for name, problem in reference_cases(model) if name in names]
     slosh = cases[0][1].slosh if cases else SpatialSloshLimits(0.015, RESIDUAL_M)
     rows = [
@@ -483,6 +482,9 @@ def main() -> None:
         name for name in SERIES if not arguments.series or name.split("_")[0] in arguments.series
     )
     tables = ["reference"] if arguments.quick else arguments.tables.split(",")
+    # the reference and limits tables' selections; empty: each table's default
+    methods = tuple(name for name in arguments.methods.split(",") if name)
+    cases = tuple(name for name in arguments.cases.split(",") if name)
     rows: list[str] = []
     if "primary" in tables:
         rows += [
@@ -510,8 +512,8 @@ def main() -> None:
                 robot,
                 arguments.quick,
                 arguments.cached_only,
-                tuple(arguments.methods.split(",")) if arguments.methods else REFERENCE_METHODS,
-                tuple(name for name in arguments.cases.split(",") if name),
+                methods or REFERENCE_METHODS,
+                cases,
             ),
         ]
     if "limits" in tables:
@@ -519,8 +521,8 @@ def main() -> None:
             "",
             *limits_table(
                 model,
-                tuple(arguments.methods.split(",")) if arguments.methods else LIMITS_METHODS,
-                tuple(name for name in arguments.cases.split(",") if name) or LIMITS_CASES,
+                methods or LIMITS_METHODS,
+                cases or LIMITS_CASES,
             ),
         ]
     load = os.getloadavg()[0]
