@@ -17,7 +17,7 @@ from sloshkit.motion.laws import s_curve
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path.geometry import path_from_waypoints
 from sloshkit.plan.path.minimum_time import at_duration, knot_count, shortest
-from sloshkit.plan.path.optimal import capped_start
+from sloshkit.plan.path.optimal import capped_start, screened_start
 from sloshkit.plan.path.planner import plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
@@ -148,6 +148,27 @@ def test_a_decided_duration_stops_at_its_verdict(robot_vial: SloshModel) -> None
     short = slow.on_steps(slow.steps // 3)
     _, iterate, _, _, ratio = at_duration(transcription, short, decide=True)
     assert not iterate.feasible and ratio > 1.0
+
+
+def test_the_screen_picks_the_start_one_program_brings_closer(robot_vial: SloshModel) -> None:
+    """`screened_start` compares two starts at the first one's duration after one program
+    each: whichever order they come in, it names the smooth start rather than one that
+    crams the move into its last third, and a start against itself is a tie (the first)."""
+    problem = _corner_problem(robot_vial)
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    transcription = SplineTranscription(program)
+    smooth = _spline_start(problem, 0.2)
+    tau = np.linspace(0.0, 1.0, 8 * smooth.count + 1)
+    late = fit_timing(
+        tau,
+        smooth.path_parameter(np.clip(3.0 * tau - 2.0, 0.0, 1.0)),
+        smooth.count,
+        smooth.steps,
+    )
+    assert transcription.iterate(late).excess > transcription.iterate(smooth).excess
+    assert screened_start(transcription, smooth, late) == 0
+    assert screened_start(transcription, late, smooth) == 1
+    assert screened_start(transcription, smooth, smooth) == 0
 
 
 def test_segments_condense_the_same_program(
