@@ -17,7 +17,10 @@ lose their way). While no duration has met the limits, a longer one that the str
 of a shorter one did not meet is tried once more from the start stretched to it: a missed
 plan's residual cancels at its own timing only (TRD_2D under a 15.15 mm height limit: the
 carried splines ended 606 samples at 1.85 times the limits, the start stretched to them at
-0.77, and the search at 2.072 s instead of 4.832 s). Each duration's programs stop as soon
+0.77, and the search at 2.072 s instead of 4.832 s). The retry starts with the first trust
+region, `FIRST_TRUST`: the region carried from missed durations can be too small to reach
+the limits (the 20 waypoints: 0.001 after its first duration's programs failed numerically;
+from 0.02 the same start met the limits at 8.09 s). Each duration's programs stop as soon
 as they decide it: at the first splines that meet every limit, or when the programs'
 predicted least ratio stalls above them (`at_duration`'s ``decide``); the search needs no
 more, and on the benchmark cases this halved the programs.
@@ -43,6 +46,9 @@ KNOT_SPACING_S = 0.025
 TOLERANCE = 5e-3
 #: Programs per duration, at most.
 ITERATIONS = 8
+#: The first trust region, a fraction of the path's length per coefficient; the largest one a
+#: duration starts from.
+FIRST_TRUST = 0.02
 #: With ``decide``, `at_duration` calls N too short when two successive programs, not held
 #: back by the trust region, predict a least ratio above 1 + UNMET_MARGIN that fell by less
 #: than STALLED.
@@ -160,7 +166,7 @@ def at_duration(
     transcription: SplineTranscription,
     timing: SplineTiming,
     iterations: int = ITERATIONS,
-    trust: float = 0.02,
+    trust: float = FIRST_TRUST,
     log: Callable[[str], Any] | None = None,
     decide: bool = False,
 ) -> tuple[SplineTiming, ProgramIterate, int, float, float]:
@@ -404,17 +410,18 @@ def shortest(
     # from
     unmet: dict[int, int] = {}
     steps = timing.steps
-    trust = 0.02
+    trust = FIRST_TRUST
     for tried in range(MAX_DURATIONS):
         if best is None and tried >= give_up:
             break
         ts = transcription.program.ts
         base = best[0] if best is not None else timing
         warm = respaced(base.on_steps(steps), knot_count(steps * ts))
+        started_trust = trust
         timing, current, programs, trust, estimate = at_duration(
             transcription, warm, trust=trust, log=log, decide=not (minimise_first and not tried)
         )
-        trust = min(max(4.0 * trust, 1e-3), 0.02)
+        trust = min(max(4.0 * trust, 1e-3), FIRST_TRUST)
         binding = max(current.ratios, key=current.ratios.__getitem__)
         trial = Trial(steps, estimate, binding, programs)
         trials.append(trial)
@@ -424,17 +431,18 @@ def shortest(
             not current.feasible
             and best is None
             and steps > start.steps
-            and base.coefficients_m is not start.coefficients_m
+            and not (base.coefficients_m is start.coefficients_m and started_trust == FIRST_TRUST)
         ):
             # a missed plan's residual cancels at its own timing only, so stretched it can
-            # start a longer duration worse than the start itself stretched to it: that
-            # duration is tried again from the start
+            # start a longer duration worse than the start itself stretched to it, and the
+            # trust region carried from missed durations can be too small to reach the
+            # limits: that duration is tried again from the start, with the first region
             base = start
             warm = respaced(start.on_steps(steps), knot_count(steps * ts))
             timing, current, again, trust, estimate = at_duration(
                 transcription, warm, log=log, decide=True
             )
-            trust = min(max(4.0 * trust, 1e-3), 0.02)
+            trust = min(max(4.0 * trust, 1e-3), FIRST_TRUST)
             binding = max(current.ratios, key=current.ratios.__getitem__)
             trial = Trial(steps, estimate, binding, programs + again)
             trials[-1] = trial
@@ -484,6 +492,7 @@ def shortest(
 
 __all__ = [
     "EXPONENTS",
+    "FIRST_TRUST",
     "ITERATIONS",
     "KNOT_SPACING_S",
     "MAX_DURATIONS",

@@ -18,7 +18,7 @@ import numpy as np
 
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.plan.path.joints import joint_map
-from sloshkit.plan.path.minimum_time import knot_count, respaced, shortest
+from sloshkit.plan.path.minimum_time import FIRST_TRUST, knot_count, respaced, shortest
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.samples import export_poses
 from sloshkit.plan.path.splines import SplineTiming, fit_timing
@@ -339,7 +339,7 @@ def screened_start(
     transcription: SplineTranscription, first: SplineTiming, second: SplineTiming
 ) -> int:
     """Which of two starts lies in the better basin: both at ``first``'s duration, one
-    program each (trust region 0.02 S), the index (0 or 1) of the one whose exact largest
+    program each (trust region `FIRST_TRUST`), the index (0 or 1) of the one whose exact largest
     ratio to a limit is then lower (0 on a tie or when both programs fail).
 
     The search's result depends on the basin its first feasible duration falls into, and
@@ -382,7 +382,7 @@ def screened_start(
     """
     ratios = []
     for start in (first, respaced(second.on_steps(first.steps), first.count)):
-        step = transcription.step(start, transcription.iterate(start), 0.02)
+        step = transcription.step(start, transcription.iterate(start), FIRST_TRUST)
         ratios.append(transcription.iterate(step.timing).excess if step else math.inf)
     return int(ratios[1] < ratios[0])
 
