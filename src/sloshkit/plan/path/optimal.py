@@ -339,8 +339,8 @@ def screened_start(
     transcription: SplineTranscription, first: SplineTiming, second: SplineTiming
 ) -> int:
     """Which of two starts lies in the better basin: both at ``first``'s duration, one
-    program each (trust region `FIRST_TRUST`), the index (0 or 1) of the one whose exact largest
-    ratio to a limit is then lower (0 on a tie or when both programs fail).
+    program each (trust region `FIRST_TRUST`), the index (0 or 1) of the one whose exact
+    largest ratio to a limit is then lower (0 on a tie or when both programs fail).
 
     The search's result depends on the basin its first feasible duration falls into, and
     no start wins everywhere: on the benchmark one program at the capped timing's own
