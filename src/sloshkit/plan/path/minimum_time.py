@@ -13,17 +13,14 @@ else its midpoint (bisection). It ends when the bracket is one sample (or `TOLER
 (`shortest`), unless the best splines scaled to the missed N would have met the limits with
 a margin and that N started from other splines: it is then tried once more from the best
 ones (a sample's change of N turns the residual's phases, and programs from a far start can
-lose their way). While no duration has met the limits, a longer one that the stretched splines
-of a shorter one did not meet is tried once more from the start stretched to it: a missed
-plan's residual cancels at its own timing only (TRD_2D under a 15.15 mm height limit: the
-carried splines ended 606 samples at 1.85 times the limits, the start stretched to them at
-0.77, and the search at 2.072 s instead of 4.832 s). The retry starts with the first trust
-region, `FIRST_TRUST`: the region carried from missed durations can be too small to reach
-the limits (the 20 waypoints: 0.001 after its first duration's programs failed numerically;
-from 0.02 the same start met the limits at 8.09 s). Each duration's programs stop as soon
-as they decide it: at the first splines that meet every limit, or when the programs'
-predicted least ratio stalls above them (`at_duration`'s ``decide``); the search needs no
-more, and on the benchmark cases this halved the programs.
+lose their way). While none has met the limits, a longer missed duration is tried once more
+from the start stretched to it, with the first trust region `FIRST_TRUST`: a missed plan's
+residual cancels at its own timing only (TRD_2D under 15.15 mm: 606 samples from the carried
+splines 1.85 times the limits, from the start 0.77; the plan 2.072 s instead of 4.832 s), and
+the carried region can be too small (the 20 waypoints: 0.001 after failed programs; from 0.02
+the start met the limits at 8.09 s). Each duration's programs stop as soon as they decide it:
+at the first splines that meet every limit, or when the programs' predicted least ratio
+stalls above them (`at_duration`'s ``decide``); on the benchmark this halved the programs.
 """
 
 from __future__ import annotations
@@ -416,38 +413,31 @@ def shortest(
             break
         ts = transcription.program.ts
         base = best[0] if best is not None else timing
-        warm = respaced(base.on_steps(steps), knot_count(steps * ts))
-        started_trust = trust
-        timing, current, programs, trust, estimate = at_duration(
-            transcription, warm, trust=trust, log=log, decide=not (minimise_first and not tried)
-        )
-        trust = min(max(4.0 * trust, 1e-3), FIRST_TRUST)
-        binding = max(current.ratios, key=current.ratios.__getitem__)
-        trial = Trial(steps, estimate, binding, programs)
-        trials.append(trial)
-        if log:
-            log(f"N {steps} ({steps * ts:.3f} s): ratio {current.excess:.4f} ({binding})")
-        if (
-            not current.feasible
-            and best is None
-            and steps > start.steps
-            and not (base.coefficients_m is start.coefficients_m and started_trust == FIRST_TRUST)
-        ):
-            # a missed plan's residual cancels at its own timing only, so stretched it can
-            # start a longer duration worse than the start itself stretched to it, and the
-            # trust region carried from missed durations can be too small to reach the
-            # limits: that duration is tried again from the start, with the first region
-            base = start
-            warm = respaced(start.on_steps(steps), knot_count(steps * ts))
-            timing, current, again, trust, estimate = at_duration(
-                transcription, warm, log=log, decide=True
+        region, programs = trust, 0
+        while True:
+            warm = respaced(base.on_steps(steps), knot_count(steps * ts))
+            decide = not (minimise_first and not tried)
+            timing, current, solved, trust, estimate = at_duration(
+                transcription, warm, trust=region, log=log, decide=decide
             )
             trust = min(max(4.0 * trust, 1e-3), FIRST_TRUST)
             binding = max(current.ratios, key=current.ratios.__getitem__)
-            trial = Trial(steps, estimate, binding, programs + again)
-            trials[-1] = trial
             if log:
-                log(f"N {steps} again from the start: ratio {current.excess:.4f} ({binding})")
+                how = "again from the start" if programs else f"({steps * ts:.3f} s)"
+                log(f"N {steps} {how}: ratio {current.excess:.4f} ({binding})")
+            programs += solved
+            # while none has met the limits, a longer missed duration is tried again from the
+            # start, with the first trust region (module docstring)
+            if (
+                current.feasible
+                or best is not None
+                or steps <= start.steps
+                or (base.coefficients_m is start.coefficients_m and region == FIRST_TRUST)
+            ):
+                break
+            base, region = start, FIRST_TRUST
+        trial = Trial(steps, estimate, binding, programs)
+        trials.append(trial)
         if current.feasible:
             if best is None or steps < best[0].steps:
                 best = (timing, current)
