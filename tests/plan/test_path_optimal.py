@@ -104,17 +104,19 @@ def _spline_start(problem: PathProblem, speed_m_s: float) -> SplineTiming:
     return fit_timing(tau, samples.s_m, count, samples.steps)
 
 
-@pytest.mark.parametrize("tilt", [False, True])
+@pytest.mark.parametrize(("tilt", "linear"), [(False, False), (True, False), (True, True)])
 def test_a_program_predicts_the_exact_ratios_of_its_splines(
-    robot_vial: SloshModel, tilt: bool
+    robot_vial: SloshModel, tilt: bool, linear: bool
 ) -> None:
     """In a small trust region the program's predicted largest ratio to a limit and the
     exact evaluation of the splines it returns agree to 2 % of the change it predicted (its
     derivatives are right), the ratio falls, and a tilt stays zero at both ends and within
-    its limit."""
+    its limit; so with the small-angle pendulums the tilted search starts with."""
     problem = _corner_problem(robot_vial)
     limits = replace(LIMITS, max_tilt_rad=math.radians(20.0))
-    program = PathProgram(problem.path, problem.models(), limits, problem.sample_period_s, tilt)
+    program = PathProgram(
+        problem.path, problem.models(), limits, problem.sample_period_s, tilt, linear=linear
+    )
     transcription = SplineTranscription(program)
     timing = _spline_start(problem, 0.3)
     current = transcription.iterate(timing)

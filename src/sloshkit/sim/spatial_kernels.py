@@ -42,6 +42,7 @@ def _compile() -> dict[str, Any]:
     return {
         "linear": spatial_numba.linear,
         "linear_batch": spatial_numba.linear_batch,
+        "linear_periods": spatial_numba.linear_periods,
         "linear_amplitude": spatial_numba.linear_amplitude,
         "nonlinear": spatial_numba.nonlinear,
         "step": spatial_numba.oscillator_step,
@@ -54,14 +55,15 @@ def kernels() -> dict[str, Any]:
     Returns
     -------
     dict
-        linear, linear_batch, linear_amplitude, nonlinear and step: the numba functions
-        behind `linear_pendulums`, `nonlinear_pendulums`, `sloshkit.sim.spatial_batch` and
-        `sloshkit.sim.spatial_amplitude`.
+        linear, linear_batch, linear_amplitude, linear_periods, nonlinear and step: the
+        numba functions behind `linear_pendulums`, `nonlinear_pendulums`,
+        `sloshkit.sim.spatial_batch`, `sloshkit.sim.spatial_amplitude` and
+        `sloshkit.plan.path.small_angle.linear_period`.
 
     Examples
     --------
     >>> sorted(kernels())
-    ['linear', 'linear_amplitude', 'linear_batch', 'nonlinear', 'step']
+    ['linear', 'linear_amplitude', 'linear_batch', 'linear_periods', 'nonlinear', 'step']
     """
     if not _KERNELS:
         _KERNELS.update(_compile())

@@ -139,6 +139,32 @@ def linear(force, rest_force, tilt_rate, tilt_accel, length, omega, zeta, k_floo
 
 
 @njit(cache=True)  # type: ignore[untyped-decorator]
+def linear_periods(state, start, end, inv_l, c, k_floor, h):  # type: ignore[no-untyped-def]
+    """`linear_step` of many independent states at once: state (n, 4) (angles, rates), start
+    and end (n, 7) the drive at either end of the period (specific force, then the lateral
+    angular velocity and its derivative), inv_l, c, k_floor (n,)."""
+    out = np.empty_like(state)
+    for i in range(state.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = linear_step(
+            state[i, 0],
+            state[i, 1],
+            state[i, 2],
+            state[i, 3],
+            start[i, :3],
+            end[i, :3],
+            start[i, 3:5],
+            end[i, 3:5],
+            start[i, 5:7],
+            end[i, 5:7],
+            inv_l[i],
+            c[i],
+            k_floor[i],
+            h,
+        )
+    return out
+
+
+@njit(cache=True)  # type: ignore[untyped-decorator]
 def linear_batch(  # type: ignore[no-untyped-def]
     force,
     rest_force,

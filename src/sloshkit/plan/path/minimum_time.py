@@ -347,6 +347,7 @@ def shortest(
     stretch: bool = False,
     give_up: int = MAX_DURATIONS,
     minimise_first: bool = False,
+    longest: int | None = None,
 ) -> tuple[SplineTiming, ProgramIterate, list[Trial]]:
     """The fewest samples whose splines meet every limit (module docstring), from ``start``.
 
@@ -368,6 +369,8 @@ def shortest(
         deciding it: a start that met the limits of another program (the upright plan, for
         a tilted one) has a ratio of about 1, which says nothing of the slack the new
         freedom gives, and the secant's first step is that ratio's.
+    longest : int, optional
+        The search ends before a longer duration (a plan meeting the limits there is known).
 
     Returns
     -------
@@ -382,16 +385,12 @@ def shortest(
     Examples
     --------
     >>> import numpy as np
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path.geometry import path_from_waypoints
+    >>> import sloshkit as sk
     >>> from sloshkit.plan.path.program import PathProgram, ProgramLimits
-    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
     >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
-    >>> program = PathProgram(path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]), [model], limits,
-    ...                       0.01)
-    >>> tau = np.linspace(0.0, 1.0, 101)
+    >>> path = sk.path_from_waypoints([[0, 0, 0], [0.1, 0, 0]])
+    >>> program, tau = PathProgram(path, [model], limits, 0.01), np.linspace(0.0, 1.0, 101)
     >>> start = fit_timing(tau, 0.1 * tau**3 * (10 - 15 * tau + 6 * tau**2), 10, 60)
     >>> timing, best, trials = shortest(SplineTranscription(program), start)
     >>> best.feasible, timing.steps < 60, trials[-1].steps - trials[-2].steps in (-1, 1)
@@ -469,6 +468,8 @@ def shortest(
         upper = highest_met if highest_met is not None else math.inf
         if not lowest_unmet < guess < upper:
             guess = (lowest_unmet + upper) // 2 if upper < math.inf else int(1.25 * steps) + 1
+        if longest is not None and guess > longest:
+            break
         steps = int(guess)
     if best is None and not trials:
         raise RuntimeError("no duration was tried")

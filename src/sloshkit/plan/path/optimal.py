@@ -7,6 +7,14 @@ The programs model what the verification simulates without its smoothing filter;
 verification, which also simulates the export through that filter, can still exceed a slosh
 limit by a percent or two. The program's limit is then moved by regula falsi (`_next_limit`)
 and the search restarts from the last splines (`plan_optimal`).
+
+The tilted search first runs with the small-angle pendulums (`PathProgram(..., linear=True)`,
+`sloshkit.plan.path.pendulums.linear_track`): the large-angle pendulums' frequency falls with
+their amplitude, which makes the residual so nonlinear in the splines that their programs'
+trust regions stay small and a tilted search crept towards its duration a few samples at a
+time; the small-angle residual is linear in the drive. The large-angle rounds then start
+from that plan (docs/planning-3d.md, "The tilted search starts with the small-angle
+pendulums").
 """
 
 from __future__ import annotations
@@ -18,7 +26,13 @@ import numpy as np
 
 from sloshkit.model.theory import GRAVITY_M_S2
 from sloshkit.plan.path.joints import joint_map
-from sloshkit.plan.path.minimum_time import FIRST_TRUST, knot_count, respaced, shortest
+from sloshkit.plan.path.minimum_time import (
+    FIRST_TRUST,
+    MAX_DURATIONS,
+    knot_count,
+    respaced,
+    shortest,
+)
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.samples import export_poses
 from sloshkit.plan.path.splines import SplineTiming, fit_timing
@@ -101,14 +115,17 @@ def plan_optimal(problem: Any, verifier: Any, log: Any = None, tilt: bool = Fals
     slosh is within `LIMIT_TOLERANCE` of its limit, or when a round no longer shortens the
     plan; the shortest verified timing is kept (the 25 Hz smoothing the verification also
     simulates moves the slosh by several percent at a 10 ms period, so a round can miss the
-    limits its program met). With ``tilt`` the upright rounds run first and the tilted ones
-    start from their shortest verified plan (a plan with zero tilt is a tilted plan too), so
-    that a tilted plan is never longer than the upright one: the shorter verified plan of
-    the two is returned (``detail["tilted"]`` says which). A limit outside the program is
-    met by a uniform stretch (`sloshkit.plan.path.result.verified_candidate`); a verifier
-    that checks an arm's joint speeds (`sloshkit.plan.path.result.JointSpeedCheck`) lends
-    the programs the joints along the path (`sloshkit.plan.path.joints.joint_map`), and they
-    limit the joint speeds themselves.
+    limits its program met). With ``tilt`` the upright rounds run first; from their shortest
+    verified plan (a plan with zero tilt is a tilted plan too) a search with the small-angle
+    pendulums runs (`_Rounds.navigated`; module docstring), and the tilted rounds start from
+    its plan, or again from the upright plan when their first search meets no limit in
+    `FIRST_DURATIONS` durations. The shorter verified plan of the two is returned
+    (``detail["tilted"]`` says which), so a tilted plan is never longer than the upright one.
+    A limit outside the program is met by a uniform stretch
+    (`sloshkit.plan.path.result.verified_candidate`); a verifier that checks an arm's joint
+    speeds (`sloshkit.plan.path.result.JointSpeedCheck`) lends the programs the joints along
+    the path (`sloshkit.plan.path.joints.joint_map`), and they limit the joint speeds
+    themselves.
 
     Parameters
     ----------
@@ -228,28 +245,76 @@ class _Rounds:
             ),
         )
 
+    def transcription(
+        self, limits: ProgramLimits, tilt: bool, linear: bool = False
+    ) -> SplineTranscription:
+        """The programs of one search."""
+        problem = self.problem
+        program = PathProgram(
+            problem.path,
+            problem.models(),
+            limits,
+            problem.sample_period_s,
+            tilt=tilt,
+            centre_height_m=problem.tilt_centre_height_m,
+            joints=self.joints,
+            linear=linear,
+        )
+        return SplineTranscription(program)
+
+    def navigated(
+        self, tilt: bool, start: SplineTiming | None, limits: ProgramLimits
+    ) -> SplineTiming | None:
+        """The plan of the search with the small-angle pendulums (module docstring) from
+        ``start`` (None: `_first_search`), where the rounds start; ``start`` when it failed."""
+        transcription = self.transcription(limits, tilt, linear=True)
+        timing: SplineTiming | None
+        try:
+            if start is None:
+                timing, _ = _first_search(self.problem, transcription, self.log)
+            else:
+                timing, _, _ = shortest(transcription, start, self.log, minimise_first=tilt)
+        except RuntimeError:
+            timing = start
+        self.programs += transcription.programs
+        if self.log and timing is not None:
+            self.log(f"small-angle search: {timing.steps * self.problem.sample_period_s:.3f} s")
+        return timing
+
     def run(self, tilt: bool, start: SplineTiming | None) -> None:
-        """Rounds with the tilt free or not, from ``start`` (None: `_first_search`)."""
+        """Rounds with the tilt free or not, from ``start`` (None: `_first_search`). Tilted,
+        they start from the small-angle search's plan (`navigated`), and from ``start`` when
+        those rounds verified no plan (their first search gives up after `FIRST_DURATIONS`
+        durations that met no limit)."""
+        limits = self.limits()
+        if tilt:
+            navigated = self.navigated(tilt, start, limits)
+            longest = None if start is None else start.steps - 1
+            if navigated is not start and self.rounds_from(
+                tilt, navigated, FIRST_DURATIONS, longest
+            ):
+                return
+        self.rounds_from(tilt, start)
+
+    def rounds_from(
+        self,
+        tilt: bool,
+        timing: SplineTiming | None,
+        give_up: int = MAX_DURATIONS,
+        longest: int | None = None,
+    ) -> bool:
+        """The rounds from ``timing`` (None: `_first_search`), the first search giving up
+        after ``give_up`` durations that met no limit, none trying more than ``longest``
+        samples; whether one verified a plan."""
         from dataclasses import replace
 
         problem, log = self.problem, self.log
         slosh, ts = problem.slosh, problem.sample_period_s
         limits = self.limits()
-        timing = start
         rounds: list[dict[str, Any]] = []
         verified: list[SplineTiming] = []
         for _ in range(TIGHTENINGS):
-            transcription = SplineTranscription(
-                PathProgram(
-                    problem.path,
-                    problem.models(),
-                    limits,
-                    ts,
-                    tilt=tilt,
-                    centre_height_m=problem.tilt_centre_height_m,
-                    joints=self.joints,
-                )
-            )
+            transcription = self.transcription(limits, tilt)
             try:
                 if timing is None:
                     timing, trials = _first_search(problem, transcription, log)
@@ -259,7 +324,12 @@ class _Rounds:
                     # first step of the search
                     first_tilted = tilt and not rounds
                     timing, _, trials = shortest(
-                        transcription, timing, log, minimise_first=first_tilted
+                        transcription,
+                        timing,
+                        log,
+                        give_up=MAX_DURATIONS if rounds else give_up,
+                        minimise_first=first_tilted,
+                        longest=longest,
                     )
             except RuntimeError as error:
                 self.failure = str(error)
@@ -308,6 +378,7 @@ class _Rounds:
             )
         self.rounds += rounds
         self.verified += verified
+        return bool(verified)
 
 
 #: Durations the first search from the unshaped capped timing tries before the search

@@ -29,6 +29,8 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.plan.path.small_angle import linear_period, linear_track
+
 FloatArray = NDArray[np.float64]
 
 #: Largest omega_n h of one Runge-Kutta step (the rule of `sloshkit.sim.spatial.simulate_spatial`).
@@ -69,8 +71,10 @@ def pendulum_track(
     omega_rad_s: FloatArray,
     damping_ratio: FloatArray,
     sample_period_s: float,
+    linear: bool = False,
 ) -> tuple[FloatArray, FloatArray]:
-    """The pendulums' unit vectors u and rates u' at the samples, (modes, K, 3) each.
+    """The pendulums' unit vectors u and rates u' at the samples, (modes, K, 3) each; with
+    ``linear`` the small-angle pendulums (`sloshkit.plan.path.small_angle.linear_track`).
 
     Parameters
     ----------
@@ -85,6 +89,9 @@ def pendulum_track(
         The modes' L_n, omega_n and zeta_n.
     sample_period_s : float
         Sample period [s].
+    linear : bool
+        Whether the pendulums are the small-angle ones
+        (`sloshkit.plan.path.small_angle.linear_track`).
 
     Returns
     -------
@@ -107,6 +114,10 @@ def pendulum_track(
     """
     from sloshkit.sim.spatial_kernels import nonlinear_pendulums
 
+    if linear:
+        return linear_track(
+            force_m_s2, rest_force_m_s2, length_m, omega_rad_s, damping_ratio, sample_period_s
+        )
     modes, samples, width = force_m_s2.shape
     substeps = rk4_substeps(list(omega_rad_s), sample_period_s)
     fractions = np.arange(2 * substeps) / (2 * substeps)
@@ -126,6 +137,21 @@ def pendulum_track(
         sample_period_s / substeps,
     )
     return unit[:, ::substeps][:, :samples], rate[:, ::substeps][:, :samples]
+
+
+def at_rest(force_m_s2: FloatArray, linear: bool = False) -> FloatArray:
+    """The lateral components of u at rest under a constant specific force (..., 3): along it,
+    f_lat / |f|, for the large-angle pendulums, f_lat / (-f_z) for the small-angle ones.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> force = np.array([-0.981, 0.0, -9.81])
+    >>> round(float(at_rest(force)[0]), 5), round(float(at_rest(force, True)[0]), 5)
+    (-0.0995, -0.1)
+    """
+    scale = -force_m_s2[..., 2:3] if linear else np.linalg.norm(force_m_s2, axis=-1, keepdims=True)
+    return np.asarray(force_m_s2[..., :2] / scale)
 
 
 def _rhs(
@@ -193,8 +219,10 @@ def step_jacobians(
     omega_rad_s: FloatArray,
     damping_ratio: FloatArray,
     sample_period_s: float,
+    linear: bool = False,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """A_k, B_k, E_k of every sample period along a track (module docstring).
+    """A_k, B_k, E_k of every sample period along a track (module docstring); with ``linear``
+    of `sloshkit.plan.path.small_angle.linear_track`'s.
 
     Parameters
     ----------
@@ -205,6 +233,8 @@ def step_jacobians(
         The modes' L_n, omega_n, zeta_n.
     sample_period_s : float
         Sample period [s].
+    linear : bool
+        Whether the track is `sloshkit.plan.path.small_angle.linear_track`'s.
 
     Returns
     -------
@@ -256,9 +286,29 @@ def step_jacobians(
         for component in range(size):
             inputs[block][:, :, direction + 1, component] += steps[direction]
             direction += 1
-    u, v = _period(
-        inputs[0], inputs[1], inputs[2], inputs[3], length[..., None], c[..., None], h, substeps
-    )
+    if linear:
+        floor = 1e-3 * np.asarray(omega_rad_s, dtype=float)[:, None, None] ** 2
+        u, v = linear_period(
+            inputs[0],
+            inputs[1],
+            inputs[2],
+            inputs[3],
+            length[..., None],
+            c[..., None],
+            floor,
+            sample_period_s,
+        )
+    else:
+        u, v = _period(
+            inputs[0],
+            inputs[1],
+            inputs[2],
+            inputs[3],
+            length[..., None],
+            c[..., None],
+            h,
+            substeps,
+        )
     state = np.concatenate((u, v), axis=-1)  # (modes, K - 1, count + 1, 6)
     jac = (state[:, :, 1:] - state[:, :, :1]) / steps[None, None, :, None]
     jac = np.swapaxes(jac, 2, 3)  # (modes, K - 1, 6 outputs, count inputs)

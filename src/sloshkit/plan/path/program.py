@@ -24,7 +24,7 @@ samples (`PathProgram.evaluate`):
   tilts, its quadratic model in the tilt (`sloshkit.plan.path.joints.joint_map`).
 
 `PathProgram.jacobians` differentiates the positions, angular velocities and forces banded, by
-colouring; `sloshkit.plan.path.cone.cone_step` builds one program from them.
+colouring; `sloshkit.plan.path.transcription` builds one program from them.
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
 from sloshkit.plan.path.joints import JointMap, JointModel
-from sloshkit.plan.path.pendulums import mode_slope, pendulum_track
+from sloshkit.plan.path.pendulums import at_rest, mode_slope, pendulum_track
 from sloshkit.plan.path.samples import PathSamples, sample_poses
 from sloshkit.sim.metrics import free_oscillation_components
 from sloshkit.sim.spatial_response import ellipse_semi_major
@@ -182,6 +182,9 @@ class PathProgram:
         Tilt centre above the container bottom [m].
     joints : JointMap, optional
         An arm's joints along the path (`joint_map`): their speeds are limited too.
+    linear : bool
+        Whether the slosh is the small-angle pendulums' (`sloshkit.plan.path.pendulums.
+        linear_track`) instead of the large-angle ones the verification simulates.
 
     Examples
     --------
@@ -210,9 +213,10 @@ class PathProgram:
         tilt: bool = False,
         centre_height_m: float = 0.0,
         joints: JointMap | None = None,
+        linear: bool = False,
     ) -> None:
         self.path, self.models, self.limits = path, models, limits
-        self.joints = joints
+        self.joints, self.linear = joints, linear
         self.joint_model: JointModel | None = None if joints is None else joints.model()
         self.ts, self.tilt, self.centre = sample_period_s, tilt, centre_height_m
         self.modes = models[0].modes
@@ -281,14 +285,16 @@ class PathProgram:
         for m, model in enumerate(self.models):
             drive, rest = _model_drive(model, force)
             drive = np.concatenate((drive, np.broadcast_to(turning, (count, *turning.shape))), -1)
-            unit, rate = pendulum_track(drive, rest, *mode_arrays(model), samples.period_s)
+            unit, rate = pendulum_track(
+                drive, rest, *mode_arrays(model), samples.period_s, self.linear
+            )
             units[m], rates[m], drives[m] = unit, rate, drive
             for n, mode in enumerate(model.modes):
                 walls[m] += mode.wall_elevation_factor_m * mode_slope(unit[n])
                 # the free oscillation HOLD samples after the move (as the 3-D simulation
                 # measures its residual), about the rest direction, scaled back to the end
                 final = drive[n, -1, :3]
-                offset = unit[n, -1, :2] - final[:2] / np.linalg.norm(final)
+                offset = unit[n, -1, :2] - at_rest(final, self.linear)
                 cosine, sine = free_oscillation_components(
                     offset, rate[n, -1, :2], mode.omega_rad_s, mode.damping_ratio
                 )
@@ -415,14 +421,10 @@ class ProgramIterate:
     Examples
     --------
     >>> import numpy as np
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
-    >>> from sloshkit.plan.path.geometry import path_from_waypoints
-    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
-    >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002)
-    >>> path = path_from_waypoints([[0, 0, 0], [0.1, 0, 0]])
-    >>> program = PathProgram(path, [model], limits, 0.01)
+    >>> import sloshkit as sk
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
+    >>> program = PathProgram(sk.path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]), [model],
+    ...                       ProgramLimits(2.0, 10.0, 100.0, None, None, 0.015, 0.002), 0.01)
     >>> t = np.arange(61) / 60  # a quintic rest-to-rest timing of 0.6 s
     >>> samples = PathSamples(0.1 * t**3 * (10 - 15 * t + 6 * t**2), np.zeros((61, 2)), 0.01)
     >>> iterate = program.iterate(samples)

@@ -214,7 +214,14 @@ class SplineTranscription:
             # only when the container tilts, or may
             width = 7 if tilting or np.any(ev.drive[m][..., 3:]) else 3
             a_k, b_k, e_k = step_jacobians(
-                ev.unit[m], ev.rate[m], ev.drive[m][..., :width], lengths, omegas, zetas, ts
+                ev.unit[m],
+                ev.rate[m],
+                ev.drive[m][..., :width],
+                lengths,
+                omegas,
+                zetas,
+                ts,
+                program.linear,
             )
             kappa = omegas**2 * lengths / model.gravity_m_s2
             drive = np.zeros((modes, n, 7, nz))
