@@ -253,7 +253,7 @@ def amplitude_pendulums(
     >>> angle[0, -1].round(4).tolist()
     [-0.1, 0.0]
     """
-    from sloshkit.sim.spatial_kernels import kernels
+    from sloshkit.sim.spatial_kernels import STIFFNESS_FLOOR, kernels
 
     modes = model.modes[: force.shape[0]]
     omega = np.array([mode.omega_rad_s for mode in modes])
@@ -266,7 +266,7 @@ def amplitude_pendulums(
         np.array([mode.length_m for mode in modes]),
         omega,
         np.array([mode.damping_ratio for mode in modes]),
-        1e-3 * omega**2,
+        STIFFNESS_FLOOR * omega**2,
         omega_slope,
         zeta_slope,
         cap,

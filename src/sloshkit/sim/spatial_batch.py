@@ -27,7 +27,7 @@ from sloshkit.sim.metrics import (
     wall_elevation_factors,
 )
 from sloshkit.sim.spatial_drive import spatial_drive
-from sloshkit.sim.spatial_kernels import kernels
+from sloshkit.sim.spatial_kernels import STIFFNESS_FLOOR, kernels
 from sloshkit.sim.spatial_response import HEIGHT_MAPPINGS, HeightMapping, ellipse_semi_major
 
 FloatArray = NDArray[np.float64]
@@ -166,7 +166,7 @@ def spatial_batch_metrics(
         length,
         omega,
         zeta,
-        1e-3 * omega**2,
+        STIFFNESS_FLOOR * omega**2,
         factors,
         remainder,
         dt,

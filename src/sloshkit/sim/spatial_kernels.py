@@ -34,6 +34,10 @@ from numpy.typing import NDArray
 FloatArray = NDArray[np.float64]
 
 _KERNELS: dict[str, Any] = {}
+#: The linear pendulums' stiffness -f_z / L is floored at this fraction of omega_n^2 (apparent
+#: gravity along the axis reversed or nearly zero: the caller warns, the model is not valid
+#: there).
+STIFFNESS_FLOOR = 1e-3
 
 
 def _compile() -> dict[str, Any]:
@@ -85,8 +89,8 @@ def linear_pendulums(
     ``rest_force`` (modes, 3): the specific force of the container at rest in its first pose;
     the pendulums start in its equilibrium (the container rests before the first pose).
 
-    The stiffness is floored at 1e-3 omega_n^2 (apparent gravity along the axis reversed or
-    nearly zero: the caller warns, the model is not valid there).
+    The stiffness is floored at `STIFFNESS_FLOOR` omega_n^2 (apparent gravity along the axis
+    reversed or nearly zero: the caller warns, the model is not valid there).
 
     Parameters
     ----------
@@ -126,7 +130,7 @@ def linear_pendulums(
     >>> angle[0, -1].round(4).tolist()
     [-0.1, 0.0]
     """
-    floor = 1e-3 * np.asarray(omega, dtype=float) ** 2
+    floor = STIFFNESS_FLOOR * np.asarray(omega, dtype=float) ** 2
     angle, rate = kernels()["linear"](
         np.ascontiguousarray(force),
         np.ascontiguousarray(rest_force),

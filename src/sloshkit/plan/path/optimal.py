@@ -9,7 +9,7 @@ limit by a percent or two. The program's limit is then moved by regula falsi (`_
 and the search restarts from the last splines (`plan_optimal`).
 
 The tilted search first runs with the small-angle pendulums (`PathProgram(..., linear=True)`,
-`sloshkit.plan.path.pendulums.linear_track`): the large-angle pendulums' frequency falls with
+`sloshkit.plan.path.small_angle`): the large-angle pendulums' frequency falls with
 their amplitude, which makes the residual so nonlinear in the splines that their programs'
 trust regions stay small and a tilted search crept towards its duration a few samples at a
 time; the small-angle residual is linear in the drive. The large-angle rounds then start
@@ -262,18 +262,17 @@ class _Rounds:
         )
         return SplineTranscription(program)
 
-    def navigated(
-        self, tilt: bool, start: SplineTiming | None, limits: ProgramLimits
-    ) -> SplineTiming | None:
-        """The plan of the search with the small-angle pendulums (module docstring) from
-        ``start`` (None: `_first_search`), where the rounds start; ``start`` when it failed."""
-        transcription = self.transcription(limits, tilt, linear=True)
+    def navigated(self, start: SplineTiming | None) -> SplineTiming | None:
+        """The plan of the tilted search with the small-angle pendulums (module docstring)
+        from ``start`` (None: `_first_search`), where the tilted rounds start; ``start`` when
+        it failed."""
+        transcription = self.transcription(self.limits(), True, linear=True)
         timing: SplineTiming | None
         try:
             if start is None:
                 timing, _ = _first_search(self.problem, transcription, self.log)
             else:
-                timing, _, _ = shortest(transcription, start, self.log, minimise_first=tilt)
+                timing, _, _ = shortest(transcription, start, self.log, minimise_first=True)
         except RuntimeError:
             timing = start
         self.programs += transcription.programs
@@ -286,9 +285,8 @@ class _Rounds:
         they start from the small-angle search's plan (`navigated`), and from ``start`` when
         those rounds verified no plan (their first search gives up after `FIRST_DURATIONS`
         durations that met no limit)."""
-        limits = self.limits()
         if tilt:
-            navigated = self.navigated(tilt, start, limits)
+            navigated = self.navigated(start)
             longest = None if start is None else start.steps - 1
             if navigated is not start and self.rounds_from(
                 tilt, navigated, FIRST_DURATIONS, longest

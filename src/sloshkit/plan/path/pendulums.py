@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.plan.path.small_angle import linear_period, linear_track
+from sloshkit.sim.spatial_kernels import STIFFNESS_FLOOR
 
 FloatArray = NDArray[np.float64]
 
@@ -287,7 +288,7 @@ def step_jacobians(
             inputs[block][:, :, direction + 1, component] += steps[direction]
             direction += 1
     if linear:
-        floor = 1e-3 * np.asarray(omega_rad_s, dtype=float)[:, None, None] ** 2
+        floor = STIFFNESS_FLOOR * np.asarray(omega_rad_s, dtype=float)[:, None, None] ** 2
         u, v = linear_period(
             inputs[0],
             inputs[1],
