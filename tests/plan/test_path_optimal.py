@@ -152,6 +152,22 @@ def test_a_decided_duration_stops_at_its_verdict(robot_vial: SloshModel) -> None
     assert not iterate.feasible and ratio > 1.0
 
 
+def test_the_search_stops_before_a_duration_longer_than_it_may_try(
+    robot_vial: SloshModel,
+) -> None:
+    """`shortest` with ``longest`` (a tilted search's bound, the upright plan's N minus one):
+    from a start far too short, the search that would have to go longer fails clearly at the
+    bound instead; without the bound it meets the limits at a longer N."""
+    problem = _corner_problem(robot_vial)
+    program = PathProgram(problem.path, problem.models(), LIMITS, problem.sample_period_s)
+    short = _spline_start(problem, 0.2)
+    short = short.on_steps(short.steps // 2)
+    unbounded, best, _ = shortest(SplineTranscription(program), short)
+    assert best.feasible and unbounded.steps > short.steps
+    with pytest.raises(RuntimeError, match="no duration up to"):
+        shortest(SplineTranscription(program), short, longest=short.steps + 1)
+
+
 def test_the_screen_picks_the_start_one_program_brings_closer(robot_vial: SloshModel) -> None:
     """`screened_start` compares two starts at the first one's duration after one program
     each: whichever order they come in, it names the smooth start rather than one that
