@@ -141,8 +141,20 @@ def pendulum_track(
 
 
 def at_rest(force_m_s2: FloatArray, linear: bool = False) -> FloatArray:
-    """The lateral components of u at rest under a constant specific force (..., 3): along it,
+    """The lateral components of u at rest under a constant specific force: along it,
     f_lat / |f|, for the large-angle pendulums, f_lat / (-f_z) for the small-angle ones.
+
+    Parameters
+    ----------
+    force_m_s2 : numpy.ndarray
+        The specific force (..., 3) [m/s^2].
+    linear : bool
+        Whether the pendulums are the small-angle ones.
+
+    Returns
+    -------
+    numpy.ndarray
+        (..., 2).
 
     Examples
     --------

@@ -28,10 +28,9 @@ def linear_track(
     damping_ratio: FloatArray,
     sample_period_s: float,
 ) -> tuple[FloatArray, FloatArray]:
-    """The small-angle pendulums along the samples, in
-    `sloshkit.plan.path.pendulums.pendulum_track`'s form: u = (theta_x,
-    theta_y, -1) and u' = (theta_x', theta_y', 0), so that the slope u_lat / (-u_z) the wall
-    reads is the angle theta.
+    """The small-angle pendulums along the samples, in the form of
+    `sloshkit.plan.path.pendulums.pendulum_track`: u = (theta_x, theta_y, -1) and
+    u' = (theta_x', theta_y', 0), so that the slope u_lat / (-u_z) the wall reads is theta.
 
     The linear model of the 3-D simulation (`sloshkit.sim.spatial_kernels.linear_pendulums`:
     theta'' + c theta' + k theta = f_lat / L with k = -f_z / L, the frame's turning terms
