@@ -20,6 +20,39 @@ from numpy.typing import NDArray
 FloatArray = NDArray[np.float64]
 
 
+def kernel_drive(force_m_s2: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The drive of `pendulum_track`'s form split as the simulation's kernels take it
+    (`sloshkit.sim.spatial_kernels.linear_pendulums` and ``nonlinear_pendulums``): the
+    specific force, the frame's lateral angular velocity and its derivative (zero when the
+    drive has no rates), each C-contiguous.
+
+    Parameters
+    ----------
+    force_m_s2 : numpy.ndarray
+        (modes, K, 3), or (modes, K, 7) with the lateral angular velocity (p, q) [rad/s] and
+        its derivative [rad/s^2] after the force (the same for every mode: the frame's).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The force (modes, K, 3) [m/s^2], the angular velocity (K, 2) and its derivative (K, 2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> force, rate, rate_dot = kernel_drive(np.zeros((2, 5, 7)))
+    >>> force.shape, rate.shape, rate_dot.shape
+    ((2, 5, 3), (5, 2), (5, 2))
+    """
+    _, samples, width = force_m_s2.shape
+    rates = force_m_s2[0, :, 3:] if width == 7 else np.zeros((samples, 4))
+    return (
+        np.ascontiguousarray(force_m_s2[..., :3]),
+        np.ascontiguousarray(rates[:, :2]),
+        np.ascontiguousarray(rates[:, 2:]),
+    )
+
+
 def linear_track(
     force_m_s2: FloatArray,
     rest_force_m_s2: FloatArray,
@@ -64,13 +97,13 @@ def linear_track(
     """
     from sloshkit.sim.spatial_kernels import linear_pendulums
 
-    modes, samples, width = force_m_s2.shape
-    rates = force_m_s2[0, :, 3:] if width == 7 else np.zeros((samples, 4))
+    modes, samples, _ = force_m_s2.shape
+    force, tilt_rate, tilt_acceleration = kernel_drive(force_m_s2)
     angle, angle_rate = linear_pendulums(
-        np.ascontiguousarray(force_m_s2[..., :3]),
+        force,
         rest_force_m_s2,
-        np.ascontiguousarray(rates[:, :2]),
-        np.ascontiguousarray(rates[:, 2:]),
+        tilt_rate,
+        tilt_acceleration,
         np.asarray(length_m, dtype=float),
         np.asarray(omega_rad_s, dtype=float),
         np.asarray(damping_ratio, dtype=float),
@@ -147,4 +180,4 @@ def linear_period(
     return angle, np.concatenate((stepped[..., 2:], np.zeros((*shape, 1))), axis=-1)
 
 
-__all__ = ["linear_period", "linear_track"]
+__all__ = ["kernel_drive", "linear_period", "linear_track"]
