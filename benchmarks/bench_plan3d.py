@@ -21,9 +21,8 @@ Last (``reference``), the issue #25 cases (the measured TRD_2D, LE_3D and RD_2D 
 turn about the vertical) with the issue's settings (R 49 mm, h 80 mm, water-20C, zeta 0.0066;
 15 mm peak, 2 mm residual; 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms; no angular limits; tilt up to 30 deg):
 each method of ``sloshkit.plan_path`` against the independent minimum time of the same problem
-(`ocp_reference`, casadi multiple shooting, upright for ``retime``, ``shaped`` and ``optimal``,
-with free tilt for ``tilt`` and ``optimal tilted``, the path program with its tilt as
-variables), once with the linear slosh model and once with the nonlinear one
+(`ocp_reference`, casadi multiple shooting, upright for ``retime`` and ``shaped``, with free
+tilt for ``tilt``), once with the linear slosh model and once with the nonlinear one
 that verifies every plan (``slosh_model="nonlinear"``: the optimum of the problem a verified
 plan solves), without and with a robot's joint check (``--robot``, default ur5e at the base pose
 of docs/planning-3d.md). The reference optima are cached in ``ocp_reference_cache.json`` (keyed
@@ -42,7 +41,7 @@ reference table alone, ``--tables reference``, between
 ``<!-- bench_plan3d-limits:start -->`` and its end), so the docs carry no hand-typed figures.
 
 ``limits`` (not run by default): monotone in the limits (issue #25's target), each method
-(``--methods``, default ``retime,optimal``) on the reference cases (``--cases``, default TRD_2D
+(``--methods``, default ``retime,tilt``) on the reference cases (``--cases``, default TRD_2D
 and pick-and-place) with the height limit 1, 1.01 and 1.02 times 15 mm (`limits_table`).
 """
 
@@ -79,7 +78,7 @@ LIMITS = CartesianLimits(2.0, 10.0, 100.0)
 RESIDUAL_M = 0.002
 #: The reference table's cases: measured series, then the built paths.
 REFERENCE_SERIES = ("TRD_2D_0.3m_2.4s_270deg", "LE_3D_0m_5.3s_900deg", "RD_2D_0.3m_6.5s_720deg")
-REFERENCE_METHODS = ("retime", "shaped", "tilt", "optimal", "optimal tilted")
+REFERENCE_METHODS = ("retime", "shaped", "tilt")
 CACHE = Path(__file__).resolve().parent / "ocp_reference_cache.json"
 #: Where the arm sits for the robot rows (docs/planning-3d.md: the UR5e reaches the TRD path).
 ROBOT_BASE_XYZ_M = (-0.35, -0.6, 0.2)
@@ -178,7 +177,9 @@ def series_table(
                 candidate = found.get(method)
                 if candidate is None or not candidate.feasible:
                     return "infeasible"
-                return f"{candidate.duration_s:.2f} s"
+                source = candidate.detail.get("source", "program")
+                mark = "" if source == "program" or method in ("uniform", "shaped") else "*"
+                return f"{candidate.duration_s:.2f} s{mark}"
 
             def ratio(method: str, found: dict[str, Any] = found) -> str:
                 base, other = found.get("uniform"), found.get(method)
@@ -287,15 +288,12 @@ def _robot(name: str | None) -> Any:
 
 
 def _run_method(problem: PathProblem, method: str, verifier: Any) -> tuple[str, float, float]:
-    """(shown duration or failure, verified duration [s] (nan unless feasible), wall [s]);
-    ``optimal`` upright, ``optimal tilted`` with the tilt as variables."""
+    """(shown duration or failure, verified duration [s] (nan unless feasible), wall [s]); the
+    duration is marked with its source when ``retime`` or ``tilt`` returned its floor (a
+    family member or the uniform scaling) instead of the programs' plan."""
     started = time.perf_counter()
-    tilted = method == "optimal tilted"
-    method = "optimal" if tilted else method
     try:
         arguments: dict[str, Any] = {} if verifier is None else {"verifier": verifier}
-        if method == "optimal":
-            arguments["tilt"] = tilted
         result = plan_path(problem, method, **arguments)
     except Exception as error:  # a method being rewritten may fail: the table shows it
         return f"error ({type(error).__name__})", math.nan, time.perf_counter() - started
@@ -305,7 +303,9 @@ def _run_method(problem: PathProblem, method: str, verifier: Any) -> tuple[str, 
         return "missing", math.nan, wall
     if not found[0].feasible:
         return "infeasible", math.nan, wall
-    return f"{found[0].duration_s:.3f} s", found[0].duration_s, wall
+    source = found[0].detail.get("source", "program")
+    mark = "" if method == "shaped" or source == "program" else f" ({source})"
+    return f"{found[0].duration_s:.3f} s{mark}", found[0].duration_s, wall
 
 
 def reference_table(
@@ -327,9 +327,9 @@ def reference_table(
         "Against the independent optimum (`benchmarks/ocp_reference.py`) of the same problem "
         "(15 mm / 2 mm, 2 m/s, 10 m/s^2, 100 m/s^3, 4 ms, no angular limits, tilt up to "
         "30 deg), with the linear slosh model (optimum) and with the nonlinear one that "
-        "verifies the plans (nonlinear optimum); `retime`, `shaped` and `optimal` divided by "
-        "the upright optimum, `tilt` and `optimal` with the tilt free (`optimal tilted`) by "
-        "the tilted one; compute: wall time on the shared "
+        "verifies the plans (nonlinear optimum); `retime` and `shaped` divided by the upright "
+        'optimum, `tilt` by the tilted one (a duration marked "family" is the family\'s '
+        "verified member, shorter than the programs' plan); compute: wall time on the shared "
         "machine:",
         "",
         "| case | robot | optimum upright | optimum tilted | optimum compute "
@@ -369,7 +369,7 @@ def reference_table(
             cells = []
             for method in methods:
                 shown, duration, wall = _run_method(problem, method, verifier)
-                tilting = method in ("tilt", "optimal tilted")
+                tilting = method == "tilt"
                 bases = (tilted, exact_tilted) if tilting else (upright, exact)
                 ratios = [
                     "-"
@@ -391,7 +391,7 @@ def reference_table(
 #: The height limit's factors of the limits table: each looser than the one before.
 LOOSER_FACTORS = (1.0, 1.01, 1.02)
 #: The limits table's methods and cases unless ``--methods`` and ``--cases`` say otherwise.
-LIMITS_METHODS = ("retime", "optimal")
+LIMITS_METHODS = ("retime", "tilt")
 LIMITS_CASES = ("TRD_2D", "pick-and-place")
 
 
@@ -459,7 +459,7 @@ def main() -> None:
     parser.add_argument(
         "--methods",
         default="",
-        help="methods of the reference (default all) or limits table (default retime,optimal), "
+        help="methods of the reference (default all) or limits table (default retime,tilt), "
         "comma-separated",
     )
     parser.add_argument(
@@ -489,7 +489,8 @@ def main() -> None:
     if "primary" in tables:
         rows += [
             "Primary: both limits from the measured run (peak `meas_peak_m`, residual the "
-            "measured residual) and half of both:",
+            "measured residual) and half of both (`auto`; * marks a family's verified member, "
+            "where `auto` does not run the programs on a move over 600 samples):",
             "",
             *series_table(model, manifest, None, series),
             "",

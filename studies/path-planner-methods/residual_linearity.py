@@ -26,9 +26,9 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
 from sloshkit.plan.path.minimum_time import shortest
-from sloshkit.plan.path.optimal import capped_start
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.splines import SplineTiming
+from sloshkit.plan.path.starts import capped_start
 from sloshkit.plan.path.transcription import SplineTranscription
 
 

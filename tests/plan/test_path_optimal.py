@@ -17,12 +17,12 @@ from sloshkit.motion.laws import s_curve
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path.geometry import path_from_waypoints
 from sloshkit.plan.path.minimum_time import at_duration, knot_count, shortest
-from sloshkit.plan.path.optimal import capped_start, screened_start
 from sloshkit.plan.path.planner import plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.samples import PathSamples, export_poses
 from sloshkit.plan.path.splines import SplineTiming, fit_timing
+from sloshkit.plan.path.starts import capped_start, screened_start
 from sloshkit.plan.path.transcription import SplineTranscription
 from sloshkit.sim.spatial import simulate_spatial
 
@@ -256,10 +256,13 @@ def test_straight_path_minimum_equals_the_one_dimensional_optimum(period_s: floa
 
 
 @pytest.mark.slow
-def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshModel) -> None:
-    """``optimal`` (upright) on a short corner path at a 10 ms export period: verified with the
-    nonlinear 3-D model, shorter than ``retime`` (measured: 1.07 s against 1.28 s), and the
-    shortest of its verified rounds."""
+def test_retime_is_the_verified_program_and_faster_than_its_family(robot_vial: SloshModel) -> None:
+    """``retime`` (and ``optimal`` without tilt, the same method) on a short corner path at a
+    10 ms export period: the programs' plan, verified with the nonlinear 3-D model, shorter
+    than the family's verified member it would otherwise return (measured: 1.07 s against
+    1.48 s), and the shortest of its verified rounds."""
+    from sloshkit.plan.path.search import upright_family
+
     path = path_from_waypoints(
         [[0, 0, 0], [0.15, 0, 0], [0.15, 0.12, 0]], yaw_rad=[0.0, 0.0, math.pi / 2]
     )
@@ -271,12 +274,13 @@ def test_optimal_method_is_verified_and_faster_than_retime(robot_vial: SloshMode
         sample_period_s=0.01,
     )
     optimal = plan_path(problem, "optimal", tilt=False)
-    retime = plan_path(problem, "retime")
-    assert optimal.chosen is not None and retime.chosen is not None
-    assert optimal.chosen.method == "optimal" and optimal.feasible
+    family = upright_family(problem)
+    assert optimal.chosen is not None and family.feasible
+    assert optimal.chosen.method == "retime" and optimal.feasible
+    assert optimal.chosen.detail["source"] == "program"
     assert optimal.chosen.verification is not None and not optimal.chosen.verification.violations
     assert optimal.chosen.verification.peak_tilt_rad == 0.0
-    assert optimal.chosen.duration_s < retime.chosen.duration_s
+    assert optimal.chosen.duration_s < family.duration_s
     # the plan is the shortest round whose export the verification passed (a round that
     # failed it was searched again with the program's limit moved)
     passed = [
@@ -296,7 +300,7 @@ def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshM
     from sloshkit.export.frames import Mounting
     from sloshkit.export.kinematics import load_arm
     from sloshkit.export.path_robot import RobotVerifier, joint_speed_ratio
-    from sloshkit.plan.path.optimal import plan_optimal
+    from sloshkit.plan.path.optimal import plan_programs
     from sloshkit.plan.path.result import verify
 
     arm, mounting = load_arm("ur5e"), Mounting(base_xyz_m=(-0.45, -0.13, 0.3))
@@ -304,11 +308,11 @@ def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshM
     problem = PathProblem(
         path, CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.015, 0.002), robot_vial
     )
-    free = plan_optimal(problem, verify)
+    free = plan_programs(problem, verify)[0]
     assert free.feasible and free.poses is not None
     free_ratio, _ = joint_speed_ratio(arm, mounting, free.poses)
     assert free_ratio > 1.2  # the joints bind
-    armed = plan_optimal(problem, RobotVerifier(arm, mounting))
+    armed = plan_programs(problem, RobotVerifier(arm, mounting))[0]
     assert armed.feasible and armed.poses is not None and armed.detail is not None
     assert armed.detail["stretch"] == 1.0
     ratio, _ = joint_speed_ratio(arm, mounting, armed.poses)
@@ -316,7 +320,7 @@ def test_optimal_limits_the_arms_joint_speeds_in_its_programs(robot_vial: SloshM
     assert armed.duration_s < free.duration_s * free_ratio
     # tilted, the joints enter the programs by their quadratic model in the tilt: the plan
     # tilts, is shorter (measured: 0.604 s against 0.668 s) and still needs no stretch
-    tilted = plan_optimal(problem, RobotVerifier(arm, mounting), tilt=True)
+    tilted = plan_programs(problem, RobotVerifier(arm, mounting), tilt=True)[1]
     assert tilted.feasible and tilted.poses is not None and tilted.detail is not None
     assert "upright" not in tilted.detail and tilted.detail["stretch"] == 1.0
     assert tilted.verification is not None and tilted.verification.peak_tilt_rad > 0.02
@@ -369,7 +373,7 @@ def test_optimal_refuses_a_path_the_arm_cannot_reach(robot_vial: SloshModel) -> 
     from sloshkit.export.frames import Mounting
     from sloshkit.export.kinematics import load_arm
     from sloshkit.export.path_robot import RobotVerifier
-    from sloshkit.plan.path.optimal import plan_optimal
+    from sloshkit.plan.path.optimal import plan_programs
 
     problem = PathProblem(
         path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
@@ -377,13 +381,14 @@ def test_optimal_refuses_a_path_the_arm_cannot_reach(robot_vial: SloshModel) -> 
         SpatialSloshLimits(0.015, 0.002),
         robot_vial,
     )
-    found = plan_optimal(problem, RobotVerifier(load_arm("ur5e"), Mounting(base_xyz_m=(3, 0, 0))))
+    arm = RobotVerifier(load_arm("ur5e"), Mounting(base_xyz_m=(3, 0, 0)))
+    found, _ = plan_programs(problem, arm)
     assert not found.feasible and found.poses is None
     assert found.message.startswith("robot: ")
 
 
-def test_the_cli_warns_only_when_optimal_planned_upright_with_an_arm() -> None:
-    """``plan --method optimal --tilt-compensation --robot``: the warning (stderr and JSON
+def test_the_cli_warns_only_when_tilt_planned_upright_with_an_arm() -> None:
+    """``plan --method tilt --robot``: the warning (stderr and JSON
     ``warnings``) names the reason the candidate carries, and nothing is said when it tilted."""
     import warnings
     from types import SimpleNamespace
@@ -392,8 +397,8 @@ def test_the_cli_warns_only_when_optimal_planned_upright_with_an_arm() -> None:
     from sloshkit.errors import ValidityWarning
 
     reason = "the arm cannot reach the path tilted by the joint model's probes"
-    upright = SimpleNamespace(method="optimal", detail={"upright": reason})
-    tilted = SimpleNamespace(method="optimal", detail={"stretch": 1.0})
+    upright = SimpleNamespace(method="tilt", detail={"upright": reason})
+    tilted = SimpleNamespace(method="tilt", detail={"stretch": 1.0})
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         warn_if_planned_upright(SimpleNamespace(candidates=[tilted]))
@@ -404,11 +409,12 @@ def test_the_cli_warns_only_when_optimal_planned_upright_with_an_arm() -> None:
 
 
 @pytest.mark.slow
-def test_optimal_with_tilt_is_verified_and_shorter_than_upright(
+def test_tilt_is_verified_and_shorter_than_retime(
     robot_vial: SloshModel,
 ) -> None:
-    """``plan_path(..., "optimal", tilt=True)``: the tilt angles are variables of the same
-    programs; the plan returned is verified, tilts, and is shorter than the upright one."""
+    """``plan_path(..., "optimal", tilt=True)`` is ``tilt``: the tilt angles are variables of
+    the same programs; the plan returned is verified, tilts, and is shorter than ``retime``'s
+    upright one."""
     problem = PathProblem(
         path_from_waypoints([[0, 0, 0], [0.12, 0, 0]]),
         CartesianLimits(2.0, 10.0, 100.0),
@@ -418,9 +424,10 @@ def test_optimal_with_tilt_is_verified_and_shorter_than_upright(
         max_tilt_rad=math.radians(20.0),
     )
     tilted = plan_path(problem, "optimal", tilt=True)
-    upright = plan_path(problem, "optimal", tilt=False)
-    assert [c.method for c in tilted.candidates] == ["optimal"]
+    upright = plan_path(problem, "retime")
+    assert [c.method for c in tilted.candidates] == ["tilt"]
     assert tilted.chosen is not None and tilted.feasible and upright.chosen is not None
+    assert tilted.chosen.detail["source"] == "program" and tilted.chosen.detail["tilted"]
     assert tilted.chosen.verification is not None
     assert tilted.chosen.verification.peak_tilt_rad > 0.0
     assert tilted.chosen.duration_s < upright.chosen.duration_s

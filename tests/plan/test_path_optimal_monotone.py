@@ -25,7 +25,7 @@ from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
 from sloshkit.plan.path.geometry import path_from_poses, path_from_waypoints
 from sloshkit.plan.path.minimum_time import TOLERANCE
-from sloshkit.plan.path.optimal import plan_optimal
+from sloshkit.plan.path.optimal import plan_programs
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.path.result import verify
 
@@ -46,7 +46,7 @@ def _duration(height_m: float, acceleration_m_s2: float) -> float:
         MODEL,
         sample_period_s=PERIOD_S,
     )
-    found = plan_optimal(problem, verify)
+    found = plan_programs(problem, verify)[0]
     assert found.feasible, found.message
     return float(found.duration_s)
 
@@ -96,7 +96,7 @@ def test_a_one_percent_looser_height_limit_does_not_double_the_measured_turns_pl
             MODEL,
             sample_period_s=4e-3,
         )
-        found = plan_optimal(problem, verify)
+        found = plan_programs(problem, verify)[0]
         assert found.feasible, found.message
         return float(found.duration_s)
 

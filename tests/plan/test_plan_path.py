@@ -21,8 +21,7 @@ from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.plan.path.geometry import path_from_poses, path_from_waypoints
 from sloshkit.plan.path.planner import linear_verifier, plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits, sample_path
-from sloshkit.plan.path.screen import linear_screen, screen_ok
-from sloshkit.plan.path.search import warp_search
+from sloshkit.plan.path.screen import linear_screen
 from sloshkit.plan.path.tilt_compensation import tilt_compensated
 from sloshkit.plan.path.timing import Timing
 from sloshkit.sim.spatial import simulate_spatial
@@ -401,29 +400,6 @@ def test_retime_is_never_slower_than_uniform_scaling_of_the_reference(
     assert_export_meets_limits(robot_vial, found["retime"].poses, 0.012, 0.002)
 
 
-def test_warp_search_keeps_the_screen_and_shortens_a_slow_seed(robot_vial: SloshModel) -> None:
-    """A slow S-curve (0.25 m/s, 0.8 m/s^2: the screen passes with room to spare) is shortened
-    by more than 5 % and still passes."""
-    path = path_from_waypoints([[0, 0, 0], [0.3, 0, 0]])
-    problem = PathProblem(
-        path, CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002), robot_vial
-    )
-    law = s_curve(0.3, 0.25, 0.8, 8.0)
-    t = np.linspace(0.0, law.duration_s, 201)
-    seed = Timing.from_samples("slow", t, law.position(t))
-    models = problem.models()
-
-    def passes(poses: PoseTrajectory) -> bool:
-        return screen_ok(problem, linear_screen(models, poses))
-
-    assert passes(sample_path(path, seed, problem.sample_period_s))
-    fast, screens = warp_search(problem, seed, passes, max_screens=60)
-    assert 0 < screens <= 60
-    assert fast.duration_s < 0.95 * seed.duration_s
-    assert passes(sample_path(path, fast, problem.sample_period_s))
-    assert np.isclose(float(fast.position(fast.duration_s)), 0.3)
-
-
 @pytest.mark.parametrize(
     ("limits", "named"),
     [
@@ -451,14 +427,15 @@ def test_an_impossible_request_names_the_limit_that_binds_each_method(
 
 
 @pytest.mark.slow
-def test_auto_adds_optimal_on_a_short_move_only(
+def test_auto_runs_the_programs_on_a_short_move_only(
     robot_vial: SloshModel, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """``auto`` runs ``optimal`` when the fastest other plan is short (at most
-    AUTO_OPTIMAL_MAX_SAMPLES samples, with an arm AUTO_ARM_OPTIMAL_MAX_SAMPLES),
-    and the chosen plan is then no slower than any other verified candidate; with the bound
-    below the move's samples it does not run it."""
+    """``auto`` runs ``retime``'s programs when the fastest family or ``shaped`` plan is short
+    (at most AUTO_OPTIMAL_MAX_SAMPLES samples, with an arm AUTO_ARM_OPTIMAL_MAX_SAMPLES), and
+    the chosen plan is then the programs' and no slower than any other verified candidate;
+    with the bound below the move's samples ``retime`` is the family's member."""
     from sloshkit.plan.path import planner
+    from sloshkit.plan.path.search import upright_family
 
     problem = PathProblem(
         path_from_waypoints([[0, 0, 0], [0.15, 0, 0.05]]),
@@ -468,18 +445,21 @@ def test_auto_adds_optimal_on_a_short_move_only(
         sample_period_s=0.01,
     )
     result = plan_path(problem, "auto", tilt=False)
-    methods = [c.method for c in result.candidates]
-    assert methods.count("optimal") == 1
+    assert [c.method for c in result.candidates] == ["shaped", "retime"]
     feasible = [c for c in result.candidates if c.feasible]
     assert result.chosen is not None and result.chosen.feasible
     assert result.chosen.duration_s == min(c.duration_s for c in feasible)
-    # on this move optimal gives 0.64 s, retime 0.75 s and shaped 0.96 s
-    assert result.chosen.method == "optimal"
-    others = min(c.duration_s for c in feasible if c.method != "optimal")
+    # on this move the programs give 0.64 s, the family 0.75 s and shaped 0.96 s
+    assert result.chosen.method == "retime" and result.chosen.detail["source"] == "program"
+    family = upright_family(problem)
+    assert family.feasible and result.chosen.duration_s < family.duration_s
+    others = min(family.duration_s, result.candidates[0].duration_s)
     assert others / problem.sample_period_s <= planner.AUTO_OPTIMAL_MAX_SAMPLES
     # without an arm the arm's bound does not apply
     monkeypatch.setattr(planner, "AUTO_ARM_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
-    assert "optimal" in [c.method for c in plan_path(problem, "auto", tilt=False).candidates]
+    again = plan_path(problem, "auto", tilt=False).candidates[1]
+    assert again.detail["source"] == "program"
     monkeypatch.setattr(planner, "AUTO_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
-    without = plan_path(problem, "auto", tilt=False)
-    assert "optimal" not in [c.method for c in without.candidates]
+    without = plan_path(problem, "auto", tilt=False).candidates[1]
+    assert without.detail["source"] == "family"
+    assert without.duration_s == pytest.approx(family.duration_s)

@@ -54,9 +54,10 @@ def plan_command(
         typer.Option(
             "--method",
             help="auto, paper, trapezoidal, cubic, quintic, septic, fast, shaped, optimal; "
-            "with a path: auto (also optimal on moves of at most 600 samples, with --robot "
-            "300), retime, shaped, "
-            "tilt, optimal.",
+            "with a path: auto (the minimum-time programs only on moves of at most 600 "
+            "samples, with --robot 300), retime (minimum time, upright), shaped, tilt "
+            "(minimum time with the tilt), optimal (tilt with --tilt-compensation, else "
+            "retime).",
         ),
     ] = "auto",
     robust: Annotated[
@@ -135,7 +136,10 @@ def plan_command(
     ] = None,
     tilt_compensation: Annotated[
         bool,
-        typer.Option("--tilt-compensation", help="3-D: let auto and optimal tilt the container."),
+        typer.Option(
+            "--tilt-compensation",
+            help="3-D: let auto and optimal tilt the container (tilt always does).",
+        ),
     ] = False,
     max_tilt: Annotated[
         str, typer.Option("--max-tilt", help="3-D: largest tilt from vertical, e.g. 30deg.")

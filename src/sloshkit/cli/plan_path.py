@@ -90,7 +90,7 @@ def run_path_plan(
         `sloshkit.io.plan_requests.DEFAULT_ANGULAR_VELOCITY` and
         ``DEFAULT_ANGULAR_ACCELERATION``; ``none``: no limit).
     tilt_compensation : bool
-        ``--tilt-compensation``: ``auto`` and ``optimal`` may tilt.
+        ``--tilt-compensation``: ``auto`` and ``optimal`` may tilt (``tilt`` always does).
     max_tilt, tilt_centre : str
         ``--max-tilt``, ``--tilt-centre``.
     method : str
@@ -215,21 +215,21 @@ def run_path_plan(
 
 
 def warn_if_planned_upright(result: Any) -> None:
-    """Warn (`sloshkit.errors.ValidityWarning`: stderr and JSON ``warnings``) when ``optimal``
-    was asked to tilt with an arm and planned upright, the reason its candidate carries (the
-    arm cannot reach the tilted probes of its joint model: `sloshkit.plan.path.joints.
-    joint_map`).
+    """Warn (`sloshkit.errors.ValidityWarning`: stderr and JSON ``warnings``) when ``tilt``'s
+    programs were asked to tilt with an arm and planned upright, the reason its candidate
+    carries (the arm cannot reach the tilted probes of its joint model:
+    `sloshkit.plan.path.joints.joint_map`).
 
     Parameters
     ----------
     result : PathPlanResult
-        The plan; its ``optimal`` candidate's ``detail["upright"]`` holds the reason.
+        The plan; its ``tilt`` candidate's ``detail["upright"]`` holds the reason.
 
     Examples
     --------
     >>> import warnings
     >>> from types import SimpleNamespace
-    >>> tilted = SimpleNamespace(method="optimal", detail={"stretch": 1.0})
+    >>> tilted = SimpleNamespace(method="tilt", detail={"stretch": 1.0})
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
     ...     warn_if_planned_upright(SimpleNamespace(candidates=[tilted]))
@@ -242,9 +242,9 @@ def warn_if_planned_upright(result: Any) -> None:
 
     for candidate in result.candidates:
         reason = (candidate.detail or {}).get("upright")
-        if candidate.method == "optimal" and reason:
+        if candidate.method == "tilt" and reason:
             warnings.warn(
-                f"--tilt-compensation with --robot/--urdf: --method optimal planned the "
+                f"--tilt-compensation with --robot/--urdf: the tilt's programs planned the "
                 f"container upright ({reason})",
                 ValidityWarning,
                 stacklevel=1,

@@ -1,34 +1,32 @@
 """The 3-D path planner: methods side by side, each verified, the fastest feasible chosen.
 
-All methods use the timing family of `sloshkit.plan.path.retime` (acceleration-capped time-optimal
-speed profile, box filter for the jerk limit, optional ZV/ZVD shaping of the timing):
-
-- ``retime``: the largest cap whose member passes the linear screen (with and without shaping),
-  and the verified ``uniform`` timing, each improved locally by speed-scaling warps
-  (`sloshkit.plan.path.improve.warped_candidates`: pattern search and sequential linear
-  programming);
+- ``retime``: the minimum-time timing of the path, upright, by sequential second-order-cone
+  programs of a spline transcription on the export grid (`sloshkit.plan.path.optimal`),
+  with the family's verified member as its floor: the fastest acceleration cap of the
+  timing family of `sloshkit.plan.path.retime` (time-optimal speed profile under an
+  acceleration cap, box filter for the jerk limit, optional ZV/ZVD or curve shaping of the
+  timing) that passes the linear screen (`sloshkit.plan.path.search.upright_family`);
+- ``tilt``: the same programs with the two tilt angles of every sample as variables, from
+  the upright plan, with the tilt-compensated family member
+  (`sloshkit.plan.path.tilt.tilted_family`) and everything ``retime`` found as its floor,
+  so it is never slower than ``retime``;
 - ``shaped``: per-axis input shaping of the members (each Cartesian axis convolved with the
   ZV/ZVD shaper of the first mode, which cancels its residual for every lateral direction), the
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
   path (shaping the axes cuts corners; the deviation is measured on the export);
-- ``tilt``: tilt compensation (`sloshkit.plan.path.tilt_compensation`) of the members, the
-  largest cap whose tilted export passes the screen and the tilt and angular limits, then
-  improved by the same local searches on the tilted export, seeded also from ``retime``'s
-  timing in ``auto`` (`sloshkit.plan.path.tilt`);
-- ``auto``: all three (and ``optimal`` on short moves), the fastest verified;
-- ``optimal``: the minimum-time timing (and, with ``tilt``, the tilt) of the path by
-  sequential second-order-cone programs of a spline transcription on the export grid
-  (`sloshkit.plan.path.optimal`): the fastest verified moves, at a minute or more of compute
-  on long paths, so ``auto`` runs it only on short moves (`AUTO_OPTIMAL_MAX_SAMPLES`,
-  `AUTO_ARM_OPTIMAL_MAX_SAMPLES`); with
-  ``tilt`` the tilt angles are variables of its programs.
+- ``auto``: ``shaped`` and the families, and the programs of ``retime`` (and ``tilt``) when
+  the fastest family plan is short (`AUTO_OPTIMAL_MAX_SAMPLES`,
+  `AUTO_ARM_OPTIMAL_MAX_SAMPLES`): the programs take a minute or more on long paths;
+- ``optimal``: ``tilt`` with the tilt free, else ``retime`` (the name of the 1-D planner's
+  minimum-time method).
 
 Every candidate is verified with the nonlinear 3-D model (`sloshkit.plan.path.result.verify`); when
 the verified export still exceeds a limit that a slower copy meets (slosh, Cartesian, angular,
 a robot's joint speeds), it is stretched in time by the excess and verified again
 (`sloshkit.plan.path.result.verified_candidate`). An optional reference timing (the pose
 file's own) is slowed uniformly until the limits and the screen pass and reported as the
-``uniform`` candidate, the naive fix the methods are compared with (never chosen).
+``uniform`` candidate, the naive fix the methods are compared with (never chosen, but part of
+``retime``'s floor).
 """
 
 from __future__ import annotations
@@ -36,17 +34,14 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import replace
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.errors import InputError
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.plan.path.improve import fastest_improved, ladder_affordable
-from sloshkit.plan.path.ladder import TARGET_LADDER, ladder_seeds, method_timing, plan_uniform
 from sloshkit.plan.path.limits import machine_violations, path_deviation
-from sloshkit.plan.path.problem import PathProblem, sample_path
+from sloshkit.plan.path.problem import PathProblem
 from sloshkit.plan.path.result import (
     JointSpeedCheck,
     PathCandidate,
@@ -56,18 +51,15 @@ from sloshkit.plan.path.result import (
     verified_candidate,
     verify,
 )
-from sloshkit.plan.path.retime import (
-    axis_shaped_samples,
-    first_mode_shaper,
-)
+from sloshkit.plan.path.retime import axis_shaped_samples, first_mode_shaper
 from sloshkit.plan.path.screen import linear_screen, screen_ok
 from sloshkit.plan.path.search import (
-    LOWEST_CAP_FRACTION,
     fastest_capped,
     lowest_cap_failure,
-    stretcher,
+    plan_uniform,
+    upright_family,
 )
-from sloshkit.plan.path.tilt import improved_tilt, plan_tilt, timing_shapers
+from sloshkit.plan.path.tilt import tilted_family
 from sloshkit.plan.path.timing import Timing
 
 FloatArray = NDArray[np.float64]
@@ -140,19 +132,51 @@ def plan_shaped(problem: PathProblem, verifier: Verifier = verify) -> PathCandid
     )
 
 
+def _fastest(method: str, started: float, pool: Sequence[PathCandidate | None]) -> PathCandidate:
+    """The fastest feasible candidate of ``pool`` as ``method``'s, its origin in
+    ``detail["source"]`` (``program``, ``family`` or ``uniform``) and ``compute_time_s`` the
+    method's since ``started``; when none is feasible, the first failure's message (the
+    family's, which names the limit that binds at its lowest cap), the program's in
+    ``detail["program"]``."""
+    present = [c for c in pool if c is not None]
+    feasible = [c for c in present if c.feasible]
+    elapsed = time.perf_counter() - started
+    if feasible:
+        chosen = min(feasible, key=lambda c: c.duration_s)
+        detail = {"source": chosen.method, **chosen.detail}
+        return replace(chosen, method=method, detail=detail, compute_time_s=elapsed)
+    failures = sorted(present, key=lambda c: c.detail.get("source") == "program")
+    if not failures:
+        return _failed(method, started, "no candidate ran")
+    program = [c.message for c in present if c.detail.get("source") == "program"]
+    detail = {"program": program[0]} if program else {}
+    return replace(failures[0], method=method, compute_time_s=elapsed, detail=detail)
+
+
+def _program_candidates(
+    problem: PathProblem, verifier: Verifier, say: Callable[[str], None], tilt: bool
+) -> tuple[PathCandidate, PathCandidate | None]:
+    """`sloshkit.plan.path.optimal.plan_programs`, each candidate's source marked."""
+    from sloshkit.plan.path.optimal import plan_programs
+
+    say("programs: the minimum-time timing by sequential cone programs")
+    upright, tilted = plan_programs(problem, verifier, say, tilt=tilt)
+
+    def marked(candidate: PathCandidate) -> PathCandidate:
+        return replace(candidate, detail={**candidate.detail, "source": "program"})
+
+    return marked(upright), None if tilted is None else marked(tilted)
+
+
 def plan_retime(
     problem: PathProblem,
     verifier: Verifier = verify,
-    seeds: Sequence[tuple[PathCandidate, Timing]] = (),
-    timings: Sequence[tuple[str, Timing]] = (),
+    floor: Sequence[PathCandidate] = (),
+    progress: Callable[[str], None] | None = None,
 ) -> PathCandidate:
-    """The fastest acceleration cap of the family under the slosh screen (with the first-mode
-    timing shaper, without, and on curved paths with `sloshkit.plan.path.retime.curve_shaper`),
-    verified. The verified family timing and every verified ``seeds`` timing are candidates
-    too, each improved by `sloshkit.plan.path.improve.warped_candidates` (pattern search and
-    SLP on a speed-scaling warp) and verified again; the
-    fastest verified one wins, so ``retime`` is never slower than a feasible seed. The
-    container stays on the path.
+    """The minimum-time upright timing of the path (`sloshkit.plan.path.optimal.plan_programs`),
+    or the family's verified member (`sloshkit.plan.path.search.upright_family`) or a
+    ``floor`` candidate when one is faster; the container stays on the path.
 
     Parameters
     ----------
@@ -160,98 +184,98 @@ def plan_retime(
         Path, limits, model.
     verifier : callable
         Verification of an export.
-    seeds : sequence of (PathCandidate, Timing)
-        Verified candidates of the same path and their timings (e.g. ``uniform``).
-    timings : sequence of (str, Timing)
-        Other timings of the path (e.g. the ``shaped`` and ``tilt`` members), seeds once
-        slowed until they pass (`sloshkit.plan.path.improve.ladder_seeds`, which also seeds
-        the family and ``seeds`` under the stricter targets of `TARGET_LADDER`).
+    floor : sequence of PathCandidate
+        Other verified plans of the same path that ``retime`` must not be slower than (e.g.
+        ``uniform``).
+    progress : callable, optional
+        Receives one line per step.
 
     Returns
     -------
     PathCandidate
+        Method ``retime``; ``detail["source"]`` says which plan it is.
 
     References
     ----------
-    Bobrow et al. (1985), doi:10.1177/027836498500400301.
+    Bobrow, Dubowsky & Gibson (1985), doi:10.1177/027836498500400301.
 
     Examples
     --------
     >>> problem = _example_problem()
-    >>> plan_retime(problem, linear_verifier).detail["shaper"]
-    'zv'
+    >>> found = plan_retime(problem, verify)
+    >>> found.feasible, found.detail["source"]
+    (True, 'program')
     """
-    return _retime(problem, verifier, seeds, timings)[0]
-
-
-def _retime(
-    problem: PathProblem,
-    verifier: Verifier,
-    seeds: Sequence[tuple[PathCandidate, Timing]],
-    timings: Sequence[tuple[str, Timing]],
-) -> tuple[PathCandidate, Timing | None]:
-    """`plan_retime` and the timing of its export (None when it failed)."""
     started = time.perf_counter()
-    models = problem.models()
-    best: tuple[float, float, Timing, str] | None = None
-    shapers = dict(timing_shapers(problem))
-    for name, shaper in shapers.items():
-        found = fastest_capped(
-            problem, lambda poses: screen_ok(problem, linear_screen(models, poses)), shaper
-        )
-        if found is None:
-            continue
-        cap, member = found
-        duration = sample_path(problem.path, member, problem.sample_period_s).duration_s
-        if best is None or duration < best[0]:
-            best = (duration, cap, member, name)
-    pool = [(replace(c, detail={**c.detail, "seed": c.method}), t) for c, t in seeds if c.feasible]
-    if best is None and not pool:
-        message = (
-            f"no acceleration cap down to {100 * LOWEST_CAP_FRACTION:g} % of amax meets the slosh "
-            f"limits: at that cap, {lowest_cap_failure(problem)}"
-        )
-        return _failed("retime", started, message), None
-    if best is not None:
-        duration, cap, timing, shaper_name = best
-        detail: dict[str, Any] = {"acceleration_cap_m_s2": cap, "shaper": shaper_name}
-        family = verified_candidate(
-            "retime", problem, stretcher(problem, timing), 1.0, started, verifier, False, detail
-        )
-        stretched = timing.stretched(float(family.detail["stretch"]))
-        pool.append((replace(family, detail={**family.detail, "seed": "family"}), stretched))
-    # The continuation over stricter targets and the other methods' timings (seeds).
-    others = [(c.method, t, ladder) for c, t in seeds if c.feasible for ladder in TARGET_LADDER[1:]]
-    others += [(name, timing, TARGET_LADDER[0]) for name, timing in timings]
-    shaper = None if best is None else shapers[best[3]]
-    ladder = TARGET_LADDER[1:] if best is not None else ()
-    extra: list[tuple[PathCandidate, Timing]] = []
-    if ladder_affordable(problem, min(t.duration_s for _, t in pool)):
-        extra = ladder_seeds(problem, verifier, started, shaper, others, ladder)
-    chosen, timing = fastest_improved(problem, pool, verifier, started, ladder=extra)
-    return replace(chosen, method="retime", compute_time_s=time.perf_counter() - started), timing
+    family = upright_family(problem, verifier)
+    program, _ = _program_candidates(problem, verifier, progress or (lambda _: None), False)
+    return _fastest("retime", started, [program, family, *floor])
 
 
-#: ``auto`` also runs ``optimal`` when the fastest verified plan of the other methods has at
-#: most this many export samples (2.4 s at 4 ms) and no arm is checked. Its compute grows with
-#: the samples: upright about 1.5 s for the benchmark's 0.78 s pick-and-place (196 samples)
-#: and 6 s for the 2.09 s TRD_2D move (522 samples), where `retime` took 20 s for 2.54 s;
-#: tilted 3 s and 60 s (0.664 s and 1.464 s, where `tilt` gives 1.08 s and 1.88 s), and 70 s
-#: tilted on TRD_2D under the default angular limits (1.940 s, where `retime` gives 2.264 s
-#: in 11 s). A move is planned once and run many times, so a minute for a 20 % shorter cycle
-#: is worth it.
+def plan_tilt(
+    problem: PathProblem,
+    verifier: Verifier = verify,
+    floor: Sequence[PathCandidate] = (),
+    progress: Callable[[str], None] | None = None,
+) -> PathCandidate:
+    """The minimum-time timing and tilt of the path (`sloshkit.plan.path.optimal.plan_programs`
+    with ``tilt``), or the fastest of the families' verified members (upright and
+    tilt-compensated) and ``floor`` when one is faster: never slower than ``retime``.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits (``max_tilt_rad``, ``tilt_centre_height_m``), model.
+    verifier : callable
+        Verification of an export.
+    floor : sequence of PathCandidate
+        Other verified plans of the same path (e.g. ``uniform``).
+    progress : callable, optional
+        Receives one line per step.
+
+    Returns
+    -------
+    PathCandidate
+        Method ``tilt``; ``detail["source"]`` says which plan it is, ``detail["tilted"]``
+        whether the program's plan tilts.
+
+    References
+    ----------
+    Feddema et al. (1997), doi:10.1109/37.569711 (tilt compensation).
+
+    Examples
+    --------
+    >>> problem = _example_problem()
+    >>> found = plan_tilt(problem, verify)
+    >>> found.feasible, found.duration_s <= plan_retime(problem, verify).duration_s
+    (True, True)
+    """
+    started = time.perf_counter()
+    families = [upright_family(problem, verifier), tilted_family(problem, verifier)]
+    _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True)
+    return _fastest("tilt", started, [program, families[1], families[0], *floor])
+
+
+#: ``auto`` runs the programs of ``retime`` and ``tilt`` when the fastest verified family or
+#: ``shaped`` plan has at most this many export samples (2.4 s at 4 ms) and no arm is checked.
+#: Their compute grows with the samples: upright about 1.6 s for the benchmark's 0.78 s
+#: pick-and-place and 10 s for the 2.09 s TRD_2D move; tilted 4 s and 51 s (0.664 s and
+#: 1.464 s, where the families give 1.21 s and 1.94 s in about a second). A move is planned
+#: once and run many times, so a minute for a 20 % shorter cycle is worth it; on longer
+#: moves ``auto`` returns the families' and ``shaped``'s plans, and ``retime`` or ``tilt``
+#: asked for by name runs the programs whatever the length.
 AUTO_OPTIMAL_MAX_SAMPLES = 600
 #: The same bound with an arm's joint speeds checked (1.2 s at 4 ms): the joint rows and the
-#: IK of the verified exports make ``optimal`` dearer (6 s upright and 12 s tilted for the
-#: pick-and-place with the UR5e, 173 s and 226 s for TRD_2D).
+#: IK of the verified exports make the programs dearer (10 s upright and 20 s tilted for the
+#: pick-and-place with the UR5e, 31 s and 146 s for TRD_2D).
 AUTO_ARM_OPTIMAL_MAX_SAMPLES = 300
 
 
-def _optimal_affordable(problem: PathProblem, feasible: Sequence[PathCandidate], arm: bool) -> bool:
-    """Whether ``auto`` runs ``optimal`` too: a verified plan exists and the fastest one has at
-    most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_ARM_OPTIMAL_MAX_SAMPLES` with an arm;
-    ``optimal``'s programs grow with the samples, and the joints' rows and IK make them
-    dearer)."""
+def _programs_affordable(
+    problem: PathProblem, feasible: Sequence[PathCandidate], arm: bool
+) -> bool:
+    """Whether ``auto`` runs the programs: a verified plan exists and the fastest one has at
+    most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_ARM_OPTIMAL_MAX_SAMPLES` with an arm)."""
     if not feasible:
         return False
     fastest = min(c.duration_s for c in feasible)
@@ -280,21 +304,22 @@ def plan_path(
     problem : PathProblem
         Path, Cartesian/angular limits, slosh limits, model, sample period.
     method : str
-        ``auto`` (``retime``, ``shaped``, ``tilt`` with ``tilt``, and ``optimal`` when the
-        fastest of them has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples, with an arm
-        `AUTO_ARM_OPTIMAL_MAX_SAMPLES`; the fastest verified),
-        ``retime``, ``shaped``, ``tilt`` or ``optimal`` (`sloshkit.plan.path.optimal`).
+        ``auto`` (``shaped``, ``retime`` and with ``tilt`` ``tilt``, their programs only when
+        the fastest family plan has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples, with an arm
+        `AUTO_ARM_OPTIMAL_MAX_SAMPLES`; the fastest verified), ``retime``, ``shaped``,
+        ``tilt``, or ``optimal`` (``tilt`` with ``tilt``, else ``retime``).
     reference : Timing, optional
         The path's existing timing (e.g. of the pose file it came from): slowed uniformly and
-        reported as the ``uniform`` candidate, never chosen.
+        reported as the ``uniform`` candidate, never chosen; ``retime`` and ``tilt`` are never
+        slower than it.
     progress : callable, optional
         Receives one line per step.
     verifier : callable
         (problem, poses, tilted) -> Verification (default `verify`: the nonlinear 3-D model;
         `sloshkit.export.path_robot.robot_verifier` adds a robot's joint-speed check).
     tilt : bool
-        Whether ``auto`` may tilt the container and whether ``optimal`` makes the tilt
-        variables of its programs (``method="tilt"`` always tilts).
+        Whether ``auto`` and ``optimal`` may tilt the container (``method="tilt"`` always
+        tilts, ``retime`` never).
 
     Returns
     -------
@@ -322,54 +347,65 @@ def plan_path(
     """
     if method not in PATH_METHODS:
         raise InputError("method", method, "must be one of " + ", ".join(PATH_METHODS))
+    if method == "optimal":
+        method = "tilt" if tilt and problem.max_tilt_rad > 0.0 else "retime"
     say = progress or (lambda _: None)
     candidates: list[PathCandidate] = []
     uniform = None if reference is None else plan_uniform(problem, reference, verifier)
-    seeds = (
-        []
-        if uniform is None or not uniform.feasible
-        else [(uniform, reference.stretched(float(uniform.detail["stretch"])))]  # type: ignore[union-attr]
-    )
-    if method == "optimal":
-        from sloshkit.plan.path.optimal import plan_optimal
-
-        say("optimal: the minimum-time timing by sequential cone programs")
-        candidates.append(plan_optimal(problem, verifier, say, tilt=tilt))
-    if method in ("auto", "shaped"):
-        say("shaped: per-axis input shaping")
-        candidates.append(plan_shaped(problem, verifier))
-    tilting = method == "tilt" or (method == "auto" and tilt)
-    if tilting:
-        say("tilt: tilt compensation with re-timing")
-        candidates.append(plan_tilt(problem, verifier, improve=method == "tilt"))
-    if method in ("auto", "retime"):
-        say("retime: fastest acceleration cap under the slosh limits, then local searches")
-        shapers = dict(timing_shapers(problem))
-        timings = [method_timing(problem, c, shapers) for c in candidates if c.poses is not None]
-        found, timing = _retime(problem, verifier, seeds, timings)
-        candidates.insert(0, found)
-        if tilting:
-            # The tilt family's timing improved on the tilted export, seeded also from
-            # retime's timing (tilting a good timing is a natural seed).
-            say("tilt: local searches on the tilted export")
-            retimed = [] if timing is None or not found.feasible else [timing]
-            candidates[-1] = improved_tilt(problem, candidates[-1], retimed, verifier)
+    floor = [] if uniform is None else [uniform]
+    if method == "retime":
+        say("retime: the minimum-time timing, upright")
+        candidates.append(plan_retime(problem, verifier, floor, say))
+    elif method == "tilt":
+        say("tilt: the minimum-time timing and tilt")
+        candidates.append(plan_tilt(problem, verifier, floor, say))
+    else:
+        if method in ("auto", "shaped"):
+            say("shaped: per-axis input shaping")
+            candidates.append(plan_shaped(problem, verifier))
+        if method == "auto":
+            candidates += _auto(problem, verifier, floor, candidates, say, tilt)
     feasible = [c for c in candidates if c.feasible]
-    arm = isinstance(verifier, JointSpeedCheck)
-    if method == "auto" and _optimal_affordable(problem, feasible, arm):
-        from sloshkit.plan.path.optimal import plan_optimal
-
-        say("optimal: the minimum-time timing by sequential cone programs (a short move)")
-        # without seeds: on short moves the capped timing's searches end shorter than those
-        # from the other plans (pick-and-place, tilted: 0.644 s against 0.82 s and 0.79 s
-        # from tilt's and retime's plans on the coarse grid), which would cost 8 s more
-        candidates.append(plan_optimal(problem, verifier, say, tilt=tilt))
-        feasible = [c for c in candidates if c.feasible]
     pool = feasible or [c for c in candidates if c.poses is not None]
     chosen = min(pool, key=lambda c: c.duration_s) if pool else None
     if uniform is not None:
         candidates.append(uniform)
     return PathPlanResult(problem, chosen, tuple(candidates))
+
+
+def _auto(
+    problem: PathProblem,
+    verifier: Verifier,
+    floor: list[PathCandidate],
+    others: Sequence[PathCandidate],
+    say: Callable[[str], None],
+    tilt: bool,
+) -> list[PathCandidate]:
+    """``auto``'s ``retime`` and (with ``tilt``) ``tilt``: the families first, the programs
+    once for both when the fastest plan so far (with ``others``, e.g. ``shaped``) is short
+    (`_programs_affordable`)."""
+    started = time.perf_counter()
+    say("retime: the family's fastest acceleration cap under the slosh screen")
+    upright = upright_family(problem, verifier)
+    tilting = tilt and problem.max_tilt_rad > 0.0
+    tilted = None
+    if tilting:
+        say("tilt: tilt compensation of the family")
+        tilted = tilted_family(problem, verifier)
+    known = [c for c in (upright, tilted, *floor, *others) if c is not None and c.feasible]
+    program: tuple[PathCandidate | None, PathCandidate | None] = (None, None)
+    if _programs_affordable(problem, known, isinstance(verifier, JointSpeedCheck)):
+        program = _program_candidates(problem, verifier, say, tilting)
+    retime = _fastest("retime", started, [program[0], upright, *floor])
+    if program[0] is not None:
+        # each method's compute: its families and its own programs (the upright rounds are
+        # the tilted ones' first)
+        own = upright.compute_time_s + program[0].compute_time_s
+        retime = replace(retime, compute_time_s=own)
+    if not tilting:
+        return [retime]
+    tilt_candidate = _fastest("tilt", started, [program[1], tilted, retime, *floor])
+    return [retime, replace(tilt_candidate, compute_time_s=time.perf_counter() - started)]
 
 
 __all__ = [

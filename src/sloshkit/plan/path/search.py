@@ -6,28 +6,33 @@ Slosh is not monotone in the cap A (the residual oscillates with the move's dura
 bisection towards the next larger (failing) grid value, also bisects over the whole range (it
 can land in a passing pocket between grid values), and keeps the larger passing cap. A uniform
 stretch in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative
-the planner compares with. `warp_search` improves a feasible timing locally by a piecewise
-(B-spline) speed scaling under the screen (`sloshkit.plan.path.improve.warped_candidates` runs it,
-with the SLP of `sloshkit.plan.path.slp`, from verified seeds and keeps the fastest verified
-result, so ``retime`` is never slower than its seeds).
+the planner compares with (`plan_uniform`). The family's members found here are the verified
+floor of ``retime`` and ``tilt``, whose programs (`sloshkit.plan.path.optimal`) find the
+shorter plans.
 """
 
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.motion.shaping import Shaper
-from sloshkit.plan.path.limits import machine_violations, path_deviation
+from sloshkit.plan.path.limits import machine_stretch, machine_violations, path_deviation
 from sloshkit.plan.path.problem import PathProblem, sample_path
-from sloshkit.plan.path.retime import ShaperFactory, family_member
+from sloshkit.plan.path.result import PathCandidate, Verifier, verified_candidate, verify
+from sloshkit.plan.path.retime import (
+    ShaperFactory,
+    curve_shaper,
+    family_member,
+    first_mode_shaper,
+)
 from sloshkit.plan.path.screen import binding_slosh, linear_screen, screen_ok
-from sloshkit.plan.path.timing import WARP_FLOOR, Timing, warp_clock, warped_timing
+from sloshkit.plan.path.timing import Timing
 
 FloatArray = NDArray[np.float64]
 
@@ -317,96 +322,136 @@ def _refine(
     return found
 
 
-#: B-spline coefficients of the speed-scaling warp (`warp_search`).
-WARP_KNOTS = 12
-#: Largest number of linear screens one `warp_search` spends.
-WARP_SCREENS = 250
-#: Samples `warped_candidates` lets one search screen (fewer screens on long moves).
-WARP_SAMPLE_BUDGET = 400_000
-#: Verify-and-tighten rounds of `warped_candidates` per seed.
-WARP_ROUNDS = 5
-
-
-def warp_search(
-    problem: PathProblem,
-    seed: Timing,
-    passes: Callable[[PoseTrajectory], bool],
-    knots: int = WARP_KNOTS,
-    max_screens: int = WARP_SCREENS,
-) -> tuple[Timing, int]:
-    """Local improvement of a feasible timing by piecewise speed scaling
-    (`sloshkit.plan.path.timing.warped_timing`): from all factors 1 (the seed), each factor in turn
-    is lowered by 30 %, 15 %, 7 % and 3 % while the export still passes (a monotone pattern
-    search, Hooke & Jeeves, J. ACM 8(2) (1961) 212-229, doi:10.1145/321062.321069); every
-    accepted step shortens the timing and keeps it passing, so the result is never slower
-    than the seed.
+def plan_uniform(
+    problem: PathProblem, reference: Timing, verifier: Verifier = verify
+) -> PathCandidate:
+    """The reference timing slowed uniformly until it meets the Cartesian and angular limits
+    and then the slosh screen (the naive fix), then verified.
 
     Parameters
     ----------
     problem : PathProblem
-        Path and sample period.
-    seed : Timing
-        A timing whose export passes.
-    passes : callable
-        PoseTrajectory -> bool (the linear slosh screen and the machine limits).
-    knots : int
-        Number of warp factors.
-    max_screens : int
-        Budget of ``passes`` calls.
+        Path, limits, model.
+    reference : Timing
+        The timing to slow down (e.g. the pose file's own).
+    verifier : callable
+        Verification of an export.
 
     Returns
     -------
-    tuple
-        (the improved timing (the seed itself when nothing passed), screens spent).
-
-    References
-    ----------
-    Hooke & Jeeves (1961), doi:10.1145/321062.321069.
+    PathCandidate
 
     Examples
     --------
-    >>> from sloshkit.plan.path.geometry import path_from_waypoints
-    >>> from sloshkit.plan.path.limits import kinematics
-    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
-    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
-    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
-    ...                       None, sample_period_s=0.01)
-    >>> seed = Timing.from_samples("slow", np.linspace(0, 3, 31),
-    ...                            0.3 * np.sin(np.linspace(0, np.pi / 2, 31)) ** 2)
-    >>> fast, _ = warp_search(problem, seed, lambda p: kinematics(p)["velocity"] < 0.3,
-    ...                       knots=6, max_screens=40)
-    >>> fast.duration_s < 0.7 * seed.duration_s
-    True
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.result import linear_verifier
+    >>> from sloshkit.plan.path.retime import capped_timing
+    >>> problem = _example_problem()
+    >>> found = plan_uniform(problem, capped_timing(problem, 10.0), linear_verifier)
+    >>> found.feasible, found.detail["stretch"] > 1.0
+    (True, True)
     """
+    started = time.perf_counter()
 
-    period = problem.sample_period_s
-    # The screens sample the warp directly: u(t) by interpolating the clock t(u) on a grid of
-    # a quarter sample period, s = s_seed(u) (the export of the result is the same to ~1e-9 s).
-    grid = np.linspace(0.0, seed.duration_s, max(64, math.ceil(4 * seed.duration_s / period)))
+    poses_for = stretcher(problem, reference)
+    found = slowed_until(problem, poses_for, machine_stretch(problem, poses_for(1.0)))
+    if found is None:
+        message = "no uniform stretch up to 64x meets the slosh limits"
+        return PathCandidate("uniform", None, None, time.perf_counter() - started, message)
+    return verified_candidate("uniform", problem, poses_for, found[0], started, verifier, False, {})
 
-    def ok(factors: FloatArray) -> bool:
-        clock = warp_clock(grid, factors)
-        count = steps_to_reach(clock[-1], period)
-        t = np.arange(count + 1, dtype=float) * period
-        s = np.clip(seed.position(np.interp(t, clock, grid)), 0.0, problem.path.length_m)
-        s[-1] = problem.path.length_m
-        quaternions = problem.path.orientation(s).as_quat()
-        return passes(PoseTrajectory(t, problem.path.position(s), quaternions))
 
-    factors = np.ones(knots)
-    screens = 0
-    for step in (0.3, 0.15, 0.07, 0.03):
-        improved = True
-        while improved and screens < max_screens:
-            improved = False
-            for index in range(knots):
-                trial = factors.copy()
-                trial[index] *= 1.0 - step
-                if trial[index] < WARP_FLOOR or screens >= max_screens:
-                    continue
-                screens += 1
-                if ok(trial):
-                    factors, improved = trial, True
-    if np.all(factors == 1.0):
-        return seed, screens
-    return warped_timing(seed, factors), screens
+def timing_shapers(problem: PathProblem) -> list[tuple[str, Shaper | ShaperFactory | None]]:
+    """The timing shapers the cap searches try: the first-mode ZV (ZVD), none, and on a path
+    that turns the curve shaper (`sloshkit.plan.path.retime.curve_shaper`).
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits and model.
+
+    Returns
+    -------
+    list of (str, Shaper, factory or None)
+        The shapers by name.
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> [name for name, _ in timing_shapers(_example_problem())]
+    ['zv', 'none']
+    """
+    first = first_mode_shaper(problem)
+    shapers: list[tuple[str, Shaper | ShaperFactory | None]] = [(first.name, first), ("none", None)]
+    curve = curve_shaper(problem)
+    if curve(problem.machine.max_acceleration_m_s2).amplitudes.size > 3:
+        shapers.append(("curve", curve))
+    return shapers
+
+
+def upright_family(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
+    """The fastest acceleration cap of the family under the slosh screen, with each of
+    `timing_shapers`, verified: the verified floor of ``retime``.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model.
+    verifier : callable
+        Verification of an export.
+
+    Returns
+    -------
+    PathCandidate
+        Method ``retime``, ``detail["source"]`` ``family``; when no cap down to
+        `LOWEST_CAP_FRACTION` of amax passes, failed with the limit that binds at that cap.
+
+    References
+    ----------
+    Bobrow, Dubowsky & Gibson (1985), doi:10.1177/027836498500400301.
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> from sloshkit.plan.path.result import linear_verifier
+    >>> found = upright_family(_example_problem(), linear_verifier)
+    >>> found.feasible, found.detail["shaper"]
+    (True, 'zv')
+    """
+    started = time.perf_counter()
+    models = problem.models()
+    best: tuple[float, float, Timing, str] | None = None
+    for name, shaper in timing_shapers(problem):
+        found = fastest_capped(
+            problem, lambda poses: screen_ok(problem, linear_screen(models, poses)), shaper
+        )
+        if found is None:
+            continue
+        cap, member = found
+        duration = sample_path(problem.path, member, problem.sample_period_s).duration_s
+        if best is None or duration < best[0]:
+            best = (duration, cap, member, name)
+    if best is None:
+        message = (
+            f"no acceleration cap down to {100 * LOWEST_CAP_FRACTION:g} % of amax meets the slosh "
+            f"limits: at that cap, {lowest_cap_failure(problem)}"
+        )
+        return PathCandidate("retime", None, None, time.perf_counter() - started, message)
+    _, cap, member, name = best
+    detail = {"source": "family", "acceleration_cap_m_s2": cap, "shaper": name}
+    return verified_candidate(
+        "retime", problem, stretcher(problem, member), 1.0, started, verifier, False, detail
+    )
+
+
+__all__ = [
+    "LOWEST_CAP_FRACTION",
+    "fastest_capped",
+    "lowest_cap_failure",
+    "plan_uniform",
+    "slowed_until",
+    "stretch_until",
+    "stretcher",
+    "timing_shapers",
+    "upright_family",
+]

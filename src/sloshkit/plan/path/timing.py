@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import BSpline, CubicSpline
+from scipy.interpolate import CubicSpline
 
 from sloshkit.errors import InputError
 from sloshkit.motion.shaping import Shaper
@@ -23,9 +23,6 @@ from sloshkit.motion.shaping import Shaper
 FloatArray = NDArray[np.float64]
 #: Resolution of the fine time grid the composed timings are tabulated on [s].
 FINE_STEP_S = 5e-4
-#: Smallest factor of a timing warp: time may run at most 10x faster than in the seed locally
-#: (shared by the warp searches, `sloshkit.plan.path.search` and `sloshkit.plan.path.slp`).
-WARP_FLOOR = 0.1
 
 
 @dataclass(frozen=True, eq=False)
@@ -203,83 +200,9 @@ def shaped_timing(timing: Timing, shaper: Shaper) -> Timing:
     return Timing(timing.name, grid, values)
 
 
-def warp_clock(seed_time_s: FloatArray, factors: FloatArray) -> FloatArray:
-    """t(u) = integral_0^u c of `warped_timing` on an increasing grid of seed times from 0 to
-    the seed's duration (trapezoidal rule).
-
-    Parameters
-    ----------
-    seed_time_s : ndarray
-        Grid of seed times u [s], from 0 to the seed's duration.
-    factors : ndarray
-        B-spline coefficients of c (at least 4).
-
-    Returns
-    -------
-    ndarray
-        t(u) [s] on the grid.
-
-    Examples
-    --------
-    >>> warp_clock(np.linspace(0.0, 1.0, 5), np.full(4, 2.0)).tolist()
-    [0.0, 0.5, 1.0, 1.5, 2.0]
-    """
-    duration = float(seed_time_s[-1])
-    inner = np.linspace(0.0, duration, factors.size - 2)
-    knots = np.concatenate(([0.0] * 3, inner, [duration] * 3))
-    scale = np.asarray(BSpline(knots, factors, 3)(seed_time_s), dtype=float)
-    steps = 0.5 * (scale[1:] + scale[:-1]) * np.diff(seed_time_s)
-    return np.concatenate(([0.0], np.cumsum(steps)))
-
-
-def warped_timing(timing: Timing, factors: ArrayLike) -> Timing:
-    """Piecewise speed scaling of a timing: time runs c(u) times slower at the seed's time u,
-    t(u) = integral_0^u c(v) dv, s_new(t(u)) = s(u), with c a clamped cubic B-spline whose
-    coefficients are ``factors`` on uniform knots over [0, T] (C2, so accelerations and jerks
-    stay finite; c stays between the smallest and the largest factor). All factors 1: the
-    timing itself; all c: the uniform stretch by c. The path is unchanged.
-
-    Parameters
-    ----------
-    timing : Timing
-        The seed timing s(u), u in [0, T].
-    factors : array_like
-        B-spline coefficients of c (at least 4, all > 0).
-
-    Returns
-    -------
-    Timing
-        Duration integral_0^T c(u) du.
-
-    References
-    ----------
-    De Boor, *A Practical Guide to Splines*, Springer (2001) ch. IX (B-splines); the time
-    warp t(u) is the classical path-parameter rescaling of Hollerbach, ASME J. Dyn. Syst.
-    Meas. Control 106 (1984) 102-106, doi:10.1115/1.3149652, applied to a timing.
-
-    Examples
-    --------
-    >>> ramp = Timing.from_samples("ramp", np.linspace(0, 1, 11), np.linspace(0, 1, 11))
-    >>> round(warped_timing(ramp, [2.0] * 6).duration_s, 3)  # uniform stretch by 2
-    2.0
-    >>> round(warped_timing(ramp, [1.0, 1.0, 1.0, 0.5, 0.5, 0.5]).duration_s, 3)
-    0.75
-    """
-    coefficients = np.asarray(factors, dtype=float)
-    if coefficients.ndim != 1 or coefficients.size < 4 or np.any(coefficients <= 0.0):
-        raise InputError("factors", coefficients.size, "needs at least 4 positive factors")
-    u = fine_grid(timing.duration_s)
-    elapsed = warp_clock(u, coefficients)
-    s = timing.position(u)
-    s[-1] = timing.length_m
-    return Timing(timing.name, elapsed, s)
-
-
 __all__ = [
     "FINE_STEP_S",
     "Timing",
     "box_smoothed",
     "shaped_timing",
-    "warp_clock",
-    "warped_timing",
 ]
