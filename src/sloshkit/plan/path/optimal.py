@@ -242,15 +242,16 @@ class _Rounds:
 
     def run(self, tilt: bool, start: SplineTiming | None) -> None:
         """Rounds with the tilt free or not, from ``start`` (None: `first_search`). Tilted,
-        they start from the small-angle search's plan (`navigated`), and from ``start`` when
-        those rounds verified no plan (their first search gives up after `FIRST_DURATIONS`
-        durations that met no limit)."""
+        they start from the small-angle search's plan (`navigated`; from ``start`` when that
+        search failed), their first search giving up after `FIRST_DURATIONS` durations that
+        met no limit or before one no shorter than ``start``: the upright plan then stands.
+        (Searching again from ``start`` gained nothing where this happened, on the 20
+        waypoints, at 355 s; docs/planning-3d.md.)"""
         if tilt:
             navigated = self.navigated(start)
-            longest = None if start is None else start.steps - 1
-            if navigated is not start and self.rounds_from(
-                tilt, navigated, FIRST_DURATIONS, longest
-            ):
+            if navigated is not start:
+                longest = None if start is None else start.steps - 1
+                self.rounds_from(tilt, navigated, FIRST_DURATIONS, longest)
                 return
         self.rounds_from(tilt, start)
 
