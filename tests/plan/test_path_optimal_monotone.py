@@ -1,4 +1,5 @@
-"""Monotone in the limits: looser limits never give ``optimal`` a longer plan (issue #25).
+"""Monotone in the limits: looser limits never give the programs of ``retime`` a longer plan
+(issue #25; `sloshkit.plan.path.optimal.plan_programs`, upright).
 
 On a short corner path (0.15 m, a 90 deg clothoid corner, 0.12 m, turning 90 deg about z) with
 the measured series' vial, at a 10 ms export period. The planner is a local sequential

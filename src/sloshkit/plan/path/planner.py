@@ -153,6 +153,14 @@ def _fastest(method: str, started: float, pool: Sequence[PathCandidate | None]) 
     return replace(failures[0], method=method, compute_time_s=elapsed, detail=detail)
 
 
+def _floor_feasible(floor: Sequence[PathCandidate]) -> bool:
+    """Whether the programs run: a floor plan is verified. With none, no family member down to
+    `sloshkit.plan.path.search.LOWEST_CAP_FRACTION` of amax (a move so slow that its slosh
+    is quasi-static) meets the limits, the request fails with the limit that binds there, and
+    the programs' search, which would try ever longer durations, does not start."""
+    return any(candidate.feasible for candidate in floor)
+
+
 def _program_candidates(
     problem: PathProblem, verifier: Verifier, say: Callable[[str], None], tilt: bool
 ) -> tuple[PathCandidate, PathCandidate | None]:
@@ -208,7 +216,9 @@ def plan_retime(
     """
     started = time.perf_counter()
     family = upright_family(problem, verifier)
-    program, _ = _program_candidates(problem, verifier, progress or (lambda _: None), False)
+    program = None
+    if _floor_feasible([family, *floor]):
+        program, _ = _program_candidates(problem, verifier, progress or (lambda _: None), False)
     return _fastest("retime", started, [program, family, *floor])
 
 
@@ -252,7 +262,9 @@ def plan_tilt(
     """
     started = time.perf_counter()
     families = [upright_family(problem, verifier), tilted_family(problem, verifier)]
-    _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True)
+    program = None
+    if _floor_feasible([*families, *floor]):
+        _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True)
     return _fastest("tilt", started, [program, families[1], families[0], *floor])
 
 
