@@ -435,12 +435,14 @@ def test_an_impossible_request_names_the_limit_that_binds_each_method(
 def test_auto_runs_the_programs_on_a_short_move_only(
     robot_vial: SloshModel, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """``auto`` runs ``retime``'s programs when the fastest family or ``shaped`` plan is short
-    (at most AUTO_OPTIMAL_MAX_SAMPLES samples, with an arm AUTO_ARM_OPTIMAL_MAX_SAMPLES), and
-    the chosen plan is then the programs' and no slower than any other verified candidate;
-    with the bound below the move's samples ``retime`` is the family's member."""
+    """``auto`` runs ``retime``'s programs when their first start, the capped time-optimal
+    profile, has at most AUTO_OPTIMAL_MAX_SAMPLES samples (with an arm
+    AUTO_ARM_OPTIMAL_MAX_SAMPLES), and the chosen plan is then the programs' and no slower than
+    any other verified candidate; with the bound below that start's samples ``retime`` is the
+    family's member."""
     from sloshkit.plan.path import planner
     from sloshkit.plan.path.search import upright_family
+    from sloshkit.plan.path.starts import capped_start
 
     problem = PathProblem(
         path_from_waypoints([[0, 0, 0], [0.15, 0, 0.05]]),
@@ -449,6 +451,8 @@ def test_auto_runs_the_programs_on_a_short_move_only(
         robot_vial,
         sample_period_s=0.01,
     )
+    start = capped_start(problem).steps
+    assert start <= planner.AUTO_OPTIMAL_MAX_SAMPLES
     result = plan_path(problem, "auto", tilt=False)
     assert [c.method for c in result.candidates] == ["shaped", "retime"]
     feasible = [c for c in result.candidates if c.feasible]
@@ -458,13 +462,11 @@ def test_auto_runs_the_programs_on_a_short_move_only(
     assert result.chosen.method == "retime" and result.chosen.detail["source"] == "program"
     family = upright_family(problem)
     assert family.feasible and result.chosen.duration_s < family.duration_s
-    others = min(family.duration_s, result.candidates[0].duration_s)
-    assert others / problem.sample_period_s <= planner.AUTO_OPTIMAL_MAX_SAMPLES
     # without an arm the arm's bound does not apply
-    monkeypatch.setattr(planner, "AUTO_ARM_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
+    monkeypatch.setattr(planner, "AUTO_ARM_OPTIMAL_MAX_SAMPLES", start - 1)
     again = plan_path(problem, "auto", tilt=False).candidates[1]
     assert again.detail["source"] == "program"
-    monkeypatch.setattr(planner, "AUTO_OPTIMAL_MAX_SAMPLES", int(others / 0.01) - 1)
+    monkeypatch.setattr(planner, "AUTO_OPTIMAL_MAX_SAMPLES", start - 1)
     without = plan_path(problem, "auto", tilt=False).candidates[1]
     assert without.detail["source"] == "family"
     assert without.duration_s == pytest.approx(family.duration_s)

@@ -14,9 +14,9 @@
   ZV/ZVD shaper of the first mode, which cancels its residual for every lateral direction), the
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
   path (shaping the axes cuts corners; the deviation is measured on the export);
-- ``auto``: ``shaped`` and the families, and the programs of ``retime`` (and ``tilt``) when
-  the fastest family plan is short (`AUTO_OPTIMAL_MAX_SAMPLES`,
-  `AUTO_ARM_OPTIMAL_MAX_SAMPLES`): the programs take a minute or more on long paths;
+- ``auto``: ``shaped`` and the families, and the programs of ``retime`` (and ``tilt``) on
+  short moves (`AUTO_OPTIMAL_MAX_SAMPLES`, `AUTO_ARM_OPTIMAL_MAX_SAMPLES`): the programs
+  take a minute or more on long paths;
 - ``optimal``: ``tilt`` with the tilt free, else ``retime`` (the name of the 1-D planner's
   minimum-time method).
 
@@ -268,31 +268,37 @@ def plan_tilt(
     return _fastest("tilt", started, [program, families[1], families[0], *floor])
 
 
-#: ``auto`` runs the programs of ``retime`` and ``tilt`` when the fastest verified family or
-#: ``shaped`` plan has at most this many export samples (2.4 s at 4 ms) and no arm is checked.
-#: Their compute grows with the samples: upright about 1.6 s for the benchmark's 0.78 s
-#: pick-and-place and 10 s for the 2.09 s TRD_2D move; tilted 4 s and 51 s (0.664 s and
+#: ``auto`` runs the programs of ``retime`` and ``tilt`` when their first start, the
+#: time-optimal speed profile under the quasi-static acceleration cap
+#: (`sloshkit.plan.path.starts.capped_start`, within 8-21 % of their plans on the benchmark's
+#: paths), has at most this many export samples (2.4 s at 4 ms) and no arm is checked. Their
+#: compute grows with the samples: upright about 2 s for the benchmark's 0.78 s
+#: pick-and-place and 10 s for the 2.09 s TRD_2D move; tilted 4 s and 46 s (0.664 s and
 #: 1.464 s, where the families give 1.21 s and 1.94 s in about a second). A move is planned
 #: once and run many times, so a minute for a 20 % shorter cycle is worth it; on longer
 #: moves ``auto`` returns the families' and ``shaped``'s plans, and ``retime`` or ``tilt``
 #: asked for by name runs the programs whatever the length.
 AUTO_OPTIMAL_MAX_SAMPLES = 600
 #: The same bound with an arm's joint speeds checked (1.2 s at 4 ms): the joint rows and the
-#: IK of the verified exports make the programs dearer (10 s upright and 20 s tilted for the
-#: pick-and-place with the UR5e, 31 s and 146 s for TRD_2D).
+#: IK of the verified exports make the programs dearer (14 s upright and 29 s tilted for the
+#: pick-and-place with the UR5e, 39 s and 109 s for TRD_2D).
 AUTO_ARM_OPTIMAL_MAX_SAMPLES = 300
 
 
 def _programs_affordable(
     problem: PathProblem, feasible: Sequence[PathCandidate], arm: bool
 ) -> bool:
-    """Whether ``auto`` runs the programs: a verified plan exists and the fastest one has at
-    most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_ARM_OPTIMAL_MAX_SAMPLES` with an arm)."""
-    if not feasible:
+    """Whether ``auto`` runs the programs: a verified plan exists (`_floor_feasible`) and
+    their first start (`sloshkit.plan.path.starts.capped_start`, about the length of their
+    plan) has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_ARM_OPTIMAL_MAX_SAMPLES` with
+    an arm). The families' plans are no estimate: under the default angular limits the
+    TRD_2D families need 3.0-3.3 s where the programs find 1.94 s."""
+    if not _floor_feasible(feasible):
         return False
-    fastest = min(c.duration_s for c in feasible)
+    from sloshkit.plan.path.starts import capped_start
+
     bound = AUTO_ARM_OPTIMAL_MAX_SAMPLES if arm else AUTO_OPTIMAL_MAX_SAMPLES
-    return fastest / problem.sample_period_s <= bound
+    return capped_start(problem).steps <= bound
 
 
 def plan_path(
@@ -316,9 +322,10 @@ def plan_path(
     problem : PathProblem
         Path, Cartesian/angular limits, slosh limits, model, sample period.
     method : str
-        ``auto`` (``shaped``, ``retime`` and with ``tilt`` ``tilt``, their programs only when
-        the fastest family plan has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples, with an arm
-        `AUTO_ARM_OPTIMAL_MAX_SAMPLES`; the fastest verified), ``retime``, ``shaped``,
+        ``auto`` (``shaped``, ``retime`` and with ``tilt`` ``tilt``, their programs only on
+        moves whose time-optimal profile under the quasi-static cap has at most
+        `AUTO_OPTIMAL_MAX_SAMPLES` samples, with an arm `AUTO_ARM_OPTIMAL_MAX_SAMPLES`; the
+        fastest verified), ``retime``, ``shaped``,
         ``tilt``, or ``optimal`` (``tilt`` with ``tilt``, else ``retime``).
     reference : Timing, optional
         The path's existing timing (e.g. of the pose file it came from): slowed uniformly and
@@ -394,8 +401,8 @@ def _auto(
     tilt: bool,
 ) -> list[PathCandidate]:
     """``auto``'s ``retime`` and (with ``tilt``) ``tilt``: the families first, the programs
-    once for both when the fastest plan so far (with ``others``, e.g. ``shaped``) is short
-    (`_programs_affordable`)."""
+    once for both on a short move when a plan so far (the families', ``others``' such as
+    ``shaped``) is verified (`_programs_affordable`)."""
     started = time.perf_counter()
     say("retime: the family's fastest acceleration cap under the slosh screen")
     upright = upright_family(problem, verifier)
