@@ -489,8 +489,8 @@ def main() -> None:
     if "primary" in tables:
         rows += [
             "Primary: both limits from the measured run (peak `meas_peak_m`, residual the "
-            "measured residual) and half of both (`auto`; * marks a family's verified member, "
-            "where `auto` does not run the programs on a move over 600 samples):",
+            "measured residual) and half of both (`auto`; * marks a family's verified member: "
+            "`auto` runs the programs only where their capped start has at most 600 samples):",
             "",
             *series_table(model, manifest, None, series),
             "",

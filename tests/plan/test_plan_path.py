@@ -247,9 +247,9 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
 
 @pytest.mark.slow
 def test_optimal_with_tilt_compensation_tilts_and_is_faster(tmp_path: Path) -> None:
-    """``--method optimal --tilt-compensation``: the tilt is a variable of the programs, so the
-    verified plan tilts (within ``--max-tilt``), is zero at both ends and is shorter than the
-    upright optimum of the same problem; stdout is the JSON alone."""
+    """``--method optimal --tilt-compensation`` (``tilt``): the tilt is a variable of the
+    programs, so the verified plan tilts (within ``--max-tilt``), is zero at both ends and is
+    shorter than the upright optimum of the same problem; stdout is the JSON alone."""
     waypoints = tmp_path / "w.csv"
     waypoints.write_text("x [mm],y [mm],z [mm]\n0,0,0\n100,0,0\n")
     common = (
@@ -265,6 +265,9 @@ def test_optimal_with_tilt_compensation_tilts_and_is_faster(tmp_path: Path) -> N
     assert flat["feasible"] and tilt["feasible"]
     assert flat["peak_tilt_deg"] == 0.0 and 0.5 < tilt["peak_tilt_deg"] <= 20.0 + 1e-6
     assert tilt["duration_s"] < flat["duration_s"]
+    # optimal is tilt with --tilt-compensation, else retime; both the programs' plans
+    assert (flat["method"], tilt["method"]) == ("retime", "tilt")
+    assert flat["candidates"][0]["source"] == tilt["candidates"][0]["source"] == "program"
     assert not any("--tilt-compensation" in w for w in tilt["warnings"])
     poses = read_pose_file(tmp_path / "plan.csv")
     quaternion_xy = poses.quaternion_xyzw[:, :2]  # zero when upright (the path does not turn)

@@ -270,7 +270,7 @@ def plan_tilt(
 
 #: ``auto`` runs the programs of ``retime`` and ``tilt`` when their first start, the
 #: time-optimal speed profile under the quasi-static acceleration cap
-#: (`sloshkit.plan.path.starts.capped_start`, within 8-21 % of their plans on the benchmark's
+#: (`sloshkit.plan.path.starts.capped_start`, within 3-21 % of their plans on the benchmark's
 #: paths), has at most this many export samples (2.4 s at 4 ms) and no arm is checked. Their
 #: compute grows with the samples: upright about 2 s for the benchmark's 0.78 s
 #: pick-and-place and 10 s for the 2.09 s TRD_2D move; tilted 4 s and 46 s (0.664 s and
