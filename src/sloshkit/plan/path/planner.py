@@ -153,12 +153,15 @@ def _fastest(method: str, started: float, pool: Sequence[PathCandidate | None]) 
     return replace(failures[0], method=method, compute_time_s=elapsed, detail=detail)
 
 
-def _floor_feasible(floor: Sequence[PathCandidate]) -> bool:
-    """Whether the programs run: a floor plan is verified. With none, no family member down to
-    `sloshkit.plan.path.search.LOWEST_CAP_FRACTION` of amax (a move so slow that its slosh
-    is quasi-static) meets the limits, the request fails with the limit that binds there, and
-    the programs' search, which would try ever longer durations, does not start."""
-    return any(candidate.feasible for candidate in floor)
+def _floor_found(floor: Sequence[PathCandidate]) -> bool:
+    """Whether the programs run: a floor plan exists, verified or not (a family member whose
+    export passed the linear screen; the nonlinear verification may still find it a percent
+    over a limit, which the programs, imposing the verification's own model, can meet). With
+    none, no family member down to `sloshkit.plan.path.search.LOWEST_CAP_FRACTION` of amax
+    (a move so slow that its slosh is quasi-static) passes the screen, the request fails with
+    the limit that binds there, and the programs' search, which would try ever longer
+    durations, does not start."""
+    return any(candidate.poses is not None for candidate in floor)
 
 
 def _program_candidates(
@@ -217,7 +220,7 @@ def plan_retime(
     started = time.perf_counter()
     family = upright_family(problem, verifier)
     program = None
-    if _floor_feasible([family, *floor]):
+    if _floor_found([family, *floor]):
         program, _ = _program_candidates(problem, verifier, progress or (lambda _: None), False)
     return _fastest("retime", started, [program, family, *floor])
 
@@ -263,7 +266,7 @@ def plan_tilt(
     started = time.perf_counter()
     families = [upright_family(problem, verifier), tilted_family(problem, verifier)]
     program = None
-    if _floor_feasible([*families, *floor]):
+    if _floor_found([*families, *floor]):
         _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True)
     return _fastest("tilt", started, [program, families[1], families[0], *floor])
 
@@ -285,15 +288,13 @@ AUTO_OPTIMAL_MAX_SAMPLES = 600
 AUTO_ARM_OPTIMAL_MAX_SAMPLES = 300
 
 
-def _programs_affordable(
-    problem: PathProblem, feasible: Sequence[PathCandidate], arm: bool
-) -> bool:
-    """Whether ``auto`` runs the programs: a verified plan exists (`_floor_feasible`) and
+def _programs_affordable(problem: PathProblem, found: Sequence[PathCandidate], arm: bool) -> bool:
+    """Whether ``auto`` runs the programs: a plan exists (`_floor_found`) and
     their first start (`sloshkit.plan.path.starts.capped_start`, about the length of their
     plan) has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_ARM_OPTIMAL_MAX_SAMPLES` with
     an arm). The families' plans are no estimate: under the default angular limits the
     TRD_2D families need 3.0-3.3 s where the programs find 1.94 s."""
-    if not _floor_feasible(feasible):
+    if not _floor_found(found):
         return False
     from sloshkit.plan.path.starts import capped_start
 
@@ -411,7 +412,7 @@ def _auto(
     if tilting:
         say("tilt: tilt compensation of the family")
         tilted = tilted_family(problem, verifier)
-    known = [c for c in (upright, tilted, *floor, *others) if c is not None and c.feasible]
+    known = [c for c in (upright, tilted, *floor, *others) if c is not None]
     program: tuple[PathCandidate | None, PathCandidate | None] = (None, None)
     if _programs_affordable(problem, known, isinstance(verifier, JointSpeedCheck)):
         program = _program_candidates(problem, verifier, say, tilting)
