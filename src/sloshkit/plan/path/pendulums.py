@@ -29,7 +29,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.plan.path.small_angle import kernel_drive, linear_period, linear_track
+from sloshkit.plan.path.small_angle import kernel_arguments, linear_period, linear_track
 from sloshkit.sim.spatial_kernels import STIFFNESS_FLOOR
 
 FloatArray = NDArray[np.float64]
@@ -125,15 +125,8 @@ def pendulum_track(
     start, end = force_m_s2[:, :-1], force_m_s2[:, 1:]
     half = start[:, :, None] + fractions[None, None, :, None] * (end - start)[:, :, None]
     half = np.concatenate((half.reshape(modes, -1, width), force_m_s2[:, -1:]), axis=1)
-    force, tilt_rate, tilt_acceleration = kernel_drive(half)
     unit, rate = nonlinear_pendulums(
-        force,
-        rest_force_m_s2,
-        tilt_rate,
-        tilt_acceleration,
-        np.asarray(length_m, dtype=float),
-        np.asarray(omega_rad_s, dtype=float),
-        np.asarray(damping_ratio, dtype=float),
+        *kernel_arguments(half, rest_force_m_s2, length_m, omega_rad_s, damping_ratio),
         sample_period_s / substeps,
     )
     return unit[:, ::substeps][:, :samples], rate[:, ::substeps][:, :samples]

@@ -18,38 +18,59 @@ import numpy as np
 from numpy.typing import NDArray
 
 FloatArray = NDArray[np.float64]
+#: The pendulum kernels' arguments before the step (`kernel_arguments`).
+KernelArguments = tuple[
+    FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray
+]
 
 
-def kernel_drive(force_m_s2: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """The drive of `pendulum_track`'s form split as the simulation's kernels take it
-    (`sloshkit.sim.spatial_kernels.linear_pendulums` and ``nonlinear_pendulums``): the
-    specific force, the frame's lateral angular velocity and its derivative (zero when the
-    drive has no rates), each C-contiguous.
+def kernel_arguments(
+    force_m_s2: FloatArray,
+    rest_force_m_s2: FloatArray,
+    length_m: FloatArray,
+    omega_rad_s: FloatArray,
+    damping_ratio: FloatArray,
+) -> KernelArguments:
+    """The arguments of the simulation's pendulum kernels before the step
+    (`sloshkit.sim.spatial_kernels.linear_pendulums` and ``nonlinear_pendulums``) from a drive
+    in `pendulum_track`'s form: the specific force and its rest value, the frame's lateral
+    angular velocity and its derivative (zero when the drive has no rates), and the modes'
+    L_n, omega_n and zeta_n, each a C-contiguous float array.
 
     Parameters
     ----------
     force_m_s2 : numpy.ndarray
         (modes, K, 3), or (modes, K, 7) with the lateral angular velocity (p, q) [rad/s] and
         its derivative [rad/s^2] after the force (the same for every mode: the frame's).
+    rest_force_m_s2 : numpy.ndarray
+        The force at rest before the first sample (modes, 3).
+    length_m, omega_rad_s, damping_ratio : numpy.ndarray
+        The modes' L_n, omega_n and zeta_n.
 
     Returns
     -------
     tuple of numpy.ndarray
-        The force (modes, K, 3) [m/s^2], the angular velocity (K, 2) and its derivative (K, 2).
+        force (modes, K, 3), rest force, angular velocity (K, 2), its derivative (K, 2),
+        L_n, omega_n, zeta_n.
 
     Examples
     --------
     >>> import numpy as np
-    >>> force, rate, rate_dot = kernel_drive(np.zeros((2, 5, 7)))
-    >>> force.shape, rate.shape, rate_dot.shape
-    ((2, 5, 3), (5, 2), (5, 2))
+    >>> one = np.ones(2)
+    >>> arguments = kernel_arguments(np.zeros((2, 5, 7)), np.zeros((2, 3)), one, one, one)
+    >>> [a.shape for a in arguments[:4]]
+    [(2, 5, 3), (2, 3), (5, 2), (5, 2)]
     """
     _, samples, width = force_m_s2.shape
     rates = force_m_s2[0, :, 3:] if width == 7 else np.zeros((samples, 4))
     return (
         np.ascontiguousarray(force_m_s2[..., :3]),
+        rest_force_m_s2,
         np.ascontiguousarray(rates[:, :2]),
         np.ascontiguousarray(rates[:, 2:]),
+        np.asarray(length_m, dtype=float),
+        np.asarray(omega_rad_s, dtype=float),
+        np.asarray(damping_ratio, dtype=float),
     )
 
 
@@ -98,15 +119,8 @@ def linear_track(
     from sloshkit.sim.spatial_kernels import linear_pendulums
 
     modes, samples, _ = force_m_s2.shape
-    force, tilt_rate, tilt_acceleration = kernel_drive(force_m_s2)
     angle, angle_rate = linear_pendulums(
-        force,
-        rest_force_m_s2,
-        tilt_rate,
-        tilt_acceleration,
-        np.asarray(length_m, dtype=float),
-        np.asarray(omega_rad_s, dtype=float),
-        np.asarray(damping_ratio, dtype=float),
+        *kernel_arguments(force_m_s2, rest_force_m_s2, length_m, omega_rad_s, damping_ratio),
         sample_period_s,
     )
     unit = np.concatenate((angle, -np.ones((modes, samples, 1))), axis=-1)
@@ -180,4 +194,4 @@ def linear_period(
     return angle, np.concatenate((stepped[..., 2:], np.zeros((*shape, 1))), axis=-1)
 
 
-__all__ = ["kernel_drive", "linear_period", "linear_track"]
+__all__ = ["kernel_arguments", "linear_period", "linear_track"]
