@@ -402,8 +402,9 @@ def _auto(
     tilt: bool,
 ) -> list[PathCandidate]:
     """``auto``'s ``retime`` and (with ``tilt``) ``tilt``: the families first, the programs
-    once for both on a short move when a plan so far (the families', ``others``' such as
-    ``shaped``) is verified (`_programs_affordable`)."""
+    once for both on a short move when a plan so far exists (the families', ``others``' such
+    as ``shaped``; `_programs_affordable`). ``retime``'s compute is its family's and its
+    upright rounds', ``tilt``'s all of it (its tilted rounds start from the upright ones)."""
     started = time.perf_counter()
     say("retime: the family's fastest acceleration cap under the slosh screen")
     upright = upright_family(problem, verifier)
@@ -417,11 +418,8 @@ def _auto(
     if _programs_affordable(problem, known, isinstance(verifier, JointSpeedCheck)):
         program = _program_candidates(problem, verifier, say, tilting)
     retime = _fastest("retime", started, [program[0], upright, *floor])
-    if program[0] is not None:
-        # each method's compute: its families and its own programs (the upright rounds are
-        # the tilted ones' first)
-        own = upright.compute_time_s + program[0].compute_time_s
-        retime = replace(retime, compute_time_s=own)
+    own = upright.compute_time_s + (0.0 if program[0] is None else program[0].compute_time_s)
+    retime = replace(retime, compute_time_s=own)
     if not tilting:
         return [retime]
     tilt_candidate = _fastest("tilt", started, [program[1], tilted, retime, *floor])
