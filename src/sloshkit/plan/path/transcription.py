@@ -23,9 +23,8 @@ along the current track (`sloshkit.plan.path.pendulums.step_jacobians`). Their s
 condensed into the coefficients within segments of `SEGMENT_SAMPLES` samples and carried
 from segment to segment by the state at each segment's start (a variable, tied by equality
 rows): a wall-height row then depends on its segment's start state and on the few
-coefficients acting inside the segment, so the program stays sparse on long moves (multiple
-shooting in condensed blocks: Bock & Plitt, IFAC Proc. 17 (1984) 1603-1608; Kirches et al.,
-Optim. Methods Softw. 27 (2012) 2, condensing).
+coefficients acting inside the segment, so the program stays sparse on long moves
+(`sloshkit.plan.path.condensing`).
 
 **Program.** At a fixed N it minimises sigma, the largest ratio of a limited quantity to its
 limit (every norm an exact second-order cone: the wall height, Cartesian and angular
@@ -46,6 +45,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.plan.path.condensing import condense
 from sloshkit.plan.path.conic import ConicProgram, NormRows
 from sloshkit.plan.path.pendulums import slope_jacobian, step_jacobians
 from sloshkit.plan.path.program import HOLD, PathProgram, ProgramIterate, mode_arrays
@@ -224,25 +224,8 @@ class SplineTranscription:
                 program.linear,
             )
             kappa = omegas**2 * lengths / model.gravity_m_s2
-            drive = np.zeros((modes, n, 7, nz))
-            for band, dz in blocks:
-                for offset in (-1, 0, 1):
-                    moved = np.zeros((n, nz))
-                    k = np.arange(n)
-                    ok = (k + offset >= 0) & (k + offset < n)
-                    moved[ok] = dz[k[ok] + offset]
-                    gain = (
-                        band.force[offset + 1][:modes]
-                        + (kappa - 1.0)[:, None, None] * band.force[offset + 1][-1][None]
-                    )
-                    drive[:, :, :3] += gain[..., None] * moved[None, :, None, :]
-                    drive[:, :, 3:] += (
-                        band.rates[offset + 1][None, :, :, None] * moved[None, :, None, :]
-                    )
-            inputs = np.einsum("qkaw,qkwz->qkaz", b_k, drive[:, :-1, :width]) + np.einsum(
-                "qkaw,qkwz->qkaz", e_k, drive[:, 1:, :width]
-            )
-            phi, psi, segment = _propagate(a_k, inputs, starts)
+            states = condense((a_k, b_k, e_k), blocks, kappa, width, starts)
+            phi, segment = states.phi, states.segment
             model_base = state_base + m * segments * state_width
 
             def first_column(seg: NDArray[np.int64], base: int = model_base) -> Any:
@@ -250,10 +233,11 @@ class SplineTranscription:
 
             # the segments' start states: x_i = Phi x_{i-1} + Psi z at each start
             for i, start in enumerate(starts, start=1):
+                psi_start = states.psi_at(start)
                 for q in range(modes):
                     row = np.arange(6)
                     own = model_base + (i - 1) * state_width + 6 * q
-                    reach = np.abs(psi[q, start]) @ box
+                    reach = np.abs(psi_start[q]) @ box
                     if i > 1:
                         before = scale[own - state_width : own - state_width + 6]
                         reach = reach + np.abs(phi[q, start]) @ before
@@ -261,10 +245,10 @@ class SplineTranscription:
                     r_list = [row]
                     c_list = [own + row]
                     v_list = [np.ones(6)]
-                    rr, cc = np.nonzero(psi[q, start])
+                    rr, cc = np.nonzero(psi_start[q])
                     r_list.append(rr)
                     c_list.append(cc)
-                    v_list.append(-psi[q, start][rr, cc])
+                    v_list.append(-psi_start[q][rr, cc])
                     if i > 1:
                         previous = model_base + (i - 2) * state_width + 6 * q
                         rr, cc = np.nonzero(phi[q, start])
@@ -279,25 +263,28 @@ class SplineTranscription:
                         np.zeros(6),
                     )
             # the wall height: sum_n e_n J_n (Phi_n x_seg,n + Psi_n z)[:3]
-            wall_z = np.zeros((n, 2, nz))
             wall_x = np.zeros((n, 2, state_width))
+            slopes = np.empty((modes, n, 2, 3))
             for q, mode in enumerate(model.modes):
-                slope = mode.wall_elevation_factor_m * slope_jacobian(ev.unit[m, q])
-                wall_z += np.einsum("kac,kcz->kaz", slope, psi[q, :, :3])
-                wall_x[:, :, 6 * q : 6 * q + 6] = np.einsum("kac,kcw->kaw", slope, phi[q, :, :3])
+                slopes[q] = mode.wall_elevation_factor_m * slope_jacobian(ev.unit[m, q])
+                wall_x[:, :, 6 * q : 6 * q + 6] = np.einsum(
+                    "kac,kcw->kaw", slopes[q], phi[q, :, :3]
+                )
+            wall_z = states.wall(slopes)
             rows.append(
                 NormRows(ev.wall[m], wall_z, lim.max_height_m, wall_x, first_column(segment))
             )
             # the residual: per mode |e_n [A_n B_n]|_2 as half the sum of two norms
             last = n - 1
             end_column = first_column(segment[last : last + 1])[0]
+            psi_last = states.psi_at(last)
             for q, mode in enumerate(model.modes):
                 damped = mode.omega_rad_s * math.sqrt(1.0 - mode.damping_ratio**2)
                 sig = mode.damping_ratio * mode.omega_rad_s
                 back = math.exp(sig * HOLD * ts)
                 e = back * mode.wall_elevation_factor_m / lim.max_residual_height_m
                 # the lateral deviations (u_x, u_y, u'_x, u'_y) at the end over z and x_seg
-                state_z = psi[q, last]
+                state_z = psi_last[q]
                 state_x = np.zeros((6, state_width))
                 state_x[:, 6 * q : 6 * q + 6] = phi[q, last]
                 combos = []
@@ -427,38 +414,6 @@ class SplineTranscription:
         values = ev.joint[:steps]
         dof = values.shape[1]
         return NormRows(values.reshape(-1, 1), derivative.reshape(steps * dof, 1, nz), 1.0)
-
-
-def _propagate(
-    a_k: FloatArray, inputs: FloatArray, starts: list[int]
-) -> tuple[FloatArray, FloatArray, NDArray[np.int64]]:
-    """The pendulum states' deviations dx_k = Phi_k x_seg + Psi_k z within segments starting
-    at ``starts`` (segment 0 starts at rest: no state variable), from dx_{k+1} = A_k dx_k +
-    inputs_k z. Returns Phi (modes, n, 6, 6), Psi (modes, n, 6, nz) and each sample's
-    segment (a segment's start sample still belongs to the one before it)."""
-    modes, periods = a_k.shape[0], a_k.shape[1]
-    n = periods + 1
-    nz = inputs.shape[-1]
-    phi = np.zeros((modes, n, 6, 6))
-    psi = np.zeros((modes, n, 6, nz))
-    segment = np.zeros(n, dtype=np.int64)
-    identity = np.broadcast_to(np.eye(6), (modes, 6, 6))
-    current_phi = np.array(identity)
-    current_psi = np.zeros((modes, 6, nz))
-    phi[:, 0] = identity
-    boundaries = set(starts)
-    index = 0
-    for k in range(periods):
-        if k in boundaries:
-            index += 1
-            current_phi = np.array(identity)
-            current_psi = np.zeros((modes, 6, nz))
-        current_phi = np.matmul(a_k[:, k], current_phi)
-        current_psi = np.matmul(a_k[:, k], current_psi) + inputs[:, k]
-        phi[:, k + 1] = current_phi
-        psi[:, k + 1] = current_psi
-        segment[k + 1] = index
-    return phi, psi, segment
 
 
 __all__ = [
