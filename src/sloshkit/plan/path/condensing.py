@@ -73,7 +73,10 @@ class CondensedStates:
         wall = np.zeros((n, 2, self.columns))
         for first, window, psi in self.windows:
             last = first + psi.shape[1]
-            local = np.einsum("qkac,qkcz->kaz", slopes[:, first:last], psi[:, :, :3])
+            # mode by mode, as the wall height sums them (`sloshkit.plan.path.program`)
+            local = np.zeros((last - first, 2, window.size))
+            for slope, mode_psi in zip(slopes[:, first:last], psi, strict=True):
+                local += np.einsum("kac,kcz->kaz", slope, mode_psi[:, :3])
             # the segment's first sample belongs to the one before (or is the rest at 0)
             wall[first + 1 : last, :, window] += local[1:]
         return wall
