@@ -431,3 +431,35 @@ def test_tilt_is_verified_and_shorter_than_retime(
     assert tilted.chosen.verification is not None
     assert tilted.chosen.verification.peak_tilt_rad > 0.0
     assert tilted.chosen.duration_s < upright.chosen.duration_s
+
+
+def test_a_tilted_plan_the_verifier_rejects_leaves_the_upright_one(
+    robot_vial: SloshModel,
+) -> None:
+    """The rounds judge their plans by the slosh; the candidate's verification also checks
+    what the programs only model (an arm's IK, here a verifier that rejects every tilted
+    export). The tilted candidate is then the next round's plan that passes, the upright
+    one, not a failed plan: ``tilt`` stays no slower than ``retime`` (a UR5e's IK did this to
+    TRD_2D's tilted plan, which a 5-fold stretch for the joints could not save)."""
+    from sloshkit.plan.path.optimal import plan_programs
+    from sloshkit.plan.path.result import verify
+
+    def no_tilt(problem: PathProblem, poses: object, tilted: bool) -> object:
+        check = verify(problem, poses, tilted)
+        if check.peak_tilt_rad > 1e-9:
+            return replace(check, violations=(*check.violations, "the arm cannot tilt"))
+        return check
+
+    problem = PathProblem(
+        path_from_waypoints([[0, 0, 0], [0.12, 0, 0]]),
+        CartesianLimits(2.0, 10.0, 100.0),
+        SpatialSloshLimits(0.008, 0.001),
+        robot_vial,
+        sample_period_s=0.01,
+        max_tilt_rad=math.radians(20.0),
+    )
+    upright, tilted = plan_programs(problem, no_tilt, tilt=True)
+    assert any(r["tilted"] for r in tilted.detail["rounds"])  # the tilted rounds did run
+    assert upright.feasible and tilted.feasible
+    assert tilted.duration_s == upright.duration_s
+    assert not tilted.detail["tilted"]
