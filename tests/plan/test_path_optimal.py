@@ -409,13 +409,9 @@ def test_the_cli_warns_only_when_tilt_planned_upright_with_an_arm() -> None:
 
 
 @pytest.mark.slow
-def test_tilt_is_verified_and_shorter_than_retime(
-    robot_vial: SloshModel,
-) -> None:
-    """``plan_path(..., "optimal", tilt=True)`` is ``tilt``: the tilt angles are variables of
-    the same programs; the plan returned is verified, tilts, and is shorter than ``retime``'s
-    upright one."""
-    problem = PathProblem(
+def _short_tilted_move(robot_vial: SloshModel) -> PathProblem:
+    """A 0.12 m straight move at 10 ms whose plan may tilt up to 20 degrees."""
+    return PathProblem(
         path_from_waypoints([[0, 0, 0], [0.12, 0, 0]]),
         CartesianLimits(2.0, 10.0, 100.0),
         SpatialSloshLimits(0.008, 0.001),
@@ -423,6 +419,15 @@ def test_tilt_is_verified_and_shorter_than_retime(
         sample_period_s=0.01,
         max_tilt_rad=math.radians(20.0),
     )
+
+
+def test_tilt_is_verified_and_shorter_than_retime(
+    robot_vial: SloshModel,
+) -> None:
+    """``plan_path(..., "optimal", tilt=True)`` is ``tilt``: the tilt angles are variables of
+    the same programs; the plan returned is verified, tilts, and is shorter than ``retime``'s
+    upright one."""
+    problem = _short_tilted_move(robot_vial)
     tilted = plan_path(problem, "optimal", tilt=True)
     upright = plan_path(problem, "retime")
     assert [c.method for c in tilted.candidates] == ["tilt"]
@@ -450,14 +455,7 @@ def test_a_tilted_plan_the_verifier_rejects_leaves_the_upright_one(
             return replace(check, violations=(*check.violations, "the arm cannot tilt"))
         return check
 
-    problem = PathProblem(
-        path_from_waypoints([[0, 0, 0], [0.12, 0, 0]]),
-        CartesianLimits(2.0, 10.0, 100.0),
-        SpatialSloshLimits(0.008, 0.001),
-        robot_vial,
-        sample_period_s=0.01,
-        max_tilt_rad=math.radians(20.0),
-    )
+    problem = _short_tilted_move(robot_vial)
     upright, tilted = plan_programs(problem, no_tilt, tilt=True)
     assert any(r["tilted"] for r in tilted.detail["rounds"])  # the tilted rounds did run
     assert upright.feasible and tilted.feasible
