@@ -28,10 +28,14 @@ height at the nodes; at T the residual sum_n e_n sqrt(|A_n|^2 + |B_n|^2) <= max 
 A_n = phi_n - rest_n, B_n = (phi_n' + zeta w A_n) / w_d (the cosine and sine amplitudes of the
 free oscillation); the first mode's angle when ``max_surface_angle_rad`` is set.
 
-Slosh, ``slosh_model="nonlinear"``: the large-angle damped spherical pendulum the planner's
-verification simulates (`sloshkit.sim.spatial`, written here again without its code). Every
-mode is a pendulum of length L_n hinged on the axis at the pivot height H_n = bob height + L_n
-(Abramson ch. 6; Dodge ch. 3), its bob at L_n u from the hinge, u a unit vector in the frame
+Slosh, ``slosh_model="nonlinear"``: the model the planner's verification simulates
+(`sloshkit.sim.spatial`, written here again without its code): the first mode
+(`sloshkit.sim.spatial_kernels.LARGE_ANGLE_MODES`) a large-angle damped spherical pendulum, the
+higher ones small-angle pendulums with the same hinge and drive, theta'' + 2 zeta w theta'
++ (-f_z / L_n) theta + Omega (Omega . theta) = f_lat / L_n + (q', -p') (their slope theta,
+their rest f_lat / (-f_z)). Every mode is a pendulum of length L_n hinged on the axis at the
+pivot height H_n = bob height + L_n (Abramson ch. 6; Dodge ch. 3), the large-angle one's bob
+at L_n u from the hinge, u a unit vector in the frame
 N that tilts with the container axis but does not spin about it (the de-spun frame above),
 Omega = (p, q, 0) the angular velocity of N in N and Omega' the derivative of its components.
 With the constraint force eliminated (relative motion in a non-inertial frame: Goldstein,
@@ -85,6 +89,7 @@ from sloshkit.motion.poses import PoseTrajectory
 from sloshkit.motion.sampling import steps_to_reach
 from sloshkit.plan.path.geometry import Path
 from sloshkit.plan.path.problem import PathProblem
+from sloshkit.sim.spatial_kernels import LARGE_ANGLE_MODES
 
 FloatArray = NDArray[np.float64]
 
@@ -282,6 +287,41 @@ def _frame_rates(frame: Any, chi: Any, rate: Any) -> tuple[Any, Any]:
     return omega, derivative + spin * ca.vertcat(-omega[1], omega[0])
 
 
+def _hinged_linear_mode(
+    force: Any, rest: Any, omega: Any, omega_rate: Any, mode: Any
+) -> tuple[Any, Any, Any, Any, Any, Any]:
+    """One higher mode of the nonlinear model (module docstring): the small-angle pendulum
+    hinged as the large-angle one, theta'' + 2 zeta w theta' + (-f_z / L) theta
+    + Omega (Omega . theta) = f_lat / L + (q', -p'), with f and Omega = (p, q) as there; the
+    same outputs as `_nonlinear_mode`, the slope theta."""
+    w, zeta, length = mode.omega_rad_s, mode.damping_ratio, mode.length_m
+    angle, angle_rate = ca.SX.sym("th", 2), ca.SX.sym("thd", 2)
+    euler = ca.vertcat(omega_rate[1], -omega_rate[0])
+    acceleration = (
+        force[0:2] / length
+        + euler
+        - 2.0 * zeta * w * angle_rate
+        + force[2] / length * angle
+        - omega * ca.dot(omega, angle)
+    )
+    equilibrium = rest[0:2] / (-rest[2])
+    cosine = angle - equilibrium
+    sine = (angle_rate + zeta * w * cosine) / (w * math.sqrt(1.0 - zeta**2))
+    matrix = ca.vertcat(
+        cosine[0] ** 2 + sine[0] ** 2,
+        cosine[1] ** 2 + sine[1] ** 2,
+        cosine[0] * cosine[1] + sine[0] * sine[1],
+    )
+    return (
+        ca.vertcat(angle, angle_rate),
+        ca.vertcat(angle_rate, acceleration),
+        angle,
+        equilibrium,
+        matrix,
+        ca.sumsqr(angle),
+    )
+
+
 def _nonlinear_mode(
     force: Any, rest: Any, omega: Any, omega_rate: Any, mode: Any
 ) -> tuple[Any, Any, Any, Any, Any, Any]:
@@ -385,7 +425,9 @@ def _model(problem: PathProblem, tilt: bool, slosh_model: str = "linear") -> _Mo
             if nonlinear:
                 kappa = w**2 * length / GRAVITY_M_S2
                 hinge = bottom_acceleration + mode.pivot_height_m * axis_acceleration
-                state, derivative, slope, equilibrium, matrix, angle = _nonlinear_mode(
+                # the first mode large-angle, the others small-angle (module docstring)
+                pendulum = _nonlinear_mode if index < LARGE_ANGLE_MODES else _hinged_linear_mode
+                state, derivative, slope, equilibrium, matrix, angle = pendulum(
                     to_frame(kappa * gravity - hinge),
                     to_frame(kappa * gravity),
                     frame_rate,

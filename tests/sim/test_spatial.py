@@ -159,18 +159,19 @@ def _free_energy(response, model: SloshModel) -> np.ndarray:  # type: ignore[no-
     """Per-mode energy per unit (m L^2) after the motion (container at rest)."""
     after = response.time_s > response.motion_end_s + 0.05
     lengths = np.array([m.length_m for m in model.modes])[:, None]
-    if not response.nonlinear:
-        force = response.drive.specific_force_m_s2[: len(model.modes), after]
-        stiffness = -force[..., 2] / lengths  # omega_n^2 |f_z| / (kappa_n g)
-        equilibrium = force[..., :2] / -force[..., 2:3]
-        offset = response.angle_rad[:, after] - equilibrium
-        rate = response.rate_rad_s[:, after]
-        return 0.5 * np.sum(rate**2, axis=-1) + 0.5 * stiffness * np.sum(offset**2, axis=-1)
+    force = response.drive.specific_force_m_s2[: len(model.modes), after]
+    # the small-angle modes (all of the linear model, the higher ones of the nonlinear one)
+    stiffness = -force[..., 2] / lengths  # omega_n^2 |f_z| / (kappa_n g)
+    equilibrium = force[..., :2] / -force[..., 2:3]
+    offset = response.angle_rad[:, after] - equilibrium
+    rate = response.rate_rad_s[:, after]
+    small = 0.5 * np.sum(rate**2, axis=-1) + 0.5 * stiffness * np.sum(offset**2, axis=-1)
+    # the large-angle ones: kinetic plus the potential of the bob in the specific force
     unit = response.pendulum[:, after]
     rate = response.pendulum_rate[:, after]
-    force = response.drive.specific_force_m_s2[: len(model.modes), after]
     potential = -np.sum(force * unit, axis=-1) / lengths
-    return 0.5 * np.sum(rate**2, axis=-1) + potential
+    large = 0.5 * np.sum(rate**2, axis=-1) + potential
+    return np.where(response.large_angle[:, None], large, small)
 
 
 @settings(max_examples=12, deadline=None)

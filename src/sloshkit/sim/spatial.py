@@ -32,8 +32,17 @@ Linear (per mode, theta = 2-D pendulum angle in N, positive when the bob swings 
 parametrically; (q', -p') is the Euler term of the tilt acceleration acting on the rod; the
 Coriolis term has no lateral part in N; centrifugal and tension terms combine into
 Omega Omega^T). A static tilt psi gives f_lat / |f_z| = tan psi: the pendulums hang along
-gravity and the surface stays horizontal. Nonlinear: the damped spherical pendulum with the
-same drive (`sloshkit.sim.spatial_kernels`), damping on the motion relative to N.
+gravity and the surface stays horizontal. Nonlinear: the first mode is the damped spherical
+pendulum with the same drive (`sloshkit.sim.spatial_kernels`), damping on the motion relative
+to N; the higher modes stay linear (`sloshkit.sim.spatial_kernels.LARGE_ANGLE_MODES`). The
+large-angle pendulum stands for the fundamental mode's finite-amplitude slosh (its softening
+and rotary motion); the pendulum parameters of the higher modes are those of linear theory,
+and the multimodal theory carries those modes at a higher order of the amplitude (Faltinsen &
+Timokha, *Sloshing*, Cambridge University Press (2009) ch. 8-9). Their pendulums are short
+(9 mm and 6 mm for R = 49 mm), so that the jerks of a minimum-time plan swing them past 50
+deg, where the spherical pendulum's tan(deflection) would read wall heights that jump with a
+sample's change of the timing (14 mm against 46 mm on a 20-waypoint plan 4 ms shorter;
+studies/path-planner-methods, "The higher modes").
 
 Wall elevation (mode-shape mapping of the 1-D model, `sloshkit.model.modal.wall_elevation_factor`)::
 
@@ -71,7 +80,7 @@ from sloshkit.sim.metrics import default_settle_time
 from sloshkit.sim.simulate import LARGE_ANGLE_DEG
 from sloshkit.sim.spatial_amplitude import AmplitudeDependence, amplitude_pendulums
 from sloshkit.sim.spatial_drive import SpatialDrive, spatial_drive
-from sloshkit.sim.spatial_kernels import linear_pendulums, nonlinear_pendulums
+from sloshkit.sim.spatial_kernels import LARGE_ANGLE_MODES, linear_pendulums, nonlinear_pendulums
 from sloshkit.sim.spatial_response import HEIGHT_MAPPINGS, HeightMapping, SpatialResponse
 
 FloatArray = NDArray[np.float64]
@@ -161,7 +170,10 @@ def simulate_spatial(
     started = _time.perf_counter()
     # RK4 sub-steps keep omega_max h <= 0.5 (accurate, far inside RK4's stability limit 2.8);
     # the drive is sampled at half sub-steps
-    substeps = max(1, math.ceil(max(m.omega_rad_s for m in model.modes) * dt / 0.5))
+    large = min(LARGE_ANGLE_MODES, len(model.modes)) if nonlinear else 0
+    substeps = max(
+        1, math.ceil(max(m.omega_rad_s for m in model.modes[: max(large, 1)]) * dt / 0.5)
+    )
     grid_dt = dt / (2.0 * substeps) if nonlinear else dt
     # size before allocation (sloshkit.budget): the drive, kinematics and states of every mode
     require_samples(
@@ -181,14 +193,25 @@ def simulate_spatial(
     count = len(modes)
     if nonlinear:
         unit, unit_rate = nonlinear_pendulums(
-            drive.specific_force_m_s2[:count],
-            drive.rest_force_m_s2[:count],
+            drive.specific_force_m_s2[:large],
+            drive.rest_force_m_s2[:large],
             drive.tilt_rate_rad_s,
             drive.tilt_acceleration_rad_s2,
-            length,
-            omega,
-            zeta,
+            length[:large],
+            omega[:large],
+            zeta[:large],
             dt / substeps,
+        )
+        # the higher modes linear (`LARGE_ANGLE_MODES`), on the same drive's half-step grid
+        angle, rate = linear_pendulums(
+            drive.specific_force_m_s2[large:count],
+            drive.rest_force_m_s2[large:count],
+            drive.tilt_rate_rad_s,
+            drive.tilt_acceleration_rad_s2,
+            length[large:],
+            omega[large:],
+            zeta[large:],
+            grid_dt,
         )
         full = slice(None, None, 2 * substeps)
         drive = SpatialDrive(
@@ -202,6 +225,13 @@ def simulate_spatial(
         )
         size = drive.time_s.size
         unit, unit_rate = unit[:, ::substeps][:, :size], unit_rate[:, ::substeps][:, :size]
+        angle, rate = angle[:, full][:, :size], rate[:, full][:, :size]
+        unit = np.concatenate(
+            (unit, np.concatenate((angle, -np.ones((*angle.shape[:2], 1))), axis=2)), axis=0
+        )
+        unit_rate = np.concatenate(
+            (unit_rate, np.concatenate((rate, np.zeros((*rate.shape[:2], 1))), axis=2)), axis=0
+        )
     else:
         if amplitude_dependence is None:
             angle, rate = linear_pendulums(

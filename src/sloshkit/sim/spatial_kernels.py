@@ -38,6 +38,15 @@ _KERNELS: dict[str, Any] = {}
 #: gravity along the axis reversed or nearly zero: the caller warns, the model is not valid
 #: there).
 STIFFNESS_FLOOR = 1e-3
+#: The modes that the nonlinear model simulates as large-angle spherical pendulums: the first.
+#: The large-angle pendulum models the fundamental mode's finite-amplitude (softening, rotary)
+#: slosh; the higher modes of the equivalent model are linear oscillators (their pendulum
+#: parameters come from linear theory, and the multimodal theory carries them at a higher order
+#: of the amplitude: Faltinsen & Timokha, *Sloshing*, Cambridge University Press (2009) ch. 8-9).
+#: Their short pendulums (L_2 = 9 mm, L_3 = 6 mm for R = 49 mm) swing past 50 deg under the
+#: optimal plans' jerks, where tan(deflection) would read a wall height that jumps with the
+#: timing (studies/path-planner-methods, "The higher modes").
+LARGE_ANGLE_MODES = 1
 
 
 def _compile() -> dict[str, Any]:

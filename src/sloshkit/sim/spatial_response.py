@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from sloshkit.model.modal import SloshModel
 from sloshkit.results import ResultMixin
 from sloshkit.sim.metrics import free_oscillation_components, wall_elevation_factors
+from sloshkit.sim.spatial_kernels import LARGE_ANGLE_MODES
 
 if TYPE_CHECKING:
     from sloshkit.sim.spatial_drive import SpatialDrive
@@ -131,7 +132,16 @@ class SpatialResponse(ResultMixin):
         radius = np.hypot(lateral[..., 0], lateral[..., 1])
         polar = np.arctan2(radius, -self.pendulum[..., 2])
         scale = np.where(radius > 1e-15, polar / np.maximum(radius, 1e-300), 1.0)
+        scale = np.where(self.large_angle[:, None], scale, 1.0)
         return np.asarray(lateral * scale[..., None], dtype=float)
+
+    @property
+    def large_angle(self) -> NDArray[np.bool_]:
+        """Per mode, whether it was simulated as a large-angle pendulum (`nonlinear`: the
+        first `sloshkit.sim.spatial_kernels.LARGE_ANGLE_MODES`; the others are linear, their
+        ``pendulum`` (theta_x, theta_y, -1))."""
+        count = self.pendulum.shape[0]
+        return np.arange(count) < (LARGE_ANGLE_MODES if self.nonlinear else 0)
 
     @property
     def rate_rad_s(self) -> FloatArray:
@@ -278,7 +288,7 @@ class SpatialResponse(ResultMixin):
         force = self.drive.specific_force_m_s2[:, -1]
         amplitudes = []
         for row, mode in enumerate(self.model.modes):
-            if self.nonlinear:  # deflection from the unit vector along f
+            if self.large_angle[row]:  # deflection from the unit vector along f
                 equilibrium = force[row, :2] / max(float(np.linalg.norm(force[row])), 1e-9)
             else:
                 equilibrium = force[row, :2] / max(-force[row, 2], 1e-9)

@@ -1,11 +1,14 @@
 """The nonlinear slosh pendulums along a sampled path, and their linearisation along it.
 
 The path program (`sloshkit.plan.path.optimal`) imposes its slosh limits on the model the
-verification simulates: every lateral mode a damped spherical pendulum of length L_n, driven by
-the specific force f at its hinge in the container's non-spinning frame N, integrated by the
-classical Runge-Kutta method on the drive's half-step grid (`sloshkit.sim.spatial`, the
-equations and their sources; `sloshkit.sim.spatial_kernels.nonlinear_pendulums`, the
-integrator). Here the drive is the sampled one: f at the export samples, linear between them
+verification simulates: the first lateral mode a damped spherical pendulum of length L_n,
+driven by the specific force f at its hinge in the container's non-spinning frame N,
+integrated by the classical Runge-Kutta method on the drive's half-step grid
+(`sloshkit.sim.spatial`, the equations and their sources;
+`sloshkit.sim.spatial_kernels.nonlinear_pendulums`, the integrator), the higher modes the
+small-angle pendulums of the same drive (`sloshkit.plan.path.small_angle.linear_track`;
+`sloshkit.sim.spatial_kernels.LARGE_ANGLE_MODES`). Here the drive is the sampled one: f at
+the export samples, linear between them
 (a first-order hold, as the program's finite-difference kinematics give it).
 
 `pendulum_track` integrates the pendulums along the samples with that kernel. `step_jacobians`
@@ -30,7 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.plan.path.small_angle import kernel_arguments, linear_period, linear_track
-from sloshkit.sim.spatial_kernels import STIFFNESS_FLOOR
+from sloshkit.sim.spatial_kernels import LARGE_ANGLE_MODES, STIFFNESS_FLOOR
 
 FloatArray = NDArray[np.float64]
 
@@ -74,8 +77,10 @@ def pendulum_track(
     sample_period_s: float,
     linear: bool = False,
 ) -> tuple[FloatArray, FloatArray]:
-    """The pendulums' unit vectors u and rates u' at the samples, (modes, K, 3) each; with
-    ``linear`` the small-angle pendulums (`sloshkit.plan.path.small_angle.linear_track`).
+    """The pendulums' unit vectors u and rates u' at the samples, (modes, K, 3) each: the
+    first `LARGE_ANGLE_MODES` large-angle, the others small-angle
+    (`sloshkit.plan.path.small_angle.linear_track`: u = (theta, -1), u' = (theta', 0)), as the
+    verification simulates them; with ``linear`` all small-angle.
 
     Parameters
     ----------
@@ -115,6 +120,24 @@ def pendulum_track(
     """
     from sloshkit.sim.spatial_kernels import nonlinear_pendulums
 
+    large = force_m_s2.shape[0] if linear else LARGE_ANGLE_MODES
+    if 0 < large < force_m_s2.shape[0]:
+        # the higher modes are linear in the nonlinear model (`LARGE_ANGLE_MODES`)
+        parts = [
+            pendulum_track(
+                force_m_s2[part],
+                rest_force_m_s2[part],
+                np.asarray(length_m)[part],
+                np.asarray(omega_rad_s)[part],
+                np.asarray(damping_ratio)[part],
+                sample_period_s,
+                small,
+            )
+            for part, small in ((slice(None, large), False), (slice(large, None), True))
+        ]
+        return np.concatenate((parts[0][0], parts[1][0])), np.concatenate(
+            (parts[0][1], parts[1][1])
+        )
     if linear:
         return linear_track(
             force_m_s2, rest_force_m_s2, length_m, omega_rad_s, damping_ratio, sample_period_s
@@ -226,8 +249,9 @@ def step_jacobians(
     sample_period_s: float,
     linear: bool = False,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """A_k, B_k, E_k of every sample period along a track (module docstring); with ``linear``
-    of `sloshkit.plan.path.small_angle.linear_track`'s.
+    """A_k, B_k, E_k of every sample period along a track (module docstring): `pendulum_track`'s
+    first `LARGE_ANGLE_MODES` large-angle, the others small-angle; with ``linear`` all
+    small-angle (`sloshkit.plan.path.small_angle.linear_track`'s).
 
     Parameters
     ----------
@@ -270,6 +294,27 @@ def step_jacobians(
     True
     """
     modes, samples, _ = unit.shape
+    large = modes if linear else LARGE_ANGLE_MODES
+    if 0 < large < modes:
+        # the higher modes are linear in the nonlinear model (`LARGE_ANGLE_MODES`)
+        parts = [
+            step_jacobians(
+                unit[part],
+                rate[part],
+                force_m_s2[part],
+                np.asarray(length_m)[part],
+                np.asarray(omega_rad_s)[part],
+                np.asarray(damping_ratio)[part],
+                sample_period_s,
+                small,
+            )
+            for part, small in ((slice(None, large), False), (slice(large, None), True))
+        ]
+        return (
+            np.concatenate((parts[0][0], parts[1][0])),
+            np.concatenate((parts[0][1], parts[1][1])),
+            np.concatenate((parts[0][2], parts[1][2])),
+        )
     substeps = rk4_substeps(list(omega_rad_s), sample_period_s)
     h = sample_period_s / substeps
     length = np.broadcast_to(np.asarray(length_m, dtype=float)[:, None], (modes, samples - 1))

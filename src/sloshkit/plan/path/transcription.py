@@ -14,7 +14,7 @@ instants k Ts, so what the program constrains is exactly what the export contain
 
 **Model.** Everything the verification checks is a function of the samples
 (`sloshkit.plan.path.program.PathProgram.evaluate`: finite-difference kinematics, the
-nonlinear spherical pendulums of every mode and band model, the wall height at every sample,
+nonlinear pendulums of every mode and band model, the wall height at every sample,
 the residual's semi-major axes, an arm's joint speeds). `SplineTranscription.step`
 linearises it around the current splines: the samples' derivatives with respect to the
 coefficients are the basis itself; the forces' derivatives come banded from
