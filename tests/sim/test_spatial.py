@@ -298,3 +298,18 @@ def test_pitching_about_the_pivot_leaves_the_pendulum_hanging(nonlinear: bool) -
     tolerance = 1e-4 if nonlinear else 2e-3 * psi.max()
     assert np.max(np.abs(response.angle_rad[0, :, 0] - psi)) < tolerance
     assert np.max(np.abs(response.angle_rad[0, :, 1])) < 1e-12
+
+
+def test_the_nonlinear_model_keeps_the_higher_modes_linear(model: SloshModel) -> None:
+    # a hard stop (0.1 m in 0.3 s) swings the second and third modes past 100 deg in the linear
+    # model: the nonlinear one is large-angle in the first mode only (LARGE_ANGLE_MODES)
+    poses = poses_from_law(septic(0.1, 0.3), (1.0, 0.0, 0.0), sample_period_s=4e-3)
+    nonlinear = _quiet(model, poses, nonlinear=True)
+    linear = _quiet(model, poses)
+    assert nonlinear.large_angle.tolist() == [True, False, False]
+    assert not linear.large_angle.any()
+    higher = np.abs(linear.angle_rad[1:]).max()
+    assert higher > 1.5  # rad: far beyond small angles
+    np.testing.assert_allclose(nonlinear.angle_rad[1:], linear.angle_rad[1:], atol=5e-3 * higher)
+    first = np.abs(nonlinear.angle_rad[0] - linear.angle_rad[0]).max()
+    assert first > 0.1 * np.abs(linear.angle_rad[0]).max()
