@@ -76,8 +76,8 @@ class SpatialResponse(ResultMixin):
     ----------
     model : the `SloshModel` simulated
     drive : the `sloshkit.sim.spatial_drive.SpatialDrive` (specific forces, tilt rates, spin angle)
-    pendulum : (modes, M, 3) hinge-to-bob unit vectors in N (nonlinear) or (theta_x, theta_y,
-        -1) (linear)
+    pendulum : (modes, M, 3) hinge-to-bob unit vectors in N for the large-angle modes
+        (`large_angle`), (theta_x, theta_y, -1) for the linear ones
     pendulum_rate : (modes, M, 3) their time derivatives in N
     nonlinear : which model was run
     motion_end_s : time of the last pose [s]; the container rests afterwards
