@@ -27,7 +27,7 @@ of the surface slope tan(deflection) = u_lat / (-u_z) that the wall height reads
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -66,6 +66,16 @@ def rk4_substeps(omegas_rad_s: Sequence[float], sample_period_s: float) -> int:
     (1, 2)
     """
     return max(1, math.ceil(max(omegas_rad_s) * sample_period_s / MAX_OMEGA_STEP))
+
+
+def _split_by_angle(
+    call: Callable[[slice, bool], tuple[FloatArray, ...]], large: int
+) -> tuple[FloatArray, ...]:
+    """``call(modes, small_angle)`` on the first ``large`` modes (large-angle) and on the rest
+    (small-angle: the higher modes of the nonlinear model, `LARGE_ANGLE_MODES`), each output
+    joined along the mode axis."""
+    parts = (call(slice(None, large), False), call(slice(large, None), True))
+    return tuple(np.concatenate(pieces) for pieces in zip(*parts, strict=True))
 
 
 def pendulum_track(
@@ -122,9 +132,8 @@ def pendulum_track(
 
     large = force_m_s2.shape[0] if linear else LARGE_ANGLE_MODES
     if 0 < large < force_m_s2.shape[0]:
-        # the higher modes are linear in the nonlinear model (`LARGE_ANGLE_MODES`)
-        parts = [
-            pendulum_track(
+        unit, rate = _split_by_angle(
+            lambda part, small: pendulum_track(
                 force_m_s2[part],
                 rest_force_m_s2[part],
                 np.asarray(length_m)[part],
@@ -132,12 +141,10 @@ def pendulum_track(
                 np.asarray(damping_ratio)[part],
                 sample_period_s,
                 small,
-            )
-            for part, small in ((slice(None, large), False), (slice(large, None), True))
-        ]
-        return np.concatenate((parts[0][0], parts[1][0])), np.concatenate(
-            (parts[0][1], parts[1][1])
+            ),
+            large,
         )
+        return unit, rate
     if linear:
         return linear_track(
             force_m_s2, rest_force_m_s2, length_m, omega_rad_s, damping_ratio, sample_period_s
@@ -155,7 +162,7 @@ def pendulum_track(
     return unit[:, ::substeps][:, :samples], rate[:, ::substeps][:, :samples]
 
 
-def at_rest(force_m_s2: FloatArray, linear: bool = False) -> FloatArray:
+def at_rest(force_m_s2: FloatArray, linear: bool = False, mode: int = 0) -> FloatArray:
     """The lateral components of u at rest under a constant specific force: along it,
     f_lat / |f|, for the large-angle pendulums, f_lat / (-f_z) for the small-angle ones.
 
@@ -165,6 +172,9 @@ def at_rest(force_m_s2: FloatArray, linear: bool = False) -> FloatArray:
         The specific force (..., 3) [m/s^2].
     linear : bool
         Whether the pendulums are the small-angle ones.
+    mode : int
+        The mode's index: from `LARGE_ANGLE_MODES` on, the modes are small-angle anyway
+        (`pendulum_track`).
 
     Returns
     -------
@@ -178,7 +188,8 @@ def at_rest(force_m_s2: FloatArray, linear: bool = False) -> FloatArray:
     >>> round(float(at_rest(force)[0]), 5), round(float(at_rest(force, True)[0]), 5)
     (-0.0995, -0.1)
     """
-    scale = -force_m_s2[..., 2:3] if linear else np.linalg.norm(force_m_s2, axis=-1, keepdims=True)
+    small = linear or mode >= LARGE_ANGLE_MODES
+    scale = -force_m_s2[..., 2:3] if small else np.linalg.norm(force_m_s2, axis=-1, keepdims=True)
     return np.asarray(force_m_s2[..., :2] / scale)
 
 
@@ -296,9 +307,8 @@ def step_jacobians(
     modes, samples, _ = unit.shape
     large = modes if linear else LARGE_ANGLE_MODES
     if 0 < large < modes:
-        # the higher modes are linear in the nonlinear model (`LARGE_ANGLE_MODES`)
-        parts = [
-            step_jacobians(
+        a_k, b_k, e_k = _split_by_angle(
+            lambda part, small: step_jacobians(
                 unit[part],
                 rate[part],
                 force_m_s2[part],
@@ -307,14 +317,10 @@ def step_jacobians(
                 np.asarray(damping_ratio)[part],
                 sample_period_s,
                 small,
-            )
-            for part, small in ((slice(None, large), False), (slice(large, None), True))
-        ]
-        return (
-            np.concatenate((parts[0][0], parts[1][0])),
-            np.concatenate((parts[0][1], parts[1][1])),
-            np.concatenate((parts[0][2], parts[1][2])),
+            ),
+            large,
         )
+        return a_k, b_k, e_k
     substeps = rk4_substeps(list(omega_rad_s), sample_period_s)
     h = sample_period_s / substeps
     length = np.broadcast_to(np.asarray(length_m, dtype=float)[:, None], (modes, samples - 1))

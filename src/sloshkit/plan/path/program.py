@@ -41,7 +41,6 @@ from sloshkit.plan.path.joints import JointMap, JointModel
 from sloshkit.plan.path.pendulums import at_rest, mode_slope, pendulum_track
 from sloshkit.plan.path.samples import PathSamples, sample_poses
 from sloshkit.sim.metrics import free_oscillation_components
-from sloshkit.sim.spatial_kernels import LARGE_ANGLE_MODES
 from sloshkit.sim.spatial_response import ellipse_semi_major
 
 FloatArray = NDArray[np.float64]
@@ -295,7 +294,7 @@ class PathProgram:
                 # the free oscillation HOLD samples after the move (as the 3-D simulation
                 # measures its residual), about the rest direction, scaled back to the end
                 final = drive[n, -1, :3]
-                offset = unit[n, -1, :2] - at_rest(final, self.linear or n >= LARGE_ANGLE_MODES)
+                offset = unit[n, -1, :2] - at_rest(final, self.linear, n)
                 cosine, sine = free_oscillation_components(
                     offset, rate[n, -1, :2], mode.omega_rad_s, mode.damping_ratio
                 )
