@@ -287,6 +287,17 @@ def _frame_rates(frame: Any, chi: Any, rate: Any) -> tuple[Any, Any]:
     return omega, derivative + spin * ca.vertcat(-omega[1], omega[0])
 
 
+def _free_oscillation_matrix(cosine: Any, rate: Any, w: float, zeta: float) -> Any:
+    """M = A A^T + B B^T of a mode's free oscillation as (M_xx, M_yy, M_xy): A the offset from
+    rest (``cosine``), B = (x' + zeta w A) / w_d (module docstring)."""
+    sine = (rate + zeta * w * cosine) / (w * math.sqrt(1.0 - zeta**2))
+    return ca.vertcat(
+        cosine[0] ** 2 + sine[0] ** 2,
+        cosine[1] ** 2 + sine[1] ** 2,
+        cosine[0] * cosine[1] + sine[0] * sine[1],
+    )
+
+
 def _hinged_linear_mode(
     force: Any, rest: Any, omega: Any, omega_rate: Any, mode: Any
 ) -> tuple[Any, Any, Any, Any, Any, Any]:
@@ -305,13 +316,7 @@ def _hinged_linear_mode(
         - omega * ca.dot(omega, angle)
     )
     equilibrium = rest[0:2] / (-rest[2])
-    cosine = angle - equilibrium
-    sine = (angle_rate + zeta * w * cosine) / (w * math.sqrt(1.0 - zeta**2))
-    matrix = ca.vertcat(
-        cosine[0] ** 2 + sine[0] ** 2,
-        cosine[1] ** 2 + sine[1] ** 2,
-        cosine[0] * cosine[1] + sine[0] * sine[1],
-    )
+    matrix = _free_oscillation_matrix(angle - equilibrium, angle_rate, w, zeta)
     return (
         ca.vertcat(angle, angle_rate),
         ca.vertcat(angle_rate, acceleration),
@@ -348,13 +353,7 @@ def _nonlinear_mode(
     speed2 = ca.sumsqr(lateral_rate) + axial_rate**2
     acceleration = (total[0:2] - radial * lateral) / length - speed2 * lateral
     equilibrium = rest[0:2] / ca.norm_2(rest)
-    cosine = lateral - equilibrium
-    sine = (lateral_rate + zeta * w * cosine) / (w * math.sqrt(1.0 - zeta**2))
-    matrix = ca.vertcat(
-        cosine[0] ** 2 + sine[0] ** 2,
-        cosine[1] ** 2 + sine[1] ** 2,
-        cosine[0] * cosine[1] + sine[0] * sine[1],
-    )
+    matrix = _free_oscillation_matrix(lateral - equilibrium, lateral_rate, w, zeta)
     return (
         ca.vertcat(lateral, lateral_rate),
         ca.vertcat(lateral_rate, acceleration),

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -69,12 +70,16 @@ def rk4_substeps(omegas_rad_s: Sequence[float], sample_period_s: float) -> int:
 
 
 def _split_by_angle(
-    call: Callable[[slice, bool], tuple[FloatArray, ...]], large: int
+    call: Callable[..., tuple[FloatArray, ...]], per_mode: Sequence[Any], large: int
 ) -> tuple[FloatArray, ...]:
-    """``call(modes, small_angle)`` on the first ``large`` modes (large-angle) and on the rest
-    (small-angle: the higher modes of the nonlinear model, `LARGE_ANGLE_MODES`), each output
-    joined along the mode axis."""
-    parts = (call(slice(None, large), False), call(slice(large, None), True))
+    """``call(*arrays, small_angle)`` with the ``per_mode`` arrays of the first ``large`` modes
+    (large-angle) and of the rest (small-angle: the higher modes of the nonlinear model,
+    `LARGE_ANGLE_MODES`), each output joined along the mode axis."""
+    arrays = [np.asarray(array) for array in per_mode]
+    parts = (
+        call(*(array[:large] for array in arrays), False),
+        call(*(array[large:] for array in arrays), True),
+    )
     return tuple(np.concatenate(pieces) for pieces in zip(*parts, strict=True))
 
 
@@ -133,15 +138,10 @@ def pendulum_track(
     large = force_m_s2.shape[0] if linear else LARGE_ANGLE_MODES
     if 0 < large < force_m_s2.shape[0]:
         unit, rate = _split_by_angle(
-            lambda part, small: pendulum_track(
-                force_m_s2[part],
-                rest_force_m_s2[part],
-                np.asarray(length_m)[part],
-                np.asarray(omega_rad_s)[part],
-                np.asarray(damping_ratio)[part],
-                sample_period_s,
-                small,
+            lambda f, rest, length, omega, zeta, small: pendulum_track(
+                f, rest, length, omega, zeta, sample_period_s, small
             ),
+            (force_m_s2, rest_force_m_s2, length_m, omega_rad_s, damping_ratio),
             large,
         )
         return unit, rate
@@ -308,16 +308,10 @@ def step_jacobians(
     large = modes if linear else LARGE_ANGLE_MODES
     if 0 < large < modes:
         a_k, b_k, e_k = _split_by_angle(
-            lambda part, small: step_jacobians(
-                unit[part],
-                rate[part],
-                force_m_s2[part],
-                np.asarray(length_m)[part],
-                np.asarray(omega_rad_s)[part],
-                np.asarray(damping_ratio)[part],
-                sample_period_s,
-                small,
+            lambda u, v, f, length, omega, zeta, small: step_jacobians(
+                u, v, f, length, omega, zeta, sample_period_s, small
             ),
+            (unit, rate, force_m_s2, length_m, omega_rad_s, damping_ratio),
             large,
         )
         return a_k, b_k, e_k
