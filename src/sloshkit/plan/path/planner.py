@@ -57,6 +57,7 @@ from sloshkit.plan.path.search import (
     fastest_capped,
     lowest_cap_failure,
     plan_uniform,
+    slowest_member,
     upright_family,
 )
 from sloshkit.plan.path.tilt import tilted_family
@@ -164,6 +165,19 @@ def _floor_found(floor: Sequence[PathCandidate]) -> bool:
     return any(candidate.poses is not None for candidate in floor)
 
 
+def _plan_exists(problem: PathProblem) -> bool:
+    """Whether the slowest family member (`sloshkit.plan.path.search.slowest_member`) passes
+    the linear screen: then a plan exists, and ``retime``'s and ``tilt``'s programs run before
+    their families, which then screen only members shorter than the programs' plan. Else the
+    families run first, and the programs only when one found a plan (`_floor_found`)."""
+    return screen_ok(problem, linear_screen(problem.models(), slowest_member(problem)))
+
+
+def _duration_reached(candidate: PathCandidate | None) -> float | None:
+    """The duration of a feasible plan (the bound of the families' search), else None."""
+    return candidate.duration_s if candidate is not None and candidate.feasible else None
+
+
 def _program_candidates(
     problem: PathProblem, verifier: Verifier, say: Callable[[str], None], tilt: bool
 ) -> tuple[PathCandidate, PathCandidate | None]:
@@ -218,10 +232,12 @@ def plan_retime(
     (True, 'program')
     """
     started = time.perf_counter()
-    family = upright_family(problem, verifier)
-    program = None
-    if _floor_found([family, *floor]):
-        program, _ = _program_candidates(problem, verifier, progress or (lambda _: None), False)
+    family = None if _plan_exists(problem) else upright_family(problem, verifier)
+    if family is not None and not _floor_found([family, *floor]):
+        return _fastest("retime", started, [family, *floor])
+    program, _ = _program_candidates(problem, verifier, progress or (lambda _: None), False)
+    if family is None:
+        family = upright_family(problem, verifier, _duration_reached(program))
     return _fastest("retime", started, [program, family, *floor])
 
 
@@ -264,10 +280,18 @@ def plan_tilt(
     (True, True)
     """
     started = time.perf_counter()
-    families = [upright_family(problem, verifier), tilted_family(problem, verifier)]
-    program = None
-    if _floor_found([*families, *floor]):
-        _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True)
+    families = None
+    if not _plan_exists(problem):
+        families = [upright_family(problem, verifier), tilted_family(problem, verifier)]
+        if not _floor_found([*families, *floor]):
+            return _fastest("tilt", started, [families[1], families[0], *floor])
+    _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True)
+    if families is None:
+        reached = _duration_reached(program)
+        families = [
+            upright_family(problem, verifier, reached),
+            tilted_family(problem, verifier, reached),
+        ]
     return _fastest("tilt", started, [program, families[1], families[0], *floor])
 
 

@@ -4,11 +4,11 @@ whose member passes a test, and the smallest uniform slow-down of a timing that 
 Slosh is not monotone in the cap A (the residual oscillates with the move's duration), so
 `fastest_capped` scans 20 log-spaced caps downwards from amax, refines the first passing one by
 bisection towards the next larger (failing) grid value, also bisects over the whole range (it
-can land in a passing pocket between grid values), and keeps the larger passing cap. A uniform
-stretch in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative
-the planner compares with (`plan_uniform`). The family's members found here are the verified
-floor of ``retime`` and ``tilt``, whose programs (`sloshkit.plan.path.optimal`) find the
-shorter plans.
+can land in a passing pocket between grid values), and keeps the larger passing cap. Below a
+plan already found (``slowest_s``) the longer members count as passing unscreened. A uniform stretch
+in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative the
+planner compares with (`plan_uniform`). The members found here are the verified floor of
+``retime`` and ``tilt``, whose programs (`sloshkit.plan.path.optimal`) find shorter plans.
 """
 
 from __future__ import annotations
@@ -140,16 +140,9 @@ def slowed_until(
 
     Examples
     --------
-    >>> from sloshkit.model.geometry import UprightCylinder
-    >>> from sloshkit.model.liquids import get_liquid
-    >>> from sloshkit.model.modal import equivalent_model
     >>> from sloshkit.motion.laws import s_curve
-    >>> from sloshkit.plan.path.geometry import path_from_waypoints
-    >>> from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
-    >>> model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
-    >>> problem = PathProblem(path_from_waypoints([[0, 0, 0], [0.3, 0, 0]]),
-    ...                       CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002),
-    ...                       model, sample_period_s=0.01)
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> problem = _example_problem()  # 0.3 m straight, limits 10 mm / 2 mm
     >>> move = s_curve(0.3, 1.0, 3.0, 30.0)
     >>> ramp = Timing.from_samples("s", np.linspace(0, move.duration_s, 201),
     ...                            move.position(np.linspace(0, move.duration_s, 201)))
@@ -172,9 +165,11 @@ def fastest_capped(
     shaper: Shaper | ShaperFactory | None,
     low_fraction: float = LOWEST_CAP_FRACTION,
     sampler: Callable[[Timing], PoseTrajectory] | None = None,
+    slowest_s: float | None = None,
 ) -> tuple[float, Timing] | None:
     """The largest acceleration cap A between ``low_fraction`` amax and amax whose family
-    member's export passes ``passes`` (module docstring).
+    member's export passes ``passes`` (module docstring), among the members shorter than
+    ``slowest_s`` when given.
 
     Parameters
     ----------
@@ -188,11 +183,16 @@ def fastest_capped(
         Smallest cap tried, as a fraction of amax.
     sampler : callable, optional
         Timing -> PoseTrajectory (default `sloshkit.plan.path.problem.sample_path`).
+    slowest_s : float, optional
+        A duration [s] already reached: members at least this long count as passing without
+        their screen (they cannot win; the searches then go on among the faster members),
+        and None is returned unless a shorter member passes.
 
     Returns
     -------
     tuple or None
-        (A [m/s^2], the member's timing), None when no cap passes.
+        (A [m/s^2], the member's timing), None when no cap passes (or none shorter than
+        ``slowest_s``).
 
     Examples
     --------
@@ -209,6 +209,8 @@ def fastest_capped(
     amax = problem.machine.max_acceleration_m_s2
 
     def ok(member: Timing) -> bool:
+        if slowest_s is not None and member.duration_s >= slowest_s:
+            return True  # cannot win: counted as passing, unscreened, so the searches go faster
         if sampler is not None:
             return passes(sampler(member))
         return passes(sample_path(problem.path, member, problem.sample_period_s))
@@ -230,9 +232,10 @@ def fastest_capped(
         problem, ok, shaper, float(caps[passing]), member, float(caps[max(passing - 1, 0)])
     )
     bisected = _refine(problem, ok, shaper, float(caps[-1]), None, amax)
-    if scanned is None or (bisected is not None and bisected[0] > scanned[0]):
-        return bisected
-    return scanned
+    found = bisected if scanned is None or (bisected and bisected[0] > scanned[0]) else scanned
+    if found is not None and slowest_s is not None and found[1].duration_s >= slowest_s:
+        return None
+    return found
 
 
 def lowest_cap_failure(
@@ -277,13 +280,7 @@ def lowest_cap_failure(
     >>> lowest_cap_failure(problem).split(" against ")[0].startswith("peak slosh height")
     True
     """
-    member = family_member(
-        problem, LOWEST_CAP_FRACTION * problem.machine.max_acceleration_m_s2, None
-    )
-    if sampler is not None:
-        poses = sampler(member)
-    else:
-        poses = sample_path(problem.path, member, problem.sample_period_s)
+    poses = slowest_member(problem, sampler)
     broken = machine_violations(problem, poses, tilted)
     if broken:
         return broken[0]
@@ -294,6 +291,36 @@ def lowest_cap_failure(
             f"{problem.max_path_deviation_m * 1e3:.3g} mm limit"
         )
     return binding_slosh(problem, linear_screen(problem.models(), poses))
+
+
+def slowest_member(
+    problem: PathProblem, sampler: Callable[[Timing], PoseTrajectory] | None = None
+) -> PoseTrajectory:
+    """The export of the slowest member that `fastest_capped` tries: cap
+    `LOWEST_CAP_FRACTION` amax, unshaped (a quasi-static move).
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits.
+    sampler : callable, optional
+        Timing -> PoseTrajectory, the method's export (default `sample_path`).
+
+    Returns
+    -------
+    PoseTrajectory
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path.planner import _example_problem
+    >>> slowest_member(_example_problem()).duration_s > 10.0
+    True
+    """
+    amax = problem.machine.max_acceleration_m_s2
+    member = family_member(problem, LOWEST_CAP_FRACTION * amax, None)
+    if sampler is not None:
+        return sampler(member)
+    return sample_path(problem.path, member, problem.sample_period_s)
 
 
 def _refine(
@@ -389,7 +416,9 @@ def timing_shapers(problem: PathProblem) -> list[tuple[str, Shaper | ShaperFacto
     return shapers
 
 
-def upright_family(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
+def upright_family(
+    problem: PathProblem, verifier: Verifier = verify, slowest_s: float | None = None
+) -> PathCandidate:
     """The fastest acceleration cap of the family under the slosh screen, with each of
     `timing_shapers`, verified: the verified floor of ``retime``.
 
@@ -399,12 +428,16 @@ def upright_family(problem: PathProblem, verifier: Verifier = verify) -> PathCan
         Path, limits, model.
     verifier : callable
         Verification of an export.
+    slowest_s : float, optional
+        A plan's duration [s] already found: only shorter members are screened
+        (`fastest_capped`).
 
     Returns
     -------
     PathCandidate
         Method ``retime``, ``detail["source"]`` ``family``; when no cap down to
-        `LOWEST_CAP_FRACTION` of amax passes, failed with the limit that binds at that cap.
+        `LOWEST_CAP_FRACTION` of amax passes, failed with the limit that binds at that cap
+        (or, with ``slowest_s``, when no shorter member passes, failed saying so).
 
     References
     ----------
@@ -423,7 +456,10 @@ def upright_family(problem: PathProblem, verifier: Verifier = verify) -> PathCan
     best: tuple[float, float, Timing, str] | None = None
     for name, shaper in timing_shapers(problem):
         found = fastest_capped(
-            problem, lambda poses: screen_ok(problem, linear_screen(models, poses)), shaper
+            problem,
+            lambda poses: screen_ok(problem, linear_screen(models, poses)),
+            shaper,
+            slowest_s=slowest_s,
         )
         if found is None:
             continue
@@ -431,6 +467,9 @@ def upright_family(problem: PathProblem, verifier: Verifier = verify) -> PathCan
         duration = sample_path(problem.path, member, problem.sample_period_s).duration_s
         if best is None or duration < best[0]:
             best = (duration, cap, member, name)
+    if best is None and slowest_s is not None:
+        message = f"no family member shorter than {slowest_s:.3f} s passes the slosh screen"
+        return PathCandidate("retime", None, None, time.perf_counter() - started, message)
     if best is None:
         message = (
             f"no acceleration cap down to {100 * LOWEST_CAP_FRACTION:g} % of amax meets the slosh "
@@ -450,6 +489,7 @@ __all__ = [
     "lowest_cap_failure",
     "plan_uniform",
     "slowed_until",
+    "slowest_member",
     "stretch_until",
     "stretcher",
     "timing_shapers",
