@@ -93,3 +93,30 @@ def test_an_impossible_request_still_names_its_binding_limit() -> None:
     message = result.candidates[0].message
     assert "residual" in message and "program" not in result.candidates[0].detail
     assert math.isfinite(len(message))
+
+
+def test_a_verification_does_not_stretch_past_a_plan_already_found() -> None:
+    """A member that the verification stretches (at amax it breaks the slosh limits) is
+    verified once and returned failed when the stretch would reach ``slowest_s``; without
+    the bound it is stretched until it passes."""
+    import time
+
+    from sloshkit.plan.path.result import verified_candidate
+    from sloshkit.plan.path.search import stretcher
+
+    problem = _example_problem()
+    poses_for = stretcher(problem, family_member(problem, 10.0, None))
+    calls: list[float] = []
+
+    def counted(problem, poses, tilted):
+        calls.append(poses.duration_s)
+        return planner.linear_verifier(problem, poses, tilted)
+
+    free = verified_candidate("x", problem, poses_for, 1.0, time.perf_counter(), counted, False, {})
+    assert free.feasible and free.detail["stretch"] > 1.0 and len(calls) >= 2
+    calls.clear()
+    bound = poses_for(1.0).duration_s * 1.001
+    bounded = verified_candidate(
+        "x", problem, poses_for, 1.0, time.perf_counter(), counted, False, {}, bound
+    )
+    assert not bounded.feasible and len(calls) == 1

@@ -5,7 +5,10 @@
   with the family's verified member as its floor: the fastest acceleration cap of the
   timing family of `sloshkit.plan.path.retime` (time-optimal speed profile under an
   acceleration cap, box filter for the jerk limit, optional ZV/ZVD or curve shaping of the
-  timing) that passes the linear screen (`sloshkit.plan.path.search.upright_family`);
+  timing) that passes the linear screen (`sloshkit.plan.path.search.upright_family`). The
+  programs run first, and the family then screens only members shorter than their plan;
+  when even the slowest member fails the screen, the family runs first and names the limit
+  that binds (`_plan_exists`);
 - ``tilt``: the same programs with the two tilt angles of every sample as variables, from
   the upright plan, with the tilt-compensated family member
   (`sloshkit.plan.path.tilt.tilted_family`) and everything ``retime`` found as its floor,

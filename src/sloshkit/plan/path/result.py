@@ -328,9 +328,11 @@ def verified_candidate(
     verifier: Verifier,
     tilted: bool,
     detail: dict[str, Any],
+    slowest_s: float | None = None,
 ) -> PathCandidate:
     """Verify ``poses_for(factor)``; while it fails only on stretchable limits (`STRETCHABLE`)
-    stretch it by the largest excess and verify again (`ATTEMPTS` in all).
+    stretch it by the largest excess and verify again (`ATTEMPTS` in all), unless the
+    stretch reaches ``slowest_s``.
 
     Parameters
     ----------
@@ -350,6 +352,9 @@ def verified_candidate(
         Whether the tilt limit applies.
     detail : dict
         Figures to report (the final ``stretch`` is added).
+    slowest_s : float, optional
+        A plan's duration [s] already found: a stretch at least this long is not verified
+        (the failed candidate is returned; it could not win).
 
     Returns
     -------
@@ -380,6 +385,8 @@ def verified_candidate(
     for attempt in range(ATTEMPTS):
         if attempt:
             poses = poses_for(factor)
+            if slowest_s is not None and poses.duration_s >= slowest_s:
+                break
         check = verifier(problem, poses, tilted)
         if check.feasible or not _stretchable(check):
             break

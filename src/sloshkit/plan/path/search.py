@@ -478,9 +478,9 @@ def upright_family(
         return PathCandidate("retime", None, None, time.perf_counter() - started, message)
     _, cap, member, name = best
     detail = {"source": "family", "acceleration_cap_m_s2": cap, "shaper": name}
-    return verified_candidate(
-        "retime", problem, stretcher(problem, member), 1.0, started, verifier, False, detail
-    )
+    poses_for = stretcher(problem, member)
+    verification = (started, verifier, False, detail, slowest_s)
+    return verified_candidate("retime", problem, poses_for, 1.0, *verification)
 
 
 __all__ = [

@@ -144,7 +144,15 @@ def tilted_family(
         "rotation_centre_height_m": problem.tilt_centre_height_m,
     }
     return verified_candidate(
-        "tilt", problem, lambda f: tilted(plain(f)), 1.0, started, verifier, True, detail
+        "tilt",
+        problem,
+        lambda f: tilted(plain(f)),
+        1.0,
+        started,
+        verifier,
+        True,
+        detail,
+        slowest_s,
     )
 
 
