@@ -228,10 +228,13 @@ class _Rounds:
         )
 
     def transcription(
-        self, limits: ProgramLimits, tilt: bool, linear: bool = False
+        self, limits: ProgramLimits, tilt: bool, linear: bool = False, joint_fraction: float = 1.0
     ) -> SplineTranscription:
-        """The programs of one search."""
-        problem = self.problem
+        """The programs of one search, the arm's joint speeds limited to ``joint_fraction`` of
+        their limits."""
+        problem, joints = self.problem, self.joints
+        if joints is not None and joint_fraction != 1.0:
+            joints = replace(joints, limits_rad_s=joint_fraction * joints.limits_rad_s)
         program = PathProgram(
             problem.path,
             problem.models(),
@@ -239,7 +242,7 @@ class _Rounds:
             problem.sample_period_s,
             tilt=tilt,
             centre_height_m=problem.tilt_centre_height_m,
-            joints=self.joints,
+            joints=joints,
             linear=linear,
         )
         return SplineTranscription(program)
@@ -292,8 +295,9 @@ class _Rounds:
         limits = self.limits()
         rounds: list[dict[str, Any]] = []
         verified: list[SplineTiming] = []
+        joint_fraction = 1.0
         for _ in range(TIGHTENINGS):
-            transcription = self.transcription(limits, tilt)
+            transcription = self.transcription(limits, tilt, joint_fraction=joint_fraction)
             try:
                 if timing is None:
                     timing, trials = first_search(problem, transcription, log)
@@ -338,7 +342,13 @@ class _Rounds:
                 check.residual_height_m / slosh.max_residual_height_m,
             )
             self.excesses.append(excess)
-            if excess <= 1.0:
+            joints_over = _joint_excess(check)
+            if joints_over > 1.0:
+                # the IK's joint speeds exceed what the programs' joint model (quadratic in
+                # the tilt) predicted: the next round limits them to the same fraction less
+                joint_fraction /= joints_over * (1.0 + 0.5 * LIMIT_TOLERANCE)
+                rounds[-1]["joint_speed_fraction"] = joint_fraction
+            elif excess <= 1.0:
                 verified.append(timing)
                 # done when the binding slosh limit is met within the tolerance, or when
                 # moving the program's limits towards the limit no longer shortens the plan
@@ -358,6 +368,14 @@ class _Rounds:
         self.rounds += rounds
         self.verified += verified
         return bool(verified)
+
+
+def _joint_excess(check: Any) -> float:
+    """The largest joint speed over its limit in a verification with an arm's joint check
+    (`sloshkit.export.path_robot.RobotVerifier`: its ``required_stretch``) when it breaks a
+    joint speed limit, else 1."""
+    broken = any(violation.startswith("joint speed") for violation in check.violations)
+    return float(check.required_stretch) if broken else 1.0
 
 
 def _next_limit(
