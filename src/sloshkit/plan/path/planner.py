@@ -302,26 +302,30 @@ def plan_tilt(
 #: time-optimal speed profile under the quasi-static acceleration cap
 #: (`sloshkit.plan.path.starts.capped_start`, within 3-21 % of their plans on the benchmark's
 #: paths), has at most this many export samples (2.4 s at 4 ms) and no arm is checked. Their
-#: compute grows with the samples: upright about 2 s for the benchmark's 0.78 s
-#: pick-and-place and 10 s for the 2.09 s TRD_2D move; tilted 4 s and 46 s (0.664 s and
-#: 1.464 s, where the families give 1.21 s and 1.94 s in about a second). A move is planned
-#: once and run many times, so a minute for a 20 % shorter cycle is worth it; on longer
-#: moves ``auto`` returns the families' and ``shaped``'s plans, and ``retime`` or ``tilt``
-#: asked for by name runs the programs whatever the length.
+#: compute grows with the samples: upright 0.5 s for the benchmark's 0.78 s pick-and-place
+#: and 2 s for the 2.07 s TRD_2D move; tilted 1.3 s and 12 s (0.664 s and 1.468 s, where
+#: the families give 1.21 s and 1.94 s in about a second), and on the 4-7 s moves 4-18 s
+#: upright and 26-105 s tilted. A move is planned once and run many times, so seconds for a
+#: 20 % shorter cycle are worth it; on longer moves ``auto`` returns the families' and
+#: ``shaped``'s plans, and ``retime`` or ``tilt`` asked for by name runs the programs
+#: whatever the length.
 AUTO_OPTIMAL_MAX_SAMPLES = 600
 #: The same bound with an arm's joint speeds checked (1.2 s at 4 ms): the joint rows and the
-#: IK of the verified exports make the programs dearer (14 s upright and 29 s tilted for the
-#: pick-and-place with the UR5e, 39 s and 109 s for TRD_2D).
+#: IK of the verified exports make the programs dearer (2 s upright and 6 s tilted for the
+#: pick-and-place with the UR5e, 20 s and 71 s for TRD_2D).
 AUTO_ARM_OPTIMAL_MAX_SAMPLES = 300
 
 
-def _programs_affordable(problem: PathProblem, found: Sequence[PathCandidate], arm: bool) -> bool:
-    """Whether ``auto`` runs the programs: a plan exists (`_floor_found`) and
-    their first start (`sloshkit.plan.path.starts.capped_start`, about the length of their
-    plan) has at most `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_ARM_OPTIMAL_MAX_SAMPLES` with
-    an arm). The families' plans are no estimate: under the default angular limits the
-    TRD_2D families need 3.0-3.3 s where the programs find 1.94 s."""
-    if not _floor_found(found):
+def _programs_affordable(
+    problem: PathProblem, found: Sequence[PathCandidate] | None, arm: bool
+) -> bool:
+    """Whether ``auto`` runs the programs: a plan exists (``found`` None: `_plan_exists`
+    said so; else `_floor_found`) and their first start
+    (`sloshkit.plan.path.starts.capped_start`, about the length of their plan) has at most
+    `AUTO_OPTIMAL_MAX_SAMPLES` samples (`AUTO_ARM_OPTIMAL_MAX_SAMPLES` with an arm). The
+    families' plans are no estimate: under the default angular limits the TRD_2D families
+    need 3.0-3.3 s where the programs find 1.94 s."""
+    if found is not None and not _floor_found(found):
         return False
     from sloshkit.plan.path.starts import capped_start
 
@@ -428,22 +432,30 @@ def _auto(
     say: Callable[[str], None],
     tilt: bool,
 ) -> list[PathCandidate]:
-    """``auto``'s ``retime`` and (with ``tilt``) ``tilt``: the families first, the programs
-    once for both on a short move when a plan so far exists (the families', ``others``' such
-    as ``shaped``; `_programs_affordable`). ``retime``'s compute is its family's and its
-    upright rounds', ``tilt``'s all of it (its tilted rounds start from the upright ones)."""
+    """``auto``'s ``retime`` and (with ``tilt``) ``tilt``: the programs once for both on a
+    short move (`_programs_affordable`) when a plan exists (`_plan_exists`, else the families
+    first and a plan among theirs or ``others``' such as ``shaped``), then the families below
+    the programs' plans. ``retime``'s compute is its family's and its upright rounds',
+    ``tilt``'s all of it (its tilted rounds start from the upright ones)."""
     started = time.perf_counter()
-    say("retime: the family's fastest acceleration cap under the slosh screen")
-    upright = upright_family(problem, verifier)
     tilting = tilt and problem.max_tilt_rad > 0.0
-    tilted = None
-    if tilting:
-        say("tilt: tilt compensation of the family")
-        tilted = tilted_family(problem, verifier)
-    known = [c for c in (upright, tilted, *floor, *others) if c is not None]
+    first: list[PathCandidate] = []
+    if not _plan_exists(problem):
+        first = [upright_family(problem, verifier)]
+        first += [tilted_family(problem, verifier)] if tilting else []
     program: tuple[PathCandidate | None, PathCandidate | None] = (None, None)
+    known = [*first, *floor, *others] if first else None
     if _programs_affordable(problem, known, isinstance(verifier, JointSpeedCheck)):
         program = _program_candidates(problem, verifier, say, tilting)
+    if first:
+        upright, tilted = first[0], first[1] if tilting else None
+    else:
+        say("retime: the family's fastest acceleration cap under the slosh screen")
+        upright = upright_family(problem, verifier, _duration_reached(program[0]))
+        tilted = None
+        if tilting:
+            say("tilt: tilt compensation of the family")
+            tilted = tilted_family(problem, verifier, _duration_reached(program[1]))
     retime = _fastest("retime", started, [program[0], upright, *floor])
     own = upright.compute_time_s + (0.0 if program[0] is None else program[0].compute_time_s)
     retime = replace(retime, compute_time_s=own)
