@@ -8,12 +8,13 @@ import math
 import pytest
 
 from sloshkit.plan.path import planner
-from sloshkit.plan.path.planner import _example_problem, plan_path
+from sloshkit.plan.path.planner import plan_path
 from sloshkit.plan.path.problem import sample_path
 from sloshkit.plan.path.result import verify
 from sloshkit.plan.path.retime import family_member
 from sloshkit.plan.path.screen import linear_screen, screen_ok
 from sloshkit.plan.path.search import fastest_capped, upright_family
+from tests.plan.plan_checks import straight_problem
 
 
 def _recording_screen(problem, durations):
@@ -30,7 +31,7 @@ def test_a_bounded_cap_search_screens_only_members_shorter_than_the_bound() -> N
     """With ``slowest_s`` the search screens no member at least that long (they count as
     passing unscreened) and returns a screened member shorter than it, or None; with a bound
     above every member it tries, it is the unbounded search."""
-    problem = _example_problem()
+    problem = straight_problem()
     free: list[float] = []
     found = fastest_capped(problem, _recording_screen(problem, free), None)
     assert found is not None
@@ -53,7 +54,7 @@ def test_a_bounded_cap_search_screens_only_members_shorter_than_the_bound() -> N
 
 
 def test_the_bounded_family_says_that_no_shorter_member_passes() -> None:
-    problem = _example_problem()
+    problem = straight_problem()
     family = upright_family(problem, planner.linear_verifier, slowest_s=0.1)
     assert not family.feasible and "shorter than 0.100 s" in family.message
 
@@ -61,7 +62,7 @@ def test_the_bounded_family_says_that_no_shorter_member_passes() -> None:
 def test_retime_screens_the_family_below_its_programs_plan(monkeypatch) -> None:
     """``retime`` calls its family with the programs' verified duration as the bound, and
     returns the programs' plan (0.87 s against the family's 1.00 s)."""
-    problem = _example_problem()
+    problem = straight_problem()
     bounds: list[float | None] = []
     original = planner.upright_family
 
@@ -80,7 +81,7 @@ def test_retime_screens_the_family_below_its_programs_plan(monkeypatch) -> None:
 def test_an_impossible_request_still_names_its_binding_limit() -> None:
     """When even the quasi-static member breaks the slosh screen the families run unbounded,
     the programs do not, and the failure names the limit (a 1 um residual limit)."""
-    problem = _example_problem()
+    problem = straight_problem()
     tight = type(problem.slosh)(problem.slosh.max_height_m, 1e-9)
     impossible = type(problem)(
         problem.path, problem.machine, tight, problem.model, problem.sample_period_s
@@ -104,7 +105,7 @@ def test_a_verification_does_not_stretch_past_a_plan_already_found() -> None:
     from sloshkit.plan.path.result import verified_candidate
     from sloshkit.plan.path.search import stretcher
 
-    problem = _example_problem()
+    problem = straight_problem()
     poses_for = stretcher(problem, family_member(problem, 10.0, None))
     calls: list[float] = []
 

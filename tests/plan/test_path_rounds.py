@@ -1,6 +1,6 @@
-"""The rounds of the path programs with an arm: a round whose export's IK breaks a joint speed
-limit that the programs' joint model met is not a verified plan, and the next round limits the
-joints to the fraction the verification asks for."""
+"""The rounds of the path programs: with an arm, a round whose export's IK breaks a joint
+speed limit that the programs' joint model met is not a verified plan, and the next round
+limits the joints to the fraction the verification asks for; each export is verified once."""
 
 from __future__ import annotations
 
@@ -8,10 +8,18 @@ import numpy as np
 import pytest
 
 from sloshkit.plan.path.joints import JointMap
-from sloshkit.plan.path.optimal import _joint_excess, _Rounds
-from sloshkit.plan.path.planner import _example_problem
-from sloshkit.plan.path.result import Verification
+from sloshkit.plan.path.optimal import joint_excess, plan_programs
+from sloshkit.plan.path.problem import PathProblem
+from sloshkit.plan.path.program import PathProgram, ProgramLimits
+from sloshkit.plan.path.result import Verification, verify
 from sloshkit.plan.path.starts import capped_start
+from sloshkit.plan.path.transcription import SplineTranscription
+from tests.plan.plan_checks import straight_problem
+
+
+@pytest.fixture
+def straight() -> PathProblem:
+    return straight_problem()
 
 
 def _verification(violations: tuple[str, ...], stretch: float) -> Verification:
@@ -20,23 +28,41 @@ def _verification(violations: tuple[str, ...], stretch: float) -> Verification:
 
 def test_the_joint_excess_is_the_verifications_stretch_only_for_a_joint_speed() -> None:
     joint = _verification(("joint speed wrist_3_joint 3.28 > 3.14 rad/s",), 1.043)
-    assert _joint_excess(joint) == pytest.approx(1.043)
+    assert joint_excess(joint) == pytest.approx(1.043)
     slosh = _verification(("peak slosh height 15.2 > 15 mm",), 1.01)
-    assert _joint_excess(slosh) == 1.0
-    assert _joint_excess(_verification((), 1.0)) == 1.0
+    assert joint_excess(slosh) == 1.0
+    assert joint_excess(_verification((), 1.0)) == 1.0
 
 
-def test_a_rounds_programs_limit_the_joints_to_the_fraction_asked() -> None:
+def test_a_program_with_scaled_joint_limits_reads_their_ratio_scaled(straight) -> None:
     """The transcription's joint speeds over their limits scale with 1 / fraction: the same
     timing reads 1 / 0.9 times the ratio under 0.9 of the limits."""
-    problem = _example_problem()
-    s = np.linspace(0.0, problem.path.length_m, 31)
+    s = np.linspace(0.0, straight.path.length_m, 31)
     joints = JointMap(s, np.column_stack((4.0 * s, -2.0 * s)), np.array([3.14, 2.0]))
-    rounds = _Rounds(problem, None, joints, None)
-    limits = rounds.limits()
-    timing = capped_start(problem)
-    full = rounds.transcription(limits, False).iterate(timing)
-    tighter = rounds.transcription(limits, False, joint_fraction=0.9).iterate(timing)
-    assert np.max(np.abs(full.evaluation.joint)) > 0.0
-    np.testing.assert_allclose(tighter.evaluation.joint, full.evaluation.joint / 0.9)
-    assert rounds.joints is joints and joints.limits_rad_s.tolist() == [3.14, 2.0]
+    limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.01, 0.002)
+    timing = capped_start(straight)
+
+    def joint_ratios(joint_map: JointMap) -> np.ndarray:
+        program = PathProgram(
+            straight.path, straight.models(), limits, straight.sample_period_s, joints=joint_map
+        )
+        return SplineTranscription(program).iterate(timing).evaluation.joint
+
+    full, tighter = joint_ratios(joints), joint_ratios(joints.scaled(0.9))
+    assert np.max(np.abs(full)) > 0.0
+    np.testing.assert_allclose(tighter, full / 0.9)
+    assert joints.limits_rad_s.tolist() == [3.14, 2.0]
+
+
+def test_each_export_is_verified_once(straight) -> None:
+    """A round's plan is verified in the round and again as the returned candidate; the second
+    is the first's verification (with an arm, a verification is mostly the export's IK)."""
+    seen: list[bytes] = []
+
+    def counted(problem, poses, tilted):
+        seen.append(poses.position_m.tobytes() + poses.time_s.tobytes() + bytes([tilted]))
+        return verify(problem, poses, tilted)
+
+    upright, _ = plan_programs(straight, counted)
+    assert upright.feasible and upright.detail["rounds"]
+    assert seen and len(set(seen)) == len(seen)

@@ -16,7 +16,7 @@ where the first-order model errs by 0.05 rad; the export's IK verifies every pla
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -77,6 +77,27 @@ class JointMap:
         ([[0.175, -0.125]], [[1.0, 1.0]], [[[1.1, 0.2], [0.1, -0.8]]])
         """
         return JointModel(self)
+
+    def scaled(self, fraction: float) -> JointMap:
+        """The same joints with their speed limits times ``fraction``.
+
+        Parameters
+        ----------
+        fraction : float
+            The fraction of the speed limits the programs impose.
+
+        Returns
+        -------
+        JointMap
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> joints = JointMap(np.array([0.0, 0.1]), np.zeros((2, 1)), np.array([3.0]))
+        >>> joints.scaled(0.9).limits_rad_s.tolist()
+        [2.7]
+        """
+        return replace(self, limits_rad_s=fraction * self.limits_rad_s)
 
 
 class JointModel:

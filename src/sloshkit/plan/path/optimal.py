@@ -143,6 +143,7 @@ class _Rounds:
 
     def __init__(self, problem: Any, verifier: Any, joints: Any, log: Any) -> None:
         self.problem, self.verifier, self.joints, self.log = problem, verifier, joints, log
+        self.checks: dict[bytes, Any] = {}
         self.rounds: list[dict[str, Any]] = []
         self.verified: list[SplineTiming] = []
         self.excesses: list[float] = []
@@ -206,8 +207,21 @@ class _Rounds:
             "tilted": tilted,
         }
         return verified_candidate(
-            method, problem, poses_for, 1.0, started, self.verifier, tilted, detail
+            method, problem, poses_for, 1.0, started, self.check, tilted, detail
         )
+
+    def check(self, problem: Any, poses: Any, tilted: bool) -> Any:
+        """The verifier's verification of an export, each export verified once: a round's
+        plan is verified again as the returned candidate, and with an arm a verification is
+        mostly the export's IK."""
+        key = b"".join(
+            np.ascontiguousarray(array, dtype=float).tobytes()
+            for array in (poses.time_s, poses.position_m, poses.quaternion_xyzw)
+        )
+        key += bytes([tilted])
+        if key not in self.checks:
+            self.checks[key] = self.verifier(problem, poses, tilted)
+        return self.checks[key]
 
     def limits(self) -> ProgramLimits:
         """The programs' limits of a first round: the slosh limits at `LIMIT_AIM`."""
@@ -234,7 +248,7 @@ class _Rounds:
         their limits."""
         problem, joints = self.problem, self.joints
         if joints is not None and joint_fraction != 1.0:
-            joints = replace(joints, limits_rad_s=joint_fraction * joints.limits_rad_s)
+            joints = joints.scaled(joint_fraction)
         program = PathProgram(
             problem.path,
             problem.models(),
@@ -321,7 +335,7 @@ class _Rounds:
             self.programs += transcription.programs
             self.durations += [(trial.steps, trial.excess) for trial in trials]
             self.last = timing
-            check = self.verifier(problem, export_poses(problem, timing.samples(ts)), tilt)
+            check = self.check(problem, export_poses(problem, timing.samples(ts)), tilt)
             rounds.append(
                 {
                     "duration_s": timing.steps * ts,
@@ -342,7 +356,7 @@ class _Rounds:
                 check.residual_height_m / slosh.max_residual_height_m,
             )
             self.excesses.append(excess)
-            joints_over = _joint_excess(check)
+            joints_over = joint_excess(check)
             if joints_over > 1.0:
                 # the IK's joint speeds exceed what the programs' joint model (quadratic in
                 # the tilt) predicted: the next round limits them to the same fraction less
@@ -370,10 +384,29 @@ class _Rounds:
         return bool(verified)
 
 
-def _joint_excess(check: Any) -> float:
+def joint_excess(check: Any) -> float:
     """The largest joint speed over its limit in a verification with an arm's joint check
     (`sloshkit.export.path_robot.RobotVerifier`: its ``required_stretch``) when it breaks a
-    joint speed limit, else 1."""
+    joint speed limit, else 1.
+
+    Parameters
+    ----------
+    check : Verification
+        A verification.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path.result import Verification
+    >>> over = ("joint speed wrist_3_joint 3.28 > 3.14 rad/s",)
+    >>> joint_excess(Verification(0.014, 0.002, 0.0, 0.0, over, required_stretch=1.043))
+    1.043
+    >>> joint_excess(Verification(0.016, 0.002, 0.0, 0.0, ("peak slosh",), required_stretch=1.1))
+    1.0
+    """
     broken = any(violation.startswith("joint speed") for violation in check.violations)
     return float(check.required_stretch) if broken else 1.0
 
@@ -412,5 +445,6 @@ __all__ = [
     "TIGHTENINGS",
     "TILT_ACCELERATION_RAD_S2",
     "TILT_RATE_RAD_S",
+    "joint_excess",
     "plan_programs",
 ]
