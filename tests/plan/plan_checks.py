@@ -46,10 +46,6 @@ def straight_problem() -> PathProblem:
     from sloshkit.plan.path.geometry import path_from_waypoints
 
     model = equivalent_model(UprightCylinder(0.049), get_liquid("water-20C"), 0.08)
-    return PathProblem(
-        path_from_waypoints(np.array([[0.0, 0.0, 0.0], [0.3, 0.0, 0.0]])),
-        CartesianLimits(2.0, 10.0, 100.0),
-        SpatialSloshLimits(0.01, 0.002),
-        model,
-        sample_period_s=0.01,
-    )
+    path = path_from_waypoints(np.array([[0.0, 0.0, 0.0], [0.3, 0.0, 0.0]]))
+    limits, slosh = CartesianLimits(2.0, 10.0, 100.0), SpatialSloshLimits(0.01, 0.002)
+    return PathProblem(path, limits, slosh, model, sample_period_s=0.01)
