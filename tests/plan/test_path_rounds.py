@@ -66,3 +66,22 @@ def test_each_export_is_verified_once(straight) -> None:
     upright, _ = plan_programs(straight, counted)
     assert upright.feasible and upright.detail["rounds"]
     assert seen and len(set(seen)) == len(seen)
+
+
+def test_a_program_started_from_the_last_ones_rows_has_the_same_optimum(straight) -> None:
+    """The rows a program needed are carried to the next (at its N's samples): the program's
+    optimum is the same as from the first rows alone (the generation adds whatever binds),
+    in no more solves."""
+    limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.01, 0.002)
+    program = PathProgram(straight.path, straight.models(), limits, straight.sample_period_s)
+    timing = capped_start(straight)
+    fresh = SplineTranscription(program)
+    alone = fresh.step(timing, fresh.iterate(timing), 0.02)
+    carried = SplineTranscription(program)
+    other = timing.on_steps(timing.steps + 7)
+    carried.step(other, carried.iterate(other), 0.02)
+    before = carried.programs
+    again = carried.step(timing, carried.iterate(timing), 0.02)
+    assert alone is not None and again is not None
+    assert again.predicted == pytest.approx(alone.predicted, abs=1e-6)
+    assert carried.programs - before <= fresh.programs

@@ -63,6 +63,21 @@ GENERATION_ROUNDS = 6
 PROGRAM_MARGIN = 1e-3
 
 
+def _carried(use: NDArray[np.bool_], steps: int, new_steps: int, size: int) -> NDArray[np.bool_]:
+    """A selection of rows of a program over ``steps`` sample periods, at the same fractions
+    of the move over ``new_steps`` (the rows after the move, at rest, to the same rows after
+    it), widened by a sample on each side; ``size`` rows."""
+    if steps == new_steps and use.size == size:
+        return use
+    rows = np.flatnonzero(use)
+    after = rows > steps
+    moved = np.where(after, rows - steps + new_steps, np.rint(rows * new_steps / steps)).astype(int)
+    carried = np.zeros(size, dtype=bool)
+    for shift in (-1, 0, 1):
+        carried[np.clip(moved + shift, 0, size - 1)] = True
+    return carried
+
+
 def _differences(values: FloatArray, order: int, period_s: float) -> FloatArray:
     """Forward differences of order ``order`` of ``values`` held two samples at rest before
     and after (as `PathProgram.forces` measures the kinematics), divided by h^order."""
@@ -133,6 +148,7 @@ class SplineTranscription:
         self.program = program
         self.length = float(program.path.length_m)
         self.programs = 0
+        self.active: tuple[int, list[NDArray[np.bool_]]] | None = None
 
     def iterate(self, timing: SplineTiming) -> ProgramIterate:
         """The export samples of ``timing`` with their exact evaluation."""
@@ -346,6 +362,14 @@ class SplineTranscription:
         objective = np.zeros(columns)
         objective[slack] = 1.0
         selected = [group.initial(keep) for group in rows]
+        if self.active is not None and len(self.active[1]) == len(selected):
+            # the rows the last program needed, at this N's samples: the next one, close by,
+            # needs most of them, and each constraint-generation round is a full solve
+            last_steps, carried = self.active
+            selected = [
+                use | _carried(old, last_steps, steps, use.size)
+                for use, old in zip(selected, carried, strict=True)
+            ]
         x = None
         for _ in range(GENERATION_ROUNDS):
             chosen = ConicProgram()
@@ -363,6 +387,7 @@ class SplineTranscription:
             if not added:
                 break
         assert x is not None
+        self.active = (steps, selected)
         new_s = coefficients.copy()
         new_s[3 : count - 3] = np.clip(new_s[3 : count - 3] + x[:free], 0.0, self.length)
         new_s = np.maximum.accumulate(new_s)
