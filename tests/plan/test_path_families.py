@@ -121,3 +121,5 @@ def test_a_verification_does_not_stretch_past_a_plan_already_found() -> None:
         "x", problem, poses_for, 1.0, time.perf_counter(), counted, False, {}, bound
     )
     assert not bounded.feasible and len(calls) == 1
+    # the candidate is the export that was verified, at its stretch
+    assert bounded.detail["stretch"] == 1.0 and bounded.poses.duration_s == calls[0]

@@ -383,14 +383,15 @@ def verified_candidate(
     check: Verification | None = None
     poses = poses_for(factor)
     for attempt in range(ATTEMPTS):
-        if attempt:
-            poses = poses_for(factor)
-            if slowest_s is not None and poses.duration_s >= slowest_s:
-                break
         check = verifier(problem, poses, tilted)
-        if check.feasible or not _stretchable(check):
+        if check.feasible or not _stretchable(check) or attempt == ATTEMPTS - 1:
             break
-        factor *= _required_stretch(problem, poses, check) * 1.005
+        # the candidate keeps the last verified export and its stretch
+        longer = factor * _required_stretch(problem, poses, check) * 1.005
+        stretched = poses_for(longer)
+        if slowest_s is not None and stretched.duration_s >= slowest_s:
+            break
+        factor, poses = longer, stretched
     assert check is not None
     message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
     return PathCandidate(
