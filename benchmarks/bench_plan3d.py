@@ -68,7 +68,7 @@ from sloshkit.model.geometry import UprightCylinder
 from sloshkit.model.liquids import get_liquid
 from sloshkit.model.modal import equivalent_model
 from sloshkit.plan.path.geometry import generalised_arc_length, path_from_poses, path_from_waypoints
-from sloshkit.plan.path.planner import plan_path
+from sloshkit.plan.path.planner import AUTO_OPTIMAL_MAX_SAMPLES, plan_path
 from sloshkit.plan.path.problem import CartesianLimits, PathProblem, SpatialSloshLimits
 from sloshkit.plan.path.timing import Timing
 
@@ -490,7 +490,8 @@ def main() -> None:
         rows += [
             "Primary: both limits from the measured run (peak `meas_peak_m`, residual the "
             "measured residual) and half of both (`auto`; * marks a family's verified member: "
-            "`auto` runs the programs only where their capped start has at most 600 samples):",
+            "`auto` runs the programs only where their capped start has at most "
+            f"{AUTO_OPTIMAL_MAX_SAMPLES} samples):",
             "",
             *series_table(model, manifest, None, series),
             "",

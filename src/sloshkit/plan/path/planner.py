@@ -18,8 +18,8 @@
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
   path (shaping the axes cuts corners; the deviation is measured on the export);
 - ``auto``: ``shaped`` and the families, and the programs of ``retime`` (and ``tilt``) on
-  short moves (`AUTO_OPTIMAL_MAX_SAMPLES`, `AUTO_ARM_OPTIMAL_MAX_SAMPLES`): the programs
-  take a minute or more on long paths;
+  moves up to about 5 s (`AUTO_OPTIMAL_MAX_SAMPLES`; with an arm 1.2 s,
+  `AUTO_ARM_OPTIMAL_MAX_SAMPLES`): the tilted programs take a minute or more on longer ones;
 - ``optimal``: ``tilt`` with the tilt free, else ``retime`` (the name of the 1-D planner's
   minimum-time method).
 
@@ -301,15 +301,16 @@ def plan_tilt(
 #: ``auto`` runs the programs of ``retime`` and ``tilt`` when their first start, the
 #: time-optimal speed profile under the quasi-static acceleration cap
 #: (`sloshkit.plan.path.starts.capped_start`, within 3-21 % of their plans on the benchmark's
-#: paths), has at most this many export samples (2.4 s at 4 ms) and no arm is checked. Their
+#: paths), has at most this many export samples (5 s at 4 ms) and no arm is checked. Their
 #: compute grows with the samples: upright 0.5 s for the benchmark's 0.78 s pick-and-place
 #: and 2 s for the 2.07 s TRD_2D move; tilted 1.2 s and 9 s (0.664 s and 1.468 s, where
 #: the families give 1.21 s and 1.94 s in about a second), and on the 4-7 s moves 4-17 s
-#: upright and 20-97 s tilted. A move is planned once and run many times, so seconds for a
-#: 20 % shorter cycle are worth it; on longer moves ``auto`` returns the families' and
+#: upright and 20-97 s tilted. A move is planned once and run many times, so half a minute
+#: for a cycle 1.3-1.9 times shorter than the families' (LE and RD tilted in the benchmark's
+#: primary table) is worth it; on longer moves ``auto`` returns the families' and
 #: ``shaped``'s plans, and ``retime`` or ``tilt`` asked for by name runs the programs
 #: whatever the length.
-AUTO_OPTIMAL_MAX_SAMPLES = 600
+AUTO_OPTIMAL_MAX_SAMPLES = 1250
 #: The same bound with an arm's joint speeds checked (1.2 s at 4 ms): the joint rows and the
 #: IK of the verified exports make the programs dearer (2 s upright and 5 s tilted for the
 #: pick-and-place with the UR5e, 9 s and 57 s for TRD_2D).
