@@ -3,13 +3,13 @@ first and screen only the family members that could beat the programs' plan."""
 
 from __future__ import annotations
 
-import math
+from dataclasses import replace
 
 import pytest
 
 from sloshkit.plan.path import planner
 from sloshkit.plan.path.planner import plan_path
-from sloshkit.plan.path.problem import sample_path
+from sloshkit.plan.path.problem import SpatialSloshLimits, sample_path
 from sloshkit.plan.path.result import verify
 from sloshkit.plan.path.retime import family_member
 from sloshkit.plan.path.screen import linear_screen, screen_ok
@@ -82,10 +82,8 @@ def test_an_impossible_request_still_names_its_binding_limit() -> None:
     """When even the quasi-static member breaks the slosh screen the families run unbounded,
     the programs do not, and the failure names the limit (a 1 um residual limit)."""
     problem = straight_problem()
-    tight = type(problem.slosh)(problem.slosh.max_height_m, 1e-9)
-    impossible = type(problem)(
-        problem.path, problem.machine, tight, problem.model, problem.sample_period_s
-    )
+    tight = SpatialSloshLimits(problem.slosh.max_height_m, 1e-9)
+    impossible = replace(problem, slosh=tight)
     slowest = family_member(impossible, 1e-3 * impossible.machine.max_acceleration_m_s2, None)
     poses = sample_path(impossible.path, slowest, impossible.sample_period_s)
     assert not screen_ok(impossible, linear_screen(impossible.models(), poses))
@@ -93,7 +91,6 @@ def test_an_impossible_request_still_names_its_binding_limit() -> None:
     assert not result.feasible
     message = result.candidates[0].message
     assert "residual" in message and "program" not in result.candidates[0].detail
-    assert math.isfinite(len(message))
 
 
 def test_a_verification_does_not_stretch_past_a_plan_already_found() -> None:

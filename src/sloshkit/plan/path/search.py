@@ -479,8 +479,9 @@ def upright_family(
     _, cap, member, name = best
     detail = {"source": "family", "acceleration_cap_m_s2": cap, "shaper": name}
     poses_for = stretcher(problem, member)
-    verification = (started, verifier, False, detail, slowest_s)
-    return verified_candidate("retime", problem, poses_for, 1.0, *verification)
+    return verified_candidate(
+        "retime", problem, poses_for, 1.0, started, verifier, False, detail, slowest_s
+    )
 
 
 __all__ = [
