@@ -162,9 +162,8 @@ def _floor_found(floor: Sequence[PathCandidate]) -> bool:
     export passed the linear screen; the nonlinear verification may still find it a percent
     over a limit, which the programs, imposing the verification's own model, can meet). With
     none, no family member down to `sloshkit.plan.path.search.LOWEST_CAP_FRACTION` of amax
-    (a move so slow that its slosh is quasi-static) passes the screen, the request fails with
-    the limit that binds there, and the programs' search, which would try ever longer
-    durations, does not start."""
+    (so slow that its slosh is quasi-static) passes the screen, the request fails with the
+    limit binding there, and the programs, which would try ever longer durations, do not run."""
     return any(candidate.poses is not None for candidate in floor)
 
 
@@ -182,18 +181,20 @@ def _duration_reached(candidate: PathCandidate | None) -> float | None:
 
 
 def _program_candidates(
-    problem: PathProblem, verifier: Verifier, say: Callable[[str], None], tilt: bool
-) -> tuple[PathCandidate, PathCandidate | None]:
+    problem: PathProblem,
+    verifier: Verifier,
+    say: Callable[[str], None],
+    tilt: bool,
+    retime: bool = True,
+) -> tuple[PathCandidate | None, PathCandidate | None]:
     """`sloshkit.plan.path.optimal.plan_programs`, each candidate's source marked."""
     from sloshkit.plan.path.optimal import plan_programs
 
     say("programs: the minimum-time timing by sequential cone programs")
-    upright, tilted = plan_programs(problem, verifier, say, tilt=tilt)
-
-    def marked(candidate: PathCandidate) -> PathCandidate:
-        return replace(candidate, detail={**candidate.detail, "source": "program"})
-
-    return marked(upright), None if tilted is None else marked(tilted)
+    return tuple(  # type: ignore[return-value]
+        None if c is None else replace(c, detail={**c.detail, "source": "program"})
+        for c in plan_programs(problem, verifier, say, tilt=tilt, retime=retime)
+    )
 
 
 def plan_retime(
@@ -288,7 +289,7 @@ def plan_tilt(
         families = [upright_family(problem, verifier), tilted_family(problem, verifier)]
         if not _floor_found([*families, *floor]):
             return _fastest("tilt", started, [families[1], families[0], *floor])
-    _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True)
+    _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True, False)
     if families is None:
         reached = _duration_reached(program)
         families = [

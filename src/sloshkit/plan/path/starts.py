@@ -114,16 +114,57 @@ def first_search(problem: Any, transcription: SplineTranscription, log: Any) -> 
     >>> timing.steps <= capped_start(problem).steps + 40, len(trials) > 0
     (True, True)
     """
-    capped, shaped = capped_start(problem), capped_start(problem, shaped=True)
-    if screened_start(transcription, capped, shaped) == 0:
-        try:
-            timing, _, trials = shortest(transcription, capped, log, give_up=FIRST_DURATIONS)
-            return timing, trials
-        except RuntimeError:
-            pass
+    found = capped_search(problem, transcription, log)
+    if found is not None:
+        return found
     if log:
         log("optimal: from the shaped start, stretched until it meets the limits")
-    timing, _, trials = shortest(transcription, shaped, log, stretch=True)
+    timing, _, trials = shortest(
+        transcription, capped_start(problem, shaped=True), log, stretch=True
+    )
+    return timing, trials
+
+
+def capped_search(problem: Any, transcription: SplineTranscription, log: Any) -> Any:
+    """`first_search` from the unshaped capped timing only: None when the shaped start
+    screens better (`screened_start`) or when `FIRST_DURATIONS` durations from the capped
+    one met no limit, where `first_search` goes on from the shaped start.
+
+    Parameters
+    ----------
+    problem : PathProblem
+        Path, limits, model and export period.
+    transcription : SplineTranscription
+        The programs of the search.
+    log : callable or None
+        Receives one line per duration searched.
+
+    Returns
+    -------
+    tuple or None
+        As `first_search`.
+
+    Examples
+    --------
+    >>> import sloshkit as sk
+    >>> from sloshkit.plan.path.program import PathProgram, ProgramLimits
+    >>> model = sk.equivalent_model(sk.UprightCylinder(0.049), sk.get_liquid("water-20C"), 0.08)
+    >>> problem = sk.PathProblem(sk.path_from_waypoints([[0, 0, 0], [0.1, 0, 0]]),
+    ...     sk.CartesianLimits(2.0, 10.0, 100.0), sk.SpatialSloshLimits(0.008, 0.001), model,
+    ...     sample_period_s=0.01)
+    >>> limits = ProgramLimits(2.0, 10.0, 100.0, None, None, 0.008, 0.001)
+    >>> program = PathProgram(problem.path, problem.models(), limits, 0.01)
+    >>> timing, trials = capped_search(problem, SplineTranscription(program), None)
+    >>> timing.steps <= capped_start(problem).steps + 40
+    True
+    """
+    capped, shaped = capped_start(problem), capped_start(problem, shaped=True)
+    if screened_start(transcription, capped, shaped) != 0:
+        return None
+    try:
+        timing, _, trials = shortest(transcription, capped, log, give_up=FIRST_DURATIONS)
+    except RuntimeError:
+        return None
     return timing, trials
 
 
@@ -180,4 +221,10 @@ def screened_start(
     return int(ratios[1] < ratios[0])
 
 
-__all__ = ["FIRST_DURATIONS", "capped_start", "first_search", "screened_start"]
+__all__ = [
+    "FIRST_DURATIONS",
+    "capped_search",
+    "capped_start",
+    "first_search",
+    "screened_start",
+]
