@@ -142,8 +142,7 @@ def plan_programs(
         if not tilt:
             return upright, None
     direct = None if upright_for_arm else search.navigated(None, capped_only=True)
-    if direct is not None:
-        search.rounds_from(True, direct, FIRST_DURATIONS)
+    if direct is not None and search.rounds_from(True, direct, FIRST_DURATIONS):
         if upright is None:
             search.upright_below()
     elif not upright_for_arm:
@@ -327,11 +326,7 @@ class _Rounds:
         rounds, from the unshaped capped timing (`sloshkit.plan.path.starts.capped_start`)
         at one sample less than the shortest verified tilted plan, giving up when that
         duration does not meet the limits and trying no longer one, so that ``tilt`` is
-        never slower than the upright programs' plan; the full upright rounds when no tilted
-        plan verified."""
-        if not self.verified:
-            self.run(False, None)
-            return
+        never slower than the upright programs' plan."""
         steps = min(found.steps for found in self.verified) - 1
         failure = self.failure
         self.rounds_from(False, capped_start(self.problem).on_steps(steps), 1, steps)
