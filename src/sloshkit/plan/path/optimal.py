@@ -64,14 +64,14 @@ def plan_programs(
     verified timing is kept. With ``tilt`` the tilted rounds then start from the upright
     plan by way of the small-angle search (`_Rounds.run`; module docstring), and the tilted
     candidate is the shorter verified plan of all rounds (``detail["tilted"]`` says which):
-    never longer than the upright one. The small-angle search starts from the capped timing
-    itself instead when that start screens better than the shaped one
-    (`sloshkit.plan.path.starts.capped_search`; TRD_2D 1.468 s in 7 s instead of 10 s
-    through the upright plan, LE_3D 2.724 s in 22 s instead of 37 s); where it does not
-    (RD_2D, the 20 waypoints: from the upright plan 2.724 s against 2.752 s, 5.672 s
-    against 6.344 s), from the upright plan. Without ``retime`` (``tilt`` asked for alone),
-    the upright rounds after a tilted search from the capped timing only look for a plan
-    shorter than the tilted one (`_Rounds.upright_below`). A limit
+    never longer than the upright one. Without ``retime`` (``tilt`` asked for alone) the
+    small-angle search starts from the capped timing itself instead, when that start screens
+    better than the shaped one (`sloshkit.plan.path.starts.capped_search`; TRD_2D 1.468 s
+    in 7.5 s instead of 10.9 s through the upright plan, LE_3D 2.724 s in 22 s instead of
+    37 s), and the upright rounds then only look for a plan shorter than the tilted one
+    (`_Rounds.upright_below`); where the shaped start screens better (RD_2D, the 20
+    waypoints: from the capped start 2.752 s and 6.344 s, from the upright plan 2.724 s and
+    5.672 s), from the upright plan as above. A limit
     outside the program is met by a uniform stretch
     (`sloshkit.plan.path.result.verified_candidate`); with an arm's joint check
     (`sloshkit.plan.path.result.JointSpeedCheck`) the programs limit the joint speeds along
@@ -141,10 +141,10 @@ def plan_programs(
         upright = search.candidate("retime", started, search.verified)
         if not tilt:
             return upright, None
-    direct = None if upright_for_arm else search.navigated(None, capped_only=True)
+    # with the upright plan at hand (``retime`` wanted too) the tilted search starts from it
+    direct = None if upright is not None else search.navigated(None, capped_only=True)
     if direct is not None and search.rounds_from(True, direct, FIRST_DURATIONS):
-        if upright is None:
-            search.upright_below()
+        search.upright_below()
     elif not upright_for_arm:
         if upright is None:
             # the upright plan is where the tilted search starts
