@@ -71,9 +71,8 @@ def plan_programs(
     37 s), and the upright rounds then only look for a plan shorter than the tilted one
     (`_Rounds.upright_below`); where the shaped start screens better (RD_2D, the 20
     waypoints: from the capped start 2.752 s and 6.344 s, from the upright plan 2.724 s and
-    5.672 s), from the upright plan as above. A limit
-    outside the program is met by a uniform stretch
-    (`sloshkit.plan.path.result.verified_candidate`); with an arm's joint check
+    5.672 s), from the upright plan as above. A limit outside the program is met by a
+    uniform stretch (`sloshkit.plan.path.result.verified_candidate`); with an arm's joint check
     (`sloshkit.plan.path.result.JointSpeedCheck`) the programs limit the joint speeds along
     the path themselves (`sloshkit.plan.path.joints.joint_map`).
 

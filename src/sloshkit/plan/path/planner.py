@@ -314,7 +314,7 @@ def plan_tilt(
 AUTO_OPTIMAL_MAX_SAMPLES = 1250
 #: The same bound with an arm's joint speeds checked (1.2 s at 4 ms): the joint rows and the
 #: IK of the verified exports make the programs dearer (2 s upright and 5 s tilted for the
-#: pick-and-place with the UR5e, 10 s and 76 s for TRD_2D).
+#: pick-and-place with the UR5e, 10 s and 70-80 s for TRD_2D).
 AUTO_ARM_OPTIMAL_MAX_SAMPLES = 300
 
 
