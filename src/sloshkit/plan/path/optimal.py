@@ -314,7 +314,7 @@ class _Rounds:
         waypoints, at 355 s; docs/planning-3d.md.)"""
         if tilt:
             navigated = self.navigated(start)
-            if navigated is not start and navigated is not None:
+            if navigated is not start:
                 longest = None if start is None else start.steps - 1
                 self.rounds_from(tilt, navigated, FIRST_DURATIONS, longest)
                 return
