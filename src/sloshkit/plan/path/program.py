@@ -35,11 +35,11 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.spatial.transform import Rotation
 
+from sloshkit.plan.path.forces import specific_forces
 from sloshkit.plan.path.joints import JointMap, JointModel
 from sloshkit.plan.path.pendulums import at_rest, mode_slope, pendulum_track
-from sloshkit.plan.path.samples import PathSamples, sample_poses
+from sloshkit.plan.path.samples import PathSamples
 from sloshkit.sim.metrics import free_oscillation_components
 from sloshkit.sim.spatial_response import ellipse_semi_major
 
@@ -227,48 +227,26 @@ class PathProgram:
     # ----------------------------------------------------------------- evaluation
     def forces(self, samples: PathSamples) -> tuple[FloatArray, dict[str, FloatArray]]:
         """Specific force g - a_hinge at each mode's hinge in N, and g itself in N, (modes + 1,
-        N + 1, 3) [m/s^2], with the kinematics (`sloshkit.sim.spatial_drive`: a mode whose
-        omega_n^2 L_n differs from g adds (kappa_n - 1) times the last row).
+        N + 1, 3) [m/s^2], with the kinematics (`sloshkit.plan.path.forces.specific_forces`
+        for one set of samples; `sloshkit.sim.spatial_drive`: a mode whose omega_n^2 L_n
+        differs from g adds (kappa_n - 1) times the last row).
         """
-        ts = samples.period_s
-        position, rotation = sample_poses(self.path, samples, self.centre)
-        quaternion = rotation.as_quat()
-        padded = _held(position, 2)
-        velocity = np.diff(padded, axis=0) / ts
-        acceleration = np.diff(velocity, axis=0) / ts
-        jerk = np.diff(acceleration, axis=0) / ts
-        increments = Rotation.from_quat(quaternion[1:]) * Rotation.from_quat(quaternion[:-1]).inv()
-        omega = np.concatenate((np.zeros((1, 3)), increments.as_rotvec() / ts, np.zeros((1, 3))))
-        alpha = np.diff(omega, axis=0) / ts
-        body = Rotation.from_quat(quaternion[:-1]).inv() * Rotation.from_quat(quaternion[1:])
-        spin = np.concatenate(([0.0], np.cumsum(body.as_rotvec()[:, 2])))
-        frame = rotation * Rotation.from_rotvec(np.column_stack((0 * spin, 0 * spin, -spin)))
-        to_frame = frame.inv()
-        axis = rotation.apply([0.0, 0.0, 1.0])
-        force = np.empty((len(self.modes) + 1, samples.s_m.size, 3))
-        for index, mode in enumerate(self.modes):
-            point = _held(position + mode.pivot_height_m * axis, 1)
-            hinge = (point[2:] - 2.0 * point[1:-1] + point[:-2]) / ts**2
-            force[index] = to_frame.apply(self.gravity - hinge)
-        force[-1] = to_frame.apply(self.gravity)
-        # the lateral angular velocity (p, q) of N in N and its derivative at the samples: the
-        # increments of N over each period (zero before and after: at rest), averaged and
-        # differenced about each sample
-        turn = (frame[:-1].inv() * frame[1:]).as_rotvec()[:, :2] / ts
-        turn = np.concatenate((np.zeros((1, 2)), turn, np.zeros((1, 2))))
-        kinematic_rates = np.concatenate(
-            (0.5 * (turn[1:] + turn[:-1]), np.diff(turn, axis=0) / ts), axis=1
+        force, kinematic = self._batch([samples.s_m], [samples.tilt_rad], samples.period_s)
+        return force[0], {key: value[0] for key, value in kinematic.items()}
+
+    def _batch(
+        self, s_m: list[FloatArray], tilt_rad: list[FloatArray], period_s: float
+    ) -> tuple[FloatArray, dict[str, FloatArray]]:
+        """`specific_forces` of sample sets of one length."""
+        return specific_forces(
+            self.path,
+            self.modes,
+            self.gravity,
+            np.stack(s_m),
+            np.stack(tilt_rad),
+            period_s,
+            self.centre,
         )
-        kinematic = {
-            "tilt_rates": kinematic_rates,
-            "velocity": velocity,
-            "acceleration": acceleration,
-            "jerk": jerk,
-            "omega": omega,
-            "alpha": alpha,
-            "position": position,
-        }
-        return force, kinematic
 
     def evaluate(self, samples: PathSamples) -> _ProgramEvaluation:
         """Kinematics, forces, pendulum tracks, wall heights and residual amplitudes."""
@@ -372,20 +350,31 @@ class PathProgram:
         columns: list[int | None] = [None] + ([0, 1] if self.tilt else [])
         bands = []
         base_force, base_kinematic = self.forces(samples)
+        # every perturbed set of every column in one batch (`sloshkit.plan.path.forces`)
+        perturbed = [
+            (column, colour, *self._perturbation(samples, column, colour))
+            for column in columns
+            for colour in range(3)
+        ]
+        moved_force, moved_kinematic = self._batch(
+            [moved.s_m for *_, moved, _ in perturbed],
+            [moved.tilt_rad for *_, moved, _ in perturbed],
+            samples.period_s,
+        )
         for column in columns:
-            step = 1e-7 * max(self.path.length_m, 1.0) if column is None else 1e-7
             force = np.zeros((3, len(self.modes) + 1, n, 3))
             rates = np.zeros((3, n, 4))
             position = np.zeros((n, 3))
             omega = np.zeros((2, n + 1, 3))
-            for colour in range(3):
+            for index, (moved_column, colour, _, width) in enumerate(perturbed):
+                if moved_column != column:
+                    continue
                 chosen = np.arange(colour, n, 3)
-                moved, width = _perturbed(samples, chosen, column, step, self.path.length_m)
-                (fp, kp), (fm, km) = self.forces(moved), (base_force, base_kinematic)
-                dforce = fp - fm
-                drates = kp["tilt_rates"] - km["tilt_rates"]
-                position[chosen] = (kp["position"] - km["position"])[chosen] / width[chosen, None]
-                domega = kp["omega"] - km["omega"]
+                dforce = moved_force[index] - base_force
+                drates = moved_kinematic["tilt_rates"][index] - base_kinematic["tilt_rates"]
+                dposition = moved_kinematic["position"][index] - base_kinematic["position"]
+                position[chosen] = dposition[chosen] / width[chosen, None]
+                domega = moved_kinematic["omega"][index] - base_kinematic["omega"]
                 for offset in (-1, 0, 1):
                     k = chosen - offset  # the force at k sees the perturbed sample k + offset
                     k = k[(k >= 0) & (k < n)]
@@ -398,6 +387,14 @@ class PathProgram:
                 omega[0][prev] = domega[prev] / width[prev - 1, None]
             bands.append(_ProgramBands(position, omega, force, rates))
         return bands
+
+    def _perturbation(
+        self, samples: PathSamples, column: int | None, colour: int
+    ) -> tuple[PathSamples, FloatArray]:
+        """Every third sample from ``colour`` moved in s (``column`` None) or a tilt angle."""
+        step = 1e-7 * max(self.path.length_m, 1.0) if column is None else 1e-7
+        chosen = np.arange(colour, samples.s_m.size, 3)
+        return _perturbed(samples, chosen, column, step, self.path.length_m)
 
     def iterate(self, samples: PathSamples) -> ProgramIterate:
         """The samples with their exact evaluation and ratios to the limits."""
