@@ -12,8 +12,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from sloshkit.plan.path.joints import JointMap
-from sloshkit.plan.path.optimal import joint_excess, plan_programs
+from sloshkit.plan.path.joints import JointMap, joint_excess
+from sloshkit.plan.path.optimal import plan_programs
 from sloshkit.plan.path.problem import PathProblem
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.result import Verification, verify

@@ -268,4 +268,31 @@ def joint_map(problem: Any, check: Any, tilt: bool = False) -> JointMap | str:
     return JointMap(s, joints, limits, gradient, hessian)
 
 
-__all__ = ["JOINT_GRID_M", "TILT_PROBE_RAD", "JointMap", "JointModel", "joint_map"]
+def joint_excess(check: Any) -> float:
+    """The largest joint speed over its limit in a verification with an arm's joint check
+    (`sloshkit.export.path_robot.RobotVerifier`: its ``required_stretch``) when it breaks a
+    joint speed limit, else 1.
+
+    Parameters
+    ----------
+    check : Verification
+        A verification.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from sloshkit.plan.path.result import Verification
+    >>> over = ("joint speed wrist_3_joint 3.28 > 3.14 rad/s",)
+    >>> joint_excess(Verification(0.014, 0.002, 0.0, 0.0, over, required_stretch=1.043))
+    1.043
+    >>> joint_excess(Verification(0.016, 0.002, 0.0, 0.0, ("peak slosh",), required_stretch=1.1))
+    1.0
+    """
+    broken = any(violation.startswith("joint speed") for violation in check.violations)
+    return float(check.required_stretch) if broken else 1.0
+
+
+__all__ = ["JOINT_GRID_M", "TILT_PROBE_RAD", "JointMap", "JointModel", "joint_excess", "joint_map"]

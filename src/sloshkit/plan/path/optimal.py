@@ -25,12 +25,13 @@ from typing import Any
 
 import numpy as np
 
-from sloshkit.plan.path.joints import joint_map
+from sloshkit.plan.path.joints import joint_excess, joint_map
 from sloshkit.plan.path.minimum_time import MAX_DURATIONS, shortest
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.samples import export_poses
+from sloshkit.plan.path.side_by_side import side_by_side
 from sloshkit.plan.path.splines import SplineTiming
-from sloshkit.plan.path.starts import FIRST_DURATIONS, capped_search, capped_start, first_search
+from sloshkit.plan.path.starts import FIRST_DURATIONS, capped_search, first_search
 from sloshkit.plan.path.transcription import SplineTranscription
 
 #: Searches of `plan_programs`, each with the program's slosh limits moved towards the values
@@ -61,18 +62,15 @@ def plan_programs(
     the program's slosh limits moved towards the values at which the verification meets
     them (`_next_limit`; at most `TIGHTENINGS`), until the binding slosh is within
     `LIMIT_TOLERANCE` of its limit or a round no longer shortens the plan; the shortest
-    verified timing is kept. With ``tilt`` the tilted rounds then start from the upright
-    plan by way of the small-angle search (`_Rounds.run`; module docstring), and the tilted
-    candidate is the shorter verified plan of all rounds (``detail["tilted"]`` says which):
-    never longer than the upright one. Without ``retime`` (``tilt`` asked for alone) the
-    small-angle search starts from the capped timing itself instead, when that start screens
-    better than the shaped one (`sloshkit.plan.path.starts.capped_search`; TRD_2D 1.468 s
-    in 7.5 s instead of 10.9 s through the upright plan, LE_3D 2.724 s in 22 s instead of
-    37 s), and the upright rounds then only look for a plan shorter than the tilted one
-    (`_Rounds.upright_below`); where the shaped start screens better (RD_2D, the 20
-    waypoints: from the capped start 2.752 s and 6.344 s, from the upright plan 2.724 s and
-    5.672 s), from the upright plan as above. A limit outside the program is met by a
-    uniform stretch (`sloshkit.plan.path.result.verified_candidate`); with an arm's joint check
+    verified timing is kept. With ``tilt`` the upright rounds run in a second thread
+    (`sloshkit.plan.path.side_by_side`) while the tilted ones search: by way of the
+    small-angle search (module docstring) from the capped timing when that start screens
+    better than the shaped one (`sloshkit.plan.path.starts.capped_search`), else, or when
+    those rounds verify nothing, from the upright plan (`_tilted_rounds`). The tilted
+    candidate is the shortest verified plan of all rounds, upright ones included
+    (``detail["tilted"]`` says which): never longer than the upright one. A limit outside
+    the program is met by a uniform stretch
+    (`sloshkit.plan.path.result.verified_candidate`); with an arm's joint check
     (`sloshkit.plan.path.result.JointSpeedCheck`) the programs limit the joint speeds along
     the path themselves (`sloshkit.plan.path.joints.joint_map`).
 
@@ -133,27 +131,46 @@ def plan_programs(
     # the joints' model in the tilt needs the IK of the tilted probes: where the arm cannot
     # reach them, plan upright
     upright_for_arm = tilt and joints is not None and joints.tilt_gradient is None
-    search = _Rounds(problem, verifier, joints, log)
-    upright = None
-    if not tilt or retime or upright_for_arm:
-        search.run(False, None)
-        upright = search.candidate("retime", started, search.verified)
+    upright_search = _Rounds(problem, verifier, joints, log)
+    if not tilt or upright_for_arm:
+        upright_search.run(False, None)
+        upright = upright_search.candidate("retime", started, upright_search.verified)
         if not tilt:
             return upright, None
-    # with the upright plan at hand (``retime`` wanted too) the tilted search starts from it
-    direct = None if upright is not None else search.navigated(None, capped_only=True)
-    if direct is not None and search.rounds_from(True, direct, FIRST_DURATIONS):
-        search.upright_below()
-    elif not upright_for_arm:
-        if upright is None:
-            # the upright plan is where the tilted search starts
-            search.run(False, None)
-        search.run(True, min(search.verified, key=lambda found: found.steps, default=search.last))
-    tilted = search.candidate("tilt", started, search.verified)
-    if upright_for_arm:
         reason = "the arm cannot reach the path tilted by the joint model's probes"
+        tilted = upright_search.candidate("tilt", started, upright_search.verified)
         tilted = replace(tilted, detail={**tilted.detail, "upright": reason})
+        return (upright if retime else None), tilted
+    tilted_search = _Rounds(problem, verifier, joints, log)
+
+    def upright_rounds(upright_log: Any) -> Any:
+        upright_search.log = upright_log
+        upright_search.run(False, None)
+        return upright_search.candidate("retime", started, upright_search.verified)
+
+    def tilted_rounds(upright_job: Any) -> None:
+        _tilted_rounds(tilted_search, upright_search, upright_job)
+
+    # the upright rounds in a second thread: Clarabel releases the GIL while it solves
+    upright = side_by_side(upright_rounds, tilted_rounds, log, "upright: ")
+    tilted_search.absorb(upright_search)
+    # the upright plans first: the earlier plan wins a tie
+    plans = upright_search.verified + tilted_search.verified
+    tilted = tilted_search.candidate("tilt", started, plans)
     return (upright if retime else None), tilted
+
+
+def _tilted_rounds(search: _Rounds, upright: _Rounds, upright_job: Any) -> None:
+    """The tilted rounds: the small-angle search from the capped timing when that start
+    screens better than the shaped one (`sloshkit.plan.path.starts.capped_search`), the
+    large-angle rounds from its plan; when it does not, or its rounds verify nothing, from
+    the upright rounds' plan (waiting for them; `_Rounds.run`)."""
+    direct = search.navigated(None, capped_only=True)
+    if direct is not None and search.rounds_from(True, direct, FIRST_DURATIONS):
+        return
+    upright_job.result()
+    start = min(upright.verified, key=lambda found: found.steps, default=upright.last)
+    search.run(True, start)
 
 
 class _Rounds:
@@ -171,6 +188,16 @@ class _Rounds:
         self.programs = 0
         self.failure = ""
         self.last: SplineTiming | None = None
+
+    def absorb(self, other: _Rounds) -> None:
+        """Another search's record before this one's (the upright rounds', so that the tilted
+        candidate's detail has every round), and its verifications."""
+        self.checks.update(other.checks)
+        self.rounds = other.rounds + self.rounds
+        self.durations = other.durations + self.durations
+        self.excesses = other.excesses + self.excesses
+        self.programs += other.programs
+        self.failure = self.failure or other.failure
 
     def candidate(self, method: str, started: float, verified: list[SplineTiming]) -> Any:
         """The shortest of ``verified`` that passes the verifier (the earlier, upright, plan
@@ -320,19 +347,6 @@ class _Rounds:
                 return
         self.rounds_from(tilt, start)
 
-    def upright_below(self) -> None:
-        """After a tilted search that did not start from the upright plan: the upright
-        rounds, from the unshaped capped timing (`sloshkit.plan.path.starts.capped_start`)
-        at one sample less than the shortest verified tilted plan, giving up when that
-        duration does not meet the limits and trying no longer one, so that ``tilt`` is
-        never slower than the upright programs' plan."""
-        steps = min(found.steps for found in self.verified) - 1
-        failure = self.failure
-        self.rounds_from(False, capped_start(self.problem).on_steps(steps), 1, steps)
-        # a failed upright search below the tilted plan is that plan's confirmation, not a
-        # failure of the request
-        self.failure = failure
-
     def rounds_from(
         self,
         tilt: bool,
@@ -423,33 +437,6 @@ class _Rounds:
         return bool(verified)
 
 
-def joint_excess(check: Any) -> float:
-    """The largest joint speed over its limit in a verification with an arm's joint check
-    (`sloshkit.export.path_robot.RobotVerifier`: its ``required_stretch``) when it breaks a
-    joint speed limit, else 1.
-
-    Parameters
-    ----------
-    check : Verification
-        A verification.
-
-    Returns
-    -------
-    float
-
-    Examples
-    --------
-    >>> from sloshkit.plan.path.result import Verification
-    >>> over = ("joint speed wrist_3_joint 3.28 > 3.14 rad/s",)
-    >>> joint_excess(Verification(0.014, 0.002, 0.0, 0.0, over, required_stretch=1.043))
-    1.043
-    >>> joint_excess(Verification(0.016, 0.002, 0.0, 0.0, ("peak slosh",), required_stretch=1.1))
-    1.0
-    """
-    broken = any(violation.startswith("joint speed") for violation in check.violations)
-    return float(check.required_stretch) if broken else 1.0
-
-
 def _next_limit(
     rounds: list[dict[str, float]], program_key: str, verified_key: str, limit: float
 ) -> float:
@@ -484,6 +471,5 @@ __all__ = [
     "TIGHTENINGS",
     "TILT_ACCELERATION_RAD_S2",
     "TILT_RATE_RAD_S",
-    "joint_excess",
     "plan_programs",
 ]
