@@ -15,12 +15,12 @@ a margin and that N started from other splines: it is then tried once more from 
 ones (a sample's change of N turns the residual's phases, and programs from a far start can
 lose their way). While none has met the limits, a longer missed duration is tried once more
 from the start stretched to it, with the first trust region `FIRST_TRUST`: a missed plan's
-residual cancels at its own timing only (TRD_2D under 15.15 mm: 606 samples from the carried
-splines 1.85 times the limits, from the start 0.77; the plan 2.072 s instead of 4.832 s), and
-the carried region can be too small (the 20 waypoints: 0.001 after failed programs; from 0.02
-the start met the limits at 8.09 s). Each duration's programs stop as soon as they decide it:
-at the first splines that meet every limit, or when the programs' predicted least ratio
-stalls above them (`at_duration`'s ``decide``); on the benchmark this halved the programs.
+residual cancels at its own timing only, and the carried region can be too small. Each
+duration's programs stop as soon as they decide it: at the first splines that meet every
+limit, or when the programs' predicted least ratio stalls above them (`at_duration`'s
+``decide``). Where several quantities tie at the largest ratio, as a min-max program leaves
+them, the binding one is the one uniform time scaling would need most
+(`sloshkit.plan.path.scaling.binding`).
 """
 
 from __future__ import annotations
@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from sloshkit.plan.path.program import ProgramIterate
+from sloshkit.plan.path.scaling import EXPONENTS, binding, exponent
 from sloshkit.plan.path.splines import SplineTiming, fit_timing
 from sloshkit.plan.path.transcription import SplineTranscription
 
@@ -53,20 +54,6 @@ UNMET_MARGIN = 0.02
 STALLED = 0.01
 #: Durations tried, at most.
 MAX_DURATIONS = 16
-#: The duration's scaling exponent of each limited quantity's ratio (T^-p).
-EXPONENTS = {
-    "velocity": 1.0,
-    "angular velocity": 1.0,
-    "joint speed": 1.0,
-    "tilt rate": 1.0,
-    "acceleration": 2.0,
-    "angular acceleration": 2.0,
-    "tilt acceleration": 2.0,
-    "peak slosh": 2.0,
-    "residual slosh": 2.0,
-    "jerk": 3.0,
-    "tilt": 2.0,
-}
 
 
 @dataclass(frozen=True, eq=False)
@@ -320,26 +307,6 @@ def stretched_start(
     return best
 
 
-def _exponent(trials: list[Trial], default: float) -> float:
-    """p in ratio ~ N^-p: the secant through the last two durations' largest ratios when they
-    are close (within 5 % of N) and ordered as that law says, within [1, 6]; else
-    ``default``, the binding quantity's own order.
-
-    Examples
-    --------
-    >>> trials = [Trial(199, 0.934, "peak slosh", 4), Trial(192, 1.053, "peak slosh", 4)]
-    >>> round(_exponent(trials, 2.0), 2)
-    3.35
-    """
-    if len(trials) >= 2:
-        first, second = trials[-2], trials[-1]
-        if first.steps != second.steps and abs(first.steps - second.steps) <= 0.05 * first.steps:
-            slope = -math.log(second.excess / first.excess) / math.log(second.steps / first.steps)
-            if slope > 0.0:
-                return min(max(slope, 1.0), 6.0)
-    return default
-
-
 def shortest(
     transcription: SplineTranscription,
     start: SplineTiming,
@@ -420,10 +387,10 @@ def shortest(
                 transcription, warm, trust=region, log=log, decide=decide
             )
             trust = min(max(4.0 * trust, 1e-3), FIRST_TRUST)
-            binding = max(current.ratios, key=current.ratios.__getitem__)
+            bound = binding(current.ratios)
             if log:
                 how = "again from the start" if programs else f"({steps * ts:.3f} s)"
-                log(f"N {steps} {how}: ratio {current.excess:.4f} ({binding})")
+                log(f"N {steps} {how}: ratio {current.excess:.4f} ({bound})")
             programs += solved
             # while none has met the limits, a longer missed duration is tried again from the
             # start, with the first trust region (module docstring)
@@ -435,7 +402,7 @@ def shortest(
             ):
                 break
             base, region = start, FIRST_TRUST
-        trial = Trial(steps, estimate, binding, programs)
+        trial = Trial(steps, estimate, bound, programs)
         trials.append(trial)
         if current.feasible:
             if best is None or steps < best[0].steps:
@@ -460,9 +427,9 @@ def shortest(
                 del unmet[steps]
                 continue
             break
-        exponent = _exponent(trials, EXPONENTS.get(binding, 2.0))
+        slope = exponent(trials[-2:], EXPONENTS.get(bound, 2.0))
         ratio = min(max(trial.excess, 0.6), 1.6)
-        guess = round(steps * ratio ** (1.0 / exponent))
+        guess = round(steps * ratio ** (1.0 / slope))
         if guess == steps:
             guess = steps + (1 if not trial.met else -1)
         upper = highest_met if highest_met is not None else math.inf
@@ -482,7 +449,6 @@ def shortest(
 
 
 __all__ = [
-    "EXPONENTS",
     "FIRST_TRUST",
     "ITERATIONS",
     "KNOT_SPACING_S",

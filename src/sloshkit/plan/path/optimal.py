@@ -31,7 +31,7 @@ from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.samples import export_poses
 from sloshkit.plan.path.side_by_side import side_by_side
 from sloshkit.plan.path.splines import SplineTiming
-from sloshkit.plan.path.starts import FIRST_DURATIONS, capped_search, first_search
+from sloshkit.plan.path.starts import FIRST_DURATIONS, capped_search, capped_start, first_search
 from sloshkit.plan.path.transcription import SplineTranscription
 
 #: Searches of `plan_programs`, each with the program's slosh limits moved towards the values
@@ -62,13 +62,17 @@ def plan_programs(
     the program's slosh limits moved towards the values at which the verification meets
     them (`_next_limit`; at most `TIGHTENINGS`), until the binding slosh is within
     `LIMIT_TOLERANCE` of its limit or a round no longer shortens the plan; the shortest
-    verified timing is kept. With ``tilt`` the upright rounds run in a second thread
-    (`sloshkit.plan.path.side_by_side`) while the tilted ones search: by way of the
+    verified timing is kept. With ``tilt`` the tilted rounds search by way of the
     small-angle search (module docstring) from the capped timing when that start screens
     better than the shaped one (`sloshkit.plan.path.starts.capped_search`), else, or when
-    those rounds verify nothing, from the upright plan (`_tilted_rounds`). The tilted
-    candidate is the shortest verified plan of all rounds, upright ones included
-    (``detail["tilted"]`` says which): never longer than the upright one. A limit outside
+    those rounds verify nothing, from the upright plan (`_tilted_rounds`). With ``retime``
+    too the upright rounds run beside them in a second thread
+    (`sloshkit.plan.path.side_by_side`); without it only when the tilted search needs
+    their plan, else they only look for a plan shorter than the tilted one
+    (`_Rounds.upright_below`): their whole search beside the tilted one slowed the
+    pick-and-place with the UR5e by a fifth (its verifications, the arm's IK, hold the
+    GIL). The tilted candidate is the shortest verified plan of all rounds, upright ones
+    included (``detail["tilted"]`` says which): never longer than the upright one. A limit outside
     the program is met by a uniform stretch
     (`sloshkit.plan.path.result.verified_candidate`); with an arm's joint check
     (`sloshkit.plan.path.result.JointSpeedCheck`) the programs limit the joint speeds along
@@ -142,35 +146,40 @@ def plan_programs(
         tilted = replace(tilted, detail={**tilted.detail, "upright": reason})
         return (upright if retime else None), tilted
     tilted_search = _Rounds(problem, verifier, joints, log)
+    upright = None
+    if retime:
 
-    def upright_rounds(upright_log: Any) -> Any:
-        upright_search.log = upright_log
-        upright_search.run(False, None)
-        return upright_search.candidate("retime", started, upright_search.verified)
+        def upright_rounds(upright_log: Any) -> Any:
+            upright_search.log = upright_log
+            upright_search.run(False, None)
+            return upright_search.candidate("retime", started, upright_search.verified)
 
-    def tilted_rounds(upright_job: Any) -> None:
-        _tilted_rounds(tilted_search, upright_search, upright_job)
+        def tilted_rounds(upright_job: Any) -> None:
+            _tilted_rounds(tilted_search, upright_search, upright_job.result)
 
-    # the upright rounds in a second thread: Clarabel releases the GIL while it solves
-    upright = side_by_side(upright_rounds, tilted_rounds, log, "upright: ")
+        # both plans wanted: the upright rounds in a second thread (Clarabel releases the GIL)
+        upright = side_by_side(upright_rounds, tilted_rounds, log, "upright: ")
+    elif _tilted_rounds(tilted_search, upright_search, lambda: upright_search.run(False, None)):
+        upright_search.upright_below(min(found.steps for found in tilted_search.verified) - 1)
     tilted_search.absorb(upright_search)
     # the upright plans first: the earlier plan wins a tie
     plans = upright_search.verified + tilted_search.verified
-    tilted = tilted_search.candidate("tilt", started, plans)
-    return (upright if retime else None), tilted
+    return upright, tilted_search.candidate("tilt", started, plans)
 
 
-def _tilted_rounds(search: _Rounds, upright: _Rounds, upright_job: Any) -> None:
+def _tilted_rounds(search: _Rounds, upright: _Rounds, upright_rounds: Any) -> bool:
     """The tilted rounds: the small-angle search from the capped timing when that start
-    screens better than the shaped one (`sloshkit.plan.path.starts.capped_search`), the
-    large-angle rounds from its plan; when it does not, or its rounds verify nothing, from
-    the upright rounds' plan (waiting for them; `_Rounds.run`)."""
+    screens better than the shaped one (`sloshkit.plan.path.starts.capped_search`), then the
+    large-angle rounds from its plan; when it does not, or those rounds verify nothing, from
+    the upright rounds' plan (``upright_rounds()`` runs them or waits for them; `_Rounds.run`).
+    Whether the first way verified a plan."""
     direct = search.navigated(None, capped_only=True)
     if direct is not None and search.rounds_from(True, direct, FIRST_DURATIONS):
-        return
-    upright_job.result()
+        return True
+    upright_rounds()
     start = min(upright.verified, key=lambda found: found.steps, default=upright.last)
     search.run(True, start)
+    return False
 
 
 class _Rounds:
@@ -346,6 +355,17 @@ class _Rounds:
                 self.rounds_from(tilt, navigated, FIRST_DURATIONS, longest)
                 return
         self.rounds_from(tilt, start)
+
+    def upright_below(self, steps: int) -> None:
+        """Upright rounds that only look for a plan of at most ``steps`` samples (one less
+        than a tilted plan's), from the unshaped capped timing
+        (`sloshkit.plan.path.starts.capped_start`) at that duration, giving up when it does
+        not meet the limits, so that ``tilt`` asked for alone is never slower than the
+        upright programs' plan without their whole search."""
+        failure = self.failure
+        self.rounds_from(False, capped_start(self.problem).on_steps(steps), 1, steps)
+        # a failed search below the tilted plan is that plan's confirmation, not a failure
+        self.failure = failure
 
     def rounds_from(
         self,
