@@ -15,7 +15,14 @@ from typing import Any
 
 
 class Abandoned(Exception):
-    """The search in front failed or was interrupted: the one beside it stops."""
+    """The search in front failed or was interrupted: the one beside it stops (raised by
+    its progress function, `side_by_side`).
+
+    Examples
+    --------
+    >>> issubclass(Abandoned, Exception) and not issubclass(Abandoned, KeyboardInterrupt)
+    True
+    """
 
 
 def side_by_side(
