@@ -151,26 +151,31 @@ def condense(
         # first - 1..end + 1
         window = np.flatnonzero(active[max(first - 1, 0) : min(end + 2, n)].any(axis=0))
         samples = np.arange(first, end + 1)
-        drive = np.zeros((modes, samples.size, 7, window.size))
+        # the step inputs B_k df_k + E_k df_{k+1}, df_k = sum over the offsets o of the
+        # drive's gain at k in the sample k + o times that sample's row of dz: the gains
+        # contracted with B and E first, then one batched product over every block, offset
+        # and step matrix, so that no (modes, samples, 7, window) drive is formed
+        gains_through, rows = [], []
         for band, dz in blocks:
             local = dz[:, window]
-            for offset in (-1, 0, 1):
+            moved = np.zeros((3, samples.size, window.size))
+            gains = np.empty((3, modes, samples.size, 7))
+            for o, offset in enumerate((-1, 0, 1)):
                 source = samples + offset
                 inside = (source >= 0) & (source < n)
-                moved = np.zeros((samples.size, window.size))
-                moved[inside] = local[source[inside]]
+                moved[o][inside] = local[source[inside]]
                 force = band.force[offset + 1]
-                gain = (
+                gains[o, :, :, :3] = (
                     force[:modes][:, samples]
                     + (kappa - 1.0)[:, None, None] * force[-1][None, samples]
                 )
-                drive[:, :, :3] += gain[..., None] * moved[None, :, None, :]
-                drive[:, :, 3:] += (
-                    band.rates[offset + 1][None, samples, :, None] * moved[None, :, None, :]
-                )
-        inputs = np.einsum("qkaw,qkwz->qkaz", b_k[:, first:end], drive[:, :-1, :width]) + np.einsum(
-            "qkaw,qkwz->qkaz", e_k[:, first:end], drive[:, 1:, :width]
-        )
+                gains[o, :, :, 3:] = band.rates[offset + 1][None, samples]
+            # B_k and E_k times the gains (modes, samples, width, offsets), batched
+            columns = gains[..., :width].transpose(1, 2, 3, 0)
+            gains_through.append(np.matmul(b_k[:, first:end], columns[:, :-1]))
+            gains_through.append(np.matmul(e_k[:, first:end], columns[:, 1:]))
+            rows += [moved[:, :-1].transpose(1, 0, 2), moved[:, 1:].transpose(1, 0, 2)]
+        inputs = np.matmul(np.concatenate(gains_through, axis=3), np.concatenate(rows, axis=1))
         psi = np.zeros((modes, samples.size, 6, window.size))
         current_phi = np.array(identity)
         current_psi = np.zeros((modes, 6, window.size))
