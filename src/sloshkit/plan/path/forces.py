@@ -34,6 +34,41 @@ def _held(values: FloatArray, pad: int) -> FloatArray:
     return np.concatenate((first,) * pad + (values,) + (last,) * pad, axis=1)
 
 
+def non_spinning_frame(quaternion_xyzw: FloatArray) -> FloatArray:
+    """The container's non-spinning frame N at sampled poses: the container frame turned back
+    about its own axis by its spin, the sum of the body-frame rotation increments' axial
+    components from the first sample (N's convention: `sloshkit.sim.spatial_drive`, there
+    integrated from the continuous body rate).
+
+    Parameters
+    ----------
+    quaternion_xyzw : numpy.ndarray
+        Container-to-world unit quaternions at the samples, (..., N + 1, 4), scalar last.
+
+    Returns
+    -------
+    numpy.ndarray
+        N-to-world unit quaternions, (..., N + 1, 4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> yaw = np.linspace(0.0, np.pi / 2, 5)  # a pure turn about the vertical axis
+    >>> q = np.stack([0 * yaw, 0 * yaw, np.sin(yaw / 2), np.cos(yaw / 2)], axis=-1)
+    >>> np.abs(non_spinning_frame(q)).round(12).tolist()[-1]  # N does not turn
+    [0.0, 0.0, 0.0, 1.0]
+    """
+    quaternion = np.asarray(quaternion_xyzw, dtype=float)
+    body = rotation_vector(
+        hamilton_product(conjugate(quaternion[..., :-1, :]), quaternion[..., 1:, :])
+    )
+    start = np.zeros((*quaternion.shape[:-2], 1))
+    spin = np.concatenate((start, np.cumsum(body[..., 2], axis=-1)), axis=-1)
+    unspin = np.zeros(quaternion.shape)
+    unspin[..., 2], unspin[..., 3] = -np.sin(0.5 * spin), np.cos(0.5 * spin)
+    return hamilton_product(quaternion, unspin)
+
+
 def specific_forces(
     path: Any,
     modes: Any,
@@ -107,12 +142,7 @@ def specific_forces(
     increments = rotation_vector(hamilton_product(later, conjugate(earlier)))
     omega = np.concatenate((rest, increments / period_s, rest), axis=1)
     alpha = np.diff(omega, axis=1) / period_s
-    body = rotation_vector(hamilton_product(conjugate(earlier), later))
-    spin = np.concatenate((np.zeros((batch, 1)), np.cumsum(body[:, :, 2], axis=1)), axis=1)
-    # N: the container frame turned back about its own axis by the spin
-    unspin = np.zeros((batch, count, 4))
-    unspin[..., 2], unspin[..., 3] = -np.sin(0.5 * spin), np.cos(0.5 * spin)
-    frame_quaternion = hamilton_product(quaternion, unspin)
+    frame_quaternion = non_spinning_frame(quaternion)
     axis = rotated_z_axis(quaternion)
     force = np.empty((batch, len(modes) + 1, count, 3))
     for index, mode in enumerate(modes):
@@ -144,4 +174,4 @@ def specific_forces(
     return force, kinematic
 
 
-__all__ = ["specific_forces"]
+__all__ = ["non_spinning_frame", "specific_forces"]

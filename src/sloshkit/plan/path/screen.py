@@ -21,13 +21,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sloshkit.motion.poses import PoseTrajectory
-from sloshkit.motion.quaternions import (
-    conjugate,
-    hamilton_product,
-    rotate_inverse,
-    rotated_z_axis,
-    rotation_vector,
-)
+from sloshkit.motion.quaternions import rotate_inverse, rotated_z_axis
+from sloshkit.plan.path.forces import non_spinning_frame
 from sloshkit.plan.path.problem import GRAVITY, SEARCH_MARGIN, PathProblem, second_difference
 
 FloatArray = NDArray[np.float64]
@@ -147,11 +142,7 @@ def screen_outputs(
 
     ts = float(poses.time_s[1] - poses.time_s[0])
     quaternion = poses.quaternion_xyzw
-    spin_rate = rotation_vector(hamilton_product(conjugate(quaternion[:-1]), quaternion[1:]))[:, 2]
-    spin = np.concatenate(([0.0], np.cumsum(spin_rate)))
-    unspin = np.zeros((spin.size, 4))
-    unspin[:, 2], unspin[:, 3] = np.sin(-0.5 * spin), np.cos(-0.5 * spin)
-    frame = hamilton_product(quaternion, unspin)
+    frame = non_spinning_frame(quaternion)
     axis = rotated_z_axis(quaternion)
     outputs: list[tuple[FloatArray, float, float, FloatArray]] = []
     for model in models:
