@@ -27,11 +27,32 @@ from sloshkit.plan.path.samples import PathSamples, sample_poses
 FloatArray = NDArray[np.float64]
 
 
-def _held(values: FloatArray, pad: int) -> FloatArray:
-    """``values`` (batch, N + 1, ...) with ``pad`` copies of each set's first and last rows
-    (at rest before and after)."""
-    first, last = values[:, :1], values[:, -1:]
-    return np.concatenate((first,) * pad + (values,) + (last,) * pad, axis=1)
+def held(values: FloatArray, pad: int, axis: int = 0) -> FloatArray:
+    """``values`` with ``pad`` copies of the first and last samples along ``axis`` (at rest
+    before and after the move, as the export's kinematics are differenced).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Samples along ``axis``.
+    pad : int
+        Copies at each end.
+    axis : int
+        The samples' axis (1 for a batch of sample sets).
+
+    Returns
+    -------
+    numpy.ndarray
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> held(np.array([1.0, 2.0, 3.0]), 2).tolist()
+    [1.0, 1.0, 1.0, 2.0, 3.0, 3.0, 3.0]
+    """
+    first = np.take(values, [0], axis=axis)
+    last = np.take(values, [-1], axis=axis)
+    return np.concatenate((first,) * pad + (values,) + (last,) * pad, axis=axis)
 
 
 def non_spinning_frame(quaternion_xyzw: FloatArray) -> FloatArray:
@@ -133,7 +154,7 @@ def specific_forces(
     position_flat, rotation_flat = sample_poses(path, flat, centre_height_m)
     position = position_flat.reshape(batch, count, 3)
     quaternion = rotation_flat.as_quat().reshape(batch, count, 4)
-    padded = _held(position, 2)
+    padded = held(position, 2, axis=1)
     velocity = np.diff(padded, axis=1) / period_s
     acceleration = np.diff(velocity, axis=1) / period_s
     jerk = np.diff(acceleration, axis=1) / period_s
@@ -146,7 +167,7 @@ def specific_forces(
     axis = rotated_z_axis(quaternion)
     force = np.empty((batch, len(modes) + 1, count, 3))
     for index, mode in enumerate(modes):
-        point = _held(position + mode.pivot_height_m * axis, 1)
+        point = held(position + mode.pivot_height_m * axis, 1, axis=1)
         hinge = (point[:, 2:] - 2.0 * point[:, 1:-1] + point[:, :-2]) / period_s**2
         force[:, index] = rotate_inverse(frame_quaternion, gravity - hinge)
     force[:, -1] = rotate_inverse(frame_quaternion, np.broadcast_to(gravity, (batch, count, 3)))
@@ -174,4 +195,4 @@ def specific_forces(
     return force, kinematic
 
 
-__all__ = ["non_spinning_frame", "specific_forces"]
+__all__ = ["held", "non_spinning_frame", "specific_forces"]

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.plan.path.forces import specific_forces
+from sloshkit.plan.path.forces import held, specific_forces
 from sloshkit.plan.path.joints import JointMap, JointModel
 from sloshkit.plan.path.pendulums import at_rest, mode_slope, pendulum_track
 from sloshkit.plan.path.samples import PathSamples
@@ -128,11 +128,6 @@ def mode_arrays(model: Any) -> tuple[FloatArray, FloatArray, FloatArray]:
         np.array([m.omega_rad_s for m in modes]),
         np.array([m.damping_ratio for m in modes]),
     )
-
-
-def _held(values: FloatArray, pad: int) -> FloatArray:
-    """``values`` with ``pad`` copies of the first and last rows (at rest before and after)."""
-    return np.concatenate((values[:1],) * pad + (values,) + (values[-1:],) * pad)
 
 
 @dataclass(frozen=True, eq=False)
@@ -321,7 +316,7 @@ class PathProgram:
                 _peak_norm(evaluation.alpha) / lim.max_angular_acceleration_rad_s2
             )
         if self.tilt:
-            tilt = _held(samples.tilt_rad, 2)
+            tilt = held(samples.tilt_rad, 2)
             rate = np.diff(tilt, axis=0) / samples.period_s
             ratios["tilt"] = _peak_norm(samples.tilt_rad) / lim.max_tilt_rad
             ratios["tilt rate"] = _peak_norm(rate) / lim.max_tilt_rate_rad_s
