@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 from sloshkit.plan.path.joints import JointMap, joint_excess
-from sloshkit.plan.path.optimal import plan_programs
+from sloshkit.plan.path.minimum_time import knot_count
+from sloshkit.plan.path.optimal import TILTED_KNOT_SPACING_S, plan_programs
 from sloshkit.plan.path.problem import PathProblem
 from sloshkit.plan.path.program import PathProgram, ProgramLimits
 from sloshkit.plan.path.result import Verification, verify
@@ -97,7 +98,8 @@ def test_tilt_alone_is_never_slower_than_the_upright_programs(straight, max_tilt
     """Without ``retime`` wanted, the tilted search starts from the capped timing instead of
     the upright plan, and the upright rounds only look below the tilted plan: with a tilt that
     barely helps (0.5 deg) as with a free one, the tilted plan is verified and no longer than
-    the upright programs' plan (and shorter with 30 deg)."""
+    the upright programs' plan (and shorter with 30 deg, its splines with the large-angle
+    tilted rounds' finer knots)."""
     problem = replace(straight, max_tilt_rad=math.radians(max_tilt_deg))
     upright, _ = plan_programs(problem, verify)
     none, tilted = plan_programs(problem, verify, tilt=True, retime=False)
@@ -106,3 +108,5 @@ def test_tilt_alone_is_never_slower_than_the_upright_programs(straight, max_tilt
     assert tilted.duration_s <= upright.duration_s + 1e-9
     if max_tilt_deg > 10.0:
         assert tilted.detail["tilted"] and tilted.duration_s < 0.9 * upright.duration_s
+        fine = knot_count(tilted.duration_s, TILTED_KNOT_SPACING_S)
+        assert tilted.detail["knots"] == fine > upright.detail["knots"]

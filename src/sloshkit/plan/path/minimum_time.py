@@ -35,11 +35,8 @@ import numpy as np
 from sloshkit.plan.path.program import ProgramIterate
 from sloshkit.plan.path.scaling import EXPONENTS, binding, exponent
 from sloshkit.plan.path.splines import SplineTiming, fit_timing
-from sloshkit.plan.path.transcription import SplineTranscription
+from sloshkit.plan.path.transcription import KNOT_SPACING_S, SplineTranscription
 
-#: Spline knots per second of move: one every 25 ms (1/8 of the period of a 40 rad/s mode;
-#: a 40 ms spacing lengthened TRD_2D's minimum by 1.3 %, see studies/path-planner-methods).
-KNOT_SPACING_S = 0.025
 #: The bracket's relative width at which the search over N stops.
 TOLERANCE = 5e-3
 #: Programs per duration, at most.
@@ -89,13 +86,16 @@ class Trial:
         return self.excess <= 1.0 + 1e-9
 
 
-def knot_count(duration_s: float) -> int:
-    """The number of spline coefficients for a move: knots every `KNOT_SPACING_S`.
+def knot_count(duration_s: float, spacing_s: float = KNOT_SPACING_S) -> int:
+    """The number of spline coefficients for a move: knots every ``spacing_s``
+    (`sloshkit.plan.path.transcription.KNOT_SPACING_S`).
 
     Parameters
     ----------
     duration_s : float
         The move's duration [s].
+    spacing_s : float
+        The knots' spacing [s].
 
     Returns
     -------
@@ -104,10 +104,10 @@ def knot_count(duration_s: float) -> int:
 
     Examples
     --------
-    >>> knot_count(2.0)
-    83
+    >>> knot_count(2.0), knot_count(2.0, 0.0125)
+    (83, 163)
     """
-    return max(8, round(duration_s / KNOT_SPACING_S) + 3)
+    return max(8, round(duration_s / spacing_s) + 3)
 
 
 def respaced(timing: SplineTiming, count: int) -> SplineTiming:
@@ -381,7 +381,8 @@ def shortest(
         base = best[0] if best is not None else timing
         region, programs = trust, 0
         while True:
-            warm = respaced(base.on_steps(steps), knot_count(steps * ts))
+            spacing = transcription.knot_spacing_s
+            warm = respaced(base.on_steps(steps), knot_count(steps * ts, spacing))
             decide = not (minimise_first and not tried)
             timing, current, solved, trust, estimate = at_duration(
                 transcription, warm, trust=region, log=log, decide=decide
@@ -451,7 +452,6 @@ def shortest(
 __all__ = [
     "FIRST_TRUST",
     "ITERATIONS",
-    "KNOT_SPACING_S",
     "MAX_DURATIONS",
     "STALLED",
     "STRETCHES",

@@ -54,6 +54,9 @@ from sloshkit.plan.path.splines import SplineTiming
 
 FloatArray = NDArray[np.float64]
 
+#: Spline knots per second of move: one every 25 ms (1/8 of the period of a 40 rad/s mode;
+#: a 40 ms spacing lengthened TRD_2D's minimum by 1.3 %, see studies/path-planner-methods).
+KNOT_SPACING_S = 0.025
 #: Samples per condensed segment of the pendulum states (about 0.4 s at 4 ms: a wall row then
 #: depends on about 20 coefficients and one segment's start states).
 SEGMENT_SAMPLES = 100
@@ -121,6 +124,9 @@ class SplineTranscription:
     ----------
     program : PathProgram
         The model (limits, band, tilt, arm).
+    knot_spacing_s : float
+        The knots' spacing [s] of the splines its search carries to each duration
+        (`sloshkit.plan.path.minimum_time.knot_count`).
 
     Examples
     --------
@@ -144,8 +150,9 @@ class SplineTranscription:
     True
     """
 
-    def __init__(self, program: PathProgram) -> None:
+    def __init__(self, program: PathProgram, knot_spacing_s: float = KNOT_SPACING_S) -> None:
         self.program = program
+        self.knot_spacing_s = knot_spacing_s
         self.length = float(program.path.length_m)
         self.programs = 0
         self.active: tuple[int, list[NDArray[np.bool_]]] | None = None
@@ -443,6 +450,7 @@ class SplineTranscription:
 
 __all__ = [
     "GENERATION_ROUNDS",
+    "KNOT_SPACING_S",
     "PROGRAM_MARGIN",
     "SEGMENT_SAMPLES",
     "SplineTranscription",
