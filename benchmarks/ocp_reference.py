@@ -69,7 +69,9 @@ acceleration limit (else 1000 deg/s^2), r = r' = r'' = 0 at both ends.
 Initial guess: a phase-plane speed profile of the path, averaged over the first slosh period,
 slowed until the simulated pendulums and kinematics meet every limit (`initial_guess`, a
 feasible start for IPOPT); solved first on a coarse grid, then on the fine one; the tilted
-problem starts from the untilted optimum (upright).
+problem starts from the untilted optimum (upright), and its fine solve from the coarse
+solution's jerks held on a whole number of fine intervals each (so the fine interval is at
+most ``interval_s``) with the states simulated from them, IPOPT's barrier started small.
 """
 
 from __future__ import annotations
@@ -106,6 +108,8 @@ MAX_PARAMETER_RATE_M_S = 50.0
 COARSE_FACTOR = 2.5
 #: Most intervals of the first solve.
 MAX_COARSE = 500
+#: IPOPT's first barrier parameter and bound push for a solve from a coarser grid's solution.
+WARM_MU, WARM_PUSH = 1e-6, 1e-8
 #: The slosh models of the reference (module docstring).
 SLOSH_MODELS = ("linear", "nonlinear")
 
@@ -691,8 +695,12 @@ def _solve(
     controls: FloatArray,
     max_iterations: int,
     print_level: int,
+    warm: bool = False,
 ) -> tuple[float, FloatArray, FloatArray, str, bool]:
-    """Multiple shooting NLP from the guess; returns T, states, controls, status, success."""
+    """Multiple shooting NLP from the guess; returns T, states, controls, status, success.
+    ``warm``: the guess is a solution of the same problem on a coarser grid, so IPOPT starts
+    with a small barrier parameter and pushes the guess off its bounds by little (Waechter &
+    Biegler 2006, §3.6: the default 0.1 moves a near-optimal guess far away)."""
     nx, nu, count = model.nx, model.nu, controls.shape[1]
     sx, su = model.scale_x[:, None], model.scale_u[:, None]
     n_modes = model.walls.size
@@ -753,6 +761,10 @@ def _solve(
         "ipopt.constr_viol_tol": 1e-9,
         "ipopt.mu_strategy": "adaptive",
     }
+    if warm:
+        options.update(
+            {"ipopt.mu_init": WARM_MU, "ipopt.bound_push": WARM_PUSH, "ipopt.bound_frac": WARM_PUSH}
+        )
     program: dict[str, Any] = {"x": variables, "f": t, "g": g}
     solver = ca.nlpsol("reference", "ipopt", program, options)
     solution = solver(x0=guess, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
@@ -910,9 +922,13 @@ def reference_solution(
         duration, states, controls, status, success = solve(
             model, step, duration, *_regrid(tilted_states, tilted_controls, coarse)
         )
-        count = math.ceil(duration / interval_s)
-        duration, states, controls, status, success = solve(
-            model, step, duration, *_regrid(states, controls, count)
+        # the coarse jerks held on a whole number of intervals each, the states simulated from
+        # them: an exact start (interpolated states left IPOPT in restoration on LE_3D)
+        repeats = math.ceil(duration / interval_s / controls.shape[1])
+        controls = np.repeat(controls, repeats, axis=1)
+        states = _simulate(model, step, controls, duration)
+        duration, states, controls, status, success = _solve(
+            model, problem, step, duration, states, controls, max_iterations, print_level, True
         )
     walls = np.asarray(model.wall.map(states.shape[1])(states))
     amplitude = np.sqrt(np.maximum(np.asarray(model.residual(states[:, -1])).ravel(), 0.0))
