@@ -304,9 +304,9 @@ def plan_tilt(
 #: (`sloshkit.plan.path.starts.capped_start`, within 3-21 % of their plans on the benchmark's
 #: paths), has at most this many export samples (5 s at 4 ms) and no arm is checked. Their
 #: compute grows with the samples: upright 0.5 s for the benchmark's 0.78 s pick-and-place
-#: and 2 s for the 2.07 s TRD_2D move; tilted, with the upright rounds beside them, 1.0 s and
-#: 6-7 s (0.664 s and 1.468 s, where the families give 1.21 s and 1.94 s in about a second),
-#: and on the 4-7 s moves 3-20 s upright and 24-42 s tilted. A move is planned once and run
+#: and 2 s for the 2.07 s TRD_2D move; tilted, with the upright rounds beside them, 1.1 s and
+#: 8-9 s (0.656 s and 1.456 s, where the families give 1.21 s and 1.94 s in about a second),
+#: and on the 4-7 s moves 4-17 s upright and 18-42 s tilted. A move is planned once and run
 #: many times, so half a minute for a cycle 1.3-1.9 times shorter than the families' (LE and
 #: RD tilted in the benchmark's primary table) is worth it; on longer moves ``auto`` returns
 #: the families' and ``shaped``'s plans, and ``retime`` or ``tilt`` asked for by name runs
