@@ -48,9 +48,9 @@ BRACKET = 0.01
 #: Where the program's slosh limits aim, as a fraction of the limits: the first round starts
 #: there and `_next_limit` moves them towards the verification meeting it.
 LIMIT_AIM = 1.0 - 0.5 * LIMIT_TOLERANCE
-#: The knots' spacing [s] of the large-angle tilted rounds, half the other searches'
-#: (`sloshkit.plan.path.transcription.KNOT_SPACING_S`): the tilted plans come out 0.4-1.2 %
-#: shorter, the upright ones only 0-0.2 % for 40-70 % more compute (docs/planning-3d.md).
+#: The large-angle tilted rounds' knot spacing [s] without an arm, half the other searches'
+#: (`sloshkit.plan.path.transcription.KNOT_SPACING_S`): 0.4-1.2 % shorter plans; upright
+#: 0-0.2 %, with an arm (joint speeds binding) none (docs/planning-3d.md, "What the splines cost").
 TILTED_KNOT_SPACING_S = 0.0125
 
 
@@ -318,7 +318,7 @@ class _Rounds:
             joints=joints,
             linear=linear,
         )
-        fine = tilt and not linear
+        fine = tilt and not linear and joints is None
         return SplineTranscription(program, TILTED_KNOT_SPACING_S if fine else KNOT_SPACING_S)
 
     def navigated(
