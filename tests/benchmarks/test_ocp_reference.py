@@ -38,6 +38,17 @@ def _first_mode_model() -> SloshModel:
     return dataclasses.replace(model, modes=model.modes[:1])
 
 
+def _problem(end_m: list[float], **options: float) -> PathProblem:
+    """The benchmark's limits on a straight path from the origin to ``end_m``, first mode."""
+    return PathProblem(
+        path_from_waypoints([[0.0, 0.0, 0.0], end_m]),
+        CartesianLimits(VMAX, AMAX, JMAX),
+        SpatialSloshLimits(HEIGHT_M, RESIDUAL_M),
+        _first_mode_model(),
+        **options,
+    )
+
+
 @pytest.mark.parametrize("distance_m", [0.3])
 def test_a_straight_path_takes_the_one_dimensional_optimum(distance_m: float) -> None:
     """Along a straight line the 3-D problem is the 1-D one: wall height e_1 |phi| <= h is the
@@ -45,12 +56,7 @@ def test_a_straight_path_takes_the_one_dimensional_optimum(distance_m: float) ->
     1-D planner transcribes it on its 4 ms export grid, the reference in continuous time."""
     model = _first_mode_model()
     wall = model.modes[0].wall_elevation_factor_m
-    straight = PathProblem(
-        path_from_waypoints([[0.0, 0.0, 0.0], [distance_m, 0.0, 0.0]]),
-        CartesianLimits(VMAX, AMAX, JMAX),
-        SpatialSloshLimits(HEIGHT_M, RESIDUAL_M),
-        model,
-    )
+    straight = _problem([distance_m, 0.0, 0.0])
     reference = reference_optimum(straight)
     line = PlanProblem(
         distance_m,
@@ -74,12 +80,7 @@ def test_the_nonlinear_reference_agrees_with_the_verification() -> None:
     model on the same poses does not (it misses the peak by more), so the agreement is the
     nonlinear model's. A straight lifting move with the first mode only keeps it fast."""
     model = _first_mode_model()
-    lift = PathProblem(
-        path_from_waypoints([[0.0, 0.0, 0.0], [0.2, 0.0, 0.05]]),
-        CartesianLimits(VMAX, AMAX, JMAX),
-        SpatialSloshLimits(HEIGHT_M, RESIDUAL_M),
-        model,
-    )
+    lift = _problem([0.2, 0.0, 0.05])
     solution = reference_solution(lift, slosh_model="nonlinear")
     optimum = solution.optimum
     assert optimum.converged, optimum.status
@@ -104,13 +105,7 @@ def test_the_tilted_reference_is_shorter_and_agrees_with_the_simulation() -> Non
     centrifugal and Coriolis terms, which the simulation's models keep: its tilted residual is
     not the simulation's.)"""
     model = _first_mode_model()
-    straight = PathProblem(
-        path_from_waypoints([[0.0, 0.0, 0.0], [0.3, 0.0, 0.0]]),
-        CartesianLimits(VMAX, AMAX, JMAX),
-        SpatialSloshLimits(HEIGHT_M, RESIDUAL_M),
-        model,
-        max_tilt_rad=math.radians(30.0),
-    )
+    straight = _problem([0.3, 0.0, 0.0], max_tilt_rad=math.radians(30.0))
     upright = reference_optimum(straight, interval_s=8e-3, slosh_model="nonlinear")
     solution = reference_solution(straight, tilt=True, interval_s=8e-3, slosh_model="nonlinear")
     tilted = solution.optimum
