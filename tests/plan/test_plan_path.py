@@ -220,12 +220,16 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
         "peak_slosh_height_m",
         "residual_slosh_height_m",
         "peak_tilt_deg",
+        "peak_slosh_angle_deg",
         "max_path_deviation_m",
         "feasible",
         "candidates",
         "warnings",  # every --json object carries the command's validity warnings (issue 17)
     }
     assert payload["feasible"] and payload["peak_slosh_height_m"] <= 0.012
+    # beyond small-amplitude theory the plan says so (stderr and JSON)
+    beyond = payload["peak_slosh_angle_deg"] > 15.0
+    assert any("slosh angle reaches" in w for w in payload["warnings"]) == beyond
     lines = out.read_text().splitlines()
     assert lines[2] == "t,x,y,z,qx,qy,qz,qw"  # after the plan header and the units (issue 24)
     assert '"max_slosh_height_m": 0.012' in lines[0]
@@ -269,6 +273,10 @@ def test_optimal_with_tilt_compensation_tilts_and_is_faster(tmp_path: Path) -> N
     assert (flat["method"], tilt["method"]) == ("retime", "tilt")
     assert flat["candidates"][0]["source"] == tilt["candidates"][0]["source"] == "program"
     assert not any("--tilt-compensation" in w for w in tilt["warnings"])
+    # 15 mm at the wall of a 49 mm radius is a surface slope beyond small-amplitude theory
+    for plan in (flat, tilt):
+        assert plan["peak_slosh_angle_deg"] > 15.0
+        assert any("beyond small-amplitude theory" in w for w in plan["warnings"])
     poses = read_pose_file(tmp_path / "plan.csv")
     quaternion_xy = poses.quaternion_xyzw[:, :2]  # zero when upright (the path does not turn)
     assert np.abs(quaternion_xy[[0, -1]]).max() < 1e-9 and np.abs(quaternion_xy).max() > 1e-3

@@ -195,6 +195,7 @@ def run_path_plan(
             tilt=tilt_compensation or method == "tilt",
         )
     warn_if_planned_upright(result)
+    warn_if_beyond_small_amplitude(result)
     if result.feasible:
         if out is not None:
             from sloshkit.cli.plan_files import plan_file_header
@@ -249,6 +250,51 @@ def warn_if_planned_upright(result: Any) -> None:
                 ValidityWarning,
                 stacklevel=1,
             )
+
+
+def warn_if_beyond_small_amplitude(result: Any) -> None:
+    """Warn (`sloshkit.errors.ValidityWarning`: stderr and JSON ``warnings``) when the chosen
+    plan's verification drove the first mode beyond small-amplitude theory
+    (`sloshkit.sim.simulate.LARGE_ANGLE_DEG`): the limits hold in the pendulum model, and
+    the CFD of such plans shows waves that it does not have (docs/planning-3d.md,
+    "Limitations").
+
+    Parameters
+    ----------
+    result : PathPlanResult
+        The plan; its chosen candidate's verification holds the angle.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from types import SimpleNamespace
+    >>> check = SimpleNamespace(peak_slosh_angle_rad=0.37)
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_if_beyond_small_amplitude(SimpleNamespace(chosen=SimpleNamespace(
+    ...         verification=check)))
+    >>> str(caught[0].message)[:58]
+    "the plan's slosh angle reaches 21.2 deg (> 15 deg): beyond"
+    """
+    import math
+    import warnings
+
+    from sloshkit.errors import ValidityWarning
+    from sloshkit.sim.simulate import LARGE_ANGLE_DEG
+
+    check = None if result.chosen is None else result.chosen.verification
+    if check is None:
+        return
+    angle = math.degrees(check.peak_slosh_angle_rad)
+    if angle > LARGE_ANGLE_DEG:
+        warnings.warn(
+            f"the plan's slosh angle reaches {angle:.1f} deg (> {LARGE_ANGLE_DEG:g} deg): beyond "
+            "small-amplitude theory; the limits hold in the pendulum model, which has no "
+            "swirl, breaking or axisymmetric waves (see the CFD of such plans in "
+            "docs/planning-3d.md)",
+            ValidityWarning,
+            stacklevel=1,
+        )
 
 
 def _robot_verifier(settings: Any) -> Any:

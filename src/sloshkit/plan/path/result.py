@@ -70,6 +70,10 @@ class Verification:
     required_stretch : float
         A uniform slow-down the verifier estimates for limits outside the slosh and Cartesian
         ones (a robot's joint speeds); 1 when none.
+    peak_slosh_angle_rad : float
+        The first mode's largest pendulum angle (the free surface's slope at the wall) [rad]:
+        above `sloshkit.sim.simulate.LARGE_ANGLE_DEG` the model is outside small-amplitude
+        theory.
 
     Examples
     --------
@@ -85,6 +89,7 @@ class Verification:
     time_s: FloatArray = field(default_factory=lambda: np.empty(0))
     height_m: FloatArray = field(default_factory=lambda: np.empty(0))
     required_stretch: float = 1.0
+    peak_slosh_angle_rad: float = 0.0
 
     @property
     def feasible(self) -> bool:
@@ -172,6 +177,7 @@ def verify(problem: PathProblem, poses: PoseTrajectory, tilted: bool = False) ->
         path_deviation(problem.path, poses),
         tuple(violations),
         *series,
+        peak_slosh_angle_rad=angle,
     )
 
 
@@ -252,6 +258,9 @@ class PathCandidate:
             "peak_slosh_height_m": None if check is None else check.peak_height_m,
             "residual_slosh_height_m": None if check is None else check.residual_height_m,
             "peak_tilt_deg": None if check is None else math.degrees(check.peak_tilt_rad),
+            "peak_slosh_angle_deg": (
+                None if check is None else math.degrees(check.peak_slosh_angle_rad)
+            ),
             "max_path_deviation_m": None if check is None else check.max_path_deviation_m,
             "feasible": self.feasible,
             "violations": [] if check is None else list(check.violations),
@@ -307,6 +316,7 @@ class PathPlanResult(ResultMixin):
             "peak_slosh_height_m": chosen.get("peak_slosh_height_m"),
             "residual_slosh_height_m": chosen.get("residual_slosh_height_m"),
             "peak_tilt_deg": chosen.get("peak_tilt_deg"),
+            "peak_slosh_angle_deg": chosen.get("peak_slosh_angle_deg"),
             "max_path_deviation_m": chosen.get("max_path_deviation_m"),
             "feasible": self.feasible,
             "candidates": [c.to_dict() for c in self.candidates],
