@@ -53,6 +53,31 @@ open("noyaw.csv", "w").write(
     "# units: t [s]; x, y, z [m]; qx, qy, qz, qw [-] (container to world, scalar last); z up\n"
     + "\n".join(rows) + "\n")
 PY
+# pure tilts about the bottom centre: 5 and 30 degrees, septic ramps of 0.5 s, held 0.3 s
+python - <<'PY'
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+step = 0.002
+t = np.arange(0.0, 1.3 + step / 2, step)
+
+
+def septic(u):
+    u = np.clip(u, 0.0, 1.0)
+    return u**4 * (35 - 84 * u + 70 * u**2 - 20 * u**3)
+
+
+for name, degrees in (("pitch5", 5.0), ("pitch", 30.0)):
+    angle = np.radians(degrees) * (septic(t / 0.5) - septic((t - 0.8) / 0.5))
+    rotvec = np.column_stack([angle, 0.0 * angle, 0.0 * angle])
+    quaternion = Rotation.from_rotvec(rotvec).as_quat()
+    rows = ["t,x,y,z,qx,qy,qz,qw"] + [
+        ",".join(f"{v:.12g}" for v in (ti, 0.0, 0.0, 0.0, *qi)) for ti, qi in zip(t, quaternion)
+    ]
+    open(f"{name}.csv", "w").write(
+        "# units: t [s]; x, y, z [m]; qx, qy, qz, qw [-] (container to world, scalar last); z up\n"
+        + "\n".join(rows) + "\n")
+PY
 
 cfd meas12 "$measured" 12 6s
 cfd meas16 "$measured" 16 6s
@@ -64,4 +89,7 @@ cfd noyaw12 noyaw.csv 12 3.5s
 cfd angular12 angular.csv 12 4s
 cfd tilt10_12 tilt10.csv 12 3.5s
 cfd tilt10_16 tilt10.csv 16 3.5s
-python "$here/azimuthal.py" . meas12 meas16 rt12 trd12 trd16 trd20 noyaw12 angular12 tilt10_12 tilt10_16
+cfd pitch5_12 pitch5.csv 12 3.3s
+cfd pitch12 pitch.csv 12 3.3s
+python "$here/azimuthal.py" . meas12 meas16 rt12 trd12 trd16 trd20 noyaw12 angular12 tilt10_12 tilt10_16 \
+  pitch5_12 pitch12
