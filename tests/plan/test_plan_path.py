@@ -481,3 +481,29 @@ def test_auto_runs_the_programs_on_a_short_move_only(
     without = plan_path(problem, "auto", tilt=False).candidates[1]
     assert without.detail["source"] == "family"
     assert without.duration_s == pytest.approx(family.duration_s)
+
+
+@pytest.mark.slow
+def test_a_surface_angle_limit_is_a_limit_of_the_programs(tmp_path: Path) -> None:
+    """``--max-surface-angle`` binds the programs' plan itself (its verified slosh angle
+    within the limit, the programs' own plan rather than a slow family member), is never
+    shorter than the plan without it, and keeps the plan out of the large-angle warning."""
+    waypoints = tmp_path / "w.csv"
+    waypoints.write_text("x [mm],y [mm],z [mm]\n0,0,0\n100,0,0\n")
+    common = (
+        "plan", "--path", str(waypoints), "--radius", "49mm", "--fill-height", "80mm",
+        "--liquid", "water-20C", "--max-slosh-height", "15mm", "--max-residual-height", "2mm",
+        "--vmax", "2m/s", "--amax", "10m/s^2", "--jmax", "100m/s^3", "--method", "retime",
+        "--json",
+    )  # fmt: skip
+    free = run_entry_point(*common)
+    bound = run_entry_point(*common, "--max-surface-angle", "12deg")
+    assert free.returncode == 0 and bound.returncode == 0, bound.stderr
+    unlimited, limited = json.loads(free.stdout), json.loads(bound.stdout)
+    assert unlimited["peak_slosh_angle_deg"] > 12.0  # the limit binds
+    assert limited["feasible"] and limited["peak_slosh_angle_deg"] <= 12.0 + 1e-9
+    assert limited["candidates"][0]["source"] == "program"
+    assert limited["duration_s"] >= unlimited["duration_s"]
+    assert not any("slosh angle reaches" in w for w in limited["warnings"])
+    last_round = limited["candidates"][0]["rounds"][-1]
+    assert last_round["verified_angle_rad"] <= math.radians(12.0) + 1e-12

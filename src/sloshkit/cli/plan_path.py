@@ -291,7 +291,8 @@ def warn_if_beyond_small_amplitude(result: Any) -> None:
             f"the plan's slosh angle reaches {angle:.1f} deg (> {LARGE_ANGLE_DEG:g} deg): beyond "
             "small-amplitude theory; the limits hold in the pendulum model, which has no "
             "swirl, breaking or axisymmetric waves (see the CFD of such plans in "
-            "docs/planning-3d.md)",
+            f"docs/planning-3d.md); --max-surface-angle {LARGE_ANGLE_DEG:g}deg keeps a plan "
+            "within it",
             ValidityWarning,
             stacklevel=1,
         )

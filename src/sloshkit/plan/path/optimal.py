@@ -5,8 +5,8 @@ spline transcription (`sloshkit.plan.path.minimum_time.shortest`;
 
 The programs model what the verification simulates without its smoothing filter; the
 verification, which also simulates the export through that filter, can still exceed a slosh
-limit by a percent or two. The program's limit is then moved by regula falsi (`_next_limit`)
-and the search restarts from the last splines (`plan_programs`).
+limit by a percent or two. The program's limit is then moved by regula falsi
+(`sloshkit.plan.path.tightening`) and the search restarts from the last splines (`plan_programs`).
 
 The tilted search first runs with the small-angle pendulums (`PathProgram(..., linear=True)`,
 `sloshkit.plan.path.small_angle`): the large-angle pendulums' frequency falls with
@@ -32,22 +32,22 @@ from sloshkit.plan.path.samples import export_poses
 from sloshkit.plan.path.side_by_side import side_by_side
 from sloshkit.plan.path.splines import SplineTiming
 from sloshkit.plan.path.starts import FIRST_DURATIONS, capped_search, capped_start, first_search
+from sloshkit.plan.path.tightening import (
+    LIMIT_TOLERANCE,
+    aimed,
+    round_record,
+    tightened,
+    verified_excess,
+)
 from sloshkit.plan.path.transcription import KNOT_SPACING_S, SplineTranscription
 
 #: Searches of `plan_programs`, each with the program's slosh limits moved towards the values
-#: at which the verification meets its limits (`_next_limit`), at most.
+#: at which the verification meets its limits (`sloshkit.plan.path.tightening`), at most.
 TIGHTENINGS = 5
-#: A verified plan whose peak or residual is within this fraction of its limit ends them.
-LIMIT_TOLERANCE = 0.02
 #: The tilt's rate and acceleration limits where the angular ones are lifted [rad/s, rad/s^2]
 #: (as `benchmarks/ocp_reference.py`'s tilted problem).
 TILT_RATE_RAD_S = math.pi
 TILT_ACCELERATION_RAD_S2 = math.radians(1000.0)
-#: The least relative distance of two rounds' program limits for `_next_limit` to interpolate.
-BRACKET = 0.01
-#: Where the program's slosh limits aim, as a fraction of the limits: the first round starts
-#: there and `_next_limit` moves them towards the verification meeting it.
-LIMIT_AIM = 1.0 - 0.5 * LIMIT_TOLERANCE
 #: The large-angle tilted rounds' knot spacing [s] without an arm, half the other searches'
 #: (`sloshkit.plan.path.transcription.KNOT_SPACING_S`): 0.4-1.2 % shorter plans; upright
 #: 0-0.2 %, with an arm (joint speeds binding) none (docs/planning-3d.md, "What the splines cost").
@@ -63,7 +63,7 @@ def plan_programs(
     Rounds of the minimum-time search (`shortest`; `_Rounds`): the first from
     `sloshkit.plan.path.starts.first_search`, each next one from the last one's splines with
     the program's slosh limits moved towards the values at which the verification meets
-    them (`_next_limit`; at most `TIGHTENINGS`), until the binding slosh is within
+    them (`sloshkit.plan.path.tightening`; at most `TIGHTENINGS`), until the binding slosh is within
     `LIMIT_TOLERANCE` of its limit or a round no longer shortens the plan; the shortest
     verified timing is kept. With ``tilt`` the tilted rounds search by way of the
     small-angle search (module docstring) from the capped timing when that start screens
@@ -187,8 +187,8 @@ def _tilted_rounds(search: _Rounds, upright: _Rounds, upright_rounds: Any) -> bo
 
 class _Rounds:
     """The rounds of `plan_programs`: each a minimum-time search at the program's slosh
-    limits, verified, the limits moved by `_next_limit` for the next; the record of all
-    rounds (upright, then tilted) and their verified timings."""
+    limits, verified, the limits moved by `sloshkit.plan.path.tightening` for the next; the
+    record of all rounds (upright, then tilted) and their verified timings."""
 
     def __init__(self, problem: Any, verifier: Any, joints: Any, log: Any) -> None:
         self.problem, self.verifier, self.joints, self.log = problem, verifier, joints, log
@@ -283,16 +283,16 @@ class _Rounds:
         return self.checks[key]
 
     def limits(self) -> ProgramLimits:
-        """The programs' limits of a first round: the slosh limits at `LIMIT_AIM`."""
-        machine, slosh = self.problem.machine, self.problem.slosh
+        """The programs' limits of a first round: the slosh limits at
+        `sloshkit.plan.path.tightening.LIMIT_AIM`."""
+        machine = self.problem.machine
         return ProgramLimits(
             machine.max_velocity_m_s,
             machine.max_acceleration_m_s2,
             machine.max_jerk_m_s3,
             machine.max_angular_velocity_rad_s,
             machine.max_angular_acceleration_rad_s2,
-            LIMIT_AIM * slosh.max_height_m,
-            LIMIT_AIM * slosh.max_residual_height_m,
+            **aimed(self.problem.slosh),  # type: ignore[arg-type]
             max_tilt_rad=self.problem.max_tilt_rad,
             max_tilt_rate_rad_s=machine.max_angular_velocity_rad_s or TILT_RATE_RAD_S,
             max_tilt_acceleration_rad_s2=(
@@ -413,25 +413,14 @@ class _Rounds:
             self.durations += [(trial.steps, trial.excess) for trial in trials]
             self.last = timing
             check = self.check(problem, export_poses(problem, timing.samples(ts)), tilt)
-            rounds.append(
-                {
-                    "duration_s": timing.steps * ts,
-                    "tilted": tilt,
-                    "height_limit_m": limits.max_height_m,
-                    "residual_limit_m": limits.max_residual_height_m,
-                    "verified_peak_m": check.peak_height_m,
-                    "verified_residual_m": check.residual_height_m,
-                }
-            )
+            record = round_record(limits, check)
+            rounds.append({"duration_s": timing.steps * ts, "tilted": tilt, **record})
             if log:
                 log(
                     f"verified: peak {check.peak_height_m * 1e3:.3g} mm, residual "
                     f"{check.residual_height_m * 1e3:.3g} mm"
                 )
-            excess = max(
-                check.peak_height_m / slosh.max_height_m,
-                check.residual_height_m / slosh.max_residual_height_m,
-            )
+            excess = verified_excess(check, slosh)
             self.excesses.append(excess)
             joints_over = joint_excess(check)
             if joints_over > 1.0:
@@ -447,51 +436,13 @@ class _Rounds:
                     len(verified) >= 2 and verified[-1].steps >= verified[-2].steps
                 ):
                     break
-            limits = replace(
-                limits,
-                max_height_m=_next_limit(
-                    rounds, "height_limit_m", "verified_peak_m", slosh.max_height_m
-                ),
-                max_residual_height_m=_next_limit(
-                    rounds, "residual_limit_m", "verified_residual_m", slosh.max_residual_height_m
-                ),
-            )
+            limits = tightened(limits, rounds, slosh)
         self.rounds += rounds
         self.verified += verified
         return bool(verified)
 
 
-def _next_limit(
-    rounds: list[dict[str, float]], program_key: str, verified_key: str, limit: float
-) -> float:
-    """The program's next limit: the verification's value is an increasing function v(p) of
-    the program's limit p (v = p for a linear verification), up to the few percent by which
-    each round's local plan differs; regula falsi for v(p) = limit (slightly below) on the
-    rounds that bracket it when their program limits are `BRACKET` apart (closer, the
-    difference is the plans' scatter, not v's slope), else p limit / v (at most the limit).
-
-    Examples
-    --------
-    >>> rounds = [{"p": 0.99, "v": 0.9895}, {"p": 0.9904, "v": 1.063}]
-    >>> round(_next_limit(rounds, "p", "v", 1.0), 4)  # scatter: scaled, not interpolated
-    0.9224
-    """
-    aim = LIMIT_AIM * limit
-    points = sorted((r[program_key], r[verified_key]) for r in rounds)
-    below = [p for p in points if p[1] <= aim]
-    above = [p for p in points if p[1] > aim]
-    if below and above:
-        (p1, v1), (p2, v2) = below[-1], above[0]
-        if v2 > v1 and p2 > (1.0 + BRACKET) * p1:
-            return p1 + (aim - v1) * (p2 - p1) / (v2 - v1)
-    p, v = rounds[-1][program_key], rounds[-1][verified_key]
-    return min(limit, p * aim / max(v, 1e-12))
-
-
 __all__ = [
-    "BRACKET",
-    "LIMIT_AIM",
-    "LIMIT_TOLERANCE",
     "TIGHTENINGS",
     "TILTED_KNOT_SPACING_S",
     "TILT_ACCELERATION_RAD_S2",

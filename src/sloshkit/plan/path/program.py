@@ -66,6 +66,9 @@ class ProgramLimits:
         Linear wall height during the move and residual bound after it [m].
     max_tilt_rad, max_tilt_rate_rad_s, max_tilt_acceleration_rad_s2 : float
         Tilt limits (used only when the program tilts).
+    max_surface_angle_rad : float, optional
+        The first mode's deflection (the surface's slope at the wall, atan |u_lat / u_z|)
+        [rad]; None: not limited.
 
     Examples
     --------
@@ -83,6 +86,7 @@ class ProgramLimits:
     max_tilt_rad: float = 0.0
     max_tilt_rate_rad_s: float = math.pi
     max_tilt_acceleration_rad_s2: float = math.radians(1000.0)
+    max_surface_angle_rad: float | None = None
 
 
 def _with_rest(samples: PathSamples) -> PathSamples:
@@ -307,6 +311,9 @@ class PathProgram:
         }
         if evaluation.joint.size:
             ratios["joint speed"] = float(np.max(np.abs(evaluation.joint)))
+        if lim.max_surface_angle_rad is not None:
+            slope = _peak_norm(mode_slope(evaluation.unit[:, 0]))
+            ratios["surface angle"] = slope / math.tan(lim.max_surface_angle_rad)
         if lim.max_angular_velocity_rad_s is not None:
             ratios["angular velocity"] = (
                 _peak_norm(evaluation.omega) / lim.max_angular_velocity_rad_s

@@ -25,6 +25,7 @@ EXPONENTS = {
     "tilt acceleration": 2.0,
     "peak slosh": 2.0,
     "residual slosh": 2.0,
+    "surface angle": 2.0,
     "jerk": 3.0,
     "tilt": 2.0,
 }

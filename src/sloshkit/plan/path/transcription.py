@@ -27,7 +27,8 @@ coefficients acting inside the segment, so the program stays sparse on long move
 (`sloshkit.plan.path.condensing`).
 
 **Program.** At a fixed N it minimises sigma, the largest ratio of a limited quantity to its
-limit (every norm an exact second-order cone: the wall height, Cartesian and angular
+limit (every norm an exact second-order cone: the wall height, the first mode's surface slope
+when its angle is limited, Cartesian and angular
 velocity, acceleration and jerk, tilt and its rate and acceleration; the residual's
 semi-major axis of a 2 x 2 matrix as half the sum of two norms, Horn & Johnson, *Matrix
 Analysis*, 2nd ed. (2013) §7.3), within a box trust region on the coefficients (sequential
@@ -47,7 +48,7 @@ from numpy.typing import NDArray
 
 from sloshkit.plan.path.condensing import condense
 from sloshkit.plan.path.conic import ConicProgram, NormRows
-from sloshkit.plan.path.pendulums import slope_jacobian, step_jacobians
+from sloshkit.plan.path.pendulums import mode_slope, slope_jacobian, step_jacobians
 from sloshkit.plan.path.program import HOLD, PathProgram, ProgramIterate, mode_arrays
 from sloshkit.plan.path.samples import PathSamples
 from sloshkit.plan.path.splines import SplineTiming
@@ -297,6 +298,16 @@ class SplineTranscription:
             rows.append(
                 NormRows(ev.wall[m], wall_z, lim.max_height_m, wall_x, first_column(segment))
             )
+            if lim.max_surface_angle_rad is not None:
+                # the first mode's slope alone, within tan of the surface-angle limit
+                first = np.zeros_like(slopes)
+                first[0] = slopes[0] / model.modes[0].wall_elevation_factor_m
+                angle_x = np.zeros_like(wall_x)
+                angle_x[:, :, :6] = np.einsum("kac,kcw->kaw", first[0], phi[0, :, :3])
+                slope = mode_slope(ev.unit[m, 0])
+                tangent = math.tan(lim.max_surface_angle_rad)
+                segment_first = first_column(segment)
+                rows.append(NormRows(slope, states.wall(first), tangent, angle_x, segment_first))
             # the residual: per mode |e_n [A_n B_n]|_2 as half the sum of two norms
             last = n - 1
             end_column = first_column(segment[last : last + 1])[0]
