@@ -1,13 +1,12 @@
 """The azimuthal content of finished pose-driven CFD cases against the pendulum model.
 
 For each case (run by ``run.sh``): the wall elevation of the probe columns split into
-azimuthal orders m = 0..3 (the column mean, and the amplitude of cos(m theta), sin(m theta)
-over the equally spaced columns), largest during the move and more than 0.1 s after it; the
-same for the planner's verification model (`sloshkit.sim.spatial.simulate_spatial`, nonlinear
-pendulums, modal height mapping, exact kinematics) read at the same columns; the largest slosh
-height (max over the columns) during and after; the spectral peaks of the columns after the
-move; and, for a measured series, the cameras' peak. Prints one block per case and writes
-``results.json``.
+azimuthal orders m = 0..3 (`sloshkit.cfd.pose_validation.azimuthal_orders`), largest during
+the move and more than 0.1 s after it; the same for the planner's verification model
+(`sloshkit.sim.spatial.simulate_spatial`, nonlinear pendulums, modal height mapping, exact
+kinematics) read at the same columns; the largest slosh height (max over the columns) during
+and after; the spectral peaks of the columns after the move; and, for a measured series, the
+cameras' peak. Prints one block per case and writes ``results.json``.
 
 Usage: ``python azimuthal.py CASES_FOLDER [case ...]`` (a case named after a measured series,
 ``meas*``, is compared with ``tests/data/measured-3d``).
@@ -26,6 +25,7 @@ from scipy.special import jnp_zeros
 
 import sloshkit as sk
 from sloshkit.cfd.analysis import read_finished_signals
+from sloshkit.cfd.pose_validation import azimuthal_orders
 from sloshkit.errors import ValidityWarning
 from sloshkit.io.poses import read_pose_file
 from sloshkit.model.theory import natural_frequency
@@ -33,16 +33,6 @@ from sloshkit.sim.spatial import simulate_spatial
 
 DATA = Path(__file__).resolve().parents[2] / "tests" / "data" / "measured-3d"
 MEASURED = "TRD_2D_0.3m_2.4s_270deg"
-
-
-def orders(elevation: np.ndarray, angles: np.ndarray) -> dict[str, np.ndarray]:
-    """Amplitude of each azimuthal order m = 0..3 of the columns' elevations over time [m]."""
-    found = {"m0": np.abs(elevation.mean(axis=1))}
-    for m in (1, 2, 3):
-        a = 2.0 * (elevation * np.cos(m * angles)).mean(axis=1)
-        b = 2.0 * (elevation * np.sin(m * angles)).mean(axis=1)
-        found[f"m{m}"] = np.hypot(a, b)
-    return found
 
 
 def spectral_peaks(time: np.ndarray, elevation: np.ndarray, count: int = 3) -> list[float]:
@@ -82,7 +72,11 @@ def analyse(case: Path, model: object) -> dict[str, object]:
         [np.interp(time, model_time, response.wall_elevation_m(a)) for a in angles]
     )
     during, after = time <= end, time > end + 0.1
-    cfd, pendulum = orders(elevation, angles), orders(modelled, angles)
+    cfd_orders = azimuthal_orders(elevation, angles)
+    model_orders = azimuthal_orders(modelled, angles)
+    assert cfd_orders is not None and model_orders is not None
+    cfd = {f"m{m}": values for m, values in enumerate(cfd_orders)}
+    pendulum = {f"m{m}": values for m, values in enumerate(model_orders)}
     row: dict[str, object] = {"case": case.name, "move_s": end}
     for name in cfd:
         row[f"{name}_during_mm"] = [

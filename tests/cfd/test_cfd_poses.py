@@ -106,4 +106,11 @@ def test_pose_driven_run_against_the_3d_model(tmp_path):
     assert payload["wall_correlation"] > 0.8
     peak = payload["comparison"]["peak_slosh_height_m"]
     assert peak["relative_difference"] == pytest.approx(0.0, abs=0.35)
+    # a small lateral move drives the order m = 1 (the model's only one) far above the others
+    orders = payload["azimuthal_orders"]
+    assert [row["order"] for row in orders] == [0, 1, 2, 3]
+    first = orders[1]["peak_cfd_m"]
+    assert first == pytest.approx(orders[1]["peak_model_m"], rel=0.35)
+    assert all(row["peak_cfd_m"] < 0.3 * first for row in orders if row["order"] != 1)
+    assert all(row["peak_model_m"] < 1e-9 for row in orders if row["order"] != 1)
     assert (tmp_path / "poses.png").stat().st_size > 10_000

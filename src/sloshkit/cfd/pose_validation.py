@@ -4,7 +4,10 @@ A case driven by a `sloshkit.cfd.excitation.PoseExcitation` measures the wall el
 the container axis in columns of probes around the circumference (r = 0.98 R); its slosh
 height is the largest of them. The model is run on the same pose trajectory (kept in the case
 as ``sloshkit-poses.csv``) and read at the same wall angles, so both slosh heights are maxima
-over the same columns.
+over the same columns. With the columns equally spaced around the wall, both are also split
+into azimuthal orders (`azimuthal_orders`): a lateral acceleration or a tilt drives only the
+order m = 1 in linear theory, and the pendulum model has no other, so the other orders are
+what the model leaves out (studies/cfd-planned-moves).
 """
 
 from __future__ import annotations
@@ -28,6 +31,78 @@ def _correlation(a: np.ndarray, b: np.ndarray) -> float | None:
     return float(np.corrcoef(a, b)[0, 1])
 
 
+#: The azimuthal orders reported (m = 0..3; 12 columns resolve up to m = 5).
+ORDERS = 4
+
+
+def azimuthal_orders(
+    elevation_m: np.ndarray, angles_rad: np.ndarray, orders: int = ORDERS
+) -> np.ndarray | None:
+    """The amplitude of each azimuthal order m = 0..orders - 1 of wall elevations measured in
+    equally spaced columns: |mean| for m = 0, else the norm of the discrete Fourier
+    coefficients 2 mean(eta cos m theta), 2 mean(eta sin m theta); exact for a wave of orders
+    below K / 2 with K columns (the discrete orthogonality of the harmonics).
+
+    Parameters
+    ----------
+    elevation_m : numpy.ndarray
+        (time, K) wall elevations [m].
+    angles_rad : numpy.ndarray
+        (K,) the columns' angles [rad].
+    orders : int
+        The orders m = 0..orders - 1.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        (orders, time) amplitudes [m]; None unless the K columns are equally spaced with
+        K > 2 (orders - 1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> angles = np.radians(np.arange(12) * 30.0)
+    >>> wave = 0.003 * np.cos(angles) + 0.002 * np.sin(2 * angles - 0.4) + 0.001
+    >>> np.round(1e3 * azimuthal_orders(wave[None], angles)[:, 0], 6).tolist()
+    [1.0, 3.0, 2.0, 0.0]
+    >>> azimuthal_orders(wave[None, :2], angles[:2]) is None
+    True
+    """
+    angles = np.asarray(angles_rad, dtype=float)
+    count = angles.size
+    spacing = np.diff(np.unwrap(np.sort(angles)))
+    if count <= 2 * (orders - 1) or not np.allclose(spacing, 2.0 * np.pi / count, atol=1e-6):
+        return None
+    elevation = np.asarray(elevation_m, dtype=float)
+    found = np.empty((orders, elevation.shape[0]))
+    found[0] = np.abs(elevation.mean(axis=1))
+    for m in range(1, orders):
+        cosine = 2.0 * (elevation * np.cos(m * angles)).mean(axis=1)
+        sine = 2.0 * (elevation * np.sin(m * angles)).mean(axis=1)
+        found[m] = np.hypot(cosine, sine)
+    return found
+
+
+def _order_rows(
+    cfd: np.ndarray, model: np.ndarray, during: np.ndarray, after: np.ndarray
+) -> list[dict[str, float | int | None]]:
+    """Per order: the largest amplitude during the motion and after it, CFD and model."""
+
+    def peak(values: np.ndarray, where: np.ndarray) -> float | None:
+        return float(values[where].max()) if np.any(where) else None
+
+    return [
+        {
+            "order": m,
+            "peak_cfd_m": peak(cfd[m], during),
+            "peak_model_m": peak(model[m], during),
+            "residual_cfd_m": peak(cfd[m], after),
+            "residual_model_m": peak(model[m], after),
+        }
+        for m in range(cfd.shape[0])
+    ]
+
+
 def validate_poses(model: SloshModel, case: Path) -> CfdValidation:
     """Compare a finished pose-driven case with `sloshkit.sim.spatial.simulate_spatial`.
 
@@ -43,7 +118,9 @@ def validate_poses(model: SloshModel, case: Path) -> CfdValidation:
     CfdValidation
         ``kind`` ``poses``; ``comparison`` (peak slosh height during the motion, residual slosh height after it:
         CFD, model, relative difference), ``correlation`` of the slosh heights,
-        ``wall_correlation`` of the wall elevations of every probe column, and the series
+        ``wall_correlation`` of the wall elevations of every probe column,
+        ``azimuthal_orders`` (with equally spaced columns: per order m = 0..3 the largest
+        amplitude during and after the motion, CFD and model; `azimuthal_orders`), and the series
         ``time_s``, ``cfd_elevation_m``, ``model_elevation_m`` (slosh heights) for the figure.
 
     References
@@ -87,6 +164,11 @@ def validate_poses(model: SloshModel, case: Path) -> CfdValidation:
             float(model_height[after].max()),
         )
     comparison = {key: comparison_row(*values) for key, values in rows.items()}
+    extra: dict[str, object] = {}
+    cfd_orders = azimuthal_orders(signals.elevations_m, signals.angles_rad)
+    model_orders = azimuthal_orders(model_walls, signals.angles_rad)
+    if cfd_orders is not None and model_orders is not None:
+        extra["azimuthal_orders"] = _order_rows(cfd_orders, model_orders, during, after)
     return CfdValidation(
         case=str(case),
         comparison=comparison,
@@ -100,5 +182,6 @@ def validate_poses(model: SloshModel, case: Path) -> CfdValidation:
             "wall_correlation": _correlation(signals.elevations_m.ravel(), model_walls.ravel()),
             "probe_angles_deg": [float(np.degrees(a)) for a in signals.angles_rad],
             "quantity_label": "slosh height (max over the probe columns at 0.98 R) [mm]",
+            **extra,
         },
     )
