@@ -32,6 +32,7 @@ plan tilt10 --max-slosh-height 10mm "${lifted[@]}" --tilt-compensation --max-til
 plan angular --max-slosh-height 15mm --tilt-compensation --max-tilt 30deg
 plan angle15 --max-slosh-height 15mm "${lifted[@]}" --tilt-compensation --max-tilt 30deg \
   --max-surface-angle 15deg
+plan rtangle --max-slosh-height 15mm "${lifted[@]}" --method retime --max-surface-angle 15deg
 # the tilt plan without its turn about the container's axis (the axis direction unchanged)
 python - <<'PY'
 import numpy as np
@@ -91,9 +92,10 @@ cfd noyaw12 noyaw.csv 12 3.5s
 cfd angular12 angular.csv 12 4s
 cfd tilt10_12 tilt10.csv 12 3.5s
 cfd tilt10_16 tilt10.csv 16 3.5s
+cfd rtangle12 rtangle.csv 12 4.3s
 cfd angle15_12 angle15.csv 12 3.5s
 cfd angle15_16 angle15.csv 16 3.5s
 cfd pitch5_12 pitch5.csv 12 3.3s
 cfd pitch12 pitch.csv 12 3.3s
-python "$here/azimuthal.py" . meas12 meas16 rt12 trd12 trd16 trd20 noyaw12 angular12 tilt10_12 tilt10_16 \
-  angle15_12 angle15_16 pitch5_12 pitch12
+python "$here/azimuthal.py" . meas12 meas16 rt12 rtangle12 trd12 trd16 trd20 noyaw12 \
+  angular12 tilt10_12 tilt10_16 angle15_12 angle15_16 pitch5_12 pitch12
