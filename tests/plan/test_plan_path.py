@@ -249,19 +249,24 @@ def test_plan_path_cli_json_export_and_failure(tmp_path: Path) -> None:
     assert both.returncode == 2 and "exactly one of --path" in both.stderr
 
 
+def _straight_request(tmp_path: Path, *options: str) -> tuple[str, ...]:
+    """``plan --path`` of a straight 0.1 m move of the measured series' vial under issue #25's
+    limits (15 mm / 2 mm, 2 m/s, 10 m/s^2, 100 m/s^3), JSON out, with ``options``."""
+    waypoints = tmp_path / "w.csv"
+    waypoints.write_text("x [mm],y [mm],z [mm]\n0,0,0\n100,0,0\n")
+    return (
+        "plan", "--path", str(waypoints), "--radius", "49mm", "--fill-height", "80mm",
+        "--liquid", "water-20C", "--max-slosh-height", "15mm", "--max-residual-height", "2mm",
+        "--vmax", "2m/s", "--amax", "10m/s^2", "--jmax", "100m/s^3", "--json", *options,
+    )  # fmt: skip
+
+
 @pytest.mark.slow
 def test_optimal_with_tilt_compensation_tilts_and_is_faster(tmp_path: Path) -> None:
     """``--method optimal --tilt-compensation`` (``tilt``): the tilt is a variable of the
     programs, so the verified plan tilts (within ``--max-tilt``), is zero at both ends and is
     shorter than the upright optimum of the same problem; stdout is the JSON alone."""
-    waypoints = tmp_path / "w.csv"
-    waypoints.write_text("x [mm],y [mm],z [mm]\n0,0,0\n100,0,0\n")
-    common = (
-        "plan", "--path", str(waypoints), "--radius", "49mm", "--fill-height", "80mm",
-        "--liquid", "water-20C", "--max-slosh-height", "15mm", "--max-residual-height", "2mm",
-        "--vmax", "2m/s", "--amax", "10m/s^2", "--jmax", "100m/s^3", "--max-tilt", "20deg",
-        "--method", "optimal", "--json",
-    )  # fmt: skip
+    common = _straight_request(tmp_path, "--max-tilt", "20deg", "--method", "optimal")
     upright = run_entry_point(*common)
     tilted = run_entry_point(*common, "--tilt-compensation", "--out", str(tmp_path / "plan.csv"))
     assert upright.returncode == 0 and tilted.returncode == 0, tilted.stderr
@@ -488,14 +493,7 @@ def test_a_surface_angle_limit_is_a_limit_of_the_programs(tmp_path: Path) -> Non
     """``--max-surface-angle`` binds the programs' plan itself (its verified slosh angle
     within the limit, the programs' own plan rather than a slow family member), is never
     shorter than the plan without it, and keeps the plan out of the large-angle warning."""
-    waypoints = tmp_path / "w.csv"
-    waypoints.write_text("x [mm],y [mm],z [mm]\n0,0,0\n100,0,0\n")
-    common = (
-        "plan", "--path", str(waypoints), "--radius", "49mm", "--fill-height", "80mm",
-        "--liquid", "water-20C", "--max-slosh-height", "15mm", "--max-residual-height", "2mm",
-        "--vmax", "2m/s", "--amax", "10m/s^2", "--jmax", "100m/s^3", "--method", "retime",
-        "--json",
-    )  # fmt: skip
+    common = _straight_request(tmp_path, "--method", "retime")
     free = run_entry_point(*common)
     bound = run_entry_point(*common, "--max-surface-angle", "12deg")
     assert free.returncode == 0 and bound.returncode == 0, bound.stderr
