@@ -33,6 +33,13 @@ plan angular --max-slosh-height 15mm --tilt-compensation --max-tilt 30deg
 plan angle15 --max-slosh-height 15mm "${lifted[@]}" --tilt-compensation --max-tilt 30deg \
   --max-surface-angle 15deg
 plan rtangle --max-slosh-height 15mm "${lifted[@]}" --method retime --max-surface-angle 15deg
+# pick-and-place: 0.3 m with a 0.1 m lift, 90 degrees about the vertical
+printf 'x [mm],y [mm],z [mm],yaw [deg]\n0,0,0,0\n300,0,100,90\n' > pick.csv
+for method in retime tilt; do
+  sloshkit plan --path pick.csv "${container[@]}" "${limits[@]}" --max-slosh-height 15mm \
+    "${lifted[@]}" --tilt-compensation --max-tilt 30deg --method "$method" \
+    --out "pnp_$method.csv" --json > "pnp_$method.json"
+done
 # the tilt plan without its turn about the container's axis (the axis direction unchanged)
 python - <<'PY'
 import numpy as np
@@ -95,7 +102,10 @@ cfd tilt10_16 tilt10.csv 16 3.5s
 cfd rtangle12 rtangle.csv 12 4.3s
 cfd angle15_12 angle15.csv 12 3.5s
 cfd angle15_16 angle15.csv 16 3.5s
+cfd pnp_retime12 pnp_retime.csv 12 2.8s
+cfd pnp_tilt12 pnp_tilt.csv 12 2.8s
 cfd pitch5_12 pitch5.csv 12 3.3s
 cfd pitch12 pitch.csv 12 3.3s
 python "$here/azimuthal.py" . meas12 meas16 rt12 rtangle12 trd12 trd16 trd20 noyaw12 \
-  angular12 tilt10_12 tilt10_16 angle15_12 angle15_16 pitch5_12 pitch12
+  angular12 tilt10_12 tilt10_16 angle15_12 angle15_16 pnp_retime12 pnp_tilt12 pitch5_12 \
+  pitch12
