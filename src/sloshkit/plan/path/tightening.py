@@ -25,24 +25,13 @@ BRACKET = 0.01
 #: there and `next_limit` moves them towards the verification meeting it.
 LIMIT_AIM = 1.0 - 0.5 * LIMIT_TOLERANCE
 #: Each slosh quantity: the round's key of the program's limit, of the verified value, the
-#: `ProgramLimits` field, the `sloshkit.plan.path.problem.SpatialSloshLimits` field and the
+#: limit's field (the same name in `ProgramLimits` and in
+#: `sloshkit.plan.path.problem.SpatialSloshLimits`) and the
 #: `sloshkit.plan.path.result.Verification` field.
 QUANTITIES = (
-    ("height_limit_m", "verified_peak_m", "max_height_m", "max_height_m", "peak_height_m"),
-    (
-        "residual_limit_m",
-        "verified_residual_m",
-        "max_residual_height_m",
-        "max_residual_height_m",
-        "residual_height_m",
-    ),
-    (
-        "angle_limit_rad",
-        "verified_angle_rad",
-        "max_surface_angle_rad",
-        "max_surface_angle_rad",
-        "peak_slosh_angle_rad",
-    ),
+    ("height_limit_m", "verified_peak_m", "max_height_m", "peak_height_m"),
+    ("residual_limit_m", "verified_residual_m", "max_residual_height_m", "residual_height_m"),
+    ("angle_limit_rad", "verified_angle_rad", "max_surface_angle_rad", "peak_slosh_angle_rad"),
 )
 
 
@@ -66,8 +55,8 @@ def aimed(slosh: Any) -> dict[str, float | None]:
     True
     """
     found: dict[str, float | None] = {}
-    for *_, field, problem_field, _ in QUANTITIES:
-        limit = getattr(slosh, problem_field)
+    for *_, field, _ in QUANTITIES:
+        limit = getattr(slosh, field)
         found[field] = None if limit is None else LIMIT_AIM * limit
     return found
 
@@ -95,7 +84,7 @@ def round_record(limits: ProgramLimits, check: Any) -> dict[str, float]:
     ['height_limit_m', 'residual_limit_m', 'verified_peak_m', 'verified_residual_m']
     """
     record = {}
-    for program_key, verified_key, field, _, check_field in QUANTITIES:
+    for program_key, verified_key, field, check_field in QUANTITIES:
         if getattr(limits, field) is not None:
             record[program_key] = getattr(limits, field)
             record[verified_key] = getattr(check, check_field)
@@ -125,8 +114,8 @@ def verified_excess(check: Any, slosh: Any) -> float:
     1.2
     """
     excess = 0.0
-    for *_, problem_field, check_field in QUANTITIES:
-        limit = getattr(slosh, problem_field)
+    for *_, field, check_field in QUANTITIES:
+        limit = getattr(slosh, field)
         if limit is not None:
             excess = max(excess, getattr(check, check_field) / limit)
     return excess
@@ -158,8 +147,8 @@ def tightened(limits: ProgramLimits, rounds: list[dict[str, float]], slosh: Any)
     True
     """
     changes = {}
-    for program_key, verified_key, field, problem_field, _ in QUANTITIES:
-        limit = getattr(slosh, problem_field)
+    for program_key, verified_key, field, _ in QUANTITIES:
+        limit = getattr(slosh, field)
         if limit is not None:
             changes[field] = next_limit(rounds, program_key, verified_key, limit)
     return replace(limits, **changes)
