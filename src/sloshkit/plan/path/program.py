@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.plan.path.forces import held, specific_forces
+from sloshkit.plan.path.forces import held, specific_forces, turned_about_axis
 from sloshkit.plan.path.joints import JointMap, JointModel
 from sloshkit.plan.path.pendulums import at_rest, mode_slope, pendulum_track
 from sloshkit.plan.path.samples import PathSamples
@@ -363,11 +363,13 @@ class PathProgram:
             [moved.tilt_rad for *_, moved, _ in perturbed],
             samples.period_s,
         )
+        turn_force, turn_rates = turned_about_axis(base_force, base_kinematic["tilt_rates"])
         for column in columns:
             force = np.zeros((3, len(self.modes) + 1, n, 3))
             rates = np.zeros((3, n, 4))
             position = np.zeros((n, 3))
             omega = np.zeros((2, n + 1, 3))
+            spin = np.zeros(n)
             for index, (moved_column, colour, _, width) in enumerate(perturbed):
                 if moved_column != column:
                     continue
@@ -376,6 +378,20 @@ class PathProgram:
                 drates = moved_kinematic["tilt_rates"][index] - base_kinematic["tilt_rates"]
                 dposition = moved_kinematic["position"][index] - base_kinematic["position"]
                 position[chosen] = dposition[chosen] / width[chosen, None]
+                # the spin of every later sample moves by the two increments' change (zero
+                # when the axis keeps its direction: they telescope)
+                dspin = moved_kinematic["spin"][index] - base_kinematic["spin"]
+                after = dspin[np.minimum(chosen + 1, n - 1)]
+                before = np.where(chosen >= 1, dspin[np.maximum(chosen - 1, 0)], 0.0)
+                moved_spin = np.where(chosen + 1 <= n - 1, after - before, 0.0)
+                spin[chosen] = moved_spin / width[chosen]
+                # the other perturbed samples two or more before k turned N at k: not k's band
+                turned = np.zeros(n)
+                turned[chosen] = moved_spin
+                earlier = np.zeros(n)
+                earlier[2:] = np.cumsum(turned)[:-2]
+                dforce = dforce - earlier[None, :, None] * turn_force
+                drates = drates - earlier[:, None] * turn_rates
                 domega = moved_kinematic["omega"][index] - base_kinematic["omega"]
                 for offset in (-1, 0, 1):
                     k = chosen - offset  # the force at k sees the perturbed sample k + offset
@@ -387,7 +403,7 @@ class PathProgram:
                 omega[1][own] = domega[own] / width[own, None]
                 prev = chosen[chosen + 1 <= n - 1] + 1
                 omega[0][prev] = domega[prev] / width[prev - 1, None]
-            bands.append(_ProgramBands(position, omega, force, rates))
+            bands.append(_ProgramBands(position, omega, force, rates, spin))
         return bands
 
     def _perturbation(
@@ -457,6 +473,7 @@ class _ProgramBands:
     omega: FloatArray
     force: FloatArray
     rates: FloatArray
+    spin: FloatArray
 
 
 def _perturbed(
