@@ -31,6 +31,51 @@ from sloshkit.plan.path.forces import turned_about_axis
 
 FloatArray = NDArray[np.float64]
 
+#: A sample's spin change per unit of its variable [rad/m or rad/rad] below which N is taken
+#: not to turn: the finite differences' rounding (about 1e-9) while the axis keeps its
+#: direction; a tilted TRD_2D plan's tilt samples turn N by up to 1e-2.
+SPIN_FLOOR = 1e-6
+
+
+def spin_changes(dspin: FloatArray, chosen: NDArray[np.int64]) -> tuple[FloatArray, FloatArray]:
+    """N's turn at every later sample from each of a set of perturbed samples, and the turn
+    that the perturbed samples two or more before each sample left there (the part of its
+    force's change outside its band, k - 1..k + 1).
+
+    A sample's change moves the spin increments on its both sides: the spin from the next
+    sample on moves by their sum, ``dspin[k + 1] - dspin[k - 1]`` when the perturbed samples
+    are at least three apart (`sloshkit.plan.path.program.PathProgram.jacobians`' colours).
+
+    Parameters
+    ----------
+    dspin : numpy.ndarray
+        The spin's change at every sample, (n,) [rad].
+    chosen : numpy.ndarray
+        The perturbed samples, at least three apart.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Each chosen sample's turn (zero for the last sample) and, at every sample, the sum of
+        those of the chosen samples two or more before it, (n,).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> turn, earlier = spin_changes(np.array([0, 0.1, 0.3, 0.3, 0.3, 0.3]), np.array([1, 4]))
+    >>> turn.round(12).tolist(), earlier.round(12).tolist()
+    ([0.3, 0.0], [0.0, 0.0, 0.0, 0.3, 0.3, 0.3])
+    """
+    n = dspin.size
+    after = dspin[np.minimum(chosen + 1, n - 1)]
+    before = np.where(chosen >= 1, dspin[np.maximum(chosen - 1, 0)], 0.0)
+    turn = np.where(chosen + 1 <= n - 1, after - before, 0.0)
+    turned = np.zeros(n)
+    turned[chosen] = turn
+    earlier = np.zeros(n)
+    earlier[2:] = np.cumsum(turned)[:-2]
+    return turn, earlier
+
 
 @dataclass(frozen=True, eq=False)
 class TurnGains:
@@ -86,7 +131,7 @@ def axial_turn(
     first: int,
 ) -> AxialTurn | None:
     """The drive's dependence through N's turn about the axis (module docstring), or None
-    when no sample's change turns N (the axis keeps its direction).
+    when no sample's change turns N by more than `SPIN_FLOOR` (the axis keeps its direction).
 
     Parameters
     ----------
@@ -128,7 +173,8 @@ def axial_turn(
     n, columns = blocks[0][1].shape
     weighted = np.zeros((n, columns))
     for band, (_, dz) in zip(bands, blocks, strict=True):
-        weighted += band.spin[:, None] * dz
+        spin = np.where(np.abs(band.spin) > SPIN_FLOOR, band.spin, 0.0)
+        weighted += spin[:, None] * dz
     if not np.any(weighted):
         return None
     # C_j = sum over k <= j - 2
@@ -146,4 +192,4 @@ def axial_turn(
     return AxialTurn([(TurnGains(turned_force, turned_rates), rows)], at_starts, first)
 
 
-__all__ = ["AxialTurn", "TurnGains", "axial_turn"]
+__all__ = ["SPIN_FLOOR", "AxialTurn", "TurnGains", "axial_turn", "spin_changes"]
