@@ -242,17 +242,10 @@ class SplineTranscription:
         cones = ConicProgram()
         turned = [] if turn is None else turn.blocks
         if turn is not None:
-            # each segment's turn: sigma_i = C_i z, within the reach of the box
+            # each segment's turn, within the reach of the box, tied to the splines as a chain
             scale[nz:nv] = np.maximum(np.abs(turn.starts[:, :nz]) @ box, 1e-12)
-            for i, row in enumerate(turn.starts):
-                used = np.flatnonzero(row[:nz])
-                cones.add(
-                    "zero",
-                    np.zeros(used.size + 1, dtype=int),
-                    np.concatenate(([nz + i], used)),
-                    np.concatenate(([1.0], -row[used])),
-                    [0.0],
-                )
+            for used, coefficients in turn.chain():
+                cones.add("zero", np.zeros(used.size, dtype=int), used, coefficients, [0.0])
         for m, model in enumerate(program.models):
             lengths, omegas, zetas = mode_arrays(model)
             # the frame's lateral turning rates (Euler, centrifugal and Coriolis terms) enter
