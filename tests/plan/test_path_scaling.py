@@ -30,7 +30,11 @@ def test_ties_at_a_min_max_solution_go_to_the_quantity_uniform_scaling_needs_mos
         "jerk": top * (1.0 - 0.1 * TIE * wobble),
         "velocity": 0.5 * top,
     }
-    expected = "joint speed" if top > 1.0 else "jerk" if top < 1.0 else binding(ratios)
+    # within 1e-12 of 1 the roots r^(1/p) round to the same double: any tied name is right
+    expected = "joint speed" if top > 1.0 + 1e-12 else "jerk" if top < 1.0 - 1e-12 else None
+    if expected is None:
+        assert binding(ratios) in {"joint speed", "peak slosh", "jerk"}
+        return
     assert binding(ratios) == expected
 
 

@@ -137,9 +137,9 @@ def condense(
     modes, periods = a_k.shape[0], a_k.shape[1]
     n = periods + 1
     nz = blocks[0][1].shape[1]
-    active = np.zeros((n, nz), dtype=bool)
-    for _, dz in blocks:
-        active |= dz != 0.0
+    # each block's nonzero rows, and the samples around its own its gains reach (a band's
+    # k - 1..k + 1; `sloshkit.plan.path.axial_turn`'s pseudo-block its own sample only)
+    active = [(dz != 0.0, getattr(band, "reach", 1)) for band, dz in blocks]
     identity = np.broadcast_to(np.eye(6), (modes, 6, 6))
     phi = np.zeros((modes, n, 6, 6))
     phi[:, 0] = identity
@@ -149,7 +149,10 @@ def condense(
     for index, (first, end) in enumerate(pairwise(bounds)):
         # the periods first..end - 1 see the drive at first..end, which sees the samples
         # first - 1..end + 1
-        window = np.flatnonzero(active[max(first - 1, 0) : min(end + 2, n)].any(axis=0))
+        seen = np.zeros(nz, dtype=bool)
+        for nonzero, reach in active:
+            seen |= nonzero[max(first - reach, 0) : min(end + 1 + reach, n)].any(axis=0)
+        window = np.flatnonzero(seen)
         samples = np.arange(first, end + 1)
         # the step inputs B_k df_k + E_k df_{k+1}, df_k = sum over the offsets o of the
         # drive's gain at k in the sample k + o times that sample's row of dz: the gains

@@ -55,6 +55,68 @@ def held(values: FloatArray, pad: int, axis: int = 0) -> FloatArray:
     return np.concatenate((first,) * pad + (values,) + (last,) * pad, axis=axis)
 
 
+def spin_angles(quaternion_xyzw: FloatArray) -> FloatArray:
+    """The container's spin about its own axis at sampled poses: the sum of the body-frame
+    rotation increments' axial components from the first sample (`non_spinning_frame`).
+
+    Parameters
+    ----------
+    quaternion_xyzw : numpy.ndarray
+        Container-to-world unit quaternions at the samples, (..., N + 1, 4), scalar last.
+
+    Returns
+    -------
+    numpy.ndarray
+        The spin at each sample, (..., N + 1) [rad], zero at the first.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> yaw = np.linspace(0.0, np.pi / 2, 5)  # a turn about the container's own axis
+    >>> q = np.stack([0 * yaw, 0 * yaw, np.sin(yaw / 2), np.cos(yaw / 2)], axis=-1)
+    >>> spin_angles(q).round(6).tolist()
+    [0.0, 0.392699, 0.785398, 1.178097, 1.570796]
+    """
+    quaternion = np.asarray(quaternion_xyzw, dtype=float)
+    body = rotation_vector(
+        hamilton_product(conjugate(quaternion[..., :-1, :]), quaternion[..., 1:, :])
+    )
+    start = np.zeros((*quaternion.shape[:-2], 1))
+    return np.concatenate((start, np.cumsum(body[..., 2], axis=-1)), axis=-1)
+
+
+def turned_about_axis(force: FloatArray, rates: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The derivatives of the forces and N's lateral rates (`specific_forces`) in N when N
+    turns about its own axis: a turn by d turns every vector in N by -d, so d f / d spin =
+    e_z x f, and the rates' pairs (p, q) the same way.
+
+    Parameters
+    ----------
+    force : numpy.ndarray
+        Forces (..., 3) in N [m/s^2].
+    rates : numpy.ndarray
+        N's lateral angular velocity and its derivative (..., 4).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        d force / d spin and d rates / d spin, shaped as the inputs.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f, r = turned_about_axis(np.array([1.0, 0.0, -9.81]), np.array([0.0, 2.0, 1.0, 0.0]))
+    >>> f.tolist(), r.tolist()
+    ([-0.0, 1.0, 0.0], [-2.0, 0.0, -0.0, 1.0])
+    """
+    turned_force = np.zeros(force.shape)
+    turned_force[..., 0], turned_force[..., 1] = -force[..., 1], force[..., 0]
+    turned_rates = np.zeros(rates.shape)
+    turned_rates[..., 0], turned_rates[..., 1] = -rates[..., 1], rates[..., 0]
+    turned_rates[..., 2], turned_rates[..., 3] = -rates[..., 3], rates[..., 2]
+    return turned_force, turned_rates
+
+
 def non_spinning_frame(quaternion_xyzw: FloatArray) -> FloatArray:
     """The container's non-spinning frame N at sampled poses: the container frame turned back
     about its own axis by its spin, the sum of the body-frame rotation increments' axial
@@ -80,11 +142,7 @@ def non_spinning_frame(quaternion_xyzw: FloatArray) -> FloatArray:
     [0.0, 0.0, 0.0, 1.0]
     """
     quaternion = np.asarray(quaternion_xyzw, dtype=float)
-    body = rotation_vector(
-        hamilton_product(conjugate(quaternion[..., :-1, :]), quaternion[..., 1:, :])
-    )
-    start = np.zeros((*quaternion.shape[:-2], 1))
-    spin = np.concatenate((start, np.cumsum(body[..., 2], axis=-1)), axis=-1)
+    spin = spin_angles(quaternion)
     unspin = np.zeros(quaternion.shape)
     unspin[..., 2], unspin[..., 3] = -np.sin(0.5 * spin), np.cos(0.5 * spin)
     return hamilton_product(quaternion, unspin)
@@ -191,8 +249,9 @@ def specific_forces(
         "omega": omega,
         "alpha": alpha,
         "position": position,
+        "spin": spin_angles(quaternion),
     }
     return force, kinematic
 
 
-__all__ = ["held", "non_spinning_frame", "specific_forces"]
+__all__ = ["held", "non_spinning_frame", "specific_forces", "spin_angles", "turned_about_axis"]

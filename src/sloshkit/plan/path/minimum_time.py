@@ -1,25 +1,27 @@
 """The fewest export samples whose timing meets every limit of a path program.
 
 At a fixed number N of export samples, sequential cone programs of the spline transcription
-(`sloshkit.plan.path.transcription.SplineTranscription.step`) minimise the largest ratio
-r(N) of a limited quantity to its limit, from the best timing found so far scaled to N
-(`at_duration`). N itself is found by a safeguarded secant iteration on ln r(N) = 0 in
-ln N: a ratio scales with the duration as T^-p, so N r^(1/p) is the next guess, p the secant
-slope through the last two durations when they are close (near the optimum the slosh ratios
-fall as T^-3.3 on pick-and-place), else the order of the binding quantity (1 for a speed, 2
-for an acceleration or a slosh height, 3 for a jerk); the guess is kept strictly inside the
-bracket of the smallest N that met every limit and the largest shorter one that did not,
-else its midpoint (bisection). It ends when the bracket is one sample (or `TOLERANCE` of N) wide
-(`shortest`), unless the best splines scaled to the missed N would have met the limits with
-a margin and that N started from other splines: it is then tried once more from the best
-ones (a sample's change of N turns the residual's phases, and programs from a far start can
-lose their way). While none has met the limits, a longer missed duration is tried once more
-from the start stretched to it, with the first trust region `FIRST_TRUST`: a missed plan's
-residual cancels at its own timing only, and the carried region can be too small. Each
-duration's programs stop as soon as they decide it: at the first splines that meet every
-limit, or when the programs' predicted least ratio stalls above them (`at_duration`'s
-``decide``). Where several quantities tie at the largest ratio, as a min-max program leaves
-them, the binding one is the one uniform time scaling would need most
+(`sloshkit.plan.path.transcription.SplineTranscription.step`) minimise the largest ratio r(N)
+of a limited quantity to its limit, from the best timing found so far scaled to N
+(`at_duration`). N itself is found by a safeguarded secant iteration on ln r(N) = 0 in ln N: a
+ratio scales with the duration as T^-p, so N r^(1/p) is the next guess, p the secant slope
+through the last two durations when they are close (near the optimum the slosh ratios fall as
+T^-3.3 on pick-and-place), else the order of the binding quantity (1 for a speed, 2 for an
+acceleration or a slosh height, 3 for a jerk); the guess is kept strictly inside the bracket of
+the smallest N that met every limit and the largest shorter one that did not, else its midpoint
+(bisection); after a met duration it is at least the bracket's tolerance shorter (`TOLERANCE`
+of N; the first ratio that met the limits bounds the least one from above, and the secant's
+step from a ratio just below 1 would creep down a sample at a time). It ends when the bracket
+is one sample (or `TOLERANCE` of N) wide (`shortest`), unless the best splines scaled to the
+missed N would have met the limits with a margin and that N started from other splines: it is
+then tried once more from the best ones (a sample's change of N turns the residual's phases,
+and programs from a far start can lose their way). While none has met the limits, a longer
+missed duration is tried once more from the start stretched to it, with the first trust region
+`FIRST_TRUST`: a missed plan's residual cancels at its own timing only, and the carried region
+can be too small. Each duration's programs stop as soon as they decide it: at the first splines
+that meet every limit, or when the programs' predicted least ratio stalls above them
+(`at_duration`'s ``decide``). Where several quantities tie at the largest ratio, as a min-max
+program leaves them, the binding one is the one uniform time scaling would need most
 (`sloshkit.plan.path.scaling.binding`).
 """
 
@@ -46,8 +48,10 @@ ITERATIONS = 8
 FIRST_TRUST = 0.02
 #: With ``decide``, `at_duration` calls N too short when two successive programs, not held
 #: back by the trust region, predict a least ratio above 1 + UNMET_MARGIN that fell by less
-#: than STALLED.
-UNMET_MARGIN = 0.02
+#: than STALLED (the programs' prediction agrees with the exact ratio to about 1e-3 near the
+#: optimum since the drive's linearisation includes N's turn about the axis,
+#: `sloshkit.plan.path.axial_turn`; 0.02 before).
+UNMET_MARGIN = 0.005
 STALLED = 0.01
 #: Durations tried, at most.
 MAX_DURATIONS = 16
@@ -433,6 +437,12 @@ def shortest(
         guess = round(steps * ratio ** (1.0 / slope))
         if guess == steps:
             guess = steps + (1 if not trial.met else -1)
+        width = max(1, math.floor(TOLERANCE * steps))
+        if trial.met and steps - width > lowest_unmet and steps - guess < width:
+            # a met duration's ratio is the first that met the limits, an upper bound of the
+            # least one at N: a step shorter than the bracket's tolerance would creep down a
+            # sample at a time
+            guess = steps - width
         upper = highest_met if highest_met is not None else math.inf
         if not lowest_unmet < guess < upper:
             guess = (lowest_unmet + upper) // 2 if upper < math.inf else int(1.25 * steps) + 1

@@ -36,7 +36,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from sloshkit.plan.path.forces import held, specific_forces
+from sloshkit.plan.path.axial_turn import spin_changes
+from sloshkit.plan.path.forces import held, specific_forces, turned_about_axis
 from sloshkit.plan.path.joints import JointMap, JointModel
 from sloshkit.plan.path.pendulums import at_rest, mode_slope, pendulum_track
 from sloshkit.plan.path.samples import PathSamples
@@ -338,14 +339,12 @@ class PathProgram:
         """Banded derivatives of the samples' positions, angular velocities and forces with
         respect to each variable block (s, then r_x, r_y with tilt).
 
-        Every quantity at sample k depends on the samples k-1..k+1 only (positions on k, the
-        angular velocity on k-1 and k, the forces on k-1..k+1 through the second difference),
-        so perturbing every third sample at once separates the bands (Curtis, Powell & Reid,
-        IMA J. Appl. Math. 13 (1974) 117-119); one-sided differences from the samples' own
-        evaluation (backward at the path's end; the programs re-evaluate every step exactly,
-        so the O(step) error, about 1e-7 relative, is immaterial). The spin about the axis is
-        recomputed: a sample's change moves only its own spin when the axis keeps its direction
-        (the increments telescope; holding it fixed rotated N by the yaw change instead).
+        Positions depend on sample k, the angular velocity on k-1 and k, the forces on k-1..k+1
+        (the second difference) and, when the axis tilts, through N's turn about it on every
+        earlier sample (``spin``, the turn per unit of the variable, and
+        `sloshkit.plan.path.axial_turn`); perturbing every third sample at once separates the
+        bands (Curtis, Powell & Reid, IMA J. Appl. Math. 13 (1974) 117-119), one-sided
+        differences (backward at the path's end; error about 1e-7 relative).
         """
         samples = _with_rest(samples)
         n = samples.s_m.size
@@ -363,11 +362,13 @@ class PathProgram:
             [moved.tilt_rad for *_, moved, _ in perturbed],
             samples.period_s,
         )
+        turn_force, turn_rates = turned_about_axis(base_force, base_kinematic["tilt_rates"])
         for column in columns:
             force = np.zeros((3, len(self.modes) + 1, n, 3))
             rates = np.zeros((3, n, 4))
             position = np.zeros((n, 3))
             omega = np.zeros((2, n + 1, 3))
+            spin = np.zeros(n)
             for index, (moved_column, colour, _, width) in enumerate(perturbed):
                 if moved_column != column:
                     continue
@@ -376,6 +377,13 @@ class PathProgram:
                 drates = moved_kinematic["tilt_rates"][index] - base_kinematic["tilt_rates"]
                 dposition = moved_kinematic["position"][index] - base_kinematic["position"]
                 position[chosen] = dposition[chosen] / width[chosen, None]
+                # N's turn about the axis (`sloshkit.plan.path.axial_turn`): each perturbed
+                # sample's, and what those two or more before k left at k (not k's band)
+                dspin = moved_kinematic["spin"][index] - base_kinematic["spin"]
+                moved_spin, earlier = spin_changes(dspin, chosen)
+                spin[chosen] = moved_spin / width[chosen]
+                dforce = dforce - earlier[None, :, None] * turn_force
+                drates = drates - earlier[:, None] * turn_rates
                 domega = moved_kinematic["omega"][index] - base_kinematic["omega"]
                 for offset in (-1, 0, 1):
                     k = chosen - offset  # the force at k sees the perturbed sample k + offset
@@ -387,7 +395,7 @@ class PathProgram:
                 omega[1][own] = domega[own] / width[own, None]
                 prev = chosen[chosen + 1 <= n - 1] + 1
                 omega[0][prev] = domega[prev] / width[prev - 1, None]
-            bands.append(_ProgramBands(position, omega, force, rates))
+            bands.append(_ProgramBands(position, omega, force, rates, spin))
         return bands
 
     def _perturbation(
@@ -396,7 +404,7 @@ class PathProgram:
         """Every third sample from ``colour`` moved in s (``column`` None) or a tilt angle."""
         step = 1e-7 * max(self.path.length_m, 1.0) if column is None else 1e-7
         chosen = np.arange(colour, samples.s_m.size, 3)
-        return _perturbed(samples, chosen, column, step, self.path.length_m)
+        return samples.perturbed(chosen, column, step, self.path.length_m)
 
     def iterate(self, samples: PathSamples) -> ProgramIterate:
         """The samples with their exact evaluation and ratios to the limits."""
@@ -451,30 +459,14 @@ class _ProgramBands:
     """Derivatives of one variable block: ``position`` (n, 3) d P_k / d x_k, ``omega``
     (2, n + 1, 3) d w_i / d x_{i-1} and d w_i / d x_i, ``force`` (3, modes, n, 2)
     d f_k / d x_{k+o} for o = -1, 0, 1, ``rates`` (3, n, 4) the same of N's lateral angular
-    velocity and its derivative (the drive's last four components)."""
+    velocity and its derivative (the drive's last four components), ``spin`` (n,) N's turn
+    about the axis at the later samples (`sloshkit.plan.path.axial_turn`)."""
 
     position: FloatArray
     omega: FloatArray
     force: FloatArray
     rates: FloatArray
-
-
-def _perturbed(
-    samples: PathSamples, chosen: Any, column: int | None, step: float, length_m: float
-) -> tuple[PathSamples, FloatArray]:
-    """The samples with the ``chosen`` ones moved by ``step`` in s (backwards where that would
-    leave [0, S]) or in a tilt angle, and each sample's signed move (1 where not moved)."""
-    s_moved = samples.s_m.copy()
-    tilt_moved = samples.tilt_rad.copy()
-    width = np.ones(samples.s_m.size)
-    if column is None:
-        forward = s_moved[chosen] + step <= length_m
-        s_moved[chosen] = np.where(forward, s_moved[chosen] + step, s_moved[chosen] - step)
-        width[chosen] = s_moved[chosen] - samples.s_m[chosen]
-    else:
-        tilt_moved[chosen, column] += step
-        width[chosen] = step
-    return PathSamples(s_moved, tilt_moved, samples.period_s), width
+    spin: FloatArray
 
 
 def _residual_height(amplitude: FloatArray) -> float:

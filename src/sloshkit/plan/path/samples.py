@@ -43,6 +43,50 @@ class PathSamples:
         """N, the number of sample periods."""
         return int(self.s_m.size - 1)
 
+    def perturbed(
+        self, chosen: Any, column: int | None, step: float, length_m: float
+    ) -> tuple[PathSamples, FloatArray]:
+        """The samples with the ``chosen`` ones moved by ``step`` in s (``column`` None;
+        backwards where that would leave [0, ``length_m``]) or in tilt angle ``column``, and
+        each sample's signed move (1 where not moved): one colour of a coloured finite
+        difference (`sloshkit.plan.path.program.PathProgram.jacobians`).
+
+        Parameters
+        ----------
+        chosen : array_like of int
+            The samples to move.
+        column : int or None
+            None for s, else the tilt angle (0 or 1).
+        step : float
+            The move [m or rad].
+        length_m : float
+            The path's length [m].
+
+        Returns
+        -------
+        tuple
+            The moved samples and the signed moves, (N + 1,).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> samples = PathSamples(np.array([0.0, 0.05, 0.1]), np.zeros((3, 2)), 0.01)
+        >>> moved, width = samples.perturbed([1, 2], None, 1e-3, 0.1)
+        >>> moved.s_m.round(6).tolist(), width.round(6).tolist()
+        ([0.0, 0.051, 0.099], [1.0, 0.001, -0.001])
+        """
+        s_moved = self.s_m.copy()
+        tilt_moved = self.tilt_rad.copy()
+        width = np.ones(self.s_m.size)
+        if column is None:
+            forward = s_moved[chosen] + step <= length_m
+            s_moved[chosen] = np.where(forward, s_moved[chosen] + step, s_moved[chosen] - step)
+            width[chosen] = s_moved[chosen] - self.s_m[chosen]
+        else:
+            tilt_moved[chosen, column] += step
+            width[chosen] = step
+        return PathSamples(s_moved, tilt_moved, self.period_s), width
+
 
 def sample_poses(
     path: Any, samples: PathSamples, centre_height_m: float

@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from sloshkit.plan.path.axial_turn import axial_turn
 from sloshkit.plan.path.condensing import condense
 from sloshkit.plan.path.conic import ConicProgram, NormRows
 from sloshkit.plan.path.pendulums import mode_slope, slope_jacobian, step_jacobians
@@ -179,16 +180,24 @@ class SplineTranscription:
         samples, ev = current.samples, current.evaluation
         n = steps + 1 + HOLD
         bands = program.jacobians(samples)
-        # each sample's deviation in each variable block, (n, nz)
+        starts = list(range(SEGMENT_SAMPLES, n - 1, SEGMENT_SAMPLES))
+        # the variables: the splines, then N's turn about the axis at each segment's start
+        # (`sloshkit.plan.path.axial_turn`; zero columns when N does not turn)
+        nv = nz + len(starts)
+        # each sample's deviation in each variable block, (n, nv)
         blocks = []
         for block in range(3 if tilting else 1):
-            dz = np.zeros((n, nz))
+            dz = np.zeros((n, nv))
             dz[: steps + 1, block * free : (block + 1) * free] = basis
             blocks.append((bands[block], dz))
+        turn = axial_turn(bands, blocks, ev.force, ev.drive[0][0, :, 3:], starts, nz)
+        if turn is None:
+            nv = nz
+            blocks = [(band, dz[:, :nz]) for band, dz in blocks]
         keep = 1.0 - PROGRAM_MARGIN
         modes, models = len(program.modes), len(program.models)
         rows: list[NormRows] = []
-        position = np.zeros((n, 3, nz))
+        position = np.zeros((n, 3, nv))
         for band, dz in blocks:
             position += band.position[:, :, None] * dz[:, None, :]
         for order, values, limit in (
@@ -197,7 +206,7 @@ class SplineTranscription:
             (3, ev.jerk, lim.max_jerk_m_s3),
         ):
             rows.append(NormRows(values, _differences(position, order, ts), limit))
-        self._angular_rows(rows, ev, blocks, n, nz)
+        self._angular_rows(rows, ev, blocks, n, nv)
         if tilting:
             tilt = np.zeros((n, 2))
             tilt[: steps + 1] = samples.tilt_rad
@@ -215,16 +224,15 @@ class SplineTranscription:
                     )
                 )
         if program.joint_model is not None:
-            rows.append(self._joint_rows(samples, ev, blocks, steps, nz))
+            rows.append(self._joint_rows(samples, ev, blocks, steps, nv))
         # the trust region, and the columns' units: the box for the splines, the states' reach
         # within it for the segments' start states
         box = np.full(nz, trust * self.length)
         if tilting:
             box[free:] = 2.5 * trust
         # ----------------------------------------------- pendulums, condensed per segment
-        starts = list(range(SEGMENT_SAMPLES, n - 1, SEGMENT_SAMPLES))
         segments = len(starts)
-        state_base = nz
+        state_base = nv
         state_width = 6 * modes
         slack = state_base + models * segments * state_width
         residual_base = slack + 1
@@ -232,6 +240,12 @@ class SplineTranscription:
         scale = np.ones(columns)
         scale[:nz] = box
         cones = ConicProgram()
+        turned = [] if turn is None else turn.blocks
+        if turn is not None:
+            # each segment's turn, within the reach of the box, tied to the splines as a chain
+            scale[nz:nv] = np.maximum(np.abs(turn.starts[:, :nz]) @ box, 1e-12)
+            for used, coefficients in turn.chain():
+                cones.add("zero", np.zeros(used.size, dtype=int), used, coefficients, [0.0])
         for m, model in enumerate(program.models):
             lengths, omegas, zetas = mode_arrays(model)
             # the frame's lateral turning rates (Euler, centrifugal and Coriolis terms) enter
@@ -248,7 +262,7 @@ class SplineTranscription:
                 program.linear,
             )
             kappa = omegas**2 * lengths / model.gravity_m_s2
-            states = condense((a_k, b_k, e_k), blocks, kappa, width, starts)
+            states = condense((a_k, b_k, e_k), blocks + turned, kappa, width, starts)
             phi, segment = states.phi, states.segment
             model_base = state_base + m * segments * state_width
 
@@ -261,7 +275,7 @@ class SplineTranscription:
                 for q in range(modes):
                     row = np.arange(6)
                     own = model_base + (i - 1) * state_width + 6 * q
-                    reach = np.abs(psi_start[q]) @ box
+                    reach = np.abs(psi_start[q]) @ scale[:nv]
                     if i > 1:
                         before = scale[own - state_width : own - state_width + 6]
                         reach = reach + np.abs(phi[q, start]) @ before
@@ -399,7 +413,7 @@ class SplineTranscription:
                 return None
             added = 0
             for group, use in zip(rows, selected, strict=True):
-                over = (group.predicted(x, nz) > keep + x[slack] + 1e-6) & ~use
+                over = (group.predicted(x, nv) > keep + x[slack] + 1e-6) & ~use
                 added += int(over.sum())
                 use |= over | np.roll(over, 1) | np.roll(over, -1)
             if not added:
