@@ -5,8 +5,8 @@ The pendulums are driven in N, the container frame turned back about its own axi
 increments' axial components. A sample's change moves the two increments next to it. While
 the axis keeps its direction their changes cancel, but when it tilts they leave N turned by
 their sum at every later sample: the spin of a body whose axis moves depends on the axis's
-path, not only on where it ends (the geometric phase of a rotation; Berry, Proc. R. Soc. A 392
-(1984) 45-57, doi:10.1098/rspa.1984.0023). Turning N by d turns every vector in N by -d, so
+path, not only on where it ends (the geometric phase of a rotation; Montgomery, Am. J. Phys.
+59 (1991) 394-398, doi:10.1119/1.16514). Turning N by d turns every vector in N by -d, so
 d f_j / d spin_j = e_z x f_j (`sloshkit.plan.path.forces.turned_about_axis`).
 
 `sloshkit.plan.path.program.PathProgram.jacobians` holds each force's dependence on the samples
