@@ -79,9 +79,16 @@ def spin_changes(dspin: FloatArray, chosen: NDArray[np.int64]) -> tuple[FloatArr
 
 @dataclass(frozen=True, eq=False)
 class TurnGains:
-    """A pseudo-block's gains for `sloshkit.plan.path.condensing.condense`: ``force`` (3,
-    modes + 1, n, 3) and ``rates`` (3, n, 4) at the offsets -1, 0, 1 (only 0 is nonzero), and
-    ``reach`` 0: its rows act on their own sample only.
+    """A pseudo-block's gains for `sloshkit.plan.path.condensing.condense`.
+
+    Parameters
+    ----------
+    force : numpy.ndarray
+        (3, modes + 1, n, 3): the forces' gains at the offsets -1, 0, 1 (only 0 is nonzero).
+    rates : numpy.ndarray
+        (3, n, 4): N's rates' gains at the same offsets.
+    reach : int
+        The samples either side whose rows the gains see: 0, their own sample only.
 
     Examples
     --------
