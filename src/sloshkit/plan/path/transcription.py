@@ -242,9 +242,9 @@ class SplineTranscription:
         cones = ConicProgram()
         turned = [] if turn is None else turn.blocks
         if turn is not None:
-            # each segment's turn, within the reach of the box, tied to the splines as a chain
+            # each segment's turn, within the reach of the box, tied to the splines
             scale[nz:nv] = np.maximum(np.abs(turn.starts[:, :nz]) @ box, 1e-12)
-            for used, coefficients in turn.chain():
+            for used, coefficients in turn.equalities():
                 cones.add("zero", np.zeros(used.size, dtype=int), used, coefficients, [0.0])
         for m, model in enumerate(program.models):
             lengths, omegas, zetas = mode_arrays(model)
