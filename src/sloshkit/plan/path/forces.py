@@ -117,7 +117,9 @@ def turned_about_axis(force: FloatArray, rates: FloatArray) -> tuple[FloatArray,
     return turned_force, turned_rates
 
 
-def non_spinning_frame(quaternion_xyzw: FloatArray) -> FloatArray:
+def non_spinning_frame(
+    quaternion_xyzw: FloatArray, spin_rad: FloatArray | None = None
+) -> FloatArray:
     """The container's non-spinning frame N at sampled poses: the container frame turned back
     about its own axis by its spin, the sum of the body-frame rotation increments' axial
     components from the first sample (N's convention: `sloshkit.sim.spatial_drive`, there
@@ -127,6 +129,8 @@ def non_spinning_frame(quaternion_xyzw: FloatArray) -> FloatArray:
     ----------
     quaternion_xyzw : numpy.ndarray
         Container-to-world unit quaternions at the samples, (..., N + 1, 4), scalar last.
+    spin_rad : numpy.ndarray, optional
+        Their spin (`spin_angles`), when already computed.
 
     Returns
     -------
@@ -142,7 +146,7 @@ def non_spinning_frame(quaternion_xyzw: FloatArray) -> FloatArray:
     [0.0, 0.0, 0.0, 1.0]
     """
     quaternion = np.asarray(quaternion_xyzw, dtype=float)
-    spin = spin_angles(quaternion)
+    spin = spin_angles(quaternion) if spin_rad is None else spin_rad
     unspin = np.zeros(quaternion.shape)
     unspin[..., 2], unspin[..., 3] = -np.sin(0.5 * spin), np.cos(0.5 * spin)
     return hamilton_product(quaternion, unspin)
@@ -221,7 +225,8 @@ def specific_forces(
     increments = rotation_vector(hamilton_product(later, conjugate(earlier)))
     omega = np.concatenate((rest, increments / period_s, rest), axis=1)
     alpha = np.diff(omega, axis=1) / period_s
-    frame_quaternion = non_spinning_frame(quaternion)
+    spin = spin_angles(quaternion)
+    frame_quaternion = non_spinning_frame(quaternion, spin)
     axis = rotated_z_axis(quaternion)
     force = np.empty((batch, len(modes) + 1, count, 3))
     for index, mode in enumerate(modes):
@@ -249,7 +254,7 @@ def specific_forces(
         "omega": omega,
         "alpha": alpha,
         "position": position,
-        "spin": spin_angles(quaternion),
+        "spin": spin,
     }
     return force, kinematic
 

@@ -18,8 +18,10 @@ nonlinear pendulums of every mode and band model, the wall height at every sampl
 the residual's semi-major axes, an arm's joint speeds). `SplineTranscription.step`
 linearises it around the current splines: the samples' derivatives with respect to the
 coefficients are the basis itself; the forces' derivatives come banded from
-`PathProgram.jacobians`; the pendulums are the time-varying linear system of one period
-along the current track (`sloshkit.plan.path.pendulums.step_jacobians`). Their states are
+`PathProgram.jacobians`, with the turn about the axis that a tilt sample leaves on every later
+one (`sloshkit.plan.path.axial_turn`; variables after the splines'); the pendulums are the
+time-varying linear system of one period along the current track
+(`sloshkit.plan.path.pendulums.step_jacobians`). Their states are
 condensed into the coefficients within segments of `SEGMENT_SAMPLES` samples and carried
 from segment to segment by the state at each segment's start (a variable, tied by equality
 rows): a wall-height row then depends on its segment's start state and on the few
