@@ -63,7 +63,7 @@ def test_the_bands_and_the_axial_turn_predict_the_drive_of_a_tilting_move():
         dz[np.arange(1, STEPS), block * (STEPS + 1) + np.arange(1, STEPS)] = 1.0
         blocks.append((bands[block], dz))
     force, kinematic = program.forces(program_samples(samples))
-    turn = axial_turn(bands, blocks, force, kinematic["tilt_rates"], starts, 3 * (STEPS + 1))
+    turn = axial_turn(blocks, force, kinematic["tilt_rates"], starts, 3 * (STEPS + 1))
     assert turn is not None  # the axis tilts while the container turns: N turns
     rng = np.random.default_rng(7)
     direction = np.zeros(columns)
@@ -119,5 +119,5 @@ def test_an_upright_move_has_no_axial_turn():
     dz[np.arange(1, STEPS), np.arange(1, STEPS)] = 1.0
     force, kinematic = program.forces(program_samples(upright))
     # only the s block: the container turns about the vertical, its own axis
-    turn = axial_turn(bands[:1], [(bands[0], dz)], force, kinematic["tilt_rates"], [], STEPS)
+    turn = axial_turn([(bands[0], dz)], force, kinematic["tilt_rates"], [], STEPS)
     assert turn is None

@@ -160,7 +160,6 @@ class AxialTurn:
 
 
 def axial_turn(
-    bands: list[Any],
     blocks: list[tuple[Any, FloatArray]],
     force: FloatArray,
     rates: FloatArray,
@@ -172,12 +171,11 @@ def axial_turn(
 
     Parameters
     ----------
-    bands : list
-        Each variable block's bands (`sloshkit.plan.path.program.PathProgram.jacobians`),
-        with ``spin`` (n,): d spin_{k+1..} / d x_k.
     blocks : list of tuple
-        Each block's (bands, rows (n, columns)): each sample's derivative in the variables,
-        whose columns ``first``, ``first + 1``, ... are the segments' turns (zero here).
+        Each variable block's bands (`sloshkit.plan.path.program.PathProgram.jacobians`,
+        with ``spin`` (n,): d spin_{k+1..} / d x_k) and rows (n, columns): each sample's
+        derivative in the variables, whose columns ``first``, ``first + 1``, ... are the
+        segments' turns (zero here).
     force : numpy.ndarray
         The forces in N at the samples, (modes + 1, n, 3).
     rates : numpy.ndarray
@@ -200,7 +198,7 @@ def axial_turn(
     >>> from types import SimpleNamespace
     >>> spin = np.zeros(6); spin[1] = 0.1
     >>> dz = np.zeros((6, 4)); dz[1, 0] = 1.0
-    >>> turn = axial_turn([SimpleNamespace(spin=spin)], [(None, dz)], np.ones((1, 6, 3)),
+    >>> turn = axial_turn([(SimpleNamespace(spin=spin), dz)], np.ones((1, 6, 3)),
     ...                   np.zeros((6, 4)), [3], 2)
     >>> turn.blocks[0][1][:, [0, 2]].tolist()
     [[0.0, 0.0], [0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [0.0, 1.0], [0.0, 1.0]]
@@ -209,7 +207,7 @@ def axial_turn(
     """
     n, columns = blocks[0][1].shape
     weighted = np.zeros((n, columns))
-    for band, (_, dz) in zip(bands, blocks, strict=True):
+    for band, dz in blocks:
         spin = np.where(np.abs(band.spin) > SPIN_FLOOR, band.spin, 0.0)
         weighted += spin[:, None] * dz
     if not np.any(weighted):

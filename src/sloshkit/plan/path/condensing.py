@@ -137,7 +137,7 @@ def condense(
     modes, periods = a_k.shape[0], a_k.shape[1]
     n = periods + 1
     nz = blocks[0][1].shape[1]
-    # each block's nonzero rows, and the samples around its own its gains reach (a band's
+    # each block's nonzero rows, and how many samples either side its gains reach (a band's
     # k - 1..k + 1; `sloshkit.plan.path.axial_turn`'s pseudo-block its own sample only)
     active = [(dz != 0.0, getattr(band, "reach", 1)) for band, dz in blocks]
     identity = np.broadcast_to(np.eye(6), (modes, 6, 6))

@@ -50,7 +50,7 @@ FIRST_TRUST = 0.02
 #: back by the trust region, predict a least ratio above 1 + UNMET_MARGIN that fell by less
 #: than STALLED (the programs' prediction agrees with the exact ratio to about 1e-3 near the
 #: optimum since the drive's linearisation includes N's turn about the axis,
-#: `sloshkit.plan.path.axial_turn`; 0.02 before).
+#: `sloshkit.plan.path.axial_turn`).
 UNMET_MARGIN = 0.005
 STALLED = 0.01
 #: Durations tried, at most.

@@ -192,7 +192,7 @@ class SplineTranscription:
             dz = np.zeros((n, nv))
             dz[: steps + 1, block * free : (block + 1) * free] = basis
             blocks.append((bands[block], dz))
-        turn = axial_turn(bands, blocks, ev.force, ev.drive[0][0, :, 3:], starts, nz)
+        turn = axial_turn(blocks, ev.force, ev.drive[0][0, :, 3:], starts, nz)
         if turn is None:
             nv = nz
             blocks = [(band, dz[:, :nz]) for band, dz in blocks]
