@@ -53,6 +53,11 @@ FIRST_TRUST = 0.02
 #: `sloshkit.plan.path.axial_turn`).
 UNMET_MARGIN = 0.005
 STALLED = 0.01
+#: With ``decide``, `at_duration` also calls N too short after this many successive rejected
+#: steps above 1 + UNMET_MARGIN: the start lies far outside the linearisation (the upright
+#: decision below a tilted TRD_2D plan, 27.7 times the limits, spent eight programs shrinking
+#: its trust region to 1e-5).
+REJECTED = 3
 #: Durations tried, at most.
 MAX_DURATIONS = 16
 
@@ -164,9 +169,10 @@ def at_duration(
     shrinks to 0.4 of the step's size). Stops when a kept step was predicted to gain less than
     0.2 %, or after ``iterations`` programs. With ``decide`` it answers only whether N meets
     the limits, which is all the search over N needs: it stops at the first splines that meet
-    them, and when two successive programs whose steps stayed well inside the trust region
+    them, when two successive programs whose steps stayed well inside the trust region
     (so that the region did not hold them back) predict a least ratio above 1 +
-    `UNMET_MARGIN` that fell by less than `STALLED`.
+    `UNMET_MARGIN` that fell by less than `STALLED`, and after `REJECTED` successive
+    rejected steps above that ratio.
 
     Parameters
     ----------
@@ -214,6 +220,7 @@ def at_duration(
     programs = 0
     stalled: float | None = None
     previous = math.inf
+    rejected = 0
     for _ in range(iterations):
         step = transcription.step(timing, current, trust)
         programs += 1
@@ -244,6 +251,7 @@ def at_duration(
                 f"(predicted {step.predicted:.4f}), trust {trust:.3g}"
             )
         if actual > 0.0 and actual >= 0.1 * predicted:
+            rejected = 0
             timing, current = step.timing, trial
             if actual >= 0.7 * predicted:
                 trust = min(2.0 * trust, 0.2)
@@ -253,7 +261,10 @@ def at_duration(
             # a step that made things worse than it promised to improve them was far outside
             # the linearisation's reach
             trust *= 0.15 if -actual > predicted else 0.4
-            if trust < 1e-5:
+            rejected += 1
+            if trust < 1e-5 or (
+                decide and rejected >= REJECTED and current.excess > 1.0 + UNMET_MARGIN
+            ):
                 break
     return timing, current, programs, trust, current.excess if stalled is None else stalled
 
@@ -463,6 +474,7 @@ __all__ = [
     "FIRST_TRUST",
     "ITERATIONS",
     "MAX_DURATIONS",
+    "REJECTED",
     "STALLED",
     "STRETCHES",
     "TOLERANCE",

@@ -1,18 +1,16 @@
 """The 3-D path planner: methods side by side, each verified, the fastest feasible chosen.
 
 - ``retime``: the minimum-time timing of the path, upright, by sequential second-order-cone
-  programs of a spline transcription on the export grid (`sloshkit.plan.path.optimal`),
-  with the family's verified member as its floor: the fastest acceleration cap of the
-  timing family of `sloshkit.plan.path.retime` (time-optimal speed profile under an
+  programs of a spline transcription on the export grid (`sloshkit.plan.path.optimal`).
+  The timing family of `sloshkit.plan.path.retime` (time-optimal speed profile under an
   acceleration cap, box filter for the jerk limit, optional ZV/ZVD or curve shaping of the
-  timing) that passes the linear screen (`sloshkit.plan.path.search.upright_family`). The
-  programs run first, and the family then screens only members shorter than their plan;
-  when even the slowest member fails the screen, the family runs first and names the limit
-  that binds (`_plan_exists`);
-- ``tilt``: the same programs with the two tilt angles of every sample as variables, from
-  the upright plan, with the tilt-compensated family member
-  (`sloshkit.plan.path.tilt.tilted_family`) and everything ``retime`` found as its floor,
-  so it is never slower than ``retime``;
+  timing) stands in for them: its fastest cap that passes the linear screen
+  (`sloshkit.plan.path.search.upright_family`) is the plan when the programs verify
+  nothing, and when even the slowest member fails the screen the family runs first and
+  names the limit that binds (`_plan_exists`);
+- ``tilt``: the same programs with the two tilt angles of every sample as variables, never
+  longer than their upright plan; the tilt-compensated family member
+  (`sloshkit.plan.path.tilt.tilted_family`) stands in for them the same way;
 - ``shaped``: per-axis input shaping of the members (each Cartesian axis convolved with the
   ZV/ZVD shaper of the first mode, which cancels its residual for every lateral direction), the
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
@@ -169,15 +167,20 @@ def _floor_found(floor: Sequence[PathCandidate]) -> bool:
 
 def _plan_exists(problem: PathProblem) -> bool:
     """Whether the slowest family member (`sloshkit.plan.path.search.slowest_member`) passes
-    the linear screen: then a plan exists, and ``retime``'s and ``tilt``'s programs run before
-    their families, which then screen only members shorter than the programs' plan. Else the
-    families run first, and the programs only when one found a plan (`_floor_found`)."""
+    the linear screen: then a plan exists, and ``retime``'s and ``tilt``'s programs run, their
+    families only when the programs verify nothing (`_verified`). Else the families run
+    first, and the programs only when one found a plan (`_floor_found`)."""
     return screen_ok(problem, linear_screen(problem.models(), slowest_member(problem)))
 
 
-def _duration_reached(candidate: PathCandidate | None) -> float | None:
-    """The duration of a feasible plan (the bound of the families' search), else None."""
-    return candidate.duration_s if candidate is not None and candidate.feasible else None
+def _verified(candidate: PathCandidate | None, tilted: bool = False) -> bool:
+    """Whether the programs' candidate is a verified plan (with ``tilted``, a tilted one: the
+    tilted programs return their upright plan when their tilted search verified nothing);
+    when it is, the families do not run after them: they never gave a shorter plan on the
+    benchmark and cost 0.8 s on TRD_2D (docs/planning-3d.md, "The families")."""
+    if candidate is None or not candidate.feasible:
+        return False
+    return not tilted or bool(candidate.detail.get("tilted"))
 
 
 def _program_candidates(
@@ -204,8 +207,9 @@ def plan_retime(
     progress: Callable[[str], None] | None = None,
 ) -> PathCandidate:
     """The minimum-time upright timing of the path (`sloshkit.plan.path.optimal.plan_programs`),
-    or the family's verified member (`sloshkit.plan.path.search.upright_family`) or a
-    ``floor`` candidate when one is faster; the container stays on the path.
+    or a ``floor`` candidate when one is faster; the family's verified member
+    (`sloshkit.plan.path.search.upright_family`) when the programs verify nothing (or do not
+    run, `_plan_exists`); the container stays on the path.
 
     Parameters
     ----------
@@ -240,8 +244,8 @@ def plan_retime(
     if family is not None and not _floor_found([family, *floor]):
         return _fastest("retime", started, [family, *floor])
     program, _ = _program_candidates(problem, verifier, progress or (lambda _: None), False)
-    if family is None:
-        family = upright_family(problem, verifier, _duration_reached(program))
+    if family is None and not _verified(program):
+        family = upright_family(problem, verifier)
     return _fastest("retime", started, [program, family, *floor])
 
 
@@ -252,8 +256,9 @@ def plan_tilt(
     progress: Callable[[str], None] | None = None,
 ) -> PathCandidate:
     """The minimum-time timing and tilt of the path (`sloshkit.plan.path.optimal.plan_programs`
-    with ``tilt``), or the fastest of the families' verified members (upright and
-    tilt-compensated) and ``floor`` when one is faster: never slower than ``retime``.
+    with ``tilt``; never longer than their upright plan), or ``floor`` when one is faster;
+    the fastest of the families' verified members (upright and tilt-compensated) when the
+    programs verify nothing (or do not run, `_plan_exists`).
 
     Parameters
     ----------
@@ -290,13 +295,11 @@ def plan_tilt(
         if not _floor_found([*families, *floor]):
             return _fastest("tilt", started, [families[1], families[0], *floor])
     _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True, False)
-    if families is None:
-        reached = _duration_reached(program)
-        families = [
-            upright_family(problem, verifier, reached),
-            tilted_family(problem, verifier, reached),
-        ]
-    return _fastest("tilt", started, [program, families[1], families[0], *floor])
+    if families is None and not _verified(program, tilted=True):
+        families = [tilted_family(problem, verifier)]
+        if not _verified(program):
+            families.insert(0, upright_family(problem, verifier))
+    return _fastest("tilt", started, [program, *(families or [])[::-1], *floor])
 
 
 #: ``auto`` runs the programs of ``retime`` and ``tilt`` when their first start, the
@@ -436,8 +439,9 @@ def _auto(
 ) -> list[PathCandidate]:
     """``auto``'s ``retime`` and (with ``tilt``) ``tilt``: the programs once for both on a
     short move (`_programs_affordable`) when a plan exists (`_plan_exists`, else the families
-    first and a plan among theirs or ``others``' such as ``shaped``), then the families below
-    the programs' plans. ``retime``'s compute is its family's and its upright rounds',
+    first and a plan among theirs or ``others``' such as ``shaped``); the families where the
+    programs did not run or verified nothing. ``retime``'s compute is its family's and its
+    upright rounds',
     ``tilt``'s all of it (its tilted rounds start from the upright ones)."""
     started = time.perf_counter()
     tilting = tilt and problem.max_tilt_rad > 0.0
@@ -449,17 +453,19 @@ def _auto(
     known = [*first, *floor, *others] if first else None
     if _programs_affordable(problem, known, isinstance(verifier, JointSpeedCheck)):
         program = _program_candidates(problem, verifier, say, tilting)
+    upright: PathCandidate | None = None
+    tilted: PathCandidate | None = None
     if first:
         upright, tilted = first[0], first[1] if tilting else None
     else:
-        say("retime: the family's fastest acceleration cap under the slosh screen")
-        upright = upright_family(problem, verifier, _duration_reached(program[0]))
-        tilted = None
-        if tilting:
+        if not _verified(program[0]):
+            say("retime: the family's fastest acceleration cap under the slosh screen")
+            upright = upright_family(problem, verifier)
+        if tilting and not _verified(program[1], tilted=True):
             say("tilt: tilt compensation of the family")
-            tilted = tilted_family(problem, verifier, _duration_reached(program[1]))
+            tilted = tilted_family(problem, verifier)
     retime = _fastest("retime", started, [program[0], upright, *floor])
-    own = upright.compute_time_s + (0.0 if program[0] is None else program[0].compute_time_s)
+    own = sum(c.compute_time_s for c in (upright, program[0]) if c is not None)
     retime = replace(retime, compute_time_s=own)
     if not tilting:
         return [retime]

@@ -338,11 +338,9 @@ def verified_candidate(
     verifier: Verifier,
     tilted: bool,
     detail: dict[str, Any],
-    slowest_s: float | None = None,
 ) -> PathCandidate:
     """Verify ``poses_for(factor)``; while it fails only on stretchable limits (`STRETCHABLE`)
-    stretch it by the largest excess and verify again (`ATTEMPTS` in all), unless the
-    stretch reaches ``slowest_s``.
+    stretch it by the largest excess and verify again (`ATTEMPTS` in all).
 
     Parameters
     ----------
@@ -362,9 +360,6 @@ def verified_candidate(
         Whether the tilt limit applies.
     detail : dict
         Figures to report (the final ``stretch`` is added).
-    slowest_s : float, optional
-        A plan's duration [s] already found: a stretch at least this long is not verified
-        (the failed candidate is returned; it could not win).
 
     Returns
     -------
@@ -397,11 +392,8 @@ def verified_candidate(
         if check.feasible or not _stretchable(check) or attempt == ATTEMPTS - 1:
             break
         # the candidate keeps the last verified export and its stretch
-        longer = factor * _required_stretch(problem, poses, check) * 1.005
-        stretched = poses_for(longer)
-        if slowest_s is not None and stretched.duration_s >= slowest_s:
-            break
-        factor, poses = longer, stretched
+        factor *= _required_stretch(problem, poses, check) * 1.005
+        poses = poses_for(factor)
     assert check is not None
     message = "verified" if check.feasible else "violates " + "; ".join(check.violations)
     return PathCandidate(

@@ -4,11 +4,11 @@ whose member passes a test, and the smallest uniform slow-down of a timing that 
 Slosh is not monotone in the cap A (the residual oscillates with the move's duration), so
 `fastest_capped` scans 20 log-spaced caps downwards from amax, refines the first passing one by
 bisection towards the next larger (failing) grid value, also bisects over the whole range (it
-can land in a passing pocket between grid values), and keeps the larger passing cap. Below a
-plan already found (``slowest_s``) the longer members count as passing unscreened. A uniform stretch
-in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative the
-planner compares with (`plan_uniform`). The members found here are the verified floor of
-``retime`` and ``tilt``, whose programs (`sloshkit.plan.path.optimal`) find shorter plans.
+can land in a passing pocket between grid values), and keeps the larger passing cap. A uniform
+stretch in time t -> c t (`stretch_until`: doubling, then bisection) is the naive alternative
+the planner compares with (`plan_uniform`). The members found here are ``retime``'s and
+``tilt``'s plans where their programs (`sloshkit.plan.path.optimal`) do not run or verify
+nothing, and ``auto``'s on long moves.
 """
 
 from __future__ import annotations
@@ -165,11 +165,9 @@ def fastest_capped(
     shaper: Shaper | ShaperFactory | None,
     low_fraction: float = LOWEST_CAP_FRACTION,
     sampler: Callable[[Timing], PoseTrajectory] | None = None,
-    slowest_s: float | None = None,
 ) -> tuple[float, Timing] | None:
     """The largest acceleration cap A between ``low_fraction`` amax and amax whose family
-    member's export passes ``passes`` (module docstring), among the members shorter than
-    ``slowest_s`` when given.
+    member's export passes ``passes`` (module docstring).
 
     Parameters
     ----------
@@ -183,16 +181,11 @@ def fastest_capped(
         Smallest cap tried, as a fraction of amax.
     sampler : callable, optional
         Timing -> PoseTrajectory (default `sloshkit.plan.path.problem.sample_path`).
-    slowest_s : float, optional
-        A duration [s] already reached: members at least this long count as passing without
-        their screen (they cannot win; the searches then go on among the faster members),
-        and None is returned unless a shorter member passes.
 
     Returns
     -------
     tuple or None
-        (A [m/s^2], the member's timing), None when no cap passes (or none shorter than
-        ``slowest_s``).
+        (A [m/s^2], the member's timing), None when no cap passes.
 
     Examples
     --------
@@ -209,8 +202,6 @@ def fastest_capped(
     amax = problem.machine.max_acceleration_m_s2
 
     def ok(member: Timing) -> bool:
-        if slowest_s is not None and member.duration_s >= slowest_s:
-            return True  # cannot win: counted as passing, unscreened, so the searches go faster
         if sampler is not None:
             return passes(sampler(member))
         return passes(sample_path(problem.path, member, problem.sample_period_s))
@@ -232,10 +223,7 @@ def fastest_capped(
         problem, ok, shaper, float(caps[passing]), member, float(caps[max(passing - 1, 0)])
     )
     bisected = _refine(problem, ok, shaper, float(caps[-1]), None, amax)
-    found = bisected if scanned is None or (bisected and bisected[0] > scanned[0]) else scanned
-    if found is not None and slowest_s is not None and found[1].duration_s >= slowest_s:
-        return None
-    return found
+    return bisected if scanned is None or (bisected and bisected[0] > scanned[0]) else scanned
 
 
 def lowest_cap_failure(
@@ -416,11 +404,10 @@ def timing_shapers(problem: PathProblem) -> list[tuple[str, Shaper | ShaperFacto
     return shapers
 
 
-def upright_family(
-    problem: PathProblem, verifier: Verifier = verify, slowest_s: float | None = None
-) -> PathCandidate:
+def upright_family(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
     """The fastest acceleration cap of the family under the slosh screen, with each of
-    `timing_shapers`, verified: the verified floor of ``retime``.
+    `timing_shapers`, verified: ``retime``'s plan where its programs do not run or verify
+    nothing (`sloshkit.plan.path.planner`).
 
     Parameters
     ----------
@@ -428,16 +415,12 @@ def upright_family(
         Path, limits, model.
     verifier : callable
         Verification of an export.
-    slowest_s : float, optional
-        A plan's duration [s] already found: only shorter members are screened
-        (`fastest_capped`).
 
     Returns
     -------
     PathCandidate
         Method ``retime``, ``detail["source"]`` ``family``; when no cap down to
-        `LOWEST_CAP_FRACTION` of amax passes, failed with the limit that binds at that cap
-        (or, with ``slowest_s``, when no shorter member passes, failed saying so).
+        `LOWEST_CAP_FRACTION` of amax passes, failed with the limit that binds at that cap.
 
     References
     ----------
@@ -459,7 +442,6 @@ def upright_family(
             problem,
             lambda poses: screen_ok(problem, linear_screen(models, poses)),
             shaper,
-            slowest_s=slowest_s,
         )
         if found is None:
             continue
@@ -467,9 +449,6 @@ def upright_family(
         duration = sample_path(problem.path, member, problem.sample_period_s).duration_s
         if best is None or duration < best[0]:
             best = (duration, cap, member, name)
-    if best is None and slowest_s is not None:
-        message = f"no family member shorter than {slowest_s:.3f} s passes the slosh screen"
-        return PathCandidate("retime", None, None, time.perf_counter() - started, message)
     if best is None:
         message = (
             f"no acceleration cap down to {100 * LOWEST_CAP_FRACTION:g} % of amax meets the slosh "
@@ -479,9 +458,7 @@ def upright_family(
     _, cap, member, name = best
     detail = {"source": "family", "acceleration_cap_m_s2": cap, "shaper": name}
     poses_for = stretcher(problem, member)
-    return verified_candidate(
-        "retime", problem, poses_for, 1.0, started, verifier, False, detail, slowest_s
-    )
+    return verified_candidate("retime", problem, poses_for, 1.0, started, verifier, False, detail)
 
 
 __all__ = [

@@ -68,9 +68,7 @@ def tilt_transform(
     return tilted, smoothing
 
 
-def tilted_family(
-    problem: PathProblem, verifier: Verifier = verify, slowest_s: float | None = None
-) -> PathCandidate:
+def tilted_family(problem: PathProblem, verifier: Verifier = verify) -> PathCandidate:
     """Tilt compensation of the family: the largest cap whose tilted export passes the screen
     and the tilt and angular limits, verified.
 
@@ -80,9 +78,6 @@ def tilted_family(
         Path, limits (``max_tilt_rad``, ``tilt_centre_height_m``), model.
     verifier : callable
         Verification of an export.
-    slowest_s : float, optional
-        A plan's duration [s] already found: only shorter members are screened
-        (`sloshkit.plan.path.search.fastest_capped`).
 
     Returns
     -------
@@ -116,7 +111,7 @@ def tilted_family(
     # The curve shaper is not tried: tilting removes the turning forcing it is for (on the
     # series' paths it never gave a faster tilted plan and cost a third more compute).
     for name, shaper in timing_shapers(problem)[:2]:
-        found = fastest_capped(problem, passes, shaper, slowest_s=slowest_s)
+        found = fastest_capped(problem, passes, shaper)
         if found is None:
             continue
         cap, member = found
@@ -124,9 +119,6 @@ def tilted_family(
         duration = tilted(plain(1.0)).duration_s
         if best is None or duration < best[0]:
             best = (duration, cap, plain, name)
-    if best is None and slowest_s is not None:
-        message = f"no tilted family member shorter than {slowest_s:.3f} s passes the screen"
-        return PathCandidate("tilt", None, None, time.perf_counter() - started, message)
     if best is None:
         failure = lowest_cap_failure(
             problem,
@@ -152,7 +144,6 @@ def tilted_family(
         verifier,
         True,
         detail,
-        slowest_s,
     )
 
 
