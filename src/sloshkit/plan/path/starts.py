@@ -155,12 +155,10 @@ def capped_search(problem: Any, transcription: SplineTranscription, log: Any) ->
     True
     """
     capped, shaped = capped_start(problem), capped_start(problem, shaped=True)
-    chosen, stepped = screened_start(transcription, capped, shaped)
-    if chosen != 0:
+    if screened_start(transcription, capped, shaped) != 0:
         return None
     try:
-        # from the screen's step: its program is the search's first
-        timing, _, trials = shortest(transcription, stepped, log, give_up=FIRST_DURATIONS)
+        timing, _, trials = shortest(transcription, capped, log, give_up=FIRST_DURATIONS)
     except RuntimeError:
         return None
     return timing, trials
@@ -168,11 +166,10 @@ def capped_search(problem: Any, transcription: SplineTranscription, log: Any) ->
 
 def screened_start(
     transcription: SplineTranscription, first: SplineTiming, second: SplineTiming
-) -> tuple[int, SplineTiming]:
+) -> int:
     """Which of two starts lies in the better basin: both at ``first``'s duration, one
     program each (trust region `FIRST_TRUST`), the index (0 or 1) of the one whose exact
-    largest ratio to a limit is then lower (0 on a tie or when both programs fail), and the
-    better of that start and its program's step (the search from it saves that program).
+    largest ratio to a limit is then lower (0 on a tie or when both programs fail).
 
     The search's result depends on the basin its first feasible duration falls into, and
     no start wins everywhere: on the benchmark one program at the capped timing's own
@@ -191,9 +188,8 @@ def screened_start(
 
     Returns
     -------
-    tuple
-        0 for ``first``, 1 for ``second``; and the chosen start or its step, whichever has
-        the lower ratio (at ``first``'s N and coefficient count).
+    int
+        0 for ``first``, 1 for ``second``.
 
     Examples
     --------
@@ -211,19 +207,14 @@ def screened_start(
     >>> tau = np.linspace(0.0, 1.0, 101)
     >>> smooth = fit_timing(tau, 0.1 * tau**3 * (10 - 15 * tau + 6 * tau**2), 10, 45)
     >>> late = fit_timing(tau, 0.1 * np.clip(3 * tau - 2, 0, 1) ** 3, 10, 45)
-    >>> chosen, stepped = screened_start(SplineTranscription(program), smooth, late)
-    >>> chosen, stepped.steps
-    (0, 45)
+    >>> screened_start(SplineTranscription(program), smooth, late)
+    0
     """
-    ratios, better = [], []
+    ratios = []
     for start in (first, respaced(second.on_steps(first.steps), first.count)):
-        iterate = transcription.iterate(start)
-        step = transcription.step(start, iterate, FIRST_TRUST)
-        ratio = transcription.iterate(step.timing).excess if step else math.inf
-        ratios.append(ratio)
-        better.append(step.timing if step is not None and ratio < iterate.excess else start)
-    chosen = int(ratios[1] < ratios[0])
-    return chosen, better[chosen]
+        step = transcription.step(start, transcription.iterate(start), FIRST_TRUST)
+        ratios.append(transcription.iterate(step.timing).excess if step else math.inf)
+    return int(ratios[1] < ratios[0])
 
 
 __all__ = [

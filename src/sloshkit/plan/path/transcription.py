@@ -66,12 +66,6 @@ KNOT_SPACING_S = 0.025
 SEGMENT_SAMPLES = 100
 #: Constraint-generation rounds per program, at most.
 GENERATION_ROUNDS = 6
-#: A round's solution is the step when the rows left out that it breaks exceed its largest
-#: linearised ratio by at most this fraction of it (the step's prediction then includes
-#: them): the exact evaluation decides the step anyway, and on `tilt` TRD_2D 4 of the 37
-#: solves were such rounds, each breaking rows by 0.1-1.6 % (the others by 25 % to 150
-#: times).
-GENERATION_TOLERANCE = 0.02
 #: Relative margin the programs keep from every limit (the export is verified exactly).
 PROGRAM_MARGIN = 1e-3
 
@@ -419,7 +413,8 @@ class SplineTranscription:
             self.programs += 1
             if x is None:
                 return None
-            # the largest linearised ratio of a row left out that the solution breaks
+            # the largest linearised ratio of a row left out that the solution breaks (after
+            # the last round, the step's prediction includes it)
             broken = 0.0
             for group, use in zip(rows, selected, strict=True):
                 predicted = group.predicted(x, nv)
@@ -427,7 +422,7 @@ class SplineTranscription:
                 if over.any():
                     broken = max(broken, float(predicted[over].max()) - keep - x[slack])
                 use |= over | np.roll(over, 1) | np.roll(over, -1)
-            if broken <= GENERATION_TOLERANCE * (keep + x[slack]):
+            if not broken:
                 break
         assert x is not None
         self.active = (steps, selected)
@@ -487,7 +482,6 @@ class SplineTranscription:
 
 __all__ = [
     "GENERATION_ROUNDS",
-    "GENERATION_TOLERANCE",
     "KNOT_SPACING_S",
     "PROGRAM_MARGIN",
     "SEGMENT_SAMPLES",
