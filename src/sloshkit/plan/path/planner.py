@@ -306,18 +306,18 @@ def plan_tilt(
 #: time-optimal speed profile under the quasi-static acceleration cap
 #: (`sloshkit.plan.path.starts.capped_start`, within 3-21 % of their plans on the benchmark's
 #: paths), has at most this many export samples (5 s at 4 ms) and no arm is checked. Their
-#: compute grows with the samples: upright 0.5 s for the benchmark's 0.78 s pick-and-place
-#: and 2 s for the 2.07 s TRD_2D move; tilted, with the upright rounds beside them, 1.1 s and
-#: 8-9 s (0.656 s and 1.456 s, where the families give 1.21 s and 1.94 s in about a second),
-#: and on the 4-7 s moves 4-17 s upright and 18-42 s tilted. A move is planned once and run
+#: compute grows with the samples: upright 0.2 s for the benchmark's 0.78 s pick-and-place
+#: and 1.1 s for the 2.07 s TRD_2D move; tilted 0.7 s and 4.5-5 s (0.656 s and 1.456 s, where
+#: the families give 1.21 s and 1.94 s in about a second), and on the 4-7 s moves 2-12 s
+#: upright and 17-60 s tilted. A move is planned once and run
 #: many times, so half a minute for a cycle 1.3-1.9 times shorter than the families' (LE and
 #: RD tilted in the benchmark's primary table) is worth it; on longer moves ``auto`` returns
 #: the families' and ``shaped``'s plans, and ``retime`` or ``tilt`` asked for by name runs
 #: the programs whatever the length.
 AUTO_OPTIMAL_MAX_SAMPLES = 1250
 #: The same bound with an arm's joint speeds checked (1.2 s at 4 ms): the joint rows and the
-#: IK of the verified exports make the programs dearer (2 s upright and 5 s tilted for the
-#: pick-and-place with the UR5e, 10 s and 60-70 s for TRD_2D).
+#: IK of the verified exports make the programs dearer (1.9 s upright and 2.7 s tilted for
+#: the pick-and-place with the UR5e, 6 s and 30 s for TRD_2D).
 AUTO_ARM_OPTIMAL_MAX_SAMPLES = 300
 
 
