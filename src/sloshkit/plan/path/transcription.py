@@ -417,10 +417,10 @@ class SplineTranscription:
             # the last round, the step's prediction includes it)
             broken = 0.0
             for group, use in zip(rows, selected, strict=True):
-                predicted = group.predicted(x, nv)
-                over = (predicted > keep + x[slack] + 1e-6) & ~use
+                linearised = group.predicted(x, nv)
+                over = (linearised > keep + x[slack] + 1e-6) & ~use
                 if over.any():
-                    broken = max(broken, float(predicted[over].max()) - keep - x[slack])
+                    broken = max(broken, float(linearised[over].max() - keep - x[slack]))
                 use |= over | np.roll(over, 1) | np.roll(over, -1)
             if not broken:
                 break
@@ -436,8 +436,9 @@ class SplineTranscription:
         size = float(np.max(np.abs(x[:free]))) / self.length if free else 0.0
         if tilting:
             size = max(size, float(np.max(np.abs(x[free:nz]))) / 2.5)
-        predicted = keep + float(x[slack]) + broken
-        return StepResult(SplineTiming(new_s, new_tilt, steps), predicted, size)
+        return StepResult(
+            SplineTiming(new_s, new_tilt, steps), keep + float(x[slack]) + broken, size
+        )
 
     def _angular_rows(
         self, rows: list[NormRows], ev: Any, blocks: list[Any], n: int, nz: int
