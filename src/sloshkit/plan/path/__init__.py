@@ -3,7 +3,7 @@
 - `sloshkit.plan.path.geometry`: the path (`Path`, `path_from_waypoints`, `path_from_poses`).
 - `sloshkit.plan.path.problem`: `PathProblem`, its limits, the sampled pose export.
 - `sloshkit.plan.path.planner`: `plan_path`, the methods side by side, each verified:
-  ``retime`` and ``tilt`` (the programs, floored by the families), ``shaped``.
+  ``retime`` and ``tilt`` (the programs; the families where they verify nothing), ``shaped``.
 - `sloshkit.plan.path.result`: the verification (`verify`), candidates, `PathPlanResult`.
 - `sloshkit.plan.path.limits`: kinematic limits of a sampled export.
 - `sloshkit.plan.path.screen`: the linear slosh screen of a sampled export.

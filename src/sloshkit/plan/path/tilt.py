@@ -3,8 +3,9 @@
 The largest acceleration cap of the timing family (`sloshkit.plan.path.retime`) whose tilted
 export (`sloshkit.plan.path.tilt_compensation.tilt_compensated`, the container tilted to the
 smoothed apparent gravity of its first mode) passes the linear screen and the tilt and angular
-limits, verified (`tilted_family`). It is the verified floor of the ``tilt`` method, whose
-programs make the tilt angles variables (`sloshkit.plan.path.optimal`).
+limits, verified (`tilted_family`). It is the ``tilt`` method's plan where that method's
+programs, which make the tilt angles variables (`sloshkit.plan.path.optimal`), verify no
+tilted plan.
 """
 
 from __future__ import annotations
