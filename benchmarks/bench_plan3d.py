@@ -329,8 +329,8 @@ def reference_table(
         "30 deg), with the linear slosh model (optimum) and with the nonlinear one that "
         "verifies the plans (nonlinear optimum); `retime` and `shaped` divided by the upright "
         'optimum, `tilt` by the tilted one (a duration marked "family" is the family\'s '
-        "verified member, shorter than the programs' plan); compute: wall time on the shared "
-        "machine:",
+        "verified member, where the programs verified no plan); compute: wall time on the "
+        "shared machine:",
         "",
         "| case | robot | optimum upright | optimum tilted | optimum compute "
         "| nonlinear optimum upright | nonlinear optimum tilted | nonlinear optimum compute | "
