@@ -302,18 +302,15 @@ def plan_tilt(
     return _fastest("tilt", started, [program, *(families or [])[::-1], *floor])
 
 
-#: ``auto`` runs the programs of ``retime`` and ``tilt`` when their first start, the
-#: time-optimal speed profile under the quasi-static acceleration cap
+#: ``auto`` runs the programs of ``retime`` and ``tilt`` when their first start
 #: (`sloshkit.plan.path.starts.capped_start`, within 3-21 % of their plans on the benchmark's
-#: paths), has at most this many export samples (5 s at 4 ms) and no arm is checked. Their
-#: compute grows with the samples: upright 0.2 s for the benchmark's 0.78 s pick-and-place
-#: and 1.1 s for the 2.07 s TRD_2D move; tilted 0.7 s and 4.5-5 s (0.656 s and 1.456 s, where
-#: the families give 1.21 s and 1.94 s in about a second), and on the 4-7 s moves 2-12 s
-#: upright and 17-60 s tilted. A move is planned once and run
-#: many times, so half a minute for a cycle 1.3-1.9 times shorter than the families' (LE and
-#: RD tilted in the benchmark's primary table) is worth it; on longer moves ``auto`` returns
-#: the families' and ``shaped``'s plans, and ``retime`` or ``tilt`` asked for by name runs
-#: the programs whatever the length.
+#: paths) has at most this many export samples (5 s at 4 ms) and no arm is checked. Their
+#: compute grows with the samples: upright 0.2 s and 1.1 s on the 0.78 s pick-and-place and
+#: the 2.07 s TRD_2D move, tilted 0.7 s and 4.5-5 s (0.656 s and 1.456 s, where the families
+#: give 1.21 s and 1.94 s in about a second), on the 4-7 s moves 2-12 s upright and 17-60 s
+#: tilted. A move is planned once and run many times, so a minute for a cycle 1.3-1.9 times
+#: shorter than the families' is worth it; on longer moves ``auto`` returns the families'
+#: and ``shaped``'s plans, and ``retime`` or ``tilt`` asked for by name run the programs.
 AUTO_OPTIMAL_MAX_SAMPLES = 1250
 #: The same bound with an arm's joint speeds checked (1.2 s at 4 ms): the joint rows and the
 #: IK of the verified exports make the programs dearer (1.9 s upright and 2.7 s tilted for
@@ -441,8 +438,7 @@ def _auto(
     short move (`_programs_affordable`) when a plan exists (`_plan_exists`, else the families
     first and a plan among theirs or ``others``' such as ``shaped``); the families where the
     programs did not run or verified nothing. ``retime``'s compute is its family's and its
-    upright rounds',
-    ``tilt``'s all of it (its tilted rounds start from the upright ones)."""
+    upright rounds', ``tilt``'s all of it (its tilted rounds start from the upright ones)."""
     started = time.perf_counter()
     tilting = tilt and problem.max_tilt_rad > 0.0
     first: list[PathCandidate] = []
@@ -453,11 +449,8 @@ def _auto(
     known = [*first, *floor, *others] if first else None
     if _programs_affordable(problem, known, isinstance(verifier, JointSpeedCheck)):
         program = _program_candidates(problem, verifier, say, tilting)
-    upright: PathCandidate | None = None
-    tilted: PathCandidate | None = None
-    if first:
-        upright, tilted = first[0], first[1] if tilting else None
-    else:
+    upright, tilted = (first[0], first[1] if tilting else None) if first else (None, None)
+    if not first:
         if not _verified(program[0]):
             say("retime: the family's fastest acceleration cap under the slosh screen")
             upright = upright_family(problem, verifier)
