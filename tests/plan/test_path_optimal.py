@@ -152,6 +152,34 @@ def test_a_decided_duration_stops_at_its_verdict(robot_vial: SloshModel) -> None
     assert not iterate.feasible and ratio > 1.0
 
 
+def test_a_decided_duration_is_unmet_after_repeated_rejected_steps() -> None:
+    """With ``decide`` the programs at an N stop after `REJECTED` successive steps that the
+    exact ratio rejects far above the limits (a start far outside the linearisation);
+    minimising there goes on until the trust region is spent."""
+    from types import SimpleNamespace
+
+    from sloshkit.plan.path.minimum_time import ITERATIONS, REJECTED
+    from sloshkit.plan.path.transcription import StepResult
+
+    start = SplineTiming(np.array([0, 0, 0, 0.5, 1, 1, 1.0]), np.zeros((7, 2)), 50)
+    moved = SplineTiming(start.coefficients_m + 0.01, start.tilt_rad, 50)
+    far = SimpleNamespace(excess=27.7, feasible=False)
+    worse = SimpleNamespace(excess=28.0, feasible=False)
+
+    class Hopeless:
+        """Every step promises to reach the limits and makes the exact ratio worse."""
+
+        def iterate(self, timing):
+            return far if timing is start else worse
+
+        def step(self, timing, current, trust):
+            return StepResult(moved, 1.0, trust)
+
+    decided = at_duration(Hopeless(), start, decide=True)
+    assert decided[2] == REJECTED and decided[4] == far.excess
+    assert at_duration(Hopeless(), start)[2] == ITERATIONS
+
+
 def test_the_search_stops_before_a_duration_longer_than_it_may_try(
     robot_vial: SloshModel,
 ) -> None:
