@@ -15,9 +15,9 @@
   ZV/ZVD shaper of the first mode, which cancels its residual for every lateral direction), the
   largest cap whose export passes the screen and keeps within ``max_path_deviation_m`` of the
   path (shaping the axes cuts corners; the deviation is measured on the export);
-- ``auto``: ``shaped`` and the families, and the programs of ``retime`` (and ``tilt``) on
-  moves up to about 5 s (`AUTO_OPTIMAL_MAX_SAMPLES`; with an arm 1.2 s,
-  `AUTO_ARM_OPTIMAL_MAX_SAMPLES`): the tilted programs take a minute or more on longer ones;
+- ``auto``: ``shaped``, and the programs of ``retime`` (and ``tilt``) on moves up to about
+  5 s (`AUTO_OPTIMAL_MAX_SAMPLES`; with an arm 1.2 s, `AUTO_ARM_OPTIMAL_MAX_SAMPLES`), the
+  families on longer ones (the tilted programs take a minute or more there);
 - ``optimal``: ``tilt`` with the tilt free, else ``retime`` (the name of the 1-D planner's
   minimum-time method).
 
