@@ -289,17 +289,18 @@ def plan_tilt(
     (True, True)
     """
     started = time.perf_counter()
-    families = None
+    # the families in the pool's order: the tilted member first
+    families: list[PathCandidate] = []
     if not _plan_exists(problem):
-        families = [upright_family(problem, verifier), tilted_family(problem, verifier)]
+        families = [tilted_family(problem, verifier), upright_family(problem, verifier)]
         if not _floor_found([*families, *floor]):
-            return _fastest("tilt", started, [families[1], families[0], *floor])
+            return _fastest("tilt", started, [*families, *floor])
     _, program = _program_candidates(problem, verifier, progress or (lambda _: None), True, False)
-    if families is None and not _verified(program, tilted=True):
+    if not families and not _verified(program, tilted=True):
         families = [tilted_family(problem, verifier)]
         if not _verified(program):
-            families.insert(0, upright_family(problem, verifier))
-    return _fastest("tilt", started, [program, *(families or [])[::-1], *floor])
+            families.append(upright_family(problem, verifier))
+    return _fastest("tilt", started, [program, *families, *floor])
 
 
 #: ``auto`` runs the programs of ``retime`` and ``tilt`` when their first start
